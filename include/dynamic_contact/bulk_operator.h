@@ -1,0 +1,116 @@
+#ifndef dynamic_contact_bulk_operator_h
+#define dynamic_contact_bulk_operator_h
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <dynamic_contact/discretization.h>
+#include <dynamic_contact/material.h>
+#include <dynamic_contact/scene.h>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+  using Vector_t = TrilinosWrappers::MPI::Vector;
+  using Matrix_t = TrilinosWrappers::SparseMatrix;
+
+  /**
+   * The linear part of the scheme (model.md section 2): the mass matrix M
+   * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
+   * of a_C, assembled once per mesh and condensed with the mesh's
+   * constraints, and the bulk Newton matrix
+   *   K0 = (rho/k) M + A + k B,
+   * formed from them (no reassembly) whenever k changes. Nothing of Gamma_3
+   * is in here: the contact terms are added by the step solver.
+   */
+  template <int dim>
+  class BulkOperator
+  {
+  public:
+    BulkOperator(const Discretization<dim> &      discretization,
+                 const KelvinVoigtMaterial<dim> &material);
+
+    /** Assemble M, B (and A if the material is viscous) on the current mesh. */
+    void
+    reinit();
+
+    /** Form K0 for the time step k (a no-op if k is unchanged). */
+    void
+    set_time_step(const double k);
+
+    /** K0 = (rho/k) M + A + k B for the last k. */
+    const Matrix_t &
+    newton_matrix() const
+    {
+      return bulk_matrix;
+    }
+
+    const Matrix_t &
+    mass() const
+    {
+      return mass_matrix;
+    }
+    const Matrix_t &
+    elasticity() const
+    {
+      return elasticity_matrix;
+    }
+    /** Only valid if has_viscosity(). */
+    const Matrix_t &
+    viscosity() const
+    {
+      return viscosity_matrix;
+    }
+    bool
+    has_viscosity() const
+    {
+      return material.has_viscosity();
+    }
+
+    /** x^T M y etc. for vectors in master form. */
+    double
+    mass_product(const Vector_t &x, const Vector_t &y) const;
+    double
+    elastic_product(const Vector_t &x, const Vector_t &y) const;
+    double
+    viscous_product(const Vector_t &x, const Vector_t &y) const;
+
+    /**
+     * The load vector f_n = (f_0(t), v) + (f_2(t), v)_Gamma_2, condensed,
+     * at time t.
+     */
+    void
+    assemble_load_vector(const Scene<dim> &scene,
+                         const double      t,
+                         Vector_t &        load) const;
+
+    /** The time step K0 was formed for (0 before the first call). */
+    double
+    time_step() const
+    {
+      return current_k;
+    }
+
+    /** A sparsity pattern for matrices that share K0's structure. */
+    const TrilinosWrappers::SparsityPattern &
+    sparsity_pattern() const
+    {
+      return pattern;
+    }
+
+  private:
+    const Discretization<dim> &      discretization;
+    const KelvinVoigtMaterial<dim> &material;
+
+    TrilinosWrappers::SparsityPattern pattern;
+    Matrix_t                          mass_matrix;
+    Matrix_t                          elasticity_matrix;
+    Matrix_t                          viscosity_matrix;
+    Matrix_t                          bulk_matrix;
+    double                            current_k = 0;
+    mutable Vector_t                  tmp;
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,26 @@
+#ifndef dynamic_contact_command_line_h
+#define dynamic_contact_command_line_h
+
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  /** What the command line asks for. */
+  struct CommandLine
+  {
+    bool                     help             = false;
+    bool                     print_parameters = false;
+    std::string              parameter_file;
+    std::vector<std::string> overrides; // "Section/Entry=value"
+    std::string              error;     // non-empty: a usage error
+
+    static CommandLine
+    parse(const int argc, const char *const *argv);
+
+    static std::string
+    usage();
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,94 @@
+#ifndef dynamic_contact_discretization_h
+#define dynamic_contact_discretization_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/lac/affine_constraints.h>
+
+#include <dynamic_contact/parameters.h>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  /**
+   * The discrete space: distributed mesh, Q_p^dim elements for the
+   * displacement and velocity, a scalar Q_p space on the same mesh for nodal
+   * output fields, the owned and relevant index sets, and the constraints
+   * that do not change within a mesh: hanging nodes, then clamped and roller
+   * conditions on top (all homogeneous).
+   *
+   * Convention for all solution vectors: they are stored in "master form",
+   * with every constrained entry zero; the matrices are condensed with the
+   * same constraints, so that x^T M x is the exact discrete norm.
+   * expand() fills in the constrained entries for anything that evaluates
+   * the finite element function (output, transfer between meshes).
+   */
+  template <int dim>
+  class Discretization
+  {
+  public:
+    Discretization(const MPI_Comm comm, const unsigned int degree);
+
+    /** Distribute DoFs and build the constraints for the current mesh. */
+    void
+    setup_dofs(const Parameters::BoundaryConditions &boundary_conditions);
+
+    /** The minimal cell diameter over all processes. */
+    double
+    minimal_cell_diameter() const;
+
+    /** A vector of locally owned entries. */
+    template <typename VectorType>
+    void
+    reinit_owned(VectorType &v) const
+    {
+      v.reinit(locally_owned, comm);
+    }
+
+    /** A ghosted vector (owned and locally relevant entries). */
+    template <typename VectorType>
+    void
+    reinit_ghosted(VectorType &v) const
+    {
+      v.reinit(locally_owned, locally_relevant, comm);
+    }
+
+    /**
+     * From a vector in master form, a ghosted vector with the constrained
+     * entries filled in (hanging nodes interpolated).
+     */
+    template <typename VectorType>
+    void
+    expand(const VectorType &master_form, VectorType &ghosted) const
+    {
+      VectorType tmp(master_form);
+      constraints.distribute(tmp);
+      ghosted = tmp;
+    }
+
+    MPI_Comm                                  comm;
+    parallel::distributed::Triangulation<dim> triangulation;
+    FESystem<dim>                             fe;
+    FE_Q<dim>                                 scalar_fe;
+    DoFHandler<dim>                           dof_handler;
+    DoFHandler<dim>                           scalar_dof_handler;
+    MappingQ1<dim>                            mapping;
+
+    IndexSet locally_owned;
+    IndexSet locally_relevant;
+    IndexSet scalar_locally_owned;
+    IndexSet scalar_locally_relevant;
+
+    /** Hanging-node constraints only. */
+    AffineConstraints<double> hanging_node_constraints;
+    /** Hanging nodes, clamped and roller conditions. */
+    AffineConstraints<double> constraints;
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,103 @@
+#ifndef dynamic_contact_energy_balance_h
+#define dynamic_contact_energy_balance_h
+
+#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/foundation.h>
+#include <dynamic_contact/step_solver.h>
+
+namespace DynamicContact
+{
+  /**
+   * The energy E_n = (rho/2)|w_n|^2 + a_E(u_n, u_n)/2 + sum_i m_i Pi(u_nu,i)
+   * of model.md section 6.
+   */
+  struct Energy
+  {
+    double kinetic    = 0;
+    double elastic    = 0;
+    double foundation = 0;
+
+    double
+    total() const
+    {
+      return kinetic + elastic + foundation;
+    }
+  };
+
+  /**
+   * The terms of the discrete balance E_n - E_{n-1} + D_n = W_n of one step,
+   * each computed from the fields (never assumed): every dissipation term
+   * is >= 0 for a correct, converged step.
+   */
+  struct EnergyBalanceTerms
+  {
+    Energy energy;
+    double load_work = 0; // W_n = (f_n, u_n - u_{n-1})
+    double inertia   = 0; // (rho/2)|w_n - w_{n-1}|^2
+    double elastic   = 0; // a_E(u_n - u_{n-1}, u_n - u_{n-1})/2
+    double viscous   = 0; // k a_C(w_n, w_n)
+    double compliance = 0; // sum m_i [p(u_n)(u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))]
+    double damping   = 0; // k sum m_i q(w_nu) w_nu
+    double friction  = 0; // k sum lambda_i . w_tau,i
+    double defect    = 0; // E_n - E_{n-1} + D_n - W_n
+
+    double
+    dissipation() const
+    {
+      return inertia + elastic + viscous + compliance + damping + friction;
+    }
+
+    /** The smallest of the dissipation terms. */
+    double
+    min_dissipation_term() const;
+
+    /**
+     * The size of the quantities that balance: the defect relative to it
+     * measures the balance.
+     */
+    double
+    scale(const double previous_energy) const;
+  };
+
+
+  template <int dim>
+  class EnergyBalance
+  {
+  public:
+    EnergyBalance(const BulkOperator<dim> &    bulk,
+                  const ContactBoundary<dim> &contact_boundary,
+                  const Foundation &          foundation,
+                  const double                density,
+                  const MPI_Comm              comm);
+
+    /** E(u, w), with the nodal penetrations of u computed here. */
+    Energy
+    energy(const Vector_t &u, const Vector_t &w) const;
+
+    /**
+     * All terms of step n, from u_{n-1}, w_{n-1}, u_n, w_n, the load vector
+     * f_n, the time step and the node states of the converged solve;
+     * @p previous_energy is E_{n-1}.
+     */
+    EnergyBalanceTerms
+    step_terms(const Vector_t &                         u_old,
+               const Vector_t &                         w_old,
+               const Vector_t &                         u,
+               const Vector_t &                         w,
+               const Vector_t &                         load,
+               const double                             k,
+               const std::vector<ContactNodeState<dim>> &states,
+               const double                             previous_energy) const;
+
+  private:
+    const BulkOperator<dim> &    bulk;
+    const ContactBoundary<dim> &contact_boundary;
+    const Foundation &          foundation;
+    const double                density;
+    const MPI_Comm              comm;
+    mutable Vector_t            difference;
+  };
+} // namespace DynamicContact
+
+#endif

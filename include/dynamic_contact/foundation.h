@@ -1,0 +1,131 @@
+#ifndef dynamic_contact_foundation_h
+#define dynamic_contact_foundation_h
+
+#include <dynamic_contact/parameters.h>
+
+#include <algorithm>
+
+namespace DynamicContact
+{
+  /**
+   * A capped ramp r -> min(slope r_+, cap): the shape of both the normal
+   * compliance p and the normal damped response q, eq. (88). Value,
+   * a generalized derivative (the one semismooth Newton uses: the slope on
+   * the open interval where the ramp rises, zero elsewhere) and the
+   * primitive Pi(r) = int_0^r.
+   */
+  class CappedRamp
+  {
+  public:
+    CappedRamp(const double slope, const double cap)
+      : slope(slope)
+      , cap(cap)
+      , kink(slope > 0 ? cap / slope : 0.)
+    {}
+
+    double
+    value(const double r) const
+    {
+      return std::min(slope * std::max(r, 0.), cap);
+    }
+
+    /** The slope where 0 < r < cap/slope, zero elsewhere. */
+    double
+    derivative(const double r) const
+    {
+      return (slope > 0 && r > 0 && r < kink) ? slope : 0.;
+    }
+
+    /** True where the ramp is active (r > 0): the set this law adds to. */
+    bool
+    active(const double r) const
+    {
+      return slope > 0 && r > 0;
+    }
+
+    /** True where the cap is reached (r >= cap/slope). */
+    bool
+    saturated(const double r) const
+    {
+      return slope > 0 && r >= kink;
+    }
+
+    /** Pi(r) = int_0^r value(s) ds. */
+    double
+    primitive(const double r) const
+    {
+      if (r <= 0 || slope == 0)
+        return 0.;
+      if (r <= kink)
+        return 0.5 * slope * r * r;
+      return 0.5 * cap * kink + cap * (r - kink);
+    }
+
+    double
+    get_slope() const
+    {
+      return slope;
+    }
+
+  private:
+    double slope;
+    double cap;
+    double kink;
+  };
+
+
+  /**
+   * The deformable foundation of eq. (17): -sigma_nu = p(u_nu) + q(u'_nu),
+   * p the normal compliance, q the normal damped response.
+   */
+  class Foundation
+  {
+  public:
+    explicit Foundation(const Parameters::Foundation &parameters)
+      : p(parameters.compliance_stiffness, parameters.compliance_cap)
+      , q(parameters.damping_coefficient, parameters.damping_cap)
+      , damping_only_in_contact(parameters.damping_only_in_contact)
+    {}
+
+    /** Normal compliance p(r) = min(c_nu r_+, c3). */
+    const CappedRamp &
+    compliance() const
+    {
+      return p;
+    }
+
+    /** Normal damped response q(r) = min(d_nu r_+, c4). */
+    const CappedRamp &
+    damping() const
+    {
+      return q;
+    }
+
+    bool
+    has_damping() const
+    {
+      return q.get_slope() > 0;
+    }
+
+    /** Whether q acts at a node with penetration @p u_nu. */
+    bool
+    damping_acts(const double u_nu) const
+    {
+      return !damping_only_in_contact || u_nu > 0;
+    }
+
+    /** The normal pressure p(u_nu) + q(w_nu) (a force per unit area). */
+    double
+    pressure(const double u_nu, const double w_nu) const
+    {
+      return p.value(u_nu) + (damping_acts(u_nu) ? q.value(w_nu) : 0.);
+    }
+
+  private:
+    CappedRamp p;
+    CappedRamp q;
+    bool       damping_only_in_contact;
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,148 @@
+#ifndef dynamic_contact_friction_law_h
+#define dynamic_contact_friction_law_h
+
+#include <deal.II/base/function_parser.h>
+
+#include <dynamic_contact/parameters.h>
+
+#include <memory>
+#include <string>
+
+namespace DynamicContact
+{
+  /**
+   * The friction coefficient mu(s) of the slip rate s = |u'_tau| (eq. (18)):
+   * constant, the paper's slip-weakening exponential (eq. (90)), or a
+   * function expression of s.
+   */
+  class FrictionLaw
+  {
+  public:
+    virtual ~FrictionLaw() = default;
+
+    /** mu(s), s >= 0. */
+    virtual double
+    value(const double s) const = 0;
+
+    /** mu'(s) (one-sided at kinks). */
+    virtual double
+    derivative(const double s) const = 0;
+
+    /** True if mu does not depend on s: one convexification pass suffices. */
+    virtual bool
+    is_constant() const = 0;
+
+    /** A short description for logs, e.g. "mu(s) = 0.5 exp(-2000 s) + 0.5". */
+    virtual std::string
+    description() const = 0;
+
+    /**
+     * The one-sided Lipschitz constant lambda of H(mu)(c): the smallest
+     * lambda >= 0 with mu(s1) - mu(s2) >= -lambda (s1 - s2) for
+     * s1 > s2 >= 0 in [0, s_max], i.e. max(0, -min mu'). Sampled densely on
+     * [0, s_max] (exact for the built-in laws).
+     */
+    virtual double
+    one_sided_lipschitz_constant(const double s_max) const;
+
+    /**
+     * Throws an ExcMessage naming the parameter if mu is negative or not
+     * finite somewhere on [0, s_max] (sampled).
+     */
+    void
+    check_nonnegative(const double s_max) const;
+
+    /** nullptr for Law = none. */
+    static std::unique_ptr<FrictionLaw>
+    create(const Parameters::Friction &parameters);
+  };
+
+
+  class ConstantFriction : public FrictionLaw
+  {
+  public:
+    explicit ConstantFriction(const double mu)
+      : mu(mu)
+    {}
+    double
+    value(const double) const override
+    {
+      return mu;
+    }
+    double
+    derivative(const double) const override
+    {
+      return 0;
+    }
+    bool
+    is_constant() const override
+    {
+      return true;
+    }
+    std::string
+    description() const override;
+    double
+    one_sided_lipschitz_constant(const double) const override
+    {
+      return 0;
+    }
+
+  private:
+    double mu;
+  };
+
+
+  /** mu(s) = (a - b) exp(-alpha s) + b, eq. (90). */
+  class ExponentialFriction : public FrictionLaw
+  {
+  public:
+    ExponentialFriction(const double a, const double b, const double alpha)
+      : a(a)
+      , b(b)
+      , alpha(alpha)
+    {}
+    double
+    value(const double s) const override;
+    double
+    derivative(const double s) const override;
+    bool
+    is_constant() const override
+    {
+      return a == b || alpha == 0;
+    }
+    std::string
+    description() const override;
+    /** alpha (a - b): the steepest descent, at s = 0. */
+    double
+    one_sided_lipschitz_constant(const double) const override
+    {
+      return alpha * (a - b);
+    }
+
+  private:
+    double a, b, alpha;
+  };
+
+
+  /** mu(s) from a muparser expression in the variable s. */
+  class ExpressionFriction : public FrictionLaw
+  {
+  public:
+    ExpressionFriction(const std::string &expression,
+                       const std::string &constants);
+    double
+    value(const double s) const override;
+    double
+    derivative(const double s) const override;
+    bool
+    is_constant() const override;
+    std::string
+    description() const override;
+
+  private:
+    std::string           expression;
+    FunctionParser<1>     parser;
+  };
+} // namespace DynamicContact
+
+#endif

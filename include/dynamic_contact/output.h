@@ -1,0 +1,111 @@
+#ifndef dynamic_contact_output_h
+#define dynamic_contact_output_h
+
+#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/discretization.h>
+#include <dynamic_contact/material.h>
+#include <dynamic_contact/step_solver.h>
+
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace DynamicContact
+{
+  /** One row of time_series.csv: named values, in column order. */
+  class TimeSeriesRow
+  {
+  public:
+    void
+    add(const std::string &name, const double value);
+    void
+    add_integer(const std::string &name, const long long value);
+
+    const std::vector<std::pair<std::string, std::string>> &
+    columns() const
+    {
+      return entries;
+    }
+
+    /** The value of a column (for progress lines and tests). */
+    double
+    get(const std::string &name) const;
+
+  private:
+    std::vector<std::pair<std::string, std::string>> entries;
+  };
+
+
+  /**
+   * time_series.csv: a header row, then one row per step, written by rank 0
+   * and flushed after every row so that a long run can be watched.
+   */
+  class TimeSeriesWriter
+  {
+  public:
+    TimeSeriesWriter(const std::string &filename, const MPI_Comm comm);
+
+    void
+    write(const TimeSeriesRow &row);
+
+  private:
+    std::string   filename;
+    bool          root;
+    bool          header_written = false;
+    std::ofstream out;
+  };
+
+
+  /**
+   * contact_NNNNN.csv: one row per node of Gamma_3, gathered from all
+   * processes on rank 0 and sorted by coordinates. Columns: x, y (, z),
+   * u_nu, w_nu, normal_pressure (= p + q), then the friction columns when
+   * the scene has friction.
+   */
+  template <int dim>
+  void
+  write_contact_csv(const std::string &                        filename,
+                    const ContactBoundary<dim> &               boundary,
+                    const std::vector<ContactNodeState<dim>> &states,
+                    const Vector_t &                           w,
+                    const bool                                 friction,
+                    const MPI_Comm                             comm);
+
+
+  /**
+   * solution_NNNNN.pvtu (+ one .vtu per process) and the time index
+   * solution.pvd: displacement, velocity, stress (tensor components and von
+   * Mises, cell averages), the contact pressure and traction on Gamma_3,
+   * friction fields when present, and the MPI subdomain.
+   */
+  template <int dim>
+  class VtuWriter
+  {
+  public:
+    VtuWriter(const std::string &directory, const MPI_Comm comm);
+
+    void
+    write(const unsigned int                         step,
+          const double                               time,
+          const Discretization<dim> &                discretization,
+          const KelvinVoigtMaterial<dim> &           material,
+          const ContactBoundary<dim> &               boundary,
+          const std::vector<ContactNodeState<dim>> &states,
+          const Vector_t &                           u,
+          const Vector_t &                           w,
+          const bool                                 friction);
+
+    /** Forget records after @p time (a restart that rewinds). */
+    void
+    truncate_after(const double time);
+
+  private:
+    std::string                               directory;
+    MPI_Comm                                  comm;
+    std::vector<std::pair<double, std::string>> records;
+  };
+} // namespace DynamicContact
+
+#endif

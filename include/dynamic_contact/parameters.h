@@ -1,0 +1,255 @@
+#ifndef dynamic_contact_parameters_h
+#define dynamic_contact_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/types.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  /**
+   * The parameters of a scene, one struct per subsection of the parameter
+   * file. Every struct declares its entries (default, pattern, documentation)
+   * and parses them, checking what can be checked without a mesh. Function
+   * expressions are not stored here: they are parsed by the Scene, which
+   * owns the functions (they need the dimension).
+   *
+   * Errors for users are thrown as ExcMessage naming the entry as
+   * "Section/Entry", so that the message leads straight to the line to fix.
+   */
+  namespace Parameters
+  {
+    struct Geometry
+    {
+      enum class Type
+      {
+        rectangle,
+        gmsh
+      };
+      Type                      type;
+      std::vector<double>       lower_left;
+      std::vector<double>       upper_right;
+      std::vector<unsigned int> repetitions;
+      unsigned int              global_refinements;
+      std::string               mesh_file; // resolved against the prm's directory
+
+      static void
+      declare_parameters(ParameterHandler &prm, const unsigned int dim);
+      void
+      parse_parameters(ParameterHandler &  prm,
+                       const unsigned int  dim,
+                       const std::string &prm_directory);
+    };
+
+    struct FiniteElement
+    {
+      unsigned int degree;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * Boundary conditions by boundary id. Every boundary id of the mesh must
+     * appear in exactly one list (checked against the mesh by the Scene).
+     */
+    struct BoundaryConditions
+    {
+      std::vector<types::boundary_id> clamped;  // Gamma_1: u = 0
+      std::vector<types::boundary_id> roller;   // u . n = 0, tangential free
+      std::vector<types::boundary_id> traction; // Gamma_2: sigma n = f_2
+      std::vector<types::boundary_id> contact;  // Gamma_3: foundation
+      std::vector<types::boundary_id> free;     // sigma n = 0
+
+      static void
+      declare_parameters(ParameterHandler &prm, const unsigned int dim);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /** All ids named in any list, with the name of the list. */
+      std::vector<std::pair<types::boundary_id, std::string>>
+      all_ids() const;
+    };
+
+    struct Material
+    {
+      enum class PlaneModel
+      {
+        plane_strain,
+        plane_stress
+      };
+      double     density;
+      double     young_modulus;
+      double     poisson_ratio;
+      PlaneModel plane_model;
+      double     viscosity_lambda; // first constant of the viscosity tensor C
+      double     viscosity_mu;     // second constant of C
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Foundation
+    {
+      double compliance_stiffness; // c_nu
+      double damping_coefficient;  // d_nu
+      double compliance_cap;       // c3
+      double damping_cap;          // c4
+      bool   damping_only_in_contact;
+
+      static void
+      declare_parameters(ParameterHandler &prm, const unsigned int dim);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Friction
+    {
+      enum class Law
+      {
+        none,
+        constant,
+        exponential,
+        expression
+      };
+      Law         law;
+      double      coefficient;       // constant law
+      double      static_coefficient; // a: mu(0) of the exponential law
+      double      dynamic_coefficient; // b: mu(infinity)
+      double      decay_rate;        // alpha
+      std::string expression;        // mu(s), variable s
+      std::string expression_constants;
+      double      maximum_slip_rate; // range on which mu is checked
+
+      // Convexification loop (model.md section 4).
+      double       convexification_tolerance; // epsilon_conv, eq. (85)
+      double       coefficient_tolerance; // max_i |mu_i - mu(|w_tau,i|)|
+      double       relaxation;
+      unsigned int max_convexification_iterations;
+
+      // Complementarity constant c_t; 0 means "E/h".
+      double complementarity_constant;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      bool
+      enabled() const
+      {
+        return law != Law::none;
+      }
+    };
+
+    struct Time
+    {
+      double end_time;
+      double time_step;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Solver
+    {
+      enum class LinearSolver
+      {
+        direct,
+        iterative
+      };
+      double       newton_tolerance;
+      unsigned int max_newton_iterations;
+      LinearSolver linear_solver;
+      std::string  direct_solver_package;
+      double       linear_tolerance;
+      unsigned int max_linear_iterations;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Output
+    {
+      std::string  directory;
+      unsigned int output_every;
+      bool         write_vtu;
+      unsigned int progress_every;
+      bool         print_timings;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace Parameters
+
+
+  /**
+   * All parameters of a run. The function-valued entries (loads, initial
+   * conditions, gap) are declared here so that --print-parameters lists them,
+   * and parsed by the Scene.
+   */
+  struct RunParameters
+  {
+    unsigned int                   dimension;
+    std::string                    parameter_file;
+    Parameters::Geometry           geometry;
+    Parameters::FiniteElement      finite_element;
+    Parameters::BoundaryConditions boundary_conditions;
+    Parameters::Material           material;
+    Parameters::Foundation         foundation;
+    Parameters::Friction           friction;
+    Parameters::Time               time;
+    Parameters::Solver             solver;
+    Parameters::Output             output;
+
+    /** Declare every entry for a problem in @p dim dimensions. */
+    static void
+    declare_parameters(ParameterHandler &prm, const unsigned int dim);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+
+  /**
+   * Read a parameter file in two passes: first the Dimension (everything else
+   * ignored), then every entry, declared for that dimension, strictly: an
+   * unknown or malformed entry is an error naming the file and the line.
+   * Each override "Section/Subsection/Entry=value" is applied after the file.
+   * The ParameterHandler @p prm is left holding the values read.
+   */
+  RunParameters
+  read_parameters(const std::string &             parameter_file,
+                  const std::vector<std::string> &overrides,
+                  ParameterHandler &              prm);
+
+  /** Return the dimension named by a parameter file (its "set Dimension"). */
+  unsigned int
+  read_dimension(const std::string &             parameter_file,
+                 const std::vector<std::string> &overrides);
+
+  /**
+   * Apply one override "Section/Subsection/Entry=value" to @p prm; throws an
+   * ExcMessage naming the entry if it does not exist or the value does not
+   * match its pattern.
+   */
+  void
+  apply_override(ParameterHandler &prm, const std::string &assignment);
+} // namespace DynamicContact
+
+#endif

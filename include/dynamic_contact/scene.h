@@ -1,0 +1,117 @@
+#ifndef dynamic_contact_scene_h
+#define dynamic_contact_scene_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/distributed/tria.h>
+
+#include <dynamic_contact/parameters.h>
+
+#include <memory>
+#include <set>
+#include <string>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  /**
+   * What a parameter file says about the world: the body's geometry, which
+   * boundary does what, the loads, the initial state and the foundation's
+   * initial gap. Everything here is data (function expressions, a mesh
+   * file); a new scene needs no recompilation.
+   */
+  template <int dim>
+  class Scene
+  {
+  public:
+    /**
+     * Parse the function-valued entries from @p prm (which must hold the
+     * values read for @p parameters); an expression that does not parse is
+     * an error naming its subsection.
+     */
+    Scene(const RunParameters &parameters, ParameterHandler &prm);
+
+    /**
+     * Create the coarse mesh (rectangle or Gmsh file), check that every
+     * boundary id of the mesh is assigned exactly one condition and that
+     * every id the parameter file names exists, then refine globally.
+     */
+    void
+    create_mesh(parallel::distributed::Triangulation<dim> &tria) const;
+
+    /** Traction f_2(x, t) on the Traction ids. Call set_time() first. */
+    Function<dim> &
+    traction() const
+    {
+      return *traction_function;
+    }
+
+    /** Body force f_0(x, t). */
+    Function<dim> &
+    body_force() const
+    {
+      return *body_force_function;
+    }
+
+    Function<dim> &
+    initial_displacement() const
+    {
+      return *initial_displacement_function;
+    }
+
+    Function<dim> &
+    initial_velocity() const
+    {
+      return *initial_velocity_function;
+    }
+
+    /** Initial gap g0(x) >= 0 of Gamma_3 to the foundation. */
+    Function<dim> &
+    initial_gap() const
+    {
+      return *initial_gap_function;
+    }
+
+    /** False if the traction expression is identically zero (skip it). */
+    bool
+    has_traction() const
+    {
+      return traction_nonzero;
+    }
+
+    /** False if the body force expression is identically zero. */
+    bool
+    has_body_force() const
+    {
+      return body_force_nonzero;
+    }
+
+    /** Set the time of the time-dependent functions (loads). */
+    void
+    set_time(const double t) const;
+
+    const Parameters::BoundaryConditions &
+    boundary_conditions() const
+    {
+      return boundaries;
+    }
+
+  private:
+    Parameters::Geometry           geometry;
+    Parameters::BoundaryConditions boundaries;
+
+    std::unique_ptr<Functions::ParsedFunction<dim>> traction_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> body_force_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> initial_gap_function;
+    bool traction_nonzero;
+    bool body_force_nonzero;
+
+    void
+    check_boundary_ids(const Triangulation<dim> &tria) const;
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,67 @@
+#include <dynamic_contact/command_line.h>
+
+namespace DynamicContact
+{
+  CommandLine
+  CommandLine::parse(const int argc, const char *const *argv)
+  {
+    CommandLine c;
+    for (int i = 1; i < argc; ++i)
+      {
+        const std::string arg = argv[i];
+        if (arg == "-h" || arg == "--help")
+          c.help = true;
+        else if (arg == "--print-parameters")
+          c.print_parameters = true;
+        else if (arg == "--set" || arg == "-s")
+          {
+            if (i + 1 >= argc)
+              {
+                c.error = "--set needs an argument 'Section/Entry=value'.";
+                return c;
+              }
+            c.overrides.emplace_back(argv[++i]);
+          }
+        else if (arg.rfind("--set=", 0) == 0)
+          c.overrides.push_back(arg.substr(6));
+        else if (!arg.empty() && arg[0] == '-')
+          {
+            c.error = "unknown option '" + arg + "'.";
+            return c;
+          }
+        else if (c.parameter_file.empty())
+          c.parameter_file = arg;
+        else
+          {
+            c.error = "more than one parameter file ('" + c.parameter_file +
+                      "' and '" + arg + "').";
+            return c;
+          }
+      }
+    if (!c.help && !c.print_parameters && c.parameter_file.empty())
+      c.error = "no parameter file given.";
+    return c;
+  }
+
+
+  std::string
+  CommandLine::usage()
+  {
+    return "Usage: dynamic-contact [options] scene.prm\n"
+           "       mpirun -np N dynamic-contact [options] scene.prm\n"
+           "\n"
+           "Simulates a viscoelastic body in dynamic frictional contact with a\n"
+           "deformable foundation (Barboteu & Danan 2016) as the parameter\n"
+           "file describes; results go to the directory Output/Directory.\n"
+           "\n"
+           "Options:\n"
+           "  -h, --help              print this help and exit\n"
+           "  --print-parameters      print every parameter with its value,\n"
+           "                          default and documentation, and exit\n"
+           "                          (the values of scene.prm if given)\n"
+           "  --set 'Section/Entry=value'\n"
+           "                          override one entry of the parameter\n"
+           "                          file (repeatable), e.g.\n"
+           "                          --set 'Time/Time step=0.001'\n";
+  }
+} // namespace DynamicContact

@@ -1,0 +1,219 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <dynamic_contact/contact_boundary.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    template <int dim>
+    std::array<Tensor<1, dim>, dim - 1>
+    tangent_basis(const Tensor<1, dim> &normal)
+    {
+      std::array<Tensor<1, dim>, dim - 1> t;
+      if constexpr (dim == 2)
+        {
+          t[0][0] = -normal[1];
+          t[0][1] = normal[0];
+        }
+      else
+        {
+          Tensor<1, dim> axis;
+          axis[std::abs(normal[0]) < 0.9 ? 0 : 1] = 1;
+          t[0] = axis - (axis * normal) * normal;
+          t[0] /= t[0].norm();
+          t[1] = cross_product_3d(t[0], normal);
+        }
+      return t;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  ContactBoundary<dim>::reinit(
+    const Discretization<dim> &             discretization,
+    const std::vector<types::boundary_id> &contact_ids,
+    const Function<dim> &                  initial_gap)
+  {
+    owned_nodes.clear();
+    const std::set<types::boundary_id> ids(contact_ids.begin(),
+                                           contact_ids.end());
+    const auto &fe          = discretization.fe;
+    const auto &dof_handler = discretization.dof_handler;
+
+    // Lumped weights int phi_i and normal moments int phi_i n, with the
+    // Gauss-Lobatto rule whose nodes are the support points, assembled into
+    // global vectors through the hanging-node constraints (a hanging node's
+    // share goes to its masters).
+    TrilinosWrappers::MPI::Vector weights, normal_moments;
+    discretization.reinit_owned(weights);
+    discretization.reinit_owned(normal_moments);
+    {
+      const QGaussLobatto<dim - 1> quadrature(fe.degree + 1);
+      FEFaceValues<dim>            fe_face(discretization.mapping,
+                                fe,
+                                quadrature,
+                                update_values | update_normal_vectors |
+                                  update_JxW_values);
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      Vector<double> local_w(fe.n_dofs_per_cell()), local_n(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                ids.count(cell->face(f)->boundary_id()))
+              {
+                fe_face.reinit(cell, f);
+                local_w = 0;
+                local_n = 0;
+                for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+                  {
+                    const unsigned int c = fe.system_to_component_index(i).first;
+                    for (unsigned int q = 0; q < quadrature.size(); ++q)
+                      {
+                        const double phi = fe_face.shape_value_component(i, q, c);
+                        local_w(i) += phi * fe_face.JxW(q);
+                        local_n(i) +=
+                          phi * fe_face.normal_vector(q)[c] * fe_face.JxW(q);
+                      }
+                  }
+                cell->get_dof_indices(dofs);
+                discretization.hanging_node_constraints
+                  .distribute_local_to_global(local_w, dofs, weights);
+                discretization.hanging_node_constraints
+                  .distribute_local_to_global(local_n, dofs, normal_moments);
+              }
+    }
+    weights.compress(VectorOperation::add);
+    normal_moments.compress(VectorOperation::add);
+
+    // The nodes: support points on Gamma_3 faces of owned and ghost cells
+    // (together they touch every owned DoF), whose DoFs this process owns
+    // and which are not hanging.
+    const Quadrature<dim - 1> support_points(fe.get_unit_face_support_points());
+    FEFaceValues<dim>         fe_face(discretization.mapping,
+                              fe,
+                              support_points,
+                              update_quadrature_points);
+    std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+    std::vector<types::global_dof_index> scalar_face_dofs(
+      discretization.scalar_fe.n_dofs_per_face());
+    std::set<types::global_dof_index> seen;
+
+    auto scalar_cell = discretization.scalar_dof_handler.begin_active();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_artificial())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                ids.count(cell->face(f)->boundary_id()))
+              {
+                cell->face(f)->get_dof_indices(face_dofs);
+                scalar_cell->face(f)->get_dof_indices(scalar_face_dofs);
+                fe_face.reinit(cell, f);
+                // Group the face DoFs by support point: component 0 first.
+                for (unsigned int j = 0; j < fe.n_dofs_per_face(); ++j)
+                  {
+                    const auto [component, base_index] =
+                      fe.face_system_to_component_index(j);
+                    if (component != 0)
+                      continue;
+                    const auto dof0 = face_dofs[j];
+                    if (!discretization.locally_owned.is_element(dof0) ||
+                        discretization.hanging_node_constraints
+                          .is_constrained(dof0) ||
+                        seen.count(dof0))
+                      continue;
+                    seen.insert(dof0);
+
+                    ContactNode<dim> node;
+                    for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
+                      if (fe.face_system_to_component_index(k).second ==
+                          base_index)
+                        node.dofs[fe.face_system_to_component_index(k).first] =
+                          face_dofs[k];
+                    node.scalar_dof = scalar_face_dofs[base_index];
+                    node.position   = fe_face.quadrature_point(j);
+                    node.weight     = weights[dof0];
+                    for (unsigned int c = 0; c < dim; ++c)
+                      node.normal[c] = normal_moments[node.dofs[c]];
+                    Assert(node.weight > 0 && node.normal.norm() > 0,
+                           ExcInternalError());
+                    node.normal /= node.normal.norm();
+                    node.tangents = tangent_basis<dim>(node.normal);
+                    node.gap      = initial_gap.value(node.position);
+                    AssertThrow(node.gap >= 0,
+                                ExcMessage(
+                                  "Foundation/Initial gap must be >= 0, but it "
+                                  "is negative at a node of Gamma_3."));
+
+                    // The clamped/roller constraints restricted to the node.
+                    const auto &constraints = discretization.constraints;
+                    node.constraint_map     = 0;
+                    node.unconstrained      = true;
+                    bool all_zero           = true;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      if (!constraints.is_constrained(node.dofs[c]))
+                        {
+                          node.constraint_map[c][c] = 1;
+                          all_zero                  = false;
+                        }
+                      else
+                        {
+                          node.unconstrained = false;
+                          for (const auto &[dof, coefficient] :
+                               *constraints.get_constraint_entries(
+                                 node.dofs[c]))
+                            {
+                              const auto it = std::find(node.dofs.begin(),
+                                                        node.dofs.end(),
+                                                        dof);
+                              AssertThrow(
+                                it != node.dofs.end(),
+                                ExcMessage(
+                                  "A node of Gamma_3 is constrained to "
+                                  "another node; contact boundaries must not "
+                                  "share nodes with constraints of that "
+                                  "kind."));
+                              node.constraint_map[c][it - node.dofs.begin()] =
+                                coefficient;
+                              all_zero = false;
+                            }
+                        }
+                    if (!all_zero) // a clamped node feels no foundation
+                      owned_nodes.push_back(node);
+                  }
+              }
+        ++scalar_cell;
+      }
+
+    // A reproducible order: by position.
+    std::sort(owned_nodes.begin(),
+              owned_nodes.end(),
+              [](const ContactNode<dim> &a, const ContactNode<dim> &b) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (a.position[d] != b.position[d])
+                    return a.position[d] < b.position[d];
+                return false;
+              });
+
+    double local_weight = 0;
+    for (const auto &node : owned_nodes)
+      local_weight += node.weight;
+    n_nodes      = Utilities::MPI::sum(static_cast<unsigned int>(
+                                    owned_nodes.size()),
+                                  discretization.comm);
+    total_weight = Utilities::MPI::sum(local_weight, discretization.comm);
+  }
+
+
+  template class ContactBoundary<2>;
+  template class ContactBoundary<3>;
+} // namespace DynamicContact

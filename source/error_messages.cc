@@ -1,0 +1,42 @@
+#include <deal.II/base/exceptions.h>
+
+#include <dynamic_contact/error_messages.h>
+
+#include <sstream>
+
+namespace DynamicContact
+{
+  std::string
+  error_message(const std::exception &e)
+  {
+    std::string text;
+    if (const auto *deal_ii = dynamic_cast<const dealii::ExceptionBase *>(&e))
+      {
+        std::ostringstream info;
+        deal_ii->print_info(info);
+        text = info.str();
+        if (text.find_first_not_of(" \n\t") == std::string::npos)
+          text = deal_ii->get_exc_name();
+      }
+    else
+      text = e.what();
+
+    // One paragraph: collapse line breaks and runs of blanks.
+    std::string result;
+    bool        blank = false;
+    for (const char c : text)
+      {
+        const bool is_blank = (c == ' ' || c == '\n' || c == '\t' || c == '\r');
+        if (is_blank)
+          blank = !result.empty();
+        else
+          {
+            if (blank)
+              result += ' ';
+            result += c;
+            blank = false;
+          }
+      }
+    return result;
+  }
+} // namespace DynamicContact

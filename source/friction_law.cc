@@ -1,0 +1,175 @@
+#include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
+
+#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/friction_law.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    /** Sample points on [0, s_max]: dense near 0, where laws change fastest. */
+    std::vector<double>
+    sample_points(const double s_max)
+    {
+      std::vector<double> s = {0.};
+      for (double x = 1e-9; x < s_max; x *= 1.02)
+        s.push_back(x);
+      for (unsigned int i = 1; i <= 1000; ++i)
+        s.push_back(s_max * i / 1000.);
+      std::sort(s.begin(), s.end());
+      return s;
+    }
+  } // namespace
+
+
+  double
+  FrictionLaw::one_sided_lipschitz_constant(const double s_max) const
+  {
+    const auto s      = sample_points(s_max);
+    double     lambda = 0;
+    for (unsigned int i = 1; i < s.size(); ++i)
+      if (s[i] > s[i - 1])
+        lambda = std::max(lambda,
+                          -(value(s[i]) - value(s[i - 1])) / (s[i] - s[i - 1]));
+    return lambda;
+  }
+
+
+  void
+  FrictionLaw::check_nonnegative(const double s_max) const
+  {
+    for (const double s : sample_points(s_max))
+      {
+        const double mu = value(s);
+        AssertThrow(std::isfinite(mu) && mu >= 0,
+                    ExcMessage("Friction: the friction coefficient must be "
+                               "finite and >= 0, but mu(" +
+                               std::to_string(s) + ") = " +
+                               std::to_string(mu) + "."));
+      }
+  }
+
+
+  std::unique_ptr<FrictionLaw>
+  FrictionLaw::create(const Parameters::Friction &p)
+  {
+    using Law = Parameters::Friction::Law;
+    switch (p.law)
+      {
+        case Law::none:
+          return nullptr;
+        case Law::constant:
+          return std::make_unique<ConstantFriction>(p.coefficient);
+        case Law::exponential:
+          return std::make_unique<ExponentialFriction>(p.static_coefficient,
+                                                       p.dynamic_coefficient,
+                                                       p.decay_rate);
+        case Law::expression:
+          return std::make_unique<ExpressionFriction>(p.expression,
+                                                      p.expression_constants);
+      }
+    return nullptr;
+  }
+
+
+  std::string
+  ConstantFriction::description() const
+  {
+    std::ostringstream s;
+    s << "mu = " << mu;
+    return s.str();
+  }
+
+
+  double
+  ExponentialFriction::value(const double s) const
+  {
+    return (a - b) * std::exp(-alpha * s) + b;
+  }
+
+  double
+  ExponentialFriction::derivative(const double s) const
+  {
+    return -alpha * (a - b) * std::exp(-alpha * s);
+  }
+
+  std::string
+  ExponentialFriction::description() const
+  {
+    std::ostringstream s;
+    s << "mu(s) = (" << a << " - " << b << ") exp(-" << alpha << " s) + " << b;
+    return s.str();
+  }
+
+
+  ExpressionFriction::ExpressionFriction(const std::string &expression,
+                                         const std::string &constants)
+    : expression(expression)
+    , parser(1)
+  {
+    std::map<std::string, double> constant_map;
+    for (const auto &pair : Utilities::split_string_list(constants, ','))
+      {
+        const auto terms = Utilities::split_string_list(pair, '=');
+        AssertThrow(terms.size() == 2,
+                    ExcMessage("Friction/Expression constants: '" + pair +
+                               "' is not of the form name=value."));
+        try
+          {
+            constant_map[terms[0]] = Utilities::string_to_double(terms[1]);
+          }
+        catch (const std::exception &)
+          {
+            AssertThrow(false,
+                        ExcMessage("Friction/Expression constants: '" +
+                                   terms[1] + "' is not a number."));
+          }
+      }
+    try
+      {
+        parser.initialize("s", expression, constant_map);
+        parser.value(Point<1>(0.));
+      }
+    catch (const std::exception &e)
+      {
+        AssertThrow(false,
+                    ExcMessage("Friction/Expression: cannot parse '" +
+                               expression + "': " + error_message(e)));
+      }
+  }
+
+  double
+  ExpressionFriction::value(const double s) const
+  {
+    return parser.value(Point<1>(s));
+  }
+
+  double
+  ExpressionFriction::derivative(const double s) const
+  {
+    const double h = 1e-7 * std::max(1., s);
+    return (value(s + h) - value(std::max(0., s - h))) /
+           (s + h - std::max(0., s - h));
+  }
+
+  bool
+  ExpressionFriction::is_constant() const
+  {
+    const double mu0 = value(0);
+    for (const double s : {1e-6, 1e-3, 0.1, 1., 10., 100.})
+      if (value(s) != mu0)
+        return false;
+    return true;
+  }
+
+  std::string
+  ExpressionFriction::description() const
+  {
+    return "mu(s) = " + expression;
+  }
+} // namespace DynamicContact

@@ -1,0 +1,81 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <dynamic_contact/command_line.h>
+#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/parameters.h>
+#include <dynamic_contact/simulator.h>
+
+#include <iostream>
+
+int
+main(int argc, char *argv[])
+{
+  using namespace DynamicContact;
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const bool     root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+
+  const CommandLine command_line = CommandLine::parse(argc, argv);
+  if (!command_line.error.empty())
+    {
+      if (root)
+        std::cerr << "dynamic-contact: " << command_line.error << "\n\n"
+                  << CommandLine::usage();
+      return 2;
+    }
+  if (command_line.help)
+    {
+      if (root)
+        std::cout << CommandLine::usage();
+      return 0;
+    }
+
+  try
+    {
+      if (command_line.print_parameters)
+        {
+          dealii::ParameterHandler prm;
+          if (command_line.parameter_file.empty())
+            {
+              // Defaults, for the dimension an override may choose.
+              dealii::ParameterHandler dimension_only;
+              dimension_only.declare_entry("Dimension",
+                                           "2",
+                                           dealii::Patterns::Integer(2, 3));
+              for (const auto &o : command_line.overrides)
+                if (o.rfind("Dimension", 0) == 0)
+                  apply_override(dimension_only, o);
+              RunParameters::declare_parameters(
+                prm, dimension_only.get_integer("Dimension"));
+              for (const auto &o : command_line.overrides)
+                apply_override(prm, o);
+            }
+          else
+            read_parameters(command_line.parameter_file,
+                            command_line.overrides,
+                            prm);
+          if (root)
+            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+          return 0;
+        }
+
+      run_simulation(command_line.parameter_file,
+                     command_line.overrides,
+                     comm);
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        std::cerr << "dynamic-contact: error: " << error_message(e)
+                  << std::endl;
+      return 1;
+    }
+  catch (...)
+    {
+      if (root)
+        std::cerr << "dynamic-contact: error: unknown exception" << std::endl;
+      return 1;
+    }
+  return 0;
+}

@@ -1,0 +1,363 @@
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <dynamic_contact/output.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    std::string
+    format(const double value)
+    {
+      char buffer[32];
+      std::snprintf(buffer, sizeof(buffer), "%.10e", value);
+      return buffer;
+    }
+  } // namespace
+
+
+  // --------------------------------------------------------- TimeSeriesRow
+  void
+  TimeSeriesRow::add(const std::string &name, const double value)
+  {
+    entries.emplace_back(name, format(value));
+  }
+
+  void
+  TimeSeriesRow::add_integer(const std::string &name, const long long value)
+  {
+    entries.emplace_back(name, std::to_string(value));
+  }
+
+  double
+  TimeSeriesRow::get(const std::string &name) const
+  {
+    for (const auto &[n, v] : entries)
+      if (n == name)
+        return std::stod(v);
+    AssertThrow(false, ExcMessage("No column '" + name + "' in the row."));
+    return 0;
+  }
+
+
+  // ------------------------------------------------------ TimeSeriesWriter
+  TimeSeriesWriter::TimeSeriesWriter(const std::string &filename,
+                                     const MPI_Comm     comm)
+    : filename(filename)
+    , root(Utilities::MPI::this_mpi_process(comm) == 0)
+  {
+    if (root)
+      {
+        out.open(filename);
+        AssertThrow(static_cast<bool>(out),
+                    ExcMessage("Cannot write '" + filename + "'."));
+      }
+  }
+
+  void
+  TimeSeriesWriter::write(const TimeSeriesRow &row)
+  {
+    if (!root)
+      return;
+    if (!header_written)
+      {
+        for (unsigned int i = 0; i < row.columns().size(); ++i)
+          out << (i ? "," : "") << row.columns()[i].first;
+        out << '\n';
+        header_written = true;
+      }
+    for (unsigned int i = 0; i < row.columns().size(); ++i)
+      out << (i ? "," : "") << row.columns()[i].second;
+    out << '\n';
+    out.flush();
+  }
+
+
+  // ----------------------------------------------------------- contact csv
+  template <int dim>
+  void
+  write_contact_csv(const std::string &                       filename,
+                    const ContactBoundary<dim> &              boundary,
+                    const std::vector<ContactNodeState<dim>> &states,
+                    const Vector_t &                          w,
+                    const bool                                friction,
+                    const MPI_Comm                            comm)
+  {
+    const auto &                     nodes = boundary.nodes();
+    std::vector<std::vector<double>> rows;
+    rows.reserve(nodes.size());
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        const auto &         node = nodes[i];
+        const auto &         s    = states[i];
+        std::vector<double>  row;
+        for (unsigned int d = 0; d < dim; ++d)
+          row.push_back(node.position[d]);
+        row.push_back(s.normal.u_nu);
+        row.push_back(s.normal.w_nu);
+        row.push_back(s.normal.pressure);
+        if (friction)
+          {
+            const Tensor<1, dim> w_tau = node.tangential(node.value(w));
+            for (unsigned int j = 0; j < dim - 1; ++j)
+              row.push_back(w_tau * node.tangents[j]);
+            // The traction the foundation exerts against the slip:
+            // -lambda_i / m_i, in the tangent basis.
+            for (unsigned int j = 0; j < dim - 1; ++j)
+              row.push_back(-(s.friction_force * node.tangents[j]) /
+                            node.weight);
+            row.push_back(s.mu);
+            row.push_back(static_cast<double>(s.state));
+          }
+        rows.push_back(row);
+      }
+
+    const auto gathered = Utilities::MPI::gather(comm, rows, 0);
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return;
+
+    std::vector<std::vector<double>> all;
+    for (const auto &part : gathered)
+      all.insert(all.end(), part.begin(), part.end());
+    std::sort(all.begin(),
+              all.end(),
+              [](const std::vector<double> &a, const std::vector<double> &b) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (a[d] != b[d])
+                    return a[d] < b[d];
+                return false;
+              });
+
+    std::ofstream out(filename);
+    AssertThrow(static_cast<bool>(out),
+                ExcMessage("Cannot write '" + filename + "'."));
+    out << (dim == 2 ? "x,y" : "x,y,z") << ",u_nu,w_nu,normal_pressure";
+    if (friction)
+      out << (dim == 2 ?
+                ",w_tau,tangential_traction" :
+                ",w_tau_1,w_tau_2,tangential_traction_1,tangential_traction_2")
+          << ",mu,state";
+    out << '\n';
+    for (const auto &row : all)
+      {
+        const unsigned int n_numbers = row.size() - (friction ? 1 : 0);
+        for (unsigned int c = 0; c < n_numbers; ++c)
+          out << (c ? "," : "") << format(row[c]);
+        if (friction)
+          out << ','
+              << to_string(static_cast<ContactState>(
+                   static_cast<unsigned char>(row.back())));
+        out << '\n';
+      }
+  }
+
+
+  // ------------------------------------------------------------- VtuWriter
+  template <int dim>
+  VtuWriter<dim>::VtuWriter(const std::string &directory, const MPI_Comm comm)
+    : directory(directory)
+    , comm(comm)
+  {}
+
+
+  template <int dim>
+  void
+  VtuWriter<dim>::truncate_after(const double time)
+  {
+    records.erase(std::remove_if(records.begin(),
+                                 records.end(),
+                                 [time](const auto &r) {
+                                   return r.first > time;
+                                 }),
+                  records.end());
+  }
+
+
+  template <int dim>
+  void
+  VtuWriter<dim>::write(const unsigned int                        step,
+                        const double                              time,
+                        const Discretization<dim> &               d,
+                        const KelvinVoigtMaterial<dim> &          material,
+                        const ContactBoundary<dim> &              boundary,
+                        const std::vector<ContactNodeState<dim>> &states,
+                        const Vector_t &                          u,
+                        const Vector_t &                          w,
+                        const bool                                friction)
+  {
+    Vector_t u_ghosted, w_ghosted;
+    d.reinit_ghosted(u_ghosted);
+    d.reinit_ghosted(w_ghosted);
+    d.expand(u, u_ghosted);
+    d.expand(w, w_ghosted);
+
+    // Nodal fields of Gamma_3: in the vector space (traction) and in the
+    // scalar space (pressure, friction data).
+    Vector_t traction_owned, traction;
+    d.reinit_owned(traction_owned);
+    TrilinosWrappers::MPI::Vector pressure_owned, pressure, mu_owned, mu,
+      state_owned, state, slip_owned, slip;
+    for (auto *v : {&pressure_owned, &mu_owned, &state_owned, &slip_owned})
+      v->reinit(d.scalar_locally_owned, d.comm);
+    {
+      const auto &                         nodes = boundary.nodes();
+      std::vector<types::global_dof_index> vi, si;
+      std::vector<double>                  tv, pv, mv, sv, rv;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const Tensor<1, dim> t =
+            (-states[i].normal.pressure * nodes[i].normal) -
+            states[i].friction_force / nodes[i].weight;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              vi.push_back(nodes[i].dofs[c]);
+              tv.push_back(t[c]);
+            }
+          si.push_back(nodes[i].scalar_dof);
+          pv.push_back(states[i].normal.pressure);
+          mv.push_back(states[i].mu);
+          sv.push_back(static_cast<double>(states[i].state));
+          rv.push_back(nodes[i].tangential(nodes[i].value(w)).norm());
+        }
+      traction_owned.set(vi, tv);
+      pressure_owned.set(si, pv);
+      mu_owned.set(si, mv);
+      state_owned.set(si, sv);
+      slip_owned.set(si, rv);
+      traction_owned.compress(VectorOperation::insert);
+      for (auto *v : {&pressure_owned, &mu_owned, &state_owned, &slip_owned})
+        v->compress(VectorOperation::insert);
+    }
+    d.reinit_ghosted(traction);
+    traction = traction_owned;
+    for (auto [owned, ghosted] : {std::make_pair(&pressure_owned, &pressure),
+                                  std::make_pair(&mu_owned, &mu),
+                                  std::make_pair(&state_owned, &state),
+                                  std::make_pair(&slip_owned, &slip)})
+      {
+        ghosted->reinit(d.scalar_locally_owned,
+                        d.scalar_locally_relevant,
+                        d.comm);
+        *ghosted = *owned;
+      }
+
+    // Stress: cell averages of sigma = E eps(u) + C eps(w).
+    const unsigned int n_cells = d.triangulation.n_active_cells();
+    const unsigned int n_components = dim * (dim + 1) / 2;
+    std::vector<Vector<float>> stress(n_components, Vector<float>(n_cells));
+    Vector<float>              von_mises(n_cells), subdomain(n_cells);
+    {
+      const QGauss<dim>                    quadrature(d.fe.degree + 1);
+      FEValues<dim>                        fe_values(d.mapping,
+                              d.fe,
+                              quadrature,
+                              update_gradients | update_JxW_values);
+      const FEValuesExtractors::Vector     displacement(0);
+      std::vector<SymmetricTensor<2, dim>> eps_u(quadrature.size()),
+        eps_w(quadrature.size());
+      for (const auto &cell : d.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values[displacement].get_function_symmetric_gradients(u_ghosted,
+                                                                     eps_u);
+            fe_values[displacement].get_function_symmetric_gradients(w_ghosted,
+                                                                     eps_w);
+            SymmetricTensor<2, dim> sigma;
+            double                  volume = 0;
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                sigma += material.stress(eps_u[q], eps_w[q]) * fe_values.JxW(q);
+                volume += fe_values.JxW(q);
+              }
+            sigma /= volume;
+            const unsigned int index = cell->active_cell_index();
+            for (unsigned int c = 0; c < n_components; ++c)
+              stress[c](index) = sigma.access_raw_entry(c);
+            von_mises(index) = von_mises_stress(sigma);
+            subdomain(index) = cell->subdomain_id();
+          }
+    }
+
+    DataOut<dim> data_out;
+    data_out.attach_triangulation(d.triangulation);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      vector_field(dim,
+                   DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(d.dof_handler,
+                             u_ghosted,
+                             std::vector<std::string>(dim, "displacement"),
+                             vector_field);
+    data_out.add_data_vector(d.dof_handler,
+                             w_ghosted,
+                             std::vector<std::string>(dim, "velocity"),
+                             vector_field);
+    data_out.add_data_vector(d.dof_handler,
+                             traction,
+                             std::vector<std::string>(dim, "contact_traction"),
+                             vector_field);
+    data_out.add_data_vector(d.scalar_dof_handler, pressure, "contact_pressure");
+    if (friction)
+      {
+        data_out.add_data_vector(d.scalar_dof_handler, mu, "friction_coefficient");
+        data_out.add_data_vector(d.scalar_dof_handler,
+                                 state,
+                                 "contact_state");
+        data_out.add_data_vector(d.scalar_dof_handler, slip, "slip_rate");
+      }
+    const char *names2[] = {"stress_xx", "stress_yy", "stress_xy"};
+    const char *names3[] = {"stress_xx",
+                            "stress_yy",
+                            "stress_zz",
+                            "stress_xy",
+                            "stress_xz",
+                            "stress_yz"};
+    for (unsigned int c = 0; c < n_components; ++c)
+      data_out.add_data_vector(stress[c],
+                               dim == 2 ? names2[c] : names3[c],
+                               DataOut<dim>::type_cell_data);
+    data_out.add_data_vector(von_mises,
+                             "von_mises_stress",
+                             DataOut<dim>::type_cell_data);
+    data_out.add_data_vector(subdomain,
+                             "subdomain",
+                             DataOut<dim>::type_cell_data);
+    data_out.build_patches(d.mapping, d.fe.degree);
+
+    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+      directory + "/", "solution", step, comm, 5, 0);
+    records.emplace_back(time, pvtu);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::ofstream pvd(directory + "/solution.pvd");
+        DataOutBase::write_pvd_record(pvd, records);
+      }
+  }
+
+
+  template void
+  write_contact_csv<2>(const std::string &,
+                       const ContactBoundary<2> &,
+                       const std::vector<ContactNodeState<2>> &,
+                       const Vector_t &,
+                       const bool,
+                       const MPI_Comm);
+  template void
+  write_contact_csv<3>(const std::string &,
+                       const ContactBoundary<3> &,
+                       const std::vector<ContactNodeState<3>> &,
+                       const Vector_t &,
+                       const bool,
+                       const MPI_Comm);
+  template class VtuWriter<2>;
+  template class VtuWriter<3>;
+} // namespace DynamicContact

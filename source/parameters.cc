@@ -1,0 +1,901 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    std::string
+    zeros(const unsigned int n)
+    {
+      std::string s = "0";
+      for (unsigned int i = 1; i < n; ++i)
+        s += "; 0";
+      return s;
+    }
+
+    /** A list of boundary ids; the pattern has already checked the syntax. */
+    std::vector<types::boundary_id>
+    parse_ids(const std::string &text)
+    {
+      std::vector<types::boundary_id> ids;
+      for (const int id :
+           Utilities::string_to_int(Utilities::split_string_list(text)))
+        ids.push_back(static_cast<types::boundary_id>(id));
+      return ids;
+    }
+
+    void
+    require(const bool condition, const std::string &message)
+    {
+      AssertThrow(condition, ExcMessage(message));
+    }
+
+    /**
+     * Declare a subsection @p name holding a function of space and time in
+     * the format of Functions::ParsedFunction (entries "Function constants",
+     * "Function expression", "Variable names").
+     */
+    void
+    declare_function(ParameterHandler & prm,
+                     const std::string &name,
+                     const unsigned int dim,
+                     const std::string &default_expression,
+                     const std::string &documentation)
+    {
+      prm.enter_subsection(name);
+      prm.declare_entry("Function constants",
+                        "",
+                        Patterns::Anything(),
+                        "Constants used in the expression, as name=value "
+                        "pairs separated by commas, e.g. 'F=1e10, c=2'.");
+      prm.declare_entry("Function expression",
+                        default_expression,
+                        Patterns::Anything(),
+                        documentation);
+      prm.declare_entry("Variable names",
+                        dim == 2 ? "x,y,t" : "x,y,z,t",
+                        Patterns::Anything(),
+                        "Names of the space coordinates and of time in the "
+                        "expression.");
+      prm.leave_subsection();
+    }
+
+    std::string
+    str(const double x)
+    {
+      std::ostringstream s;
+      s << x;
+      return s.str();
+    }
+  } // namespace
+
+  namespace Parameters
+  {
+    // ------------------------------------------------------------ Geometry
+    void
+    Geometry::declare_parameters(ParameterHandler &prm, const unsigned int dim)
+    {
+      prm.enter_subsection("Geometry");
+      {
+        prm.declare_entry(
+          "Type",
+          "rectangle",
+          Patterns::Selection("rectangle|gmsh"),
+          "How the body is meshed. 'rectangle': an axis-parallel box from "
+          "'Lower left' to 'Upper right' with 'Repetitions' cells per "
+          "direction, boundary ids 0/1 at x = min/max, 2/3 at y = min/max, "
+          "4/5 at z = min/max. 'gmsh': the coarse mesh in 'Mesh file' (Gmsh "
+          "format), with the boundary ids it carries as physical tags.");
+        prm.declare_entry("Lower left",
+                          dim == 2 ? "0, 0" : "0, 0, 0",
+                          Patterns::List(Patterns::Double(), dim, dim),
+                          "Lower left corner of the rectangle (m), one "
+                          "coordinate per dimension.");
+        prm.declare_entry("Upper right",
+                          dim == 2 ? "2, 0.1" : "2, 0.1, 0.1",
+                          Patterns::List(Patterns::Double(), dim, dim),
+                          "Upper right corner of the rectangle (m).");
+        prm.declare_entry(
+          "Repetitions",
+          dim == 2 ? "32, 4" : "32, 4, 4",
+          Patterns::List(Patterns::Integer(1), dim, dim),
+          "Number of cells of the coarse rectangle in each direction.");
+        prm.declare_entry("Global refinements",
+                          "0",
+                          Patterns::Integer(0, 20),
+                          "Number of uniform refinements of the coarse mesh.");
+        prm.declare_entry(
+          "Mesh file",
+          "",
+          Patterns::Anything(),
+          "Gmsh mesh file for Type = gmsh. A relative path is taken relative "
+          "to the directory of the parameter file.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Geometry::parse_parameters(ParameterHandler & prm,
+                               const unsigned int dim,
+                               const std::string &prm_directory)
+    {
+      prm.enter_subsection("Geometry");
+      {
+        type = (prm.get("Type") == "gmsh" ? Type::gmsh : Type::rectangle);
+        lower_left  = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Lower left")));
+        upper_right = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Upper right")));
+        repetitions.clear();
+        for (const int r : Utilities::string_to_int(
+               Utilities::split_string_list(prm.get("Repetitions"))))
+          repetitions.push_back(static_cast<unsigned int>(r));
+        global_refinements = prm.get_integer("Global refinements");
+        mesh_file          = prm.get("Mesh file");
+      }
+      prm.leave_subsection();
+
+      if (type == Type::rectangle)
+        for (unsigned int d = 0; d < dim; ++d)
+          require(upper_right[d] > lower_left[d],
+                  "Geometry/Upper right must exceed Geometry/Lower left in "
+                  "every coordinate (coordinate " +
+                    std::to_string(d) + ": " + str(lower_left[d]) +
+                    " >= " + str(upper_right[d]) + ").");
+      else
+        {
+          require(!mesh_file.empty(),
+                  "Geometry/Type = gmsh needs Geometry/Mesh file.");
+          if (mesh_file[0] != '/' && !prm_directory.empty())
+            mesh_file = prm_directory + "/" + mesh_file;
+          std::ifstream in(mesh_file);
+          require(static_cast<bool>(in),
+                  "Geometry/Mesh file: cannot open the mesh file '" +
+                    mesh_file + "'.");
+        }
+    }
+
+    // ------------------------------------------------------- FiniteElement
+    void
+    FiniteElement::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Finite element");
+      prm.declare_entry("Polynomial degree",
+                        "1",
+                        Patterns::Integer(1, 4),
+                        "Degree of the continuous Lagrange (Q_p) elements. "
+                        "The contact integrals on the contact boundary use "
+                        "the Gauss-Lobatto rule with p+1 points, whose nodes "
+                        "are the element's support points (nodal contact).");
+      prm.leave_subsection();
+    }
+
+    void
+    FiniteElement::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Finite element");
+      degree = prm.get_integer("Polynomial degree");
+      prm.leave_subsection();
+    }
+
+    // -------------------------------------------------- BoundaryConditions
+    void
+    BoundaryConditions::declare_parameters(ParameterHandler & prm,
+                                           const unsigned int dim)
+    {
+      const auto ids = Patterns::List(Patterns::Integer(0, 255));
+      prm.enter_subsection("Boundary conditions");
+      {
+        prm.declare_entry("Clamped",
+                          "0, 1",
+                          ids,
+                          "Boundary ids where the body is clamped (Gamma_1, "
+                          "u = 0).");
+        prm.declare_entry("Roller",
+                          "",
+                          ids,
+                          "Boundary ids where the normal displacement "
+                          "vanishes and the tangential traction is zero.");
+        prm.declare_entry("Traction",
+                          "3",
+                          ids,
+                          "Boundary ids where the traction of the subsection "
+                          "'Traction' acts (Gamma_2).");
+        prm.declare_entry("Contact",
+                          "2",
+                          ids,
+                          "Boundary ids in contact with the deformable "
+                          "foundation (Gamma_3).");
+        prm.declare_entry("Free",
+                          "",
+                          ids,
+                          "Boundary ids without load (zero traction).");
+        declare_function(prm,
+                         "Traction",
+                         dim,
+                         zeros(dim),
+                         "Traction f_2(x, t) on the 'Traction' ids (Pa), one "
+                         "expression per component separated by ';'.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    BoundaryConditions::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary conditions");
+      clamped  = parse_ids(prm.get("Clamped"));
+      roller   = parse_ids(prm.get("Roller"));
+      traction = parse_ids(prm.get("Traction"));
+      contact  = parse_ids(prm.get("Contact"));
+      free     = parse_ids(prm.get("Free"));
+      prm.leave_subsection();
+
+      std::map<types::boundary_id, std::string> seen;
+      for (const auto &[id, list] : all_ids())
+        {
+          const auto it = seen.find(id);
+          require(it == seen.end() || it->second == list,
+                  "Boundary conditions: boundary id " + std::to_string(id) +
+                    " is used twice, in 'Boundary conditions/" +
+                    (it == seen.end() ? "" : it->second) +
+                    "' and in 'Boundary conditions/" + list + "'.");
+          require(it == seen.end(),
+                  "Boundary conditions/" + list + ": boundary id " +
+                    std::to_string(id) + " is listed twice.");
+          seen[id] = list;
+        }
+    }
+
+    std::vector<std::pair<types::boundary_id, std::string>>
+    BoundaryConditions::all_ids() const
+    {
+      std::vector<std::pair<types::boundary_id, std::string>> result;
+      for (const auto &[list, name] :
+           {std::make_pair(&clamped, "Clamped"),
+            std::make_pair(&roller, "Roller"),
+            std::make_pair(&traction, "Traction"),
+            std::make_pair(&contact, "Contact"),
+            std::make_pair(&free, "Free")})
+        for (const auto id : *list)
+          result.emplace_back(id, name);
+      return result;
+    }
+
+    // ------------------------------------------------------------ Material
+    void
+    Material::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      {
+        prm.declare_entry("Density",
+                          "1000",
+                          Patterns::Double(),
+                          "Mass density rho (kg/m^3), > 0.");
+        prm.declare_entry("Young modulus",
+                          "1e11",
+                          Patterns::Double(),
+                          "Young's modulus E of the elasticity tensor (Pa), "
+                          "> 0.");
+        prm.declare_entry("Poisson ratio",
+                          "0.3",
+                          Patterns::Double(),
+                          "Poisson's ratio kappa, in (-1, 0.5).");
+        prm.declare_entry(
+          "Plane model",
+          "plane strain",
+          Patterns::Selection("plane strain|plane stress"),
+          "2D only. 'plane strain' uses the Lame constants "
+          "lambda = E kappa/((1+kappa)(1-2 kappa)), 2 mu = E/(1+kappa): this "
+          "is eq. (87) of the paper as written (the paper calls it plane "
+          "stress). 'plane stress' uses lambda* = 2 lambda mu/(lambda + 2 "
+          "mu) instead of lambda, for the elasticity and the viscosity "
+          "tensor alike. Ignored in 3D.");
+        prm.declare_entry("Viscosity lambda",
+                          "0",
+                          Patterns::Double(),
+                          "First constant of the isotropic viscosity tensor "
+                          "C (Pa s): C eps = lambda_v tr(eps) I + 2 mu_v "
+                          "eps. The paper's example has C = 0.");
+        prm.declare_entry("Viscosity mu",
+                          "0",
+                          Patterns::Double(),
+                          "Second constant mu_v of the viscosity tensor C "
+                          "(Pa s), >= 0.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Material::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      density          = prm.get_double("Density");
+      young_modulus    = prm.get_double("Young modulus");
+      poisson_ratio    = prm.get_double("Poisson ratio");
+      plane_model      = (prm.get("Plane model") == "plane stress" ?
+                            PlaneModel::plane_stress :
+                            PlaneModel::plane_strain);
+      viscosity_lambda = prm.get_double("Viscosity lambda");
+      viscosity_mu     = prm.get_double("Viscosity mu");
+      prm.leave_subsection();
+
+      require(std::isfinite(density) && density > 0,
+              "Material/Density must be positive, got " + str(density) + ".");
+      require(std::isfinite(young_modulus) && young_modulus > 0,
+              "Material/Young modulus must be positive, got " +
+                str(young_modulus) + ".");
+      require(std::isfinite(poisson_ratio) && poisson_ratio > -1 &&
+                poisson_ratio < 0.5,
+              "Material/Poisson ratio must lie in (-1, 0.5), got " +
+                str(poisson_ratio) + ".");
+      require(std::isfinite(viscosity_mu) && viscosity_mu >= 0,
+              "Material/Viscosity mu must be >= 0, got " + str(viscosity_mu) +
+                ".");
+      require(std::isfinite(viscosity_lambda) &&
+                3 * viscosity_lambda + 2 * viscosity_mu >= 0,
+              "Material/Viscosity lambda: the viscosity tensor must be "
+              "positive semi-definite (3 lambda_v + 2 mu_v >= 0), got "
+              "lambda_v = " +
+                str(viscosity_lambda) + ".");
+    }
+
+    // ---------------------------------------------------------- Foundation
+    void
+    Foundation::declare_parameters(ParameterHandler &prm,
+                                   const unsigned int dim)
+    {
+      prm.enter_subsection("Foundation");
+      {
+        prm.declare_entry("Normal compliance stiffness",
+                          "5e9",
+                          Patterns::Double(),
+                          "c_nu in p(r) = min(c_nu r_+, c3), eq. (88) "
+                          "(Pa/m), >= 0.");
+        prm.declare_entry("Normal damping",
+                          "1e8",
+                          Patterns::Double(),
+                          "d_nu in q(r) = min(d_nu r_+, c4), eq. (88) "
+                          "(Pa s/m), >= 0. Zero switches the damped response "
+                          "off.");
+        prm.declare_entry("Compliance cap",
+                          "1e17",
+                          Patterns::Double(),
+                          "c3, the bound of the normal compliance p (Pa), "
+                          "> 0. The paper's 1e8 GPa/m is not reached.");
+        prm.declare_entry("Damping cap",
+                          "1e17",
+                          Patterns::Double(),
+                          "c4, the bound of the normal damped response q "
+                          "(Pa), > 0.");
+        prm.declare_entry(
+          "Damping only in contact",
+          "false",
+          Patterns::Bool(),
+          "false: q acts wherever the normal velocity is positive, as eq. (17) "
+          "is written (a continuous law). true: q acts only where the body "
+          "penetrates (u_nu > 0), a physical variant with a discontinuous "
+          "law.");
+        declare_function(prm,
+                         "Initial gap",
+                         dim,
+                         "0",
+                         "Initial gap g0(x) >= 0 between Gamma_3 and the "
+                         "foundation (m): the laws act on u_nu - g0.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Foundation::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Foundation");
+      compliance_stiffness    = prm.get_double("Normal compliance stiffness");
+      damping_coefficient     = prm.get_double("Normal damping");
+      compliance_cap          = prm.get_double("Compliance cap");
+      damping_cap             = prm.get_double("Damping cap");
+      damping_only_in_contact = prm.get_bool("Damping only in contact");
+      prm.leave_subsection();
+
+      require(std::isfinite(compliance_stiffness) && compliance_stiffness >= 0,
+              "Foundation/Normal compliance stiffness must be >= 0, got " +
+                str(compliance_stiffness) + ".");
+      require(std::isfinite(damping_coefficient) && damping_coefficient >= 0,
+              "Foundation/Normal damping must be >= 0, got " +
+                str(damping_coefficient) + ".");
+      require(std::isfinite(compliance_cap) && compliance_cap > 0,
+              "Foundation/Compliance cap must be positive, got " +
+                str(compliance_cap) + ".");
+      require(std::isfinite(damping_cap) && damping_cap > 0,
+              "Foundation/Damping cap must be positive, got " +
+                str(damping_cap) + ".");
+    }
+
+    // ------------------------------------------------------------ Friction
+    void
+    Friction::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Friction");
+      {
+        prm.declare_entry(
+          "Law",
+          "none",
+          Patterns::Selection("none|constant|exponential|expression"),
+          "Friction coefficient mu(s) of the slip rate s = |w_tau|: "
+          "'none' (frictionless: no multiplier, no sets, no loop), "
+          "'constant' (mu = Coefficient), 'exponential' (eq. (90): "
+          "mu = (a - b) exp(-alpha s) + b), 'expression' (mu(s) given by "
+          "'Expression').");
+        prm.declare_entry("Coefficient",
+                          "0",
+                          Patterns::Double(),
+                          "mu of the constant law, >= 0. Zero means no "
+                          "friction.");
+        prm.declare_entry("Static coefficient",
+                          "1",
+                          Patterns::Double(),
+                          "a = mu(0) of the exponential law.");
+        prm.declare_entry("Dynamic coefficient",
+                          "0.5",
+                          Patterns::Double(),
+                          "b = mu(infinity) of the exponential law, "
+                          "0 < b <= a.");
+        prm.declare_entry("Decay rate",
+                          "2000",
+                          Patterns::Double(),
+                          "alpha of the exponential law (s/m), >= 0.");
+        prm.declare_entry("Expression",
+                          "0.5",
+                          Patterns::Anything(),
+                          "mu(s) for Law = expression, a function of the "
+                          "slip rate s (m/s) in muparser syntax.");
+        prm.declare_entry("Expression constants",
+                          "",
+                          Patterns::Anything(),
+                          "Constants for 'Expression', as name=value pairs "
+                          "separated by commas.");
+        prm.declare_entry(
+          "Maximum slip rate",
+          "100",
+          Patterns::Double(),
+          "Slip rates on which mu(s) >= 0 and its one-sided Lipschitz "
+          "constant are checked at start-up (m/s); the run also checks every "
+          "value it uses.");
+        prm.declare_entry("Convexification tolerance",
+                          "1e-6",
+                          Patterns::Double(),
+                          "epsilon_conv of the stopping rule (85).");
+        prm.declare_entry(
+          "Coefficient tolerance",
+          "1e-6",
+          Patterns::Double(),
+          "The loop also stops only when max_i |mu_i - mu(|w_tau,i|)| is "
+          "below this, so that the law holds node-wise (model.md section 4).");
+        prm.declare_entry("Relaxation",
+                          "1",
+                          Patterns::Double(),
+                          "Relaxation factor theta in (0, 1] of the frozen "
+                          "coefficients: mu_i <- (1-theta) mu_i + theta "
+                          "mu(|w_tau,i|).");
+        prm.declare_entry("Maximum convexification iterations",
+                          "50",
+                          Patterns::Integer(1),
+                          "Cap on the convexification loop; a step that "
+                          "reaches it is reported.");
+        prm.declare_entry(
+          "Complementarity constant",
+          "0",
+          Patterns::Double(),
+          "c_t of the complementarity function of friction (Pa s/m^2 ... "
+          "scaled like E/h). 0 chooses E/h with h the smallest cell size.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Friction::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Friction");
+      {
+        const std::string l = prm.get("Law");
+        law                 = (l == "none"        ? Law::none :
+                               l == "constant"    ? Law::constant :
+                               l == "exponential" ? Law::exponential :
+                                                    Law::expression);
+        coefficient         = prm.get_double("Coefficient");
+        static_coefficient  = prm.get_double("Static coefficient");
+        dynamic_coefficient = prm.get_double("Dynamic coefficient");
+        decay_rate          = prm.get_double("Decay rate");
+        expression          = prm.get("Expression");
+        expression_constants = prm.get("Expression constants");
+        maximum_slip_rate    = prm.get_double("Maximum slip rate");
+        convexification_tolerance =
+          prm.get_double("Convexification tolerance");
+        coefficient_tolerance = prm.get_double("Coefficient tolerance");
+        relaxation            = prm.get_double("Relaxation");
+        max_convexification_iterations =
+          prm.get_integer("Maximum convexification iterations");
+        complementarity_constant = prm.get_double("Complementarity constant");
+      }
+      prm.leave_subsection();
+
+      if (law == Law::constant)
+        require(std::isfinite(coefficient) && coefficient >= 0,
+                "Friction/Coefficient must be >= 0, got " + str(coefficient) +
+                  ".");
+      if (law == Law::exponential)
+        {
+          require(std::isfinite(dynamic_coefficient) &&
+                    dynamic_coefficient > 0,
+                  "Friction/Dynamic coefficient must be positive, got " +
+                    str(dynamic_coefficient) + ".");
+          require(std::isfinite(static_coefficient) &&
+                    static_coefficient >= dynamic_coefficient,
+                  "Friction/Static coefficient must be >= Friction/Dynamic "
+                  "coefficient (a >= b), got a = " +
+                    str(static_coefficient) + ".");
+          require(std::isfinite(decay_rate) && decay_rate >= 0,
+                  "Friction/Decay rate must be >= 0, got " + str(decay_rate) +
+                    ".");
+        }
+      require(std::isfinite(maximum_slip_rate) && maximum_slip_rate > 0,
+              "Friction/Maximum slip rate must be positive.");
+      require(std::isfinite(convexification_tolerance) &&
+                convexification_tolerance > 0,
+              "Friction/Convexification tolerance must be positive.");
+      require(std::isfinite(coefficient_tolerance) &&
+                coefficient_tolerance > 0,
+              "Friction/Coefficient tolerance must be positive.");
+      require(std::isfinite(relaxation) && relaxation > 0 && relaxation <= 1,
+              "Friction/Relaxation must lie in (0, 1], got " +
+                str(relaxation) + ".");
+      require(std::isfinite(complementarity_constant) &&
+                complementarity_constant >= 0,
+              "Friction/Complementarity constant must be >= 0 (0: automatic).");
+    }
+
+    // ---------------------------------------------------------------- Time
+    void
+    Time::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      prm.declare_entry("End time",
+                        "1",
+                        Patterns::Double(),
+                        "Final time T (s), > 0.");
+      prm.declare_entry("Time step",
+                        "0.0078125",
+                        Patterns::Double(),
+                        "Time step k (s), > 0. If it does not divide the "
+                        "end time, the last step is shortened to end at T.");
+      prm.leave_subsection();
+    }
+
+    void
+    Time::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      end_time  = prm.get_double("End time");
+      time_step = prm.get_double("Time step");
+      prm.leave_subsection();
+      require(std::isfinite(end_time) && end_time > 0,
+              "Time/End time must be positive, got " + str(end_time) + ".");
+      require(std::isfinite(time_step) && time_step > 0,
+              "Time/Time step must be positive, got " + str(time_step) + ".");
+      require(end_time / time_step < 1e8,
+              "Time/Time step: " + str(end_time / time_step) +
+                " steps to reach Time/End time; at most 1e8 are allowed.");
+    }
+
+    // -------------------------------------------------------------- Solver
+    void
+    Solver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Solver");
+      {
+        prm.declare_entry("Newton tolerance",
+                          "1e-10",
+                          Patterns::Double(),
+                          "The semismooth Newton iteration stops when the "
+                          "active sets no longer change and the residual is "
+                          "below this, relative to the right-hand side.");
+        prm.declare_entry("Maximum Newton iterations",
+                          "50",
+                          Patterns::Integer(1),
+                          "Cap on the semismooth Newton iterations of one "
+                          "solve; reaching it is an error.");
+        prm.declare_entry(
+          "Linear solver",
+          "direct",
+          Patterns::Selection("direct|iterative"),
+          "'direct': sparse LU of the Newton matrix (package chosen below). "
+          "'iterative': GMRES preconditioned with algebraic multigrid, for "
+          "problems too large for a direct solver.");
+        prm.declare_entry("Direct solver package",
+                          "Amesos_Mumps",
+                          Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
+                          "Trilinos Amesos package of the direct solver.");
+        prm.declare_entry("Linear tolerance",
+                          "1e-12",
+                          Patterns::Double(),
+                          "Relative residual reduction of the iterative "
+                          "solver.");
+        prm.declare_entry("Maximum linear iterations",
+                          "1000",
+                          Patterns::Integer(1),
+                          "Cap on the iterations of the iterative solver.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Solver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Solver");
+      newton_tolerance      = prm.get_double("Newton tolerance");
+      max_newton_iterations = prm.get_integer("Maximum Newton iterations");
+      linear_solver         = (prm.get("Linear solver") == "iterative" ?
+                                 LinearSolver::iterative :
+                                 LinearSolver::direct);
+      direct_solver_package = prm.get("Direct solver package");
+      linear_tolerance      = prm.get_double("Linear tolerance");
+      max_linear_iterations = prm.get_integer("Maximum linear iterations");
+      prm.leave_subsection();
+      require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
+                newton_tolerance < 1,
+              "Solver/Newton tolerance must lie in (0, 1), got " +
+                str(newton_tolerance) + ".");
+      require(std::isfinite(linear_tolerance) && linear_tolerance > 0 &&
+                linear_tolerance < 1,
+              "Solver/Linear tolerance must lie in (0, 1), got " +
+                str(linear_tolerance) + ".");
+    }
+
+    // -------------------------------------------------------------- Output
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        prm.declare_entry("Directory",
+                          "output",
+                          Patterns::Anything(),
+                          "Directory for all results (created if missing); "
+                          "relative to the working directory.");
+        prm.declare_entry("Output every",
+                          "1",
+                          Patterns::Integer(0),
+                          "Write contact_NNNNN.csv (and the VTU fields) "
+                          "every N steps; 0 writes only the initial and the "
+                          "final state. time_series.csv has every step.");
+        prm.declare_entry("Write vtu",
+                          "true",
+                          Patterns::Bool(),
+                          "Write solution_NNNNN.pvtu/.vtu and solution.pvd "
+                          "at the output steps.");
+        prm.declare_entry("Progress every",
+                          "1",
+                          Patterns::Integer(0),
+                          "Print a progress line every N steps (0: never).");
+        prm.declare_entry(
+          "Print timings",
+          "true",
+          Patterns::Bool(),
+          "Print the estimated time left in progress lines and the "
+          "TimerOutput summary at the end. Regression tests switch this off "
+          "so that their output is deterministic.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      directory      = prm.get("Directory");
+      output_every   = prm.get_integer("Output every");
+      write_vtu      = prm.get_bool("Write vtu");
+      progress_every = prm.get_integer("Progress every");
+      print_timings  = prm.get_bool("Print timings");
+      prm.leave_subsection();
+      require(!directory.empty(), "Output/Directory must not be empty.");
+    }
+  } // namespace Parameters
+
+
+  // --------------------------------------------------------- RunParameters
+  void
+  RunParameters::declare_parameters(ParameterHandler &prm,
+                                    const unsigned int dim)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension of the problem: 2 or 3. Selects the "
+                      "instantiation of the program.");
+    Parameters::Geometry::declare_parameters(prm, dim);
+    Parameters::FiniteElement::declare_parameters(prm);
+    Parameters::BoundaryConditions::declare_parameters(prm, dim);
+    Parameters::Material::declare_parameters(prm);
+    Parameters::Foundation::declare_parameters(prm, dim);
+    Parameters::Friction::declare_parameters(prm);
+    Parameters::Time::declare_parameters(prm);
+    Parameters::Solver::declare_parameters(prm);
+    Parameters::Output::declare_parameters(prm);
+
+    declare_function(prm,
+                     "Body force",
+                     dim,
+                     zeros(dim),
+                     "Body force density f_0(x, t) (N/m^3).");
+
+    prm.enter_subsection("Initial conditions");
+    declare_function(prm,
+                     "Displacement",
+                     dim,
+                     zeros(dim),
+                     "Initial displacement u_0(x) (m), interpolated; the "
+                     "clamped and roller conditions are imposed on it.");
+    declare_function(prm,
+                     "Velocity",
+                     dim,
+                     zeros(dim),
+                     "Initial velocity u_1(x) (m/s), interpolated; the "
+                     "clamped and roller conditions are imposed on it.");
+    prm.leave_subsection();
+  }
+
+  void
+  RunParameters::parse_parameters(ParameterHandler &prm)
+  {
+    dimension = prm.get_integer("Dimension");
+    const std::string directory =
+      parameter_file.find('/') == std::string::npos ?
+        std::string(".") :
+        parameter_file.substr(0, parameter_file.rfind('/'));
+    geometry.parse_parameters(prm, dimension, directory);
+    finite_element.parse_parameters(prm);
+    boundary_conditions.parse_parameters(prm);
+    material.parse_parameters(prm);
+    foundation.parse_parameters(prm);
+    friction.parse_parameters(prm);
+    time.parse_parameters(prm);
+    solver.parse_parameters(prm);
+    output.parse_parameters(prm);
+  }
+
+
+  // ----------------------------------------------------- reading the file
+  namespace
+  {
+    void
+    check_readable(const std::string &parameter_file)
+    {
+      std::ifstream in(parameter_file);
+      AssertThrow(static_cast<bool>(in),
+                  ExcMessage("Cannot open the parameter file '" +
+                             parameter_file + "'."));
+      // A parameter file is text: refuse binary content with a clear message
+      // rather than a confusing parse error about an unprintable line.
+      char c;
+      unsigned int line = 1;
+      while (in.get(c))
+        {
+          if (c == '\n')
+            ++line;
+          const unsigned char u = static_cast<unsigned char>(c);
+          AssertThrow(!(u < 32 && c != '\n' && c != '\r' && c != '\t'),
+                      ExcMessage("The parameter file '" + parameter_file +
+                                 "' is not a text file (control character "
+                                 "in line " +
+                                 std::to_string(line) + ")."));
+        }
+    }
+
+    void
+    parse_file(ParameterHandler & prm,
+               const std::string &parameter_file,
+               const bool         skip_undefined)
+    {
+      try
+        {
+          prm.parse_input(parameter_file, "", skip_undefined);
+        }
+      catch (const std::exception &e)
+        {
+          AssertThrow(false,
+                      ExcMessage("Error in the parameter file '" +
+                                 parameter_file +
+                                 "': " + error_message(e)));
+        }
+    }
+  } // namespace
+
+
+  void
+  apply_override(ParameterHandler &prm, const std::string &assignment)
+  {
+    const auto equal = assignment.find('=');
+    AssertThrow(equal != std::string::npos,
+                ExcMessage("--set '" + assignment +
+                           "': expected 'Section/Entry=value'."));
+    std::string path  = Utilities::trim(assignment.substr(0, equal));
+    std::string value = Utilities::trim(assignment.substr(equal + 1));
+
+    std::vector<std::string> sections;
+    std::string::size_type   slash;
+    while ((slash = path.find('/')) != std::string::npos)
+      {
+        sections.push_back(Utilities::trim(path.substr(0, slash)));
+        path = path.substr(slash + 1);
+      }
+    const std::string entry = Utilities::trim(path);
+
+    unsigned int entered = 0;
+    try
+      {
+        for (const auto &s : sections)
+          {
+            prm.enter_subsection(s);
+            ++entered;
+          }
+        prm.set(entry, value);
+      }
+    catch (const std::exception &e)
+      {
+        for (; entered > 0; --entered)
+          prm.leave_subsection();
+        AssertThrow(false,
+                    ExcMessage("--set '" + assignment + "': " +
+                               error_message(e)));
+      }
+    for (; entered > 0; --entered)
+      prm.leave_subsection();
+  }
+
+
+  unsigned int
+  read_dimension(const std::string &             parameter_file,
+                 const std::vector<std::string> &overrides)
+  {
+    check_readable(parameter_file);
+    ParameterHandler prm;
+    prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "");
+    parse_file(prm, parameter_file, /*skip_undefined=*/true);
+    for (const auto &o : overrides)
+      if (Utilities::trim(o.substr(0, o.find('='))) == "Dimension")
+        apply_override(prm, o);
+    return prm.get_integer("Dimension");
+  }
+
+
+  RunParameters
+  read_parameters(const std::string &             parameter_file,
+                  const std::vector<std::string> &overrides,
+                  ParameterHandler &              prm)
+  {
+    const unsigned int dim = read_dimension(parameter_file, overrides);
+    RunParameters::declare_parameters(prm, dim);
+    parse_file(prm, parameter_file, /*skip_undefined=*/false);
+    for (const auto &o : overrides)
+      apply_override(prm, o);
+
+    RunParameters parameters;
+    parameters.parameter_file = parameter_file;
+    parameters.parse_parameters(prm);
+    AssertThrow(parameters.dimension == dim,
+                ExcMessage("Dimension changed between the two passes over '" +
+                           parameter_file + "'."));
+    return parameters;
+  }
+} // namespace DynamicContact

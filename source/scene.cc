@@ -1,0 +1,170 @@
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/lac/vector.h>
+
+#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/scene.h>
+
+#include <fstream>
+#include <map>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    /**
+     * Parse the function in subsection @p path (e.g. {"Boundary conditions",
+     * "Traction"}) of @p prm into a ParsedFunction; errors name the path.
+     */
+    template <int dim>
+    std::unique_ptr<Functions::ParsedFunction<dim>>
+    parse_function(ParameterHandler &              prm,
+                   const std::vector<std::string> &path,
+                   const unsigned int              n_components,
+                   bool &                          nonzero)
+    {
+      std::string name;
+      for (const auto &s : path)
+        name += s + "/";
+      auto function =
+        std::make_unique<Functions::ParsedFunction<dim>>(n_components);
+      for (const auto &s : path)
+        prm.enter_subsection(s);
+      std::string expression;
+      try
+        {
+          expression = prm.get("Function expression");
+          function->parse_parameters(prm);
+          // Evaluate once: muparser reports some errors only then.
+          Vector<double> values(n_components);
+          function->vector_value(Point<dim>(), values);
+        }
+      catch (const std::exception &e)
+        {
+          for (unsigned int i = 0; i < path.size(); ++i)
+            prm.leave_subsection();
+          AssertThrow(false,
+                      ExcMessage(name + "Function expression: cannot use '" +
+                                 expression + "' (" +
+                                 std::to_string(n_components) +
+                                 " component(s), separated by ';'): " +
+                                 error_message(e)));
+        }
+      for (unsigned int i = 0; i < path.size(); ++i)
+        prm.leave_subsection();
+
+      // An expression that is literally zero in every component costs nothing.
+      nonzero = false;
+      for (const auto &c : Utilities::split_string_list(expression, ';'))
+        if (c != "0" && c != "0.0" && c != "0." && c != "0e0")
+          nonzero = true;
+      return function;
+    }
+  } // namespace
+
+
+  template <int dim>
+  Scene<dim>::Scene(const RunParameters &parameters, ParameterHandler &prm)
+    : geometry(parameters.geometry)
+    , boundaries(parameters.boundary_conditions)
+  {
+    bool unused;
+    traction_function   = parse_function<dim>(prm,
+                                            {"Boundary conditions", "Traction"},
+                                            dim,
+                                            traction_nonzero);
+    body_force_function =
+      parse_function<dim>(prm, {"Body force"}, dim, body_force_nonzero);
+    initial_displacement_function = parse_function<dim>(
+      prm, {"Initial conditions", "Displacement"}, dim, unused);
+    initial_velocity_function = parse_function<dim>(
+      prm, {"Initial conditions", "Velocity"}, dim, unused);
+    initial_gap_function =
+      parse_function<dim>(prm, {"Foundation", "Initial gap"}, 1, unused);
+  }
+
+
+  template <int dim>
+  void
+  Scene<dim>::set_time(const double t) const
+  {
+    traction_function->set_time(t);
+    body_force_function->set_time(t);
+  }
+
+
+  template <int dim>
+  void
+  Scene<dim>::create_mesh(parallel::distributed::Triangulation<dim> &tria) const
+  {
+    if (geometry.type == Parameters::Geometry::Type::rectangle)
+      {
+        Point<dim> p1, p2;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            p1[d] = geometry.lower_left[d];
+            p2[d] = geometry.upper_right[d];
+          }
+        GridGenerator::subdivided_hyper_rectangle(
+          tria, geometry.repetitions, p1, p2, /*colorize=*/true);
+      }
+    else
+      {
+        GridIn<dim> grid_in;
+        grid_in.attach_triangulation(tria);
+        std::ifstream in(geometry.mesh_file);
+        AssertThrow(static_cast<bool>(in),
+                    ExcMessage("Geometry/Mesh file: cannot open '" +
+                               geometry.mesh_file + "'."));
+        try
+          {
+            grid_in.read_msh(in);
+          }
+        catch (const std::exception &e)
+          {
+            AssertThrow(false,
+                        ExcMessage("Geometry/Mesh file: cannot read '" +
+                                   geometry.mesh_file +
+                                   "' as a Gmsh mesh in " +
+                                   std::to_string(dim) +
+                                   "D: " + error_message(e)));
+          }
+      }
+    check_boundary_ids(tria);
+    tria.refine_global(geometry.global_refinements);
+  }
+
+
+  template <int dim>
+  void
+  Scene<dim>::check_boundary_ids(const Triangulation<dim> &tria) const
+  {
+    // The coarse mesh is known to every process: no communication needed.
+    std::set<types::boundary_id> mesh_ids;
+    for (const auto &cell : tria.cell_iterators_on_level(0))
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          mesh_ids.insert(face->boundary_id());
+
+    std::map<types::boundary_id, std::string> assigned;
+    for (const auto &[id, list] : boundaries.all_ids())
+      assigned[id] = list;
+
+    for (const auto id : mesh_ids)
+      AssertThrow(assigned.count(id) == 1,
+                  ExcMessage("Boundary conditions: boundary id " +
+                             std::to_string(id) +
+                             " of the mesh is not assigned a condition; list "
+                             "it in one of Clamped, Roller, Traction, "
+                             "Contact, Free."));
+    for (const auto &[id, list] : assigned)
+      AssertThrow(mesh_ids.count(id) == 1,
+                  ExcMessage("Boundary conditions/" + list +
+                             ": boundary id " + std::to_string(id) +
+                             " does not exist in the mesh."));
+  }
+
+
+  template class Scene<2>;
+  template class Scene<3>;
+} // namespace DynamicContact

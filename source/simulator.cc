@@ -1,0 +1,458 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <dynamic_contact/simulator.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    /** Six significant digits: what regression output compares. */
+    std::string
+    sig6(const double x)
+    {
+      char buffer[32];
+      std::snprintf(buffer, sizeof(buffer), "%.5e", x);
+      return buffer;
+    }
+
+    std::string
+    seconds(const double s)
+    {
+      std::ostringstream out;
+      out << std::fixed << std::setprecision(s < 100 ? 1 : 0) << s << " s";
+      return out.str();
+    }
+
+    /** The times t_1 < ... < t_N = T of steps of length k (the last may be shorter). */
+    std::vector<double>
+    time_points(const double end_time, const double k)
+    {
+      const double ratio = end_time / k;
+      unsigned int n     = static_cast<unsigned int>(std::llround(ratio));
+      if (std::abs(ratio - n) > 1e-9 * std::max(1., ratio))
+        n = static_cast<unsigned int>(std::ceil(ratio));
+      std::vector<double> t(n);
+      for (unsigned int i = 0; i < n; ++i)
+        t[i] = (i + 1 == n ? end_time : (i + 1) * k);
+      return t;
+    }
+  } // namespace
+
+
+  template <int dim>
+  Simulator<dim>::Simulator(const RunParameters &parameters,
+                            ParameterHandler &   prm,
+                            const MPI_Comm       comm)
+    : parameters(parameters)
+    , comm(comm)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+    , timer(comm,
+            pcout,
+            parameters.output.print_timings ? TimerOutput::summary :
+                                              TimerOutput::never,
+            TimerOutput::wall_times)
+    , scene(parameters, prm)
+    , material(parameters.material)
+    , foundation(parameters.foundation)
+    , friction_law(FrictionLaw::create(parameters.friction))
+    , discretization(comm, parameters.finite_element.degree)
+    , bulk(discretization, material)
+    , step_solver(discretization,
+                  bulk,
+                  contact_boundary,
+                  foundation,
+                  friction_law.get(),
+                  parameters.solver,
+                  parameters.friction,
+                  timer)
+    , energy_balance(bulk,
+                     contact_boundary,
+                     foundation,
+                     material.density(),
+                     comm)
+  {}
+
+
+  template <int dim>
+  Simulator<dim>::~Simulator() = default;
+
+
+  template <int dim>
+  void
+  Simulator<dim>::setup_system()
+  {
+    TimerOutput::Scope t(timer, "Setup: DoFs, Gamma_3, bulk matrices");
+    discretization.setup_dofs(parameters.boundary_conditions);
+    contact_boundary.reinit(discretization,
+                            parameters.boundary_conditions.contact,
+                            scene.initial_gap());
+    bulk.reinit();
+    step_solver.reinit();
+    for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs})
+      discretization.reinit_owned(*v);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::set_initial_conditions()
+  {
+    // Interpolate, then impose the constraints (clamped and roller
+    // conditions, and master form at hanging nodes).
+    VectorTools::interpolate(discretization.mapping,
+                             discretization.dof_handler,
+                             scene.initial_displacement(),
+                             u);
+    VectorTools::interpolate(discretization.mapping,
+                             discretization.dof_handler,
+                             scene.initial_velocity(),
+                             w);
+    discretization.constraints.set_zero(u);
+    discretization.constraints.set_zero(w);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::prepare_output_directory()
+  {
+    const std::string &directory = parameters.output.directory;
+    bool               ok        = true;
+    std::string        reason;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::error_code error;
+        std::filesystem::create_directories(directory, error);
+        if (error || !std::filesystem::is_directory(directory))
+          {
+            ok     = false;
+            reason = error ? error.message() : "not a directory";
+          }
+      }
+    ok = Utilities::MPI::broadcast(comm, ok, 0);
+    AssertThrow(ok,
+                ExcMessage("Output/Directory: cannot create '" + directory +
+                           "'" + (reason.empty() ? "" : " (" + reason + ")") +
+                           "."));
+    // Results of an earlier run in the same directory must not pass for
+    // ours: remove what this program writes.
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      for (const auto &entry : std::filesystem::directory_iterator(directory))
+        {
+          const std::string name = entry.path().filename().string();
+          if (name == "time_series.csv" || name == "solution.pvd" ||
+              name == "run_status" || name.rfind("contact_", 0) == 0 ||
+              name.rfind("solution_", 0) == 0)
+            std::filesystem::remove(entry.path());
+        }
+    MPI_Barrier(comm);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_status(const std::string &status) const
+  {
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::ofstream out(parameters.output.directory + "/run_status");
+        out << status << '\n';
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::print_header() const
+  {
+    pcout << "dynamic-contact: " << dim << "D, Q" << discretization.fe.degree
+          << " elements, " << discretization.triangulation.n_global_active_cells()
+          << " cells, " << discretization.dof_handler.n_dofs() << " DoFs, "
+          << contact_boundary.n_global_nodes() << " contact nodes\n";
+    if (parameters.output.print_timings)
+      pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
+            << ", parameter file: " << parameters.parameter_file << '\n';
+    pcout << "  material: rho = " << material.density()
+          << ", lambda = " << sig6(material.lambda())
+          << ", mu = " << sig6(material.mu())
+          << (material.has_viscosity() ? ", viscous" : ", elastic (C = 0)")
+          << '\n';
+    pcout << "  friction: "
+          << (friction_law ? friction_law->description() : "none") << '\n';
+  }
+
+
+  template <int dim>
+  TimeSeriesRow
+  Simulator<dim>::do_time_step(const unsigned int step,
+                               const double       t,
+                               const double       k)
+  {
+    u_old = u;
+    w_old = w;
+    const double previous_energy = energy_balance.energy(u_old, w_old).total();
+
+    {
+      TimerOutput::Scope scope(timer, "Step: load and right-hand side");
+      bulk.set_time_step(k);
+      bulk.assemble_load_vector(scene, t, load);
+      // b = (rho/k) M w_{n-1} - B u_{n-1} + f_n
+      bulk.mass().vmult(rhs, w_old);
+      rhs *= material.density() / k;
+      bulk.elasticity().vmult(u, u_old); // u as scratch
+      rhs -= u;
+      rhs += load;
+    }
+
+    w = w_old; // initial guess
+    const auto statistics = step_solver.solve(rhs, u_old, w);
+
+    // u_n = u_{n-1} + k w_n
+    u = u_old;
+    u.add(k, w);
+
+    TimerOutput::Scope scope(timer, "Step: energy balance");
+    const EnergyBalanceTerms terms = energy_balance.step_terms(
+      u_old, w_old, u, w, load, k, step_solver.node_states(), previous_energy);
+
+    double normal_force = 0, tangential_force = 0;
+    const auto &nodes = contact_boundary.nodes();
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        normal_force += step_solver.node_states()[i].normal_force(nodes[i].weight);
+        tangential_force += step_solver.node_states()[i].friction_force.norm();
+      }
+    normal_force     = Utilities::MPI::sum(normal_force, comm);
+    tangential_force = Utilities::MPI::sum(tangential_force, comm);
+
+    TimeSeriesRow row;
+    row.add_integer("step", step);
+    row.add("time", t);
+    row.add("time_step", k);
+    row.add("normal_force", normal_force);
+    row.add("tangential_force", tangential_force);
+    row.add("kinetic_energy", terms.energy.kinetic);
+    row.add("elastic_energy", terms.energy.elastic);
+    row.add("foundation_energy", terms.energy.foundation);
+    row.add("total_energy", terms.energy.total());
+    row.add("load_work", terms.load_work);
+    row.add("dissipation", terms.dissipation());
+    row.add("dissipation_inertia", terms.inertia);
+    row.add("dissipation_elastic", terms.elastic);
+    row.add("dissipation_viscous", terms.viscous);
+    row.add("dissipation_compliance", terms.compliance);
+    row.add("dissipation_damping", terms.damping);
+    row.add("friction_dissipation", terms.friction);
+    row.add("energy_balance_defect", terms.defect);
+    row.add("relative_energy_defect",
+            std::abs(terms.defect) / terms.scale(previous_energy));
+    row.add_integer("newton_iterations", statistics.newton_iterations);
+    row.add_integer("convexification_iterations",
+                    statistics.convexification_iterations);
+    row.add_integer("convexification_converged",
+                    statistics.convexification_converged ? 1 : 0);
+    row.add_integer("factorizations", statistics.factorizations);
+    row.add_integer("n_contact", statistics.n_contact);
+    row.add_integer("n_stick", statistics.n_stick);
+    row.add_integer("n_slip", statistics.n_slip);
+    row.add_integer("dofs", discretization.dof_handler.n_dofs());
+    row.add_integer("cells", discretization.triangulation.n_global_active_cells());
+    return row;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::output_results(const unsigned int step, const double t)
+  {
+    TimerOutput::Scope scope(timer, "Output");
+    char               name[64];
+    std::snprintf(name, sizeof(name), "/contact_%05u.csv", step);
+    write_contact_csv(parameters.output.directory + name,
+                      contact_boundary,
+                      step_solver.node_states(),
+                      w,
+                      parameters.friction.enabled(),
+                      comm);
+    if (parameters.output.write_vtu)
+      vtu_writer->write(step,
+                        t,
+                        discretization,
+                        material,
+                        contact_boundary,
+                        step_solver.node_states(),
+                        u,
+                        w,
+                        parameters.friction.enabled());
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::run()
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+
+    // Everything that can be wrong with the input is checked before any
+    // result is written.
+    {
+      TimerOutput::Scope t(timer, "Setup: mesh");
+      scene.create_mesh(discretization.triangulation);
+    }
+    if (friction_law)
+      friction_law->check_nonnegative(parameters.friction.maximum_slip_rate);
+    setup_system();
+    prepare_output_directory();
+    write_status("running");
+    time_series_writer = std::make_unique<TimeSeriesWriter>(
+      parameters.output.directory + "/time_series.csv", comm);
+    vtu_writer =
+      std::make_unique<VtuWriter<dim>>(parameters.output.directory, comm);
+
+    print_header();
+    set_initial_conditions();
+
+    {
+      const Energy  e = energy_balance.energy(u, w);
+      TimeSeriesRow row;
+      row.add_integer("step", 0);
+      row.add("time", 0);
+      row.add("time_step", 0);
+      row.add("normal_force", 0);
+      row.add("tangential_force", 0);
+      row.add("kinetic_energy", e.kinetic);
+      row.add("elastic_energy", e.elastic);
+      row.add("foundation_energy", e.foundation);
+      row.add("total_energy", e.total());
+      for (const char *name : {"load_work",
+                               "dissipation",
+                               "dissipation_inertia",
+                               "dissipation_elastic",
+                               "dissipation_viscous",
+                               "dissipation_compliance",
+                               "dissipation_damping",
+                               "friction_dissipation",
+                               "energy_balance_defect",
+                               "relative_energy_defect"})
+        row.add(name, 0);
+      for (const char *name : {"newton_iterations",
+                               "convexification_iterations",
+                               "convexification_converged",
+                               "factorizations",
+                               "n_contact",
+                               "n_stick",
+                               "n_slip"})
+        row.add_integer(name, 0);
+      row.add_integer("dofs", discretization.dof_handler.n_dofs());
+      row.add_integer("cells",
+                      discretization.triangulation.n_global_active_cells());
+      time_series_writer->write(row);
+      rows.push_back(row);
+    }
+    output_results(0, 0.);
+
+    const std::vector<double> times =
+      time_points(parameters.time.end_time, parameters.time.time_step);
+    double max_relative_defect = 0, min_dissipation = 0;
+    unsigned int total_newton  = 0;
+    for (unsigned int n = 1; n <= times.size(); ++n)
+      {
+        const double t = times[n - 1];
+        const double k = t - (n > 1 ? times[n - 2] : 0.);
+        const TimeSeriesRow row = do_time_step(n, t, k);
+        time_series_writer->write(row);
+        rows.push_back(row);
+
+        max_relative_defect =
+          std::max(max_relative_defect, row.get("relative_energy_defect"));
+        for (const char *term : {"dissipation_inertia",
+                                 "dissipation_elastic",
+                                 "dissipation_viscous",
+                                 "dissipation_compliance",
+                                 "dissipation_damping",
+                                 "friction_dissipation"})
+          min_dissipation = std::min(min_dissipation, row.get(term));
+        total_newton += row.get("newton_iterations");
+
+        const bool last = (n == times.size());
+        const unsigned int every = parameters.output.output_every;
+        if (last || (every > 0 && n % every == 0))
+          output_results(n, t);
+
+        const unsigned int progress = parameters.output.progress_every;
+        if (progress > 0 && (n % progress == 0 || last))
+          {
+            pcout << "step " << std::setw(5) << n << '/' << times.size()
+                  << "  t = " << sig6(t) << "  Newton "
+                  << row.get("newton_iterations");
+            if (parameters.friction.enabled())
+              pcout << "  convexification "
+                    << row.get("convexification_iterations");
+            pcout << "  contact " << row.get("n_contact")
+                  << "  N = " << sig6(row.get("normal_force"))
+                  << "  E = " << sig6(row.get("total_energy"));
+            if (parameters.output.print_timings)
+              {
+                const double elapsed =
+                  std::chrono::duration<double>(
+                    std::chrono::steady_clock::now() - wall_start)
+                    .count();
+                pcout << "  (" << seconds(elapsed) << ", ~"
+                      << seconds(elapsed / n * (times.size() - n)) << " left)";
+              }
+            pcout << std::endl;
+          }
+      }
+
+    pcout << "Completed " << times.size() << " steps, "
+          << total_newton << " Newton iterations (mean "
+          << std::fixed << std::setprecision(2)
+          << static_cast<double>(total_newton) / times.size()
+          << std::defaultfloat << " per step).\n"
+          << "  energy balance: max relative defect "
+          << (max_relative_defect < 1e-8 ? "below 1e-8" : "ABOVE 1e-8 (" +
+                                                            sig6(max_relative_defect) + ")")
+          << ", every dissipation term >= 0: "
+          << (min_dissipation >= 0 ? "yes" : "NO (" + sig6(min_dissipation) + ")")
+          << std::endl;
+    write_status("completed");
+  }
+
+
+  template <int dim>
+  void
+  run_dimension(const RunParameters &parameters,
+                ParameterHandler &   prm,
+                const MPI_Comm       comm)
+  {
+    Simulator<dim> simulator(parameters, prm, comm);
+    simulator.run();
+  }
+
+
+  void
+  run_simulation(const std::string &             parameter_file,
+                 const std::vector<std::string> &overrides,
+                 const MPI_Comm                  comm)
+  {
+    ParameterHandler    prm;
+    const RunParameters parameters =
+      read_parameters(parameter_file, overrides, prm);
+    if (parameters.dimension == 2)
+      run_dimension<2>(parameters, prm, comm);
+    else
+      run_dimension<3>(parameters, prm, comm);
+  }
+
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace DynamicContact
