@@ -38,6 +38,7 @@ namespace DynamicContact
 
     mass_matrix.reinit(pattern);
     elasticity_matrix.reinit(pattern);
+    strain_matrix.reinit(pattern);
     if (material.has_viscosity())
       viscosity_matrix.reinit(pattern);
 
@@ -49,7 +50,7 @@ namespace DynamicContact
                               update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> local_mass(n, n), local_elasticity(n, n),
-      local_viscosity(n, n);
+      local_viscosity(n, n), local_strain(n, n);
     std::vector<types::global_dof_index> dofs(n);
     std::vector<SymmetricTensor<2, dim>> eps(n);
     std::vector<Tensor<1, dim>>          phi(n);
@@ -64,6 +65,7 @@ namespace DynamicContact
           local_mass       = 0;
           local_elasticity = 0;
           local_viscosity  = 0;
+          local_strain     = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               for (unsigned int i = 0; i < n; ++i)
@@ -81,6 +83,7 @@ namespace DynamicContact
                     {
                       local_mass(i, j) += phi[i] * phi[j] * JxW;
                       local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
+                      local_strain(i, j) += (eps[i] * eps[j]) * JxW;
                       if (material.has_viscosity())
                         local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
                     }
@@ -92,6 +95,9 @@ namespace DynamicContact
           constraints.distribute_local_to_global(local_elasticity,
                                                  dofs,
                                                  elasticity_matrix);
+          constraints.distribute_local_to_global(local_strain,
+                                                 dofs,
+                                                 strain_matrix);
           if (material.has_viscosity())
             constraints.distribute_local_to_global(local_viscosity,
                                                    dofs,
@@ -99,6 +105,7 @@ namespace DynamicContact
         }
     mass_matrix.compress(VectorOperation::add);
     elasticity_matrix.compress(VectorOperation::add);
+    strain_matrix.compress(VectorOperation::add);
     if (material.has_viscosity())
       viscosity_matrix.compress(VectorOperation::add);
 
@@ -148,6 +155,15 @@ namespace DynamicContact
     if (!material.has_viscosity())
       return 0;
     viscosity_matrix.vmult(tmp, y);
+    return x * tmp;
+  }
+
+
+  template <int dim>
+  double
+  BulkOperator<dim>::strain_product(const Vector_t &x, const Vector_t &y) const
+  {
+    strain_matrix.vmult(tmp, y);
     return x * tmp;
   }
 

@@ -32,7 +32,85 @@ namespace DynamicContact
         }
       return t;
     }
+
+    template <int dim>
+    bool
+    by_position(const ContactNode<dim> &a, const ContactNode<dim> &b)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (a.position[d] != b.position[d])
+          return a.position[d] < b.position[d];
+      return false;
+    }
+
+    template <int dim>
+    void
+    pack(const ContactNode<dim> &node, std::vector<double> &out)
+    {
+      for (const auto dof : node.dofs)
+        out.push_back(static_cast<double>(dof));
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          out.push_back(node.constraint_map[i][j]);
+      out.push_back(node.unconstrained ? 1 : 0);
+      for (unsigned int d = 0; d < dim; ++d)
+        out.push_back(node.position[d]);
+      for (unsigned int d = 0; d < dim; ++d)
+        out.push_back(node.normal[d]);
+      for (const auto &t : node.tangents)
+        for (unsigned int d = 0; d < dim; ++d)
+          out.push_back(t[d]);
+      out.push_back(node.weight);
+      out.push_back(node.gap);
+      out.push_back(static_cast<double>(node.scalar_dof));
+    }
+
+    template <int dim>
+    ContactNode<dim>
+    unpack(const std::vector<double> &in, std::size_t &pos)
+    {
+      ContactNode<dim> node;
+      for (auto &dof : node.dofs)
+        dof = static_cast<types::global_dof_index>(in[pos++]);
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          node.constraint_map[i][j] = in[pos++];
+      node.unconstrained = in[pos++] != 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        node.position[d] = in[pos++];
+      for (unsigned int d = 0; d < dim; ++d)
+        node.normal[d] = in[pos++];
+      for (auto &t : node.tangents)
+        for (unsigned int d = 0; d < dim; ++d)
+          t[d] = in[pos++];
+      node.weight     = in[pos++];
+      node.gap        = in[pos++];
+      node.scalar_dof = static_cast<types::global_dof_index>(in[pos++]);
+      return node;
+    }
   } // namespace
+
+
+  template <int dim>
+  std::vector<Tensor<1, dim>>
+  ContactBoundary<dim>::gather_values(const Vector_t &v) const
+  {
+    std::vector<double> local;
+    local.reserve(owned_nodes.size() * (dim + 1));
+    for (unsigned int i = 0; i < owned_nodes.size(); ++i)
+      {
+        local.push_back(owned_to_global[i]);
+        const Tensor<1, dim> value = owned_nodes[i].value(v);
+        for (unsigned int d = 0; d < dim; ++d)
+          local.push_back(value[d]);
+      }
+    std::vector<Tensor<1, dim>> values(every_node.size());
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      for (std::size_t pos = 0; pos < part.size(); pos += dim + 1)
+        for (unsigned int d = 0; d < dim; ++d)
+          values[static_cast<unsigned int>(part[pos])][d] = part[pos + 1 + d];
+    return values;
+  }
 
 
   template <int dim>
@@ -195,14 +273,30 @@ namespace DynamicContact
       }
 
     // A reproducible order: by position.
-    std::sort(owned_nodes.begin(),
-              owned_nodes.end(),
-              [](const ContactNode<dim> &a, const ContactNode<dim> &b) {
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (a.position[d] != b.position[d])
-                    return a.position[d] < b.position[d];
-                return false;
-              });
+    std::sort(owned_nodes.begin(), owned_nodes.end(), by_position<dim>);
+
+    // The replicated list: every node's data, packed into doubles.
+    comm = discretization.comm;
+    std::vector<double> packed;
+    for (const auto &node : owned_nodes)
+      pack(node, packed);
+    const auto parts = Utilities::MPI::all_gather(comm, packed);
+    every_node.clear();
+    for (const auto &part : parts)
+      for (std::size_t pos = 0; pos < part.size();)
+        every_node.push_back(unpack<dim>(part, pos));
+    std::sort(every_node.begin(), every_node.end(), by_position<dim>);
+    owned_to_global.clear();
+    for (const auto &node : owned_nodes)
+      {
+        const auto it = std::lower_bound(every_node.begin(),
+                                         every_node.end(),
+                                         node,
+                                         by_position<dim>);
+        Assert(it != every_node.end() && it->dofs == node.dofs,
+               ExcInternalError());
+        owned_to_global.push_back(it - every_node.begin());
+      }
 
     double local_weight = 0;
     for (const auto &node : owned_nodes)

@@ -39,4 +39,104 @@ namespace DynamicContact
       k * p.derivative(u_nu) + (damping ? q.derivative(w_nu) : 0.);
     return r;
   }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  projected_friction_force(const ContactNode<dim> &node,
+                           const double            threshold,
+                           const Tensor<1, dim> &  w,
+                           const Tensor<1, dim> &  lambda,
+                           const double            c)
+  {
+    if (threshold <= 0 || !node.unconstrained)
+      return Tensor<1, dim>();
+    const Tensor<1, dim> z =
+      node.tangential(lambda) + (c * node.weight) * node.tangential(w);
+    const double         norm = z.norm();
+    return norm <= threshold ? z : (threshold / norm) * z;
+  }
+
+
+  template <int dim>
+  FrictionResponse<dim>
+  friction_response(const ContactNode<dim> &node,
+                    const NormalResponse &  normal,
+                    const Tensor<1, dim> &  w,
+                    const Tensor<1, dim> &  lambda,
+                    const double            mu,
+                    const double            c)
+  {
+    FrictionResponse<dim> r;
+    r.threshold = mu * node.weight * normal.pressure;
+    if (r.threshold <= 0 || !node.unconstrained)
+      return r; // free: lambda = 0
+
+    // lambda is a nodal force; c m_i w_tau is one too (c = c_t k).
+    const double         c_node     = c * node.weight;
+    const Tensor<1, dim> lambda_tau = node.tangential(lambda);
+    const Tensor<1, dim> z          = lambda_tau + c_node * node.tangential(w);
+    const double         norm       = z.norm();
+    if (norm <= r.threshold)
+      {
+        r.state = ContactState::stick;
+        r.value = lambda_tau;
+        return r;
+      }
+
+    r.state     = ContactState::slip;
+    r.direction = z / norm;
+    // d g / d w = mu m (k p' + q') nu.
+    const Tensor<1, dim> dg =
+      (mu * node.weight * normal.dpressure_dw) * node.normal;
+    r.value    = r.threshold * r.direction;
+    r.jacobian = outer_product(r.direction, dg);
+    if (dim == 3)
+      {
+        // The direction t = z/|z| changes with lambda and w_tau. Solving
+        // the linearized slip condition for the new lambda gives, with
+        // alpha = g/|z| < 1 and P the projection in the tangent plane
+        // orthogonal to t:
+        //   lambda' = t (g + dg.dw) + beta P dw_tau - alpha/(1-alpha) P lambda,
+        //   beta = alpha c m_i/(1-alpha).
+        const double   alpha = r.threshold / norm;
+        const double   beta  = alpha * c_node / (1 - alpha);
+        Tensor<2, dim> P     = unit_symmetric_tensor<dim>();
+        P -= outer_product(node.normal, node.normal);
+        P -= outer_product(r.direction, r.direction);
+        r.value -= (alpha / (1 - alpha)) * (P * lambda_tau);
+        Tensor<2, dim> tangential_projection = unit_symmetric_tensor<dim>();
+        tangential_projection -= outer_product(node.normal, node.normal);
+        r.jacobian += beta * P * tangential_projection;
+      }
+    return r;
+  }
+
+
+  template Tensor<1, 2>
+  projected_friction_force(const ContactNode<2> &,
+                           const double,
+                           const Tensor<1, 2> &,
+                           const Tensor<1, 2> &,
+                           const double);
+  template Tensor<1, 3>
+  projected_friction_force(const ContactNode<3> &,
+                           const double,
+                           const Tensor<1, 3> &,
+                           const Tensor<1, 3> &,
+                           const double);
+  template FrictionResponse<2>
+  friction_response(const ContactNode<2> &,
+                    const NormalResponse &,
+                    const Tensor<1, 2> &,
+                    const Tensor<1, 2> &,
+                    const double,
+                    const double);
+  template FrictionResponse<3>
+  friction_response(const ContactNode<3> &,
+                    const NormalResponse &,
+                    const Tensor<1, 3> &,
+                    const Tensor<1, 3> &,
+                    const double,
+                    const double);
 } // namespace DynamicContact

@@ -603,6 +603,19 @@ namespace DynamicContact
     {
       prm.enter_subsection("Solver");
       {
+        prm.declare_entry(
+          "Contact solver",
+          "condensed",
+          Patterns::Selection("condensed|assembled"),
+          "How each semismooth Newton system is solved (both give the same "
+          "iterates). 'condensed': static condensation onto Gamma_3 - the "
+          "bulk matrix K0 is factorized once per mesh and time step, the "
+          "compliance of the contact nodes computed from it, and each "
+          "iteration is a dense solve on the active contact nodes (fast "
+          "while the contact zone has up to a few thousand nodes). "
+          "'assembled': the sparse Newton matrix (K0 plus the contact "
+          "blocks, stick constraints imposed on its rows) is factorized "
+          "whenever it changes, as in deal.II's step-42.");
         prm.declare_entry("Newton tolerance",
                           "1e-10",
                           Patterns::Double(),
@@ -642,6 +655,9 @@ namespace DynamicContact
     Solver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Solver");
+      contact_solver        = (prm.get("Contact solver") == "assembled" ?
+                                 ContactSolver::assembled :
+                                 ContactSolver::condensed);
       newton_tolerance      = prm.get_double("Newton tolerance");
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");
       linear_solver         = (prm.get("Linear solver") == "iterative" ?

@@ -95,7 +95,13 @@ namespace DynamicContact
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
     bulk.reinit();
-    step_solver.reinit();
+    // c_t of the friction complementarity function, like E/h.
+    const double c_t =
+      parameters.friction.complementarity_constant > 0 ?
+        parameters.friction.complementarity_constant :
+        parameters.material.young_modulus /
+          discretization.minimal_cell_diameter();
+    step_solver.reinit(c_t);
     for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs})
       discretization.reinit_owned(*v);
   }
@@ -280,7 +286,7 @@ namespace DynamicContact
                       contact_boundary,
                       step_solver.node_states(),
                       w,
-                      parameters.friction.enabled(),
+                      step_solver.has_friction(),
                       comm);
     if (parameters.output.write_vtu)
       vtu_writer->write(step,
@@ -291,7 +297,7 @@ namespace DynamicContact
                         step_solver.node_states(),
                         u,
                         w,
-                        parameters.friction.enabled());
+                        step_solver.has_friction());
   }
 
 
@@ -393,7 +399,7 @@ namespace DynamicContact
             pcout << "step " << std::setw(5) << n << '/' << times.size()
                   << "  t = " << sig6(t) << "  Newton "
                   << row.get("newton_iterations");
-            if (parameters.friction.enabled())
+            if (step_solver.has_friction())
               pcout << "  convexification "
                     << row.get("convexification_iterations");
             pcout << "  contact " << row.get("n_contact")

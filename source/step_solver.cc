@@ -1,15 +1,28 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
 
-#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/assembled_newton.h>
+#include <dynamic_contact/condensed_newton.h>
 #include <dynamic_contact/step_solver.h>
 
 #include <cmath>
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /** mu = 0 means no friction: no multiplier, no sets, no loop. */
+    bool
+    law_has_friction(const FrictionLaw *law)
+    {
+      if (law == nullptr)
+        return false;
+      if (law->is_constant() && law->value(0) == 0)
+        return false;
+      return true;
+    }
+  } // namespace
+
+
   template <int dim>
   StepSolver<dim>::StepSolver(const Discretization<dim> &  discretization,
                               const BulkOperator<dim> &    bulk,
@@ -27,214 +40,78 @@ namespace DynamicContact
     , parameters(solver_parameters)
     , friction_parameters(friction_parameters)
     , timer(timer)
+    , friction(law_has_friction(friction_law))
   {}
 
 
   template <int dim>
-  void
-  StepSolver<dim>::reinit()
-  {
-    states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
-    system_matrix.reinit(bulk.sparsity_pattern());
-    discretization.reinit_owned(residual);
-    discretization.reinit_owned(increment);
-    discretization.reinit_owned(scratch);
-    direct_solver.reset();
-    amg.reset();
-    factorized = false;
-    amg_k      = 0;
-  }
+  StepSolver<dim>::~StepSolver() = default;
 
 
   template <int dim>
   void
-  StepSolver<dim>::evaluate_nodes(const Vector_t &u_old,
-                                  const Vector_t &w,
-                                  const double    k)
+  StepSolver<dim>::reinit(const double complementarity_constant)
   {
-    const auto &nodes = contact_boundary.nodes();
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      states[i].normal = normal_response(
-        foundation, nodes[i], nodes[i].value(u_old), nodes[i].value(w), k);
-  }
-
-
-  template <int dim>
-  double
-  StepSolver<dim>::compute_residual(const Vector_t &rhs, const Vector_t &w)
-  {
-    bulk.newton_matrix().vmult(residual, w);
-    residual -= rhs;
-
-    const auto &                         nodes = contact_boundary.nodes();
-    std::vector<types::global_dof_index> indices;
-    std::vector<double>                  values;
-    indices.reserve(dim * nodes.size());
-    values.reserve(dim * nodes.size());
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      {
-        const Tensor<1, dim> force =
-          states[i].normal_force(nodes[i].weight) * nodes[i].normal +
-          states[i].friction_force;
-        const Tensor<1, dim> condensed =
-          transpose(nodes[i].constraint_map) * force;
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            indices.push_back(nodes[i].dofs[c]);
-            values.push_back(condensed[c]);
-          }
-      }
-    residual.add(indices, values);
-    residual.compress(VectorOperation::add);
-    return residual.l2_norm();
-  }
-
-
-  template <int dim>
-  std::vector<Tensor<2, dim>>
-  StepSolver<dim>::nodal_blocks(const double) const
-  {
-    const auto &                nodes = contact_boundary.nodes();
-    std::vector<Tensor<2, dim>> blocks(nodes.size());
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      {
-        // d(N_i nu_i)/dw_i = m_i (k p' + q') nu_i (x) nu_i.
-        const Tensor<2, dim> normal_block =
-          nodes[i].weight * states[i].normal.dpressure_dw *
-          outer_product(nodes[i].normal, nodes[i].normal);
-        const Tensor<2, dim> &P = nodes[i].constraint_map;
-        blocks[i]               = transpose(P) * normal_block * P;
-      }
-    return blocks;
-  }
-
-
-  template <int dim>
-  bool
-  StepSolver<dim>::solve_linear_system(
-    const std::vector<Tensor<2, dim>> &blocks,
-    const double                       k)
-  {
-    const auto &nodes = contact_boundary.nodes();
-    // The Newton matrix only changes through the nodal blocks (and K0's k):
-    // reuse the last factorization if they are all as they were.
-    bool same = factorized && factorized_k == k &&
-                factorized_blocks.size() == blocks.size();
-    for (unsigned int i = 0; same && i < blocks.size(); ++i)
-      same = (blocks[i] == factorized_blocks[i]);
-    same = (Utilities::MPI::min(same ? 1 : 0, discretization.comm) == 1);
-
-    if (!same)
-      {
-        TimerOutput::Scope t(timer, "Newton: matrix update");
-        system_matrix.copy_from(bulk.newton_matrix());
-        for (unsigned int i = 0; i < nodes.size(); ++i)
-          for (unsigned int r = 0; r < dim; ++r)
-            for (unsigned int c = 0; c < dim; ++c)
-              if (blocks[i][r][c] != 0)
-                system_matrix.add(nodes[i].dofs[r],
-                                  nodes[i].dofs[c],
-                                  blocks[i][r][c]);
-        system_matrix.compress(VectorOperation::add);
-      }
-
-    scratch = residual;
-    scratch *= -1.;
-    if (parameters.linear_solver == Parameters::Solver::LinearSolver::direct)
-      {
-        if (!same)
-          {
-            TimerOutput::Scope t(timer, "Newton: factorization");
-            direct_solver = std::make_unique<TrilinosWrappers::SolverDirect>(
-              direct_control,
-              TrilinosWrappers::SolverDirect::AdditionalData(
-                false, parameters.direct_solver_package));
-            direct_solver->initialize(system_matrix);
-          }
-        TimerOutput::Scope t(timer, "Newton: triangular solves");
-        direct_solver->solve(increment, scratch);
-      }
+    c_t = complementarity_constant;
+    const ContactProblem<dim> problem{discretization,
+                                      bulk,
+                                      contact_boundary,
+                                      foundation,
+                                      parameters,
+                                      timer,
+                                      friction,
+                                      c_t};
+    if (parameters.contact_solver ==
+        Parameters::Solver::ContactSolver::condensed)
+      newton = std::make_unique<CondensedNewton<dim>>(problem);
     else
-      {
-        if (!amg || amg_k != bulk.time_step())
-          {
-            // Algebraic multigrid built once per K0 (mesh and k): the contact
-            // blocks are a low-rank change that GMRES absorbs.
-            TimerOutput::Scope t(timer, "Newton: AMG setup");
-            TrilinosWrappers::PreconditionAMG::AdditionalData data;
-            data.elliptic              = true;
-            data.higher_order_elements = discretization.fe.degree > 1;
-            data.smoother_sweeps       = 2;
-            data.aggregation_threshold = 0.02;
-            // Translations as near-null space (deal.II 9.4 has no rotations).
-            DoFTools::extract_constant_modes(discretization.dof_handler,
-                                             ComponentMask(),
-                                             data.constant_modes);
-            amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-            amg->initialize(bulk.newton_matrix(), data);
-            amg_k = bulk.time_step();
-          }
-        TimerOutput::Scope t(timer, "Newton: iterative solve");
-        SolverControl      control(parameters.max_linear_iterations,
-                              parameters.linear_tolerance * scratch.l2_norm());
-        SolverGMRES<Vector_t> gmres(
-          control, SolverGMRES<Vector_t>::AdditionalData(100));
-        increment = 0;
-        gmres.solve(system_matrix, increment, scratch, *amg);
-      }
-    discretization.constraints.set_zero(increment);
+      newton = std::make_unique<AssembledNewton<dim>>(problem);
+    newton->reinit();
 
-    if (!same)
-      {
-        factorized_blocks = blocks;
-        factorized_k      = k;
-        factorized        = true;
-      }
-    return !same;
+    const unsigned int n = contact_boundary.all_nodes().size();
+    mu.assign(n, friction ? friction_law->value(0) : 0.);
+    lambda.assign(n, Tensor<1, dim>());
+    states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
   }
 
 
   template <int dim>
-  unsigned int
-  StepSolver<dim>::newton(const Vector_t &rhs,
-                          const Vector_t &u_old,
-                          Vector_t &      w,
-                          Statistics &    statistics)
+  void
+  StepSolver<dim>::update_states(
+    const std::vector<Tensor<1, dim>> &u_old_nodes,
+    const Vector_t &                   w,
+    Statistics &                       statistics)
   {
-    const double k = bulk.time_step();
-    for (unsigned int iteration = 0;; ++iteration)
+    const auto & nodes  = contact_boundary.nodes();
+    const auto & global = contact_boundary.global_indices();
+    const double k      = bulk.time_step();
+    unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        double residual_norm;
-        {
-          TimerOutput::Scope t(timer, "Newton: residual");
-          evaluate_nodes(u_old, w, k);
-          residual_norm = compute_residual(rhs, w);
-        }
-        // The residual is that of the nonlinear law itself, so a small one
-        // means a solution, whatever the sets; relative to the size of the
-        // terms that balance in it.
-        bulk.newton_matrix().vmult(scratch, w);
-        const double scale =
-          std::max({rhs.l2_norm(), scratch.l2_norm(), 1e-300});
-        statistics.residual = residual_norm / scale;
-        if (residual_norm <= parameters.newton_tolerance * scale)
-          return iteration;
-
-        AssertThrow(iteration < parameters.max_newton_iterations,
-                    ExcMessage("The semismooth Newton iteration did not "
-                               "converge in Solver/Maximum Newton iterations "
-                               "= " +
-                               std::to_string(
-                                 parameters.max_newton_iterations) +
-                               " iterations (relative residual " +
-                               std::to_string(residual_norm / scale) + ")."));
-
-        const auto blocks = nodal_blocks(k);
-        if (solve_linear_system(blocks, k))
-          ++statistics.factorizations;
-        w += increment;
-        ++statistics.newton_iterations;
+        const unsigned int   g  = global[i];
+        const Tensor<1, dim> wi = nodes[i].value(w);
+        auto &               s  = states[i];
+        s.normal = normal_response(foundation, nodes[i], u_old_nodes[g], wi, k);
+        s.friction_force = lambda[g];
+        s.mu             = mu[g];
+        s.state          = ContactState::free;
+        if (friction)
+          s.state = friction_response(nodes[i],
+                                      s.normal,
+                                      wi,
+                                      lambda[g],
+                                      mu[g],
+                                      c_t * k)
+                      .state;
+        if (s.normal.pressure > 0)
+          ++n_contact;
+        n_stick += (s.state == ContactState::stick);
+        n_slip += (s.state == ContactState::slip);
       }
+    const MPI_Comm comm     = discretization.comm;
+    statistics.n_contact    = Utilities::MPI::sum(n_contact, comm);
+    statistics.n_stick      = Utilities::MPI::sum(n_stick, comm);
+    statistics.n_slip       = Utilities::MPI::sum(n_slip, comm);
   }
 
 
@@ -242,15 +119,119 @@ namespace DynamicContact
   typename StepSolver<dim>::Statistics
   StepSolver<dim>::solve(const Vector_t &rhs, const Vector_t &u_old, Vector_t &w)
   {
-    Statistics statistics;
-    newton(rhs, u_old, w, statistics);
-    statistics.convexification_iterations = 1;
+    Statistics   statistics;
+    const double k           = bulk.time_step();
+    const auto   u_old_nodes = contact_boundary.gather_values(u_old);
+    const auto & all         = contact_boundary.all_nodes();
 
-    unsigned int n_contact = 0;
-    for (const auto &s : states)
-      if (s.normal.pressure > 0)
-        ++n_contact;
-    statistics.n_contact = Utilities::MPI::sum(n_contact, discretization.comm);
+    // Convexification loop (model.md section 4): mu frozen from the
+    // previous iterate, starting from w^(0) = w_{n-1}.
+    const bool loop = friction && !friction_law->is_constant();
+    auto       slip_rates = [&](const Vector_t &v) {
+      const auto          values = contact_boundary.gather_values(v);
+      std::vector<double> s(all.size());
+      for (unsigned int i = 0; i < all.size(); ++i)
+        s[i] = all[i].tangential(values[i]).norm();
+      return s;
+    };
+    if (loop)
+      {
+        TimerOutput::Scope t(timer, "Friction: convexification update");
+        const auto s = slip_rates(w);
+        for (unsigned int i = 0; i < all.size(); ++i)
+          mu[i] = friction_law->value(s[i]);
+      }
+
+    Vector_t u_previous, difference;
+    discretization.reinit_owned(u_previous);
+    discretization.reinit_owned(difference);
+    const unsigned int max_passes =
+      loop ? friction_parameters.max_convexification_iterations : 1;
+    std::vector<Tensor<1, dim>> xi_previous;
+    auto friction_density = [&](const std::vector<Tensor<1, dim>> &forces,
+                                const Vector_t &                   v) {
+      // xi_i = lambda_i / (m_i S_i), S = p + q: the selection of the
+      // subdifferential in eq. (52).
+      const auto                  values = contact_boundary.gather_values(v);
+      std::vector<Tensor<1, dim>> xi(all.size());
+      for (unsigned int i = 0; i < all.size(); ++i)
+        {
+          const double S =
+            normal_response(foundation, all[i], u_old_nodes[i], values[i], k)
+              .pressure;
+          if (S > 0)
+            xi[i] = forces[i] / (all[i].weight * S);
+        }
+      return xi;
+    };
+    auto l2_gamma = [&](const std::vector<Tensor<1, dim>> &xi) {
+      double sum = 0;
+      for (unsigned int i = 0; i < all.size(); ++i)
+        sum += all[i].weight * xi[i].norm_square();
+      return std::sqrt(sum);
+    };
+    if (loop)
+      xi_previous = friction_density(lambda, w);
+
+    for (unsigned int pass = 0; pass < max_passes; ++pass)
+      {
+        if (loop)
+          {
+            u_previous = u_old;
+            u_previous.add(k, w);
+          }
+        const auto result = newton->solve(rhs, u_old_nodes, mu, lambda, w);
+        statistics.newton_iterations += result.iterations;
+        statistics.factorizations += result.factorizations;
+        statistics.bulk_solves += result.bulk_solves;
+        statistics.residual = result.residual;
+        ++statistics.convexification_iterations;
+        if (!loop)
+          break;
+
+        TimerOutput::Scope t(timer, "Friction: convexification update");
+        // Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
+        // ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law.
+        difference = u_old;
+        difference.add(k, w);
+        difference -= u_previous;
+        const double du = std::sqrt(bulk.strain_product(difference, difference));
+        const double u_norm =
+          std::sqrt(bulk.strain_product(u_previous, u_previous));
+        const auto xi = friction_density(lambda, w);
+        std::vector<Tensor<1, dim>> dxi(all.size());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          dxi[i] = xi[i] - xi_previous[i];
+        const double eps = friction_parameters.convexification_tolerance;
+        const bool   rule_85 =
+          du <= eps * u_norm && l2_gamma(dxi) <= eps * l2_gamma(xi_previous);
+
+        const auto s                    = slip_rates(w);
+        const auto values               = contact_boundary.gather_values(w);
+        double     coefficient_residual = 0;
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (normal_response(foundation, all[i], u_old_nodes[i], values[i], k)
+                .pressure > 0)
+            coefficient_residual =
+              std::max(coefficient_residual,
+                       std::abs(mu[i] - friction_law->value(s[i])));
+        statistics.coefficient_residual = coefficient_residual;
+        if (rule_85 &&
+            coefficient_residual <= friction_parameters.coefficient_tolerance)
+          break;
+        if (pass + 1 == max_passes)
+          {
+            statistics.convexification_converged = false;
+            break;
+          }
+        // Relaxed update of the frozen coefficients.
+        const double theta = friction_parameters.relaxation;
+        for (unsigned int i = 0; i < all.size(); ++i)
+          mu[i] = (1 - theta) * mu[i] + theta * friction_law->value(s[i]);
+        xi_previous = xi;
+      }
+
+    update_states(u_old_nodes, w, statistics);
     return statistics;
   }
 

@@ -18,7 +18,9 @@ namespace DynamicContact
   /**
    * The linear part of the scheme (model.md section 2): the mass matrix M
    * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
-   * of a_C, assembled once per mesh and condensed with the mesh's
+   * of a_C (and the Gram matrix of (eps(u), eps(v)), for the norm of V that
+   * the convexification loop and the error norms use), assembled once per
+   * mesh and condensed with the mesh's
    * constraints, and the bulk Newton matrix
    *   K0 = (rho/k) M + A + k B,
    * formed from them (no reassembly) whenever k changes. Nothing of Gamma_3
@@ -75,6 +77,9 @@ namespace DynamicContact
     elastic_product(const Vector_t &x, const Vector_t &y) const;
     double
     viscous_product(const Vector_t &x, const Vector_t &y) const;
+    /** (eps(x), eps(y))_{L^2}: the inner product of V, eq. (22). */
+    double
+    strain_product(const Vector_t &x, const Vector_t &y) const;
 
     /**
      * The load vector f_n = (f_0(t), v) + (f_2(t), v)_Gamma_2, condensed,
@@ -107,6 +112,7 @@ namespace DynamicContact
     Matrix_t                          mass_matrix;
     Matrix_t                          elasticity_matrix;
     Matrix_t                          viscosity_matrix;
+    Matrix_t                          strain_matrix;
     Matrix_t                          bulk_matrix;
     double                            current_k = 0;
     mutable Vector_t                  tmp;

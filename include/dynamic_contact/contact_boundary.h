@@ -14,6 +14,7 @@
 namespace DynamicContact
 {
   using namespace dealii;
+  using Vector_t = TrilinosWrappers::MPI::Vector;
 
   /**
    * One node of the contact boundary Gamma_3 (model.md section 3): a support
@@ -90,12 +91,36 @@ namespace DynamicContact
            const std::vector<types::boundary_id> &contact_ids,
            const Function<dim> &                  initial_gap);
 
-    /** The nodes whose DoFs this process owns. */
+    /** The nodes whose DoFs this process owns, sorted by position. */
     const std::vector<ContactNode<dim>> &
     nodes() const
     {
       return owned_nodes;
     }
+
+    /**
+     * Every node of Gamma_3, on every process, sorted by position: the same
+     * list (and order) whatever the number of processes.
+     */
+    const std::vector<ContactNode<dim>> &
+    all_nodes() const
+    {
+      return every_node;
+    }
+
+    /** For each owned node, its index in all_nodes(). */
+    const std::vector<unsigned int> &
+    global_indices() const
+    {
+      return owned_to_global;
+    }
+
+    /**
+     * The nodal vectors of a (master form) distributed vector at every node,
+     * on every process (collective).
+     */
+    std::vector<Tensor<1, dim>>
+    gather_values(const Vector_t &v) const;
 
     unsigned int
     n_global_nodes() const
@@ -117,7 +142,10 @@ namespace DynamicContact
     }
 
   private:
+    MPI_Comm                      comm;
     std::vector<ContactNode<dim>> owned_nodes;
+    std::vector<ContactNode<dim>> every_node;
+    std::vector<unsigned int>     owned_to_global;
     unsigned int                  n_nodes      = 0;
     double                        total_weight = 0;
   };

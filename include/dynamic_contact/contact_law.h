@@ -69,6 +69,112 @@ namespace DynamicContact
                            w * node.normal,
                            k);
   }
+
+
+  /**
+   * Friction at one node for a frozen coefficient mu_i (model.md section 5),
+   * from the complementarity form
+   *   lambda = P_B(0, g)(lambda + c m_i w_tau),  g = mu_i N_i(u_nu, w_nu),
+   * lambda the nodal friction force and c = c_t k, c_t ~ E/h, so that
+   * c m_i w_tau is a nodal force (c_t times the slip increment k w_tau):
+   * free where g = 0, stick where |lambda + c_t w_tau| <= g, slip otherwise.
+   * On slip nodes the friction force is linearized in w (the threshold g
+   * through u_nu and w_nu, and in 3D the direction, after Hueber, Stadler &
+   * Wohlmuth 2008):
+   *   lambda(w') = value + jacobian (w' - w).
+   * On stick nodes lambda is a multiplier of the constraint w_tau = 0 and
+   * value is the lambda given.
+   */
+  template <int dim>
+  struct FrictionResponse
+  {
+    ContactState   state = ContactState::free;
+    double         threshold = 0; // g
+    Tensor<1, dim> direction;     // t (slip)
+    Tensor<1, dim> value;
+    Tensor<2, dim> jacobian;
+  };
+
+  /**
+   * @p lambda is the current friction force, @p normal the normal response
+   * at w, @p c = c_t k the complementarity constant. Nodes with a constrained
+   * component are frictionless (their tangential motion is prescribed).
+   */
+  template <int dim>
+  FrictionResponse<dim>
+  friction_response(const ContactNode<dim> &node,
+                    const NormalResponse &  normal,
+                    const Tensor<1, dim> &  w,
+                    const Tensor<1, dim> &  lambda,
+                    const double            mu,
+                    const double            c);
+
+  /**
+   * The friction force the law assigns to (lambda, w): the projection of
+   * lambda + c m_i w_tau onto the ball of radius g. At a solution it equals
+   * lambda; the difference measures how far the law is from holding.
+   */
+  template <int dim>
+  Tensor<1, dim>
+  projected_friction_force(const ContactNode<dim> &node,
+                           const double            threshold,
+                           const Tensor<1, dim> &  w,
+                           const Tensor<1, dim> &  lambda,
+                           const double            c);
+
+
+  /**
+   * Everything the Newton iteration needs of one node at an iterate
+   * (w, lambda): the normal and friction responses, the nodal force
+   *   f = N nu + lambda   (N = m (p + q); lambda the slip value or the
+   *                       stick multiplier, 0 if free),
+   * and its derivative with respect to w (the nodal Newton block)
+   *   m (k p' + q') nu (x) nu + d lambda/dw (slip only).
+   * Forces and blocks are in the node's actual coordinates.
+   */
+  template <int dim>
+  struct NodeLinearization
+  {
+    NormalResponse        normal;
+    FrictionResponse<dim> friction;
+    Tensor<1, dim>        force;
+    Tensor<2, dim>        block;
+
+    /** The node takes part in the Newton system (force or stick). */
+    bool
+    active() const
+    {
+      return force.norm_square() > 0 || block.norm_square() > 0 ||
+             friction.state == ContactState::stick;
+    }
+  };
+
+  template <int dim>
+  NodeLinearization<dim>
+  linearize_node(const Foundation &      foundation,
+                 const ContactNode<dim> &node,
+                 const Tensor<1, dim> &  u_old,
+                 const Tensor<1, dim> &  w,
+                 const double            k,
+                 const bool              friction,
+                 const Tensor<1, dim> &  lambda,
+                 const double            mu,
+                 const double            c)
+  {
+    NodeLinearization<dim> l;
+    l.normal = normal_response(foundation, node, u_old, w, k);
+    const double N = node.weight * l.normal.pressure;
+    l.force        = N * node.normal;
+    l.block        = (node.weight * l.normal.dpressure_dw) *
+              outer_product(node.normal, node.normal);
+    if (friction)
+      {
+        l.friction = friction_response(node, l.normal, w, lambda, mu, c);
+        l.force += l.friction.value;
+        l.block += l.friction.jacobian;
+      }
+    return l;
+  }
 } // namespace DynamicContact
 
 #endif

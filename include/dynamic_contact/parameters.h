@@ -169,6 +169,12 @@ namespace DynamicContact
         direct,
         iterative
       };
+      enum class ContactSolver
+      {
+        condensed,
+        assembled
+      };
+      ContactSolver contact_solver;
       double       newton_tolerance;
       unsigned int max_newton_iterations;
       LinearSolver linear_solver;

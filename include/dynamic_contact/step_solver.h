@@ -1,13 +1,13 @@
 #ifndef dynamic_contact_step_solver_h
 #define dynamic_contact_step_solver_h
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 
 #include <dynamic_contact/bulk_operator.h>
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/contact_newton.h>
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 
@@ -18,7 +18,7 @@ namespace DynamicContact
 {
   using namespace dealii;
 
-  /** What the solver knows about one node of Gamma_3 after a solve. */
+  /** What the solver knows about one (owned) node of Gamma_3 after a step. */
   template <int dim>
   struct ContactNodeState
   {
@@ -39,16 +39,14 @@ namespace DynamicContact
 
 
   /**
-   * One time step of the scheme (model.md sections 4 and 5): given the
-   * bulk operator K0 for the current k, the right-hand side
-   *   b = (rho/k) M w_{n-1} - B u_{n-1} + f_n
-   * and u_{n-1}, find w_n with
-   *   K0 w_n + sum_i P_i^T F_i(w_n) = b,
-   * F_i the contact force of node i, by semismooth Newton on the nodal
-   * laws. Only the Gamma_3 terms change between iterations: the Newton
-   * matrix is K0 plus nodal dim x dim blocks, copied (not reassembled) from
-   * K0, and its factorization is reused for as long as the blocks do not
-   * change.
+   * One time step of the scheme (model.md sections 2, 4 and 5): given K0
+   * for the current k, the right-hand side b = (rho/k) M w_{n-1} - B u_{n-1}
+   * + f_n and u_{n-1}, find w_n. With a slip-rate dependent friction law,
+   * the convexification loop freezes mu_i = mu(|w_tau,i|) of the previous
+   * iterate, solves the frozen problem by semismooth Newton (a
+   * ContactNewton), and stops by the rule (85) together with
+   * max_i |mu_i - mu(|w_tau,i|)| <= tol. Without friction, or with a
+   * constant coefficient, there is one pass and no friction work.
    */
   template <int dim>
   class StepSolver
@@ -60,28 +58,35 @@ namespace DynamicContact
       unsigned int convexification_iterations = 0;
       bool         convexification_converged  = true;
       unsigned int factorizations             = 0;
+      unsigned int bulk_solves                = 0;
       double       residual                   = 0;
+      /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
+      double       coefficient_residual       = 0;
       unsigned int n_contact                  = 0;
       unsigned int n_stick                    = 0;
       unsigned int n_slip                     = 0;
     };
 
-    StepSolver(const Discretization<dim> &   discretization,
-               const BulkOperator<dim> &     bulk,
-               const ContactBoundary<dim> &  contact_boundary,
-               const Foundation &            foundation,
-               const FrictionLaw *           friction_law,
-               const Parameters::Solver &    solver_parameters,
-               const Parameters::Friction &  friction_parameters,
-               TimerOutput &                 timer);
-
-    /** After a change of the mesh (or of Gamma_3): size the node data. */
-    void
-    reinit();
+    StepSolver(const Discretization<dim> &  discretization,
+               const BulkOperator<dim> &    bulk,
+               const ContactBoundary<dim> & contact_boundary,
+               const Foundation &           foundation,
+               const FrictionLaw *          friction_law,
+               const Parameters::Solver &   solver_parameters,
+               const Parameters::Friction & friction_parameters,
+               TimerOutput &                timer);
+    ~StepSolver();
 
     /**
-     * Solve one step. @p w holds the initial guess (usually w_{n-1}) and
-     * returns w_n, in master form. Throws if Newton does not converge.
+     * After a change of the mesh (or of Gamma_3): size the node data;
+     * @p c_t is the complementarity constant of friction.
+     */
+    void
+    reinit(const double complementarity_constant);
+
+    /**
+     * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
+     * in master form. Throws if Newton does not converge.
      */
     Statistics
     solve(const Vector_t &rhs, const Vector_t &u_old, Vector_t &w);
@@ -93,11 +98,11 @@ namespace DynamicContact
       return states;
     }
 
-    /** Set the friction forces and coefficients (e.g. after a restart). */
-    std::vector<ContactNodeState<dim>> &
-    node_states()
+    /** True if the scene has friction (a law with a nonzero coefficient). */
+    bool
+    has_friction() const
     {
-      return states;
+      return friction;
     }
 
   private:
@@ -109,47 +114,22 @@ namespace DynamicContact
     const Parameters::Solver     parameters;
     const Parameters::Friction   friction_parameters;
     TimerOutput &                timer;
+    const bool                   friction;
+    double                       c_t = 0;
+
+    std::unique_ptr<ContactNewton<dim>> newton;
+
+    /** Every node of Gamma_3: frozen coefficients and friction forces. */
+    std::vector<double>         mu;
+    std::vector<Tensor<1, dim>> lambda;
 
     std::vector<ContactNodeState<dim>> states;
 
-    Matrix_t system_matrix;
-    Vector_t residual;
-    Vector_t increment;
-    Vector_t scratch;
-
-    /** The linear solvers, kept so that a factorization can be reused. */
-    SolverControl                                  direct_control;
-    std::unique_ptr<TrilinosWrappers::SolverDirect> direct_solver;
-    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-    /** The nodal blocks and K0's time step the current factorization has. */
-    std::vector<Tensor<2, dim>> factorized_blocks;
-    double                      factorized_k = 0;
-    bool                        factorized   = false;
-    double                      amg_k        = 0;
-
-    /** Evaluate the nodal laws at (u_old, w); fill states. */
+    /** Evaluate the owned nodes' states at the converged (w, lambda). */
     void
-    evaluate_nodes(const Vector_t &u_old, const Vector_t &w, const double k);
-
-    /** residual = K0 w - rhs + sum_i P_i^T F_i; returns its l2 norm. */
-    double
-    compute_residual(const Vector_t &rhs, const Vector_t &w);
-
-    /** The nodal Jacobian blocks P^T dF_i/dw_i P at the current states. */
-    std::vector<Tensor<2, dim>>
-    nodal_blocks(const double k) const;
-
-    /** Solve (K0 + blocks) increment = -residual. Returns true if refactored. */
-    bool
-    solve_linear_system(const std::vector<Tensor<2, dim>> &blocks,
-                        const double                       k);
-
-    /** The semismooth Newton iteration for frozen friction coefficients. */
-    unsigned int
-    newton(const Vector_t &rhs,
-           const Vector_t &u_old,
-           Vector_t &      w,
-           Statistics &    statistics);
+    update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
+                  const Vector_t &                   w,
+                  Statistics &                       statistics);
   };
 } // namespace DynamicContact
 

@@ -1,0 +1,81 @@
+#ifndef dynamic_contact_contact_newton_h
+#define dynamic_contact_contact_newton_h
+
+#include <deal.II/base/timer.h>
+
+#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/foundation.h>
+
+#include <vector>
+
+namespace DynamicContact
+{
+  /** What a Newton solver for one step needs to know. */
+  template <int dim>
+  struct ContactProblem
+  {
+    const Discretization<dim> &  discretization;
+    const BulkOperator<dim> &    bulk;
+    const ContactBoundary<dim> & boundary;
+    const Foundation &           foundation;
+    const Parameters::Solver &   parameters;
+    TimerOutput &                timer;
+    /** Friction is on (a law other than none). */
+    bool friction;
+    /**
+     * The complementarity constant c_t of friction (Pa/m, like E/h); the
+     * nodal laws use c = c_t k.
+     */
+    double c_t;
+  };
+
+
+  /**
+   * The primal-dual active set / semismooth Newton iteration of model.md
+   * section 5 for frozen friction coefficients: find w and the friction
+   * forces lambda with
+   *   K0 w + sum_i P_i^T (N_i(w) nu_i + lambda_i) = b,
+   *   lambda_i = P_B(0, mu_i N_i)(lambda_i + c_t w_tau,i)  at every node.
+   * Two implementations solve the same Newton systems:
+   * CondensedNewton (static condensation onto Gamma_3: K0 factorized once,
+   * a dense system on the active nodes) and AssembledNewton (the sparse
+   * Newton matrix K0 + nodal blocks with stick constraints, factorized when
+   * it changes).
+   */
+  template <int dim>
+  class ContactNewton
+  {
+  public:
+    struct Result
+    {
+      unsigned int iterations     = 0;
+      unsigned int factorizations = 0;
+      unsigned int bulk_solves    = 0;
+      double       residual       = 0;
+    };
+
+    virtual ~ContactNewton() = default;
+
+    /** The mesh (or the boundary) changed. */
+    virtual void
+    reinit() = 0;
+
+    /**
+     * Solve one frozen-coefficient problem. @p u_old holds u_{n-1} at every
+     * node, @p mu the frozen coefficients, @p lambda the friction forces
+     * (in: initial guess, out: result; every node, on every process); @p w
+     * the initial guess and the result (master form). Throws if the
+     * iteration does not converge.
+     */
+    virtual Result
+    solve(const Vector_t &                    rhs,
+          const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<double> &         mu,
+          std::vector<Tensor<1, dim>> &       lambda,
+          Vector_t &                          w) = 0;
+  };
+} // namespace DynamicContact
+
+#endif
