@@ -77,7 +77,13 @@ namespace DynamicContact
     const Tensor<1, dim> lambda_tau = node.tangential(lambda);
     const Tensor<1, dim> z          = lambda_tau + c_node * node.tangential(w);
     const double         norm       = z.norm();
-    if (norm <= r.threshold)
+    // A slip velocity against the friction force cannot be part of a
+    // solution (lambda . w_tau >= 0: friction dissipates): the iterate has
+    // crossed w_tau = 0, and stick is the prediction. Without this rule the
+    // active sets of neighbouring nodes can ping-pong between the two slip
+    // directions; with it a genuine reversal costs one more iteration.
+    const bool reversed = lambda_tau * node.tangential(w) < 0;
+    if (norm <= r.threshold || reversed)
       {
         r.state = ContactState::stick;
         r.value = lambda_tau;
