@@ -278,6 +278,10 @@ namespace DynamicContact
         f_scale      = Utilities::MPI::max(f_scale, comm);
         result.residual =
           std::max(residual_norm / scale, law_residual / f_scale);
+        problem.details << "    Newton " << iteration << ": residual "
+                        << result.residual << " (equilibrium "
+                        << residual_norm / scale << ", law "
+                        << law_residual / f_scale << ")" << std::endl;
         if (result.residual <= problem.parameters.newton_tolerance)
           break;
         AssertThrow(iteration < problem.parameters.max_newton_iterations,

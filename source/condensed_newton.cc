@@ -31,8 +31,12 @@ namespace DynamicContact
     direct.reset();
     amg.reset();
     prepared_k = 0;
+    regularized.reinit(problem.bulk.sparsity_pattern());
+    choose_spring_nodes();
     problem.discretization.reinit_owned(solution);
     problem.discretization.reinit_owned(right_hand_side);
+    problem.discretization.reinit_owned(residual);
+    problem.discretization.reinit_owned(increment);
   }
 
 
@@ -48,12 +52,70 @@ namespace DynamicContact
 
   template <int dim>
   void
+  CondensedNewton<dim>::choose_spring_nodes()
+  {
+    // Extreme unconstrained nodes: the first and last by position and, in
+    // 3D, the one farthest from the line through them.
+    const auto &all = problem.boundary.all_nodes();
+    spring_nodes.clear();
+    spring_stiffness.assign(all.size(), 0.);
+    std::vector<unsigned int> free_nodes;
+    for (unsigned int i = 0; i < all.size(); ++i)
+      if (all[i].unconstrained)
+        free_nodes.push_back(i);
+    if (free_nodes.empty())
+      return;
+    spring_nodes.push_back(free_nodes.front());
+    if (free_nodes.size() > 1)
+      spring_nodes.push_back(free_nodes.back());
+    if (dim == 3 && free_nodes.size() > 2)
+      {
+        const Point<dim> a = all[spring_nodes[0]].position;
+        Tensor<1, dim>   d = all[spring_nodes[1]].position - a;
+        if (d.norm() > 0)
+          d /= d.norm();
+        unsigned int far      = free_nodes[1];
+        double       distance = -1;
+        for (const unsigned int i : free_nodes)
+          {
+            const Tensor<1, dim> r = all[i].position - a;
+            const double         e = (r - (r * d) * d).norm();
+            if (e > distance)
+              {
+                distance = e;
+                far      = i;
+              }
+          }
+        if (distance > 0)
+          spring_nodes.push_back(far);
+      }
+  }
+
+
+  template <int dim>
+  void
   CondensedNewton<dim>::prepare(Result &result)
   {
     const double k = problem.bulk.time_step();
     if (k == prepared_k)
       return;
+    // K0' = K0 + S.
     const Matrix_t &K0 = problem.bulk.newton_matrix();
+    regularized.copy_from(K0);
+    {
+      const auto &        all = problem.boundary.all_nodes();
+      std::vector<double> local(all.size(), 0.);
+      for (const unsigned int j : spring_nodes)
+        if (owned_index[j] >= 0)
+          for (const auto dof : all[j].dofs)
+            local[j] = std::max(local[j], K0.diag_element(dof));
+      Utilities::MPI::max(local, problem.discretization.comm, spring_stiffness);
+      for (const unsigned int j : spring_nodes)
+        if (owned_index[j] >= 0)
+          for (const auto dof : all[j].dofs)
+            regularized.add(dof, dof, spring_stiffness[j]);
+      regularized.compress(VectorOperation::add);
+    }
     if (problem.parameters.linear_solver ==
         Parameters::Solver::LinearSolver::direct)
       {
@@ -62,7 +124,7 @@ namespace DynamicContact
           direct_control,
           TrilinosWrappers::SolverDirect::AdditionalData(
             false, problem.parameters.direct_solver_package));
-        direct->initialize(K0);
+        direct->initialize(regularized);
       }
     else
       {
@@ -76,7 +138,7 @@ namespace DynamicContact
                                          ComponentMask(),
                                          data.constant_modes);
         amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(K0, data);
+        amg->initialize(regularized, data);
       }
     ++result.factorizations;
     prepared_k = k;
@@ -97,13 +159,13 @@ namespace DynamicContact
       direct->solve(x, b);
     else
       {
-        // K0 = (rho/k) M + A + k B is symmetric positive definite.
+        // K0' = (rho/k) M + A + k B + S is symmetric positive definite.
         SolverControl control(problem.parameters.max_linear_iterations,
                               problem.parameters.linear_tolerance *
                                 b.l2_norm());
         SolverCG<Vector_t> cg(control);
         x = 0;
-        cg.solve(problem.bulk.newton_matrix(), x, b, *amg);
+        cg.solve(regularized, x, b, *amg);
       }
     problem.discretization.constraints.set_zero(x);
     ++result.bulk_solves;
@@ -158,6 +220,193 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  CondensedNewton<dim>::linearize(const std::vector<Tensor<1, dim>> &u_old,
+                                  const std::vector<double> &         mu,
+                                  const std::vector<Tensor<1, dim>> &lambda,
+                                  const std::vector<Tensor<1, dim>> &w_nodes,
+                                  Iterate &                           it) const
+  {
+    const auto &       nodes = problem.boundary.all_nodes();
+    const unsigned int n     = nodes.size();
+    const double       k     = problem.bulk.time_step();
+    it.lin.resize(n);
+    it.forces.resize(n);
+    it.base_true.resize(n);
+    it.g.resize(n);
+    it.base.resize(n);
+    it.signature.resize(n);
+    it.active.clear();
+    it.f_scale      = 1e-300;
+    it.law_residual = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto &l = it.lin[i] = linearize_node(problem.foundation,
+                                                   nodes[i],
+                                                   u_old[i],
+                                                   w_nodes[i],
+                                                   k,
+                                                   problem.friction,
+                                                   lambda[i],
+                                                   problem.friction ? mu[i] :
+                                                                      0.,
+                                                   problem.c_t * k);
+        const Tensor<1, dim> normal_force =
+          l.normal.pressure * nodes[i].weight * nodes[i].normal;
+        // The force at the iterate (normal law at w, the friction force as it
+        // stands) and the part of the linearized force that does not depend
+        // on the unknowns of the Newton step.
+        it.forces[i]    = normal_force + lambda[i];
+        it.base_true[i] = normal_force;
+        if (l.friction.state == ContactState::slip)
+          it.base_true[i] += l.friction.value;
+        // Condensation with K0' = K0 + S sees the forces minus the springs'.
+        const double s = spring_stiffness[i];
+        it.g[i]         = it.forces[i] - s * w_nodes[i];
+        it.base[i]      = it.base_true[i] - s * w_nodes[i];
+        if (s > 0)
+          it.lin[i].block -= s * Tensor<2, dim>(unit_symmetric_tensor<dim>());
+        it.signature[i] = l.normal.set_signature() +
+                          16 * static_cast<unsigned int>(l.friction.state);
+        it.f_scale = std::max(it.f_scale, it.forces[i].norm());
+        if (problem.friction)
+          it.law_residual =
+            std::max(it.law_residual,
+                     (lambda[i] - projected_friction_force(nodes[i],
+                                                           l.friction.threshold,
+                                                           w_nodes[i],
+                                                           lambda[i],
+                                                           problem.c_t * k))
+                       .norm());
+        if (l.active() || it.forces[i].norm_square() > 0 || s > 0)
+          it.active.push_back(i);
+      }
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::dense_step(const Iterate &                     it,
+                                   const std::vector<Tensor<1, dim>> &r,
+                                   std::vector<Tensor<1, dim>> &       dw,
+                                   std::vector<Tensor<1, dim>> &       lambda,
+                                   std::vector<Tensor<1, dim>> &new_forces) const
+  {
+    // The Newton system on the active nodes: unknowns dw_i (dim each) and, at
+    // stick nodes, the tangential force (dim-1 each, scaled by the node's
+    // compliance), for
+    //   dw_i + sum_j C_ij (block_j dw_j + T_j l_j) = r_i,
+    //   t_s . (w_i + dw_i) = 0 at stick nodes.
+    const auto &              nodes    = problem.boundary.all_nodes();
+    const auto &              active   = it.active;
+    const unsigned int        n_active = active.size();
+    std::vector<unsigned int> stick_offset(n_active, 0);
+    std::vector<double>       stick_scale(n_active, 0);
+    unsigned int              size = dim * n_active;
+    for (unsigned int a = 0; a < n_active; ++a)
+      if (it.lin[active[a]].friction.state == ContactState::stick)
+        {
+          const unsigned int j = active[a];
+          stick_offset[a]      = size;
+          size += dim - 1;
+          double c = 0;
+          for (const auto &t : nodes[j].tangents)
+            c += t * (columns[j][j] * t);
+          stick_scale[a] = c > 0 ? (dim - 1) / c : 1.;
+        }
+
+    dw.assign(n_active, Tensor<1, dim>());
+    new_forces.assign(nodes.size(), Tensor<1, dim>());
+    for (auto &l : lambda)
+      l = Tensor<1, dim>();
+    if (size == 0)
+      return;
+
+    LAPACKFullMatrix<double> matrix(size, size);
+    Vector<double>           vector(size);
+    for (unsigned int a = 0; a < n_active; ++a)
+      {
+        const unsigned int i = active[a];
+        for (unsigned int b = 0; b < n_active; ++b)
+          {
+            const unsigned int    j  = active[b];
+            const Tensor<2, dim> &C  = columns[j][i];
+            const Tensor<2, dim>  CB = C * it.lin[j].block;
+            for (unsigned int p = 0; p < dim; ++p)
+              for (unsigned int q = 0; q < dim; ++q)
+                matrix(dim * a + p, dim * b + q) = CB[p][q];
+            if (stick_offset[b] > 0)
+              for (unsigned int s = 0; s < dim - 1; ++s)
+                {
+                  const Tensor<1, dim> Ct = C * nodes[j].tangents[s];
+                  for (unsigned int p = 0; p < dim; ++p)
+                    matrix(dim * a + p, stick_offset[b] + s) =
+                      Ct[p] / stick_scale[b];
+                }
+          }
+        for (unsigned int p = 0; p < dim; ++p)
+          {
+            matrix(dim * a + p, dim * a + p) += 1.;
+            vector(dim * a + p) = r[a][p];
+          }
+        if (stick_offset[a] > 0)
+          for (unsigned int s = 0; s < dim - 1; ++s)
+            {
+              for (unsigned int p = 0; p < dim; ++p)
+                matrix(stick_offset[a] + s, dim * a + p) =
+                  nodes[i].tangents[s][p];
+              vector(stick_offset[a] + s) = -(nodes[i].tangents[s] * it.w[i]);
+            }
+      }
+    matrix.compute_lu_factorization();
+    matrix.solve(vector);
+
+    for (unsigned int a = 0; a < n_active; ++a)
+      {
+        const unsigned int j = active[a];
+        for (unsigned int p = 0; p < dim; ++p)
+          dw[a][p] = vector(dim * a + p);
+        const auto &l = it.lin[j];
+        if (l.friction.state == ContactState::slip)
+          lambda[j] = l.friction.value + l.friction.jacobian * dw[a];
+        else if (l.friction.state == ContactState::stick)
+          for (unsigned int s = 0; s < dim - 1; ++s)
+            lambda[j] += (vector(stick_offset[a] + s) / stick_scale[a]) *
+                         nodes[j].tangents[s];
+        // base_j + block_j dw + T_j l_j, with the springs' part (g form).
+        new_forces[j] = it.base[j] + l.block * dw[a];
+        if (l.friction.state == ContactState::stick)
+          new_forces[j] += lambda[j];
+      }
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
+                                         const double      factor,
+                                         Vector_t &        v) const
+  {
+    const auto &                         owned  = problem.boundary.nodes();
+    const auto &                         global = problem.boundary.global_indices();
+    std::vector<types::global_dof_index> indices;
+    std::vector<double>                  values;
+    for (unsigned int i = 0; i < owned.size(); ++i)
+      {
+        const Tensor<1, dim> condensed =
+          transpose(owned[i].constraint_map) * f[global[i]];
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            indices.push_back(owned[i].dofs[c]);
+            values.push_back(factor * condensed[c]);
+          }
+      }
+    v.add(indices, values);
+    v.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::solve(const Vector_t &                    rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
@@ -167,9 +416,17 @@ namespace DynamicContact
   {
     Result result;
     prepare(result);
-    const auto &       nodes = problem.boundary.all_nodes();
-    const unsigned int n     = nodes.size();
-    const double       k     = problem.bulk.time_step();
+    const unsigned int n   = problem.boundary.all_nodes().size();
+    const unsigned int cap = problem.parameters.max_newton_iterations;
+    const double       tol = problem.parameters.newton_tolerance;
+    auto check_cap = [&](const unsigned int iterations) {
+      AssertThrow(iterations < cap,
+                  ExcMessage("The semismooth Newton iteration did not "
+                             "converge in Solver/Maximum Newton iterations = " +
+                             std::to_string(cap) +
+                             " iterations (relative residual " +
+                             std::to_string(result.residual) + ")."));
+    };
 
     // The free response: the body without the foundation.
     solve_bulk(rhs, solution, result);
@@ -181,206 +438,113 @@ namespace DynamicContact
     const std::vector<Tensor<1, dim>> w_free =
       problem.boundary.gather_values(solution);
 
-    // The initial iterate: the initial guess given (w_{n-1}, or the last
-    // convexification pass), as the assembled Newton starts.
-    std::vector<Tensor<1, dim>> w_nodes = problem.boundary.gather_values(w);
-
-    std::vector<NodeLinearization<dim>> lin(n);
-    std::vector<Tensor<1, dim>>         forces(n);
-    std::vector<unsigned int>           active;
+    // Phase 1, on Gamma_3 only: w_i = w_free,i - sum_j C_ij f_j, from the
+    // initial guess given (w_{n-1}, or the last convexification pass). No
+    // solve with K0 but for new columns of C. It finds the active sets; where
+    // K0 is nearly singular (a body held only by the foundation) the
+    // cancellation in w_free - C f limits its accuracy, and phase 2 polishes.
+    Iterate it;
+    it.w = problem.boundary.gather_values(w);
     double w_scale = 1e-300;
     for (unsigned int i = 0; i < n; ++i)
       w_scale = std::max(w_scale, w_free[i].norm());
-
-    for (unsigned int iteration = 0;; ++iteration)
-      {
-        TimerOutput::Scope t(problem.timer, "Contact: boundary Newton");
-        // Linearize every node; the active ones enter the dense system.
-        active.clear();
-        double f_scale = 1e-300, law_residual = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            lin[i] = linearize_node(problem.foundation,
-                                    nodes[i],
-                                    u_old[i],
-                                    w_nodes[i],
-                                    k,
-                                    problem.friction,
-                                    lambda[i],
-                                    problem.friction ? mu[i] : 0.,
-                                    problem.c_t * k);
-            // The force at the iterate: normal law at w, friction force as
-            // it stands.
-            forces[i] = lin[i].normal.pressure * nodes[i].weight *
-                          nodes[i].normal +
-                        lambda[i];
-            f_scale = std::max(f_scale, forces[i].norm());
-            if (problem.friction)
-              law_residual = std::max(
-                law_residual,
-                (lambda[i] - projected_friction_force(nodes[i],
-                                                      lin[i].friction.threshold,
-                                                      w_nodes[i],
-                                                      lambda[i],
-                                                      problem.c_t * k))
-                  .norm());
-            if (lin[i].active() || forces[i].norm_square() > 0)
-              active.push_back(i);
-          }
-        for (const unsigned int j : active)
-          compute_column(j, result);
-
-        // Residual of w_i = w_free,i - sum_j C_ij f_j at every node.
-        std::vector<Tensor<1, dim>> response;
-        compliance_response(w_free, forces, active, response);
-        double equilibrium_residual = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            w_scale = std::max(w_scale, w_nodes[i].norm());
-            equilibrium_residual =
-              std::max(equilibrium_residual, (w_nodes[i] - response[i]).norm());
-          }
-        result.residual = std::max(equilibrium_residual / w_scale,
-                                   law_residual / f_scale);
-        if (result.residual <= problem.parameters.newton_tolerance)
-          break;
-        AssertThrow(iteration < problem.parameters.max_newton_iterations,
-                    ExcMessage(
-                      "The semismooth Newton iteration did not converge in "
-                      "Solver/Maximum Newton iterations = " +
-                      std::to_string(problem.parameters.max_newton_iterations) +
-                      " iterations (relative residual " +
-                      std::to_string(result.residual) + ")."));
-
-        // The dense Newton system on the active nodes: unknowns dw_i (dim
-        // each) and, at stick nodes, the tangential force (dim-1 each,
-        // scaled to the compliance of the node).
-        const unsigned int        n_active = active.size();
-        std::vector<unsigned int> stick_offset(n_active, 0);
-        std::vector<double>       stick_scale(n_active, 0);
-        unsigned int              size = dim * n_active;
-        for (unsigned int a = 0; a < n_active; ++a)
-          if (lin[active[a]].friction.state == ContactState::stick)
+    std::vector<unsigned int>   previous_signature;
+    double                      previous_residual = 0;
+    std::vector<Tensor<1, dim>> dw, new_forces, response, r;
+    {
+      TimerOutput::Scope t(problem.timer, "Contact: boundary Newton");
+      for (unsigned int iteration = 0;; ++iteration)
+        {
+          linearize(u_old, mu, lambda, it.w, it);
+          for (const unsigned int j : it.active)
+            compute_column(j, result);
+          compliance_response(w_free, it.g, it.active, response);
+          double equilibrium = 0;
+          for (unsigned int i = 0; i < n; ++i)
             {
-              const unsigned int j = active[a];
-              stick_offset[a]      = size;
-              size += dim - 1;
-              double c = 0;
-              for (const auto &t : nodes[j].tangents)
-                c += t * (columns[j][j] * t);
-              stick_scale[a] = c > 0 ? (dim - 1) / c : 1.;
+              w_scale     = std::max(w_scale, it.w[i].norm());
+              equilibrium = std::max(equilibrium, (it.w[i] - response[i]).norm());
             }
+          const double residual =
+            std::max(equilibrium / w_scale, it.law_residual / it.f_scale);
+          problem.details << "    Newton " << result.iterations
+                          << " (on Gamma_3): residual " << residual
+                          << " (equilibrium " << equilibrium / w_scale
+                          << ", law " << it.law_residual / it.f_scale
+                          << "), active nodes " << it.active.size()
+                          << std::endl;
+          const bool stagnated = iteration > 0 &&
+                                 it.signature == previous_signature &&
+                                 residual > 0.1 * previous_residual;
+          if (residual <= tol || stagnated)
+            break;
+          result.residual = residual;
+          check_cap(result.iterations);
+          previous_signature = it.signature;
+          previous_residual  = residual;
 
-        if (size == 0)
-          {
-            // Nothing in contact: the free response is the next iterate.
-            for (auto &l : lambda)
-              l = Tensor<1, dim>();
-            w_nodes = w_free;
-            ++result.iterations;
-            continue;
-          }
-        LAPACKFullMatrix<double> matrix(size, size);
-        Vector<double>           vector(size);
-        // Linearized forces: f_j + block_j dw_j (+ T_j l_j at stick nodes).
-        std::vector<Tensor<1, dim>> base_force(n_active);
-        for (unsigned int b = 0; b < n_active; ++b)
-          {
-            const unsigned int j = active[b];
-            base_force[b] =
-              lin[j].normal.pressure * nodes[j].weight * nodes[j].normal;
-            if (lin[j].friction.state == ContactState::slip)
-              base_force[b] += lin[j].friction.value;
-          }
-        for (unsigned int a = 0; a < n_active; ++a)
-          {
-            const unsigned int i = active[a];
-            // Rows of node i: dw_i + sum_j C_ij (block_j dw_j + T_j l_j)
-            //                   = w_free,i - w_i - sum_j C_ij base_j
-            Tensor<1, dim> r = w_free[i] - w_nodes[i];
-            for (unsigned int b = 0; b < n_active; ++b)
-              {
-                const unsigned int    j  = active[b];
-                const Tensor<2, dim> &C  = columns[j][i];
-                const Tensor<2, dim>  CB = C * lin[j].block;
-                r -= C * base_force[b];
-                for (unsigned int p = 0; p < dim; ++p)
-                  for (unsigned int q = 0; q < dim; ++q)
-                    matrix(dim * a + p, dim * b + q) = CB[p][q];
-                if (stick_offset[b] > 0)
-                  for (unsigned int s = 0; s < dim - 1; ++s)
-                    {
-                      const Tensor<1, dim> Ct = C * nodes[j].tangents[s];
-                      for (unsigned int p = 0; p < dim; ++p)
-                        matrix(dim * a + p, stick_offset[b] + s) =
-                          Ct[p] / stick_scale[b];
-                    }
-              }
-            for (unsigned int p = 0; p < dim; ++p)
-              {
-                matrix(dim * a + p, dim * a + p) += 1.;
-                vector(dim * a + p) = r[p];
-              }
-            // Stick: t_s . (w_i + dw_i) = 0.
-            if (stick_offset[a] > 0)
-              for (unsigned int s = 0; s < dim - 1; ++s)
-                {
-                  for (unsigned int p = 0; p < dim; ++p)
-                    matrix(stick_offset[a] + s, dim * a + p) =
-                      nodes[i].tangents[s][p];
-                  vector(stick_offset[a] + s) =
-                    -(nodes[i].tangents[s] * w_nodes[i]);
-                }
-          }
-        matrix.compute_lu_factorization();
-        matrix.solve(vector);
+          // r_i = w_free,i - w_i - sum_j C_ij base_j.
+          compliance_response(w_free, it.base, it.active, response);
+          r.resize(it.active.size());
+          for (unsigned int a = 0; a < it.active.size(); ++a)
+            r[a] = response[it.active[a]] - it.w[it.active[a]];
+          dense_step(it, r, dw, lambda, new_forces);
+          compliance_response(w_free, new_forces, it.active, it.w);
+          ++result.iterations;
+        }
+    }
 
-        // New forces of the active nodes; friction forces updated.
-        std::vector<Tensor<1, dim>> new_forces(n);
-        for (unsigned int i = 0; i < n; ++i)
-          lambda[i] = Tensor<1, dim>();
-        for (unsigned int a = 0; a < n_active; ++a)
-          {
-            const unsigned int j = active[a];
-            Tensor<1, dim>     dw;
-            for (unsigned int p = 0; p < dim; ++p)
-              dw[p] = vector(dim * a + p);
-            const auto &l = lin[j];
-            if (l.friction.state == ContactState::slip)
-              lambda[j] = l.friction.value + l.friction.jacobian * dw;
-            else if (l.friction.state == ContactState::stick)
-              for (unsigned int s = 0; s < dim - 1; ++s)
-                lambda[j] += (vector(stick_offset[a] + s) / stick_scale[a]) *
-                             nodes[j].tangents[s];
-            new_forces[j] = l.normal.pressure * nodes[j].weight *
-                              nodes[j].normal +
-                            (l.block - l.friction.jacobian) * dw + lambda[j];
-          }
-        compliance_response(w_free, new_forces, active, w_nodes);
+    // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
+    // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1.
+    right_hand_side = rhs;
+    add_nodal_forces(it.g, -1., right_hand_side);
+    solve_bulk(right_hand_side, w, result);
+
+    // Phase 2: Newton on the residual of the whole system,
+    //   R = K0 w - b + sum_i P_i^T f_i(w),
+    // each step solved by the same condensation (two solves with K0). Where
+    // phase 1 converged this only checks the residual.
+    for (;;)
+      {
+        TimerOutput::Scope t(problem.timer, "Contact: refinement");
+        it.w = problem.boundary.gather_values(w);
+        linearize(u_old, mu, lambda, it.w, it);
+        problem.bulk.newton_matrix().vmult(residual, w);
+        const double scale =
+          std::max({rhs.l2_norm(), residual.l2_norm(), 1e-300});
+        residual -= rhs;
+        add_nodal_forces(it.forces, 1., residual);
+        result.residual = std::max(residual.l2_norm() / scale,
+                                   it.law_residual / it.f_scale);
+        problem.details << "    Newton " << result.iterations
+                        << " (whole system): residual " << result.residual
+                        << ", active nodes " << it.active.size() << std::endl;
+        if (result.residual <= tol)
+          break;
+        check_cap(result.iterations);
+
+        // z = -K0'^{-1} (K0 w - b + sum_i P_i^T base_i); the step is
+        // dw = z - K0'^{-1} sum_i P_i^T (g_i^new - base_i) (g form).
+        add_nodal_forces(it.forces, -1., residual);
+        add_nodal_forces(it.base_true, 1., residual);
+        residual *= -1.;
+        solve_bulk(residual, solution, result);
+        const auto z = problem.boundary.gather_values(solution);
+        for (const unsigned int j : it.active)
+          compute_column(j, result);
+        r.resize(it.active.size());
+        for (unsigned int a = 0; a < it.active.size(); ++a)
+          r[a] = z[it.active[a]];
+        dense_step(it, r, dw, lambda, new_forces);
+        for (const unsigned int j : it.active)
+          new_forces[j] -= it.base[j];
+        right_hand_side = 0;
+        add_nodal_forces(new_forces, 1., right_hand_side);
+        solve_bulk(right_hand_side, increment, result);
+        w += solution;
+        w -= increment;
         ++result.iterations;
       }
-
-    // The converged forces into the bulk: w = K0^{-1} (b - sum_i P_i^T f_i).
-    right_hand_side = rhs;
-    {
-      const auto &                         owned  = problem.boundary.nodes();
-      const auto &                         global = problem.boundary.global_indices();
-      std::vector<types::global_dof_index> indices;
-      std::vector<double>                  values;
-      for (unsigned int i = 0; i < owned.size(); ++i)
-        {
-          const Tensor<1, dim> f =
-            transpose(owned[i].constraint_map) * forces[global[i]];
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              indices.push_back(owned[i].dofs[c]);
-              values.push_back(-f[c]);
-            }
-        }
-      right_hand_side.add(indices, values);
-      right_hand_side.compress(VectorOperation::add);
-    }
-    solve_bulk(right_hand_side, w, result);
     return result;
   }
 

@@ -691,14 +691,22 @@ namespace DynamicContact
         prm.declare_entry("Output every",
                           "1",
                           Patterns::Integer(0),
-                          "Write contact_NNNNN.csv (and the VTU fields) "
-                          "every N steps; 0 writes only the initial and the "
-                          "final state. time_series.csv has every step.");
-        prm.declare_entry("Write vtu",
-                          "true",
-                          Patterns::Bool(),
-                          "Write solution_NNNNN.pvtu/.vtu and solution.pvd "
-                          "at the output steps.");
+                          "Write contact_NNNNN.csv every N steps (0: only "
+                          "the initial and the final state). "
+                          "time_series.csv has every step.");
+        prm.declare_entry("VTU every",
+                          "1",
+                          Patterns::Integer(0),
+                          "Write solution_NNNNN.pvtu/.vtu (indexed by "
+                          "solution.pvd) every N steps, and at the initial "
+                          "and final state; 0: no VTU output at all.");
+        prm.declare_entry(
+          "Output times",
+          "",
+          Patterns::List(Patterns::Double()),
+          "Times (s) at which both contact_NNNNN.csv and the VTU fields are "
+          "written in addition: at the first step that reaches each time. "
+          "E.g. '0.2, 0.4, 0.6, 0.8' for the paper's Figure 2.");
         prm.declare_entry("Progress every",
                           "1",
                           Patterns::Integer(0),
@@ -710,6 +718,11 @@ namespace DynamicContact
           "Print the estimated time left in progress lines and the "
           "TimerOutput summary at the end. Regression tests switch this off "
           "so that their output is deterministic.");
+        prm.declare_entry("Solver details",
+                          "false",
+                          Patterns::Bool(),
+                          "Print every Newton iteration (residuals, active "
+                          "nodes) and every convexification pass.");
       }
       prm.leave_subsection();
     }
@@ -720,9 +733,12 @@ namespace DynamicContact
       prm.enter_subsection("Output");
       directory      = prm.get("Directory");
       output_every   = prm.get_integer("Output every");
-      write_vtu      = prm.get_bool("Write vtu");
+      vtu_every      = prm.get_integer("VTU every");
+      output_times   = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("Output times")));
       progress_every = prm.get_integer("Progress every");
       print_timings  = prm.get_bool("Print timings");
+      solver_details = prm.get_bool("Solver details");
       prm.leave_subsection();
       require(!directory.empty(), "Output/Directory must not be empty.");
     }

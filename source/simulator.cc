@@ -1,6 +1,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/force_balance.h>
 #include <dynamic_contact/simulator.h>
 
 #include <chrono>
@@ -44,6 +46,18 @@ namespace DynamicContact
         t[i] = (i + 1 == n ? end_time : (i + 1) * k);
       return t;
     }
+
+    /** Columns name_x, name_y (, name_z) of a vector. */
+    template <int dim>
+    void
+    add_vector_columns(TimeSeriesRow &       row,
+                       const std::string &   name,
+                       const Tensor<1, dim> &v)
+    {
+      const char *axes[] = {"_x", "_y", "_z"};
+      for (unsigned int d = 0; d < dim; ++d)
+        row.add(name + axes[d], v[d]);
+    }
   } // namespace
 
 
@@ -54,6 +68,9 @@ namespace DynamicContact
     : parameters(parameters)
     , comm(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+    , details(std::cout,
+              Utilities::MPI::this_mpi_process(comm) == 0 &&
+                parameters.output.solver_details)
     , timer(comm,
             pcout,
             parameters.output.print_timings ? TimerOutput::summary :
@@ -72,12 +89,14 @@ namespace DynamicContact
                   friction_law.get(),
                   parameters.solver,
                   parameters.friction,
-                  timer)
+                  timer,
+                  details)
     , energy_balance(bulk,
                      contact_boundary,
                      foundation,
                      material.density(),
                      comm)
+    , force_balance(discretization, material, scene)
   {}
 
 
@@ -95,6 +114,7 @@ namespace DynamicContact
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
     bulk.reinit();
+    force_balance.reinit();
     // c_t of the friction complementarity function, like E/h.
     const double c_t =
       parameters.friction.complementarity_constant > 0 ?
@@ -239,12 +259,32 @@ namespace DynamicContact
     normal_force     = Utilities::MPI::sum(normal_force, comm);
     tangential_force = Utilities::MPI::sum(tangential_force, comm);
 
+    ForceBalance<dim> forces;
+    {
+      Vector_t u_ghosted, w_ghosted, w_old_ghosted;
+      for (auto *v : {&u_ghosted, &w_ghosted, &w_old_ghosted})
+        discretization.reinit_ghosted(*v);
+      discretization.expand(u, u_ghosted);
+      discretization.expand(w, w_ghosted);
+      discretization.expand(w_old, w_old_ghosted);
+      forces = force_balance.compute(contact_boundary,
+                                     step_solver.node_states(),
+                                     t,
+                                     k,
+                                     u_ghosted,
+                                     w_ghosted,
+                                     w_old_ghosted);
+    }
+
     TimeSeriesRow row;
     row.add_integer("step", step);
     row.add("time", t);
     row.add("time_step", k);
     row.add("normal_force", normal_force);
     row.add("tangential_force", tangential_force);
+    add_vector_columns(row, "applied_force", forces.applied);
+    add_vector_columns(row, "reaction_force", forces.reaction);
+    add_vector_columns(row, "inertia_force", forces.inertia);
     row.add("kinetic_energy", terms.energy.kinetic);
     row.add("elastic_energy", terms.energy.elastic);
     row.add("foundation_energy", terms.energy.foundation);
@@ -277,18 +317,22 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::output_results(const unsigned int step, const double t)
+  Simulator<dim>::output_results(const unsigned int step,
+                                 const double       t,
+                                 const bool         contact_csv,
+                                 const bool         vtu)
   {
     TimerOutput::Scope scope(timer, "Output");
     char               name[64];
     std::snprintf(name, sizeof(name), "/contact_%05u.csv", step);
-    write_contact_csv(parameters.output.directory + name,
-                      contact_boundary,
-                      step_solver.node_states(),
-                      w,
-                      step_solver.has_friction(),
-                      comm);
-    if (parameters.output.write_vtu)
+    if (contact_csv)
+      write_contact_csv(parameters.output.directory + name,
+                        contact_boundary,
+                        step_solver.node_states(),
+                        w,
+                        step_solver.has_friction(),
+                        comm);
+    if (vtu)
       vtu_writer->write(step,
                         t,
                         discretization,
@@ -334,6 +378,9 @@ namespace DynamicContact
       row.add("time_step", 0);
       row.add("normal_force", 0);
       row.add("tangential_force", 0);
+      for (const char *name :
+           {"applied_force", "reaction_force", "inertia_force"})
+        add_vector_columns(row, name, Tensor<1, dim>());
       row.add("kinetic_energy", e.kinetic);
       row.add("elastic_energy", e.elastic);
       row.add("foundation_energy", e.foundation);
@@ -363,7 +410,7 @@ namespace DynamicContact
       time_series_writer->write(row);
       rows.push_back(row);
     }
-    output_results(0, 0.);
+    output_results(0, 0., true, parameters.output.vtu_every > 0);
 
     const std::vector<double> times =
       time_points(parameters.time.end_time, parameters.time.time_step);
@@ -389,9 +436,19 @@ namespace DynamicContact
         total_newton += row.get("newton_iterations");
 
         const bool last = (n == times.size());
-        const unsigned int every = parameters.output.output_every;
-        if (last || (every > 0 && n % every == 0))
-          output_results(n, t);
+        // An output time is due at the first step reaching it.
+        bool at_output_time = false;
+        for (const double t_out : parameters.output.output_times)
+          at_output_time = at_output_time ||
+                           (t_out <= t * (1 + 1e-12) && t_out > t - k * (1 + 1e-12));
+        const unsigned int csv_every = parameters.output.output_every;
+        const unsigned int vtu_every = parameters.output.vtu_every;
+        output_results(n,
+                       t,
+                       last || at_output_time ||
+                         (csv_every > 0 && n % csv_every == 0),
+                       vtu_every > 0 &&
+                         (last || at_output_time || n % vtu_every == 0));
 
         const unsigned int progress = parameters.output.progress_every;
         if (progress > 0 && (n % progress == 0 || last))
@@ -435,12 +492,37 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Simulator<dim>::abandon(const std::string &reason)
+  {
+    timer.disable_output();
+    if (time_series_writer) // the output directory exists
+      write_status("failed: " + reason);
+  }
+
+
+  template <int dim>
+  void
   run_dimension(const RunParameters &parameters,
                 ParameterHandler &   prm,
                 const MPI_Comm       comm)
   {
-    Simulator<dim> simulator(parameters, prm, comm);
-    simulator.run();
+    // Catch inside the simulator's lifetime, so that it is destroyed with no
+    // exception in flight (its timer would otherwise warn about it).
+    std::exception_ptr error;
+    {
+      Simulator<dim> simulator(parameters, prm, comm);
+      try
+        {
+          simulator.run();
+        }
+      catch (const std::exception &e)
+        {
+          error = std::current_exception();
+          simulator.abandon(error_message(e));
+        }
+    }
+    if (error)
+      std::rethrow_exception(error);
   }
 
 

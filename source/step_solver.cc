@@ -31,7 +31,8 @@ namespace DynamicContact
                               const FrictionLaw *          friction_law,
                               const Parameters::Solver &   solver_parameters,
                               const Parameters::Friction & friction_parameters,
-                              TimerOutput &                timer)
+                              TimerOutput &                timer,
+                              const ConditionalOStream &   details)
     : discretization(discretization)
     , bulk(bulk)
     , contact_boundary(contact_boundary)
@@ -40,6 +41,7 @@ namespace DynamicContact
     , parameters(solver_parameters)
     , friction_parameters(friction_parameters)
     , timer(timer)
+    , details(details)
     , friction(law_has_friction(friction_law))
   {}
 
@@ -59,6 +61,7 @@ namespace DynamicContact
                                       foundation,
                                       parameters,
                                       timer,
+                                      details,
                                       friction,
                                       c_t};
     if (parameters.contact_solver ==
@@ -216,6 +219,11 @@ namespace DynamicContact
               std::max(coefficient_residual,
                        std::abs(mu[i] - friction_law->value(s[i])));
         statistics.coefficient_residual = coefficient_residual;
+        details << "  convexification pass " << pass + 1 << ": |du|_V/|u|_V "
+                << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
+                << l2_gamma(dxi) / std::max(l2_gamma(xi_previous), 1e-300)
+                << ", max |mu_i - mu(|w_tau,i|)| " << coefficient_residual
+                << std::endl;
         if (rule_85 &&
             coefficient_residual <= friction_parameters.coefficient_tolerance)
           break;

@@ -22,6 +22,14 @@ namespace DynamicContact
    * time step. The columns of C are computed when a node first becomes
    * active (dim solves with the factorized K0 each) and kept while K0 is
    * unchanged. A step costs two solves with K0 plus the dense iterations.
+   *
+   * What is factorized is K0' = K0 + S, S stiff springs (s I, s the largest
+   * diagonal entry of K0 there) at two (2D) or three (3D) extreme nodes of
+   * Gamma_3: a body held only by the foundation has rigid motions that K0
+   * restrains by inertia alone, and K0 is then too ill-conditioned for the
+   * condensation to reach a tight tolerance. The springs are removed again
+   * exactly: their nodes enter the dense system with the force f - S w and
+   * the block B - S, so the Newton iterates are those of K0.
    */
   template <int dim>
   class CondensedNewton : public ContactNewton<dim>
@@ -48,7 +56,13 @@ namespace DynamicContact
   private:
     const ContactProblem<dim> problem;
 
-    /** Solver for K0: a factorization, or CG with AMG. */
+    /** K0' = K0 + S (see above), factorized. */
+    Matrix_t regularized;
+    /** The spring nodes (indices into all_nodes()) and their stiffness. */
+    std::vector<unsigned int> spring_nodes;
+    std::vector<double>       spring_stiffness; // one per node of all_nodes()
+
+    /** Solver for K0': a factorization, or CG with AMG. */
     SolverControl                                      direct_control;
     std::unique_ptr<TrilinosWrappers::SolverDirect>    direct;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
@@ -59,13 +73,59 @@ namespace DynamicContact
     /** For each node of all_nodes(): its index among the owned nodes, or -1. */
     std::vector<int> owned_index;
 
-    Vector_t solution, right_hand_side;
+    Vector_t solution, right_hand_side, residual, increment;
 
-    /** Factorize K0 (or build AMG) if k changed; drop C if so. */
+    /** The linearization of every node at an iterate. */
+    struct Iterate
+    {
+      std::vector<Tensor<1, dim>>         w; // nodal velocities
+      std::vector<NodeLinearization<dim>> lin;
+      std::vector<Tensor<1, dim>>         forces; // f_i at the iterate
+      std::vector<Tensor<1, dim>>         base_true; // normal force + slip value
+      // The same, minus the springs' s w_i (what condensation with K0' uses);
+      // lin[i].block is likewise B_i - s I at spring nodes.
+      std::vector<Tensor<1, dim>>         g;
+      std::vector<Tensor<1, dim>>         base;
+      std::vector<unsigned int>           signature; // sets, per node
+      std::vector<unsigned int>           active;
+      double                              f_scale      = 0;
+      double                              law_residual = 0;
+    };
+
+    void
+    linearize(const std::vector<Tensor<1, dim>> &u_old,
+              const std::vector<double> &         mu,
+              const std::vector<Tensor<1, dim>> &lambda,
+              const std::vector<Tensor<1, dim>> &w_nodes,
+              Iterate &                           it) const;
+
+    /**
+     * One Newton step on the active nodes for the right-hand side @p r (one
+     * entry per active node): the increments dw, the new friction forces
+     * (every node) and the new linearized forces (every node).
+     */
+    void
+    dense_step(const Iterate &                     it,
+               const std::vector<Tensor<1, dim>> &r,
+               std::vector<Tensor<1, dim>> &       dw,
+               std::vector<Tensor<1, dim>> &       lambda,
+               std::vector<Tensor<1, dim>> &       new_forces) const;
+
+    /** v += factor sum_i P_i^T f_i over the owned nodes. */
+    void
+    add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
+                     const double                       factor,
+                     Vector_t &                         v) const;
+
+    /** Choose the spring nodes (once per mesh). */
+    void
+    choose_spring_nodes();
+
+    /** Factorize K0' (or build AMG) if k changed; drop C if so. */
     void
     prepare(Result &result);
 
-    /** x = K0^{-1} b. */
+    /** x = K0'^{-1} b. */
     void
     solve_bulk(const Vector_t &b, Vector_t &x, Result &result);
 

@@ -1,6 +1,7 @@
 #ifndef dynamic_contact_contact_newton_h
 #define dynamic_contact_contact_newton_h
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
 #include <dynamic_contact/bulk_operator.h>
@@ -22,6 +23,8 @@ namespace DynamicContact
     const Foundation &           foundation;
     const Parameters::Solver &   parameters;
     TimerOutput &                timer;
+    /** Per-iteration diagnostics (Output/Solver details), rank 0 only. */
+    const ConditionalOStream &   details;
     /** Friction is on (a law other than none). */
     bool friction;
     /**

@@ -190,11 +190,13 @@ namespace DynamicContact
 
     struct Output
     {
-      std::string  directory;
-      unsigned int output_every;
-      bool         write_vtu;
+      std::string         directory;
+      unsigned int        output_every;
+      unsigned int        vtu_every;
+      std::vector<double> output_times;
       unsigned int progress_every;
       bool         print_timings;
+      bool         solver_details;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -9,6 +9,7 @@
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/energy_balance.h>
+#include <dynamic_contact/force_balance.h>
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/material.h>
@@ -40,6 +41,13 @@ namespace DynamicContact
     /** Run the whole simulation. */
     void
     run();
+
+    /**
+     * After a failure of run(): mark the output as failed and silence the
+     * timer summary (the processes may no longer be in step).
+     */
+    void
+    abandon(const std::string &reason);
 
     /** The rows written to time_series.csv so far (for tests). */
     const std::vector<TimeSeriesRow> &
@@ -83,6 +91,7 @@ namespace DynamicContact
     const RunParameters parameters;
     MPI_Comm            comm;
     ConditionalOStream  pcout;
+    ConditionalOStream  details;
     TimerOutput         timer;
 
     Scene<dim>                   scene;
@@ -95,6 +104,7 @@ namespace DynamicContact
     BulkOperator<dim>    bulk;
     StepSolver<dim>      step_solver;
     EnergyBalance<dim>   energy_balance;
+    ForceBalanceEvaluator<dim> force_balance;
 
     // Fields in master form (constrained entries zero).
     Vector_t u, w, u_old, w_old, load, rhs;
@@ -114,8 +124,12 @@ namespace DynamicContact
     /** One step from t - k to t; returns the time series row. */
     TimeSeriesRow
     do_time_step(const unsigned int step, const double t, const double k);
+    /** Write the contact CSV and/or the VTU fields of the current step. */
     void
-    output_results(const unsigned int step, const double t);
+    output_results(const unsigned int step,
+                   const double       t,
+                   const bool         contact_csv,
+                   const bool         vtu);
     void
     write_status(const std::string &status) const;
   };

@@ -74,7 +74,8 @@ namespace DynamicContact
                const FrictionLaw *          friction_law,
                const Parameters::Solver &   solver_parameters,
                const Parameters::Friction & friction_parameters,
-               TimerOutput &                timer);
+               TimerOutput &                timer,
+               const ConditionalOStream &   details);
     ~StepSolver();
 
     /**
@@ -114,6 +115,7 @@ namespace DynamicContact
     const Parameters::Solver     parameters;
     const Parameters::Friction   friction_parameters;
     TimerOutput &                timer;
+    const ConditionalOStream &   details;
     const bool                   friction;
     double                       c_t = 0;
 

@@ -1,0 +1,75 @@
+#ifndef dynamic_contact_force_balance_h
+#define dynamic_contact_force_balance_h
+
+#include <deal.II/base/tensor.h>
+
+#include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/discretization.h>
+#include <dynamic_contact/material.h>
+#include <dynamic_contact/scene.h>
+#include <dynamic_contact/step_solver.h>
+
+namespace DynamicContact
+{
+  /**
+   * The total forces on the body at step n (per unit depth in 2D), each as
+   * the force the body feels:
+   *   applied  = int_Omega f_0 + int_Gamma_2 f_2,
+   *   contact  = -sum_i (N_i nu_i + lambda_i)   (from the foundation),
+   *   reaction = from the clamped and roller boundaries,
+   *   inertia  = int_Omega rho (w_n - w_{n-1})/k,
+   * with applied + contact + reaction = inertia (Newton's second law for
+   * the whole body, which the discrete equations satisfy exactly).
+   */
+  template <int dim>
+  struct ForceBalance
+  {
+    Tensor<1, dim> applied;
+    Tensor<1, dim> contact;
+    Tensor<1, dim> reaction;
+    Tensor<1, dim> inertia;
+  };
+
+  /**
+   * Computes the ForceBalance of a step at the cost of a few boundary cells:
+   * the inertia from the weights int_Omega phi_i (once per mesh), the
+   * reaction from the cells that touch a supported DoF, the applied force
+   * from the traction faces (and all cells only if there is a body force).
+   */
+  template <int dim>
+  class ForceBalanceEvaluator
+  {
+  public:
+    ForceBalanceEvaluator(const Discretization<dim> &      discretization,
+                          const KelvinVoigtMaterial<dim> &material,
+                          const Scene<dim> &               scene);
+
+    /** After a change of the mesh. */
+    void
+    reinit();
+
+    /**
+     * @p u, @p w, @p w_old are ghosted vectors with the constrained entries
+     * filled in (Discretization::expand).
+     */
+    ForceBalance<dim>
+    compute(const ContactBoundary<dim> &              boundary,
+            const std::vector<ContactNodeState<dim>> &states,
+            const double                              t,
+            const double                              k,
+            const Vector_t &                          u,
+            const Vector_t &                          w,
+            const Vector_t &                          w_old) const;
+
+  private:
+    const Discretization<dim> &      discretization;
+    const KelvinVoigtMaterial<dim> &material;
+    const Scene<dim> &               scene;
+    /** int_Omega phi_i for every owned DoF i. */
+    Vector_t volume_weights;
+    /** Component of every owned DoF. */
+    std::vector<unsigned char> component;
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,224 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/vector.h>
+
+#include <dynamic_contact/force_balance.h>
+
+#include <set>
+
+namespace DynamicContact
+{
+  template <int dim>
+  ForceBalanceEvaluator<dim>::ForceBalanceEvaluator(
+    const Discretization<dim> &      discretization,
+    const KelvinVoigtMaterial<dim> &material,
+    const Scene<dim> &               scene)
+    : discretization(discretization)
+    , material(material)
+    , scene(scene)
+  {}
+
+
+  template <int dim>
+  void
+  ForceBalanceEvaluator<dim>::reinit()
+  {
+    const auto &d = discretization;
+    d.reinit_owned(volume_weights);
+    const QGauss<dim>                    quadrature(d.fe.degree + 1);
+    FEValues<dim>                        fe_values(d.mapping,
+                            d.fe,
+                            quadrature,
+                            update_values | update_JxW_values);
+    std::vector<types::global_dof_index> dofs(d.fe.n_dofs_per_cell());
+    Vector<double>                       local(d.fe.n_dofs_per_cell());
+    for (const auto &cell : d.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          local = 0;
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              const unsigned int c = d.fe.system_to_component_index(i).first;
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                local(i) +=
+                  fe_values.shape_value_component(i, q, c) * fe_values.JxW(q);
+            }
+          cell->get_dof_indices(dofs);
+          volume_weights.add(dofs, local);
+        }
+    volume_weights.compress(VectorOperation::add);
+
+    // The component of each owned DoF.
+    component.assign(d.locally_owned.n_elements(), 0);
+    for (const auto &cell : d.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (d.locally_owned.is_element(dofs[i]))
+              component[d.locally_owned.index_within_set(dofs[i])] =
+                d.fe.system_to_component_index(i).first;
+        }
+  }
+
+
+  template <int dim>
+  ForceBalance<dim>
+  ForceBalanceEvaluator<dim>::compute(
+    const ContactBoundary<dim> &              boundary,
+    const std::vector<ContactNodeState<dim>> &states,
+    const double                              t,
+    const double                              k,
+    const Vector_t &                          u,
+    const Vector_t &                          w,
+    const Vector_t &                          w_old) const
+  {
+    const auto &d = discretization;
+    ForceBalance<dim> b;
+    // Inertia: rho/k sum_i (int phi_i) (w - w_old)_i, per component.
+    {
+      unsigned int index = 0;
+      for (const auto dof : d.locally_owned)
+        {
+          b.inertia[component[index]] +=
+            volume_weights[dof] * (w[dof] - w_old[dof]);
+          ++index;
+        }
+      b.inertia *= material.density() / k;
+    }
+    scene.set_time(t);
+    const auto &       fe = d.fe;
+    const unsigned int n  = fe.n_dofs_per_cell();
+    const QGauss<dim>     quadrature(fe.degree + 2);
+    const QGauss<dim - 1> face_quadrature(fe.degree + 2);
+    FEValues<dim>         fe_values(d.mapping,
+                            fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_quadrature_points | update_JxW_values);
+    FEFaceValues<dim>     fe_face(d.mapping,
+                              fe,
+                              face_quadrature,
+                              update_values | update_quadrature_points |
+                                update_JxW_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<Tensor<1, dim>>          w_q(quadrature.size()),
+      w_old_q(quadrature.size());
+    std::vector<SymmetricTensor<2, dim>> eps_u(quadrature.size()),
+      eps_w(quadrature.size());
+    std::vector<types::global_dof_index> dofs(n);
+    Vector<double>                       value(dim), residual(n);
+    const auto &bc         = scene.boundary_conditions();
+    const bool  body_force = scene.has_body_force();
+    const std::set<types::boundary_id> traction_ids(bc.traction.begin(),
+                                                    bc.traction.end());
+
+    // Constrained by a clamped or roller condition (not a hanging node).
+    auto supported = [&](const types::global_dof_index dof) {
+      return d.constraints.is_constrained(dof) &&
+             !d.hanging_node_constraints.is_constrained(dof);
+    };
+
+    for (const auto &cell : d.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          bool has_support = false;
+          for (const auto dof : dofs)
+            has_support = has_support || supported(dof);
+          bool has_traction = false;
+          for (const auto f : cell->face_indices())
+            has_traction = has_traction ||
+                           (cell->face(f)->at_boundary() &&
+                            traction_ids.count(cell->face(f)->boundary_id()));
+          if (!has_support && !has_traction && !body_force)
+            continue;
+
+          fe_values.reinit(cell);
+          if (has_support)
+            {
+              fe_values[displacement].get_function_values(w, w_q);
+              fe_values[displacement].get_function_values(w_old, w_old_q);
+              fe_values[displacement].get_function_symmetric_gradients(u,
+                                                                       eps_u);
+              fe_values[displacement].get_function_symmetric_gradients(w,
+                                                                       eps_w);
+            }
+          residual = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              value = 0;
+              if (body_force)
+                scene.body_force().vector_value(fe_values.quadrature_point(q),
+                                                value);
+              for (unsigned int c = 0; c < dim; ++c)
+                b.applied[c] += value(c) * fe_values.JxW(q);
+              if (has_support)
+                {
+                  const Tensor<1, dim> a =
+                    material.density() * (w_q[q] - w_old_q[q]) / k;
+                  const SymmetricTensor<2, dim> sigma =
+                    material.stress(eps_u[q], eps_w[q]);
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      const unsigned int c = fe.system_to_component_index(i).first;
+                      residual(i) +=
+                        ((a[c] - value(c)) * fe_values.shape_value(i, q) +
+                         scalar_product(
+                           sigma,
+                           fe_values[displacement].symmetric_gradient(i, q))) *
+                        fe_values.JxW(q);
+                    }
+                }
+            }
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                traction_ids.count(cell->face(f)->boundary_id()))
+              {
+                fe_face.reinit(cell, f);
+                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                  {
+                    scene.traction().vector_value(fe_face.quadrature_point(q),
+                                                  value);
+                    for (unsigned int c = 0; c < dim; ++c)
+                      b.applied[c] += value(c) * fe_face.JxW(q);
+                    if (has_support)
+                      for (unsigned int i = 0; i < n; ++i)
+                        residual(i) -=
+                          value(fe.system_to_component_index(i).first) *
+                          fe_face.shape_value(i, q) * fe_face.JxW(q);
+                  }
+              }
+          // At a supported DoF the equation is balanced by the support's
+          // force (the boundary term of the weak form): it is the residual.
+          if (has_support)
+            for (unsigned int i = 0; i < n; ++i)
+              if (supported(dofs[i]))
+                b.reaction[fe.system_to_component_index(i).first] += residual(i);
+        }
+
+    // The foundation's force, and its part at supported components.
+    const auto &nodes = boundary.nodes();
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        const Tensor<1, dim> f =
+          states[i].normal_force(nodes[i].weight) * nodes[i].normal +
+          states[i].friction_force;
+        b.contact -= f;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (supported(nodes[i].dofs[c]))
+            b.reaction[c] += f[c];
+      }
+
+    for (auto *v : {&b.applied, &b.contact, &b.reaction, &b.inertia})
+      for (unsigned int c = 0; c < dim; ++c)
+        (*v)[c] = Utilities::MPI::sum((*v)[c], d.comm);
+    return b;
+  }
+
+
+  template class ForceBalanceEvaluator<2>;
+  template class ForceBalanceEvaluator<3>;
+} // namespace DynamicContact
