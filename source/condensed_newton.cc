@@ -54,8 +54,10 @@ namespace DynamicContact
   void
   CondensedNewton<dim>::choose_spring_nodes()
   {
-    // Extreme unconstrained nodes: the first and last by position and, in
-    // 3D, the one farthest from the line through them.
+    // Extreme nodes: the first and last by position and, in 3D, the one
+    // farthest from the line through them; among the unconstrained nodes,
+    // or, if there are fewer than two, among the nodes with a free component
+    // and axis-parallel constraints (the springs act on the free components).
     const auto &all = problem.boundary.all_nodes();
     spring_nodes.clear();
     spring_stiffness.assign(all.size(), 0.);
@@ -63,6 +65,23 @@ namespace DynamicContact
     for (unsigned int i = 0; i < all.size(); ++i)
       if (all[i].unconstrained)
         free_nodes.push_back(i);
+    if (free_nodes.size() < 2)
+      {
+        free_nodes.clear();
+        for (unsigned int i = 0; i < all.size(); ++i)
+          {
+            const auto &P        = all[i].constraint_map;
+            bool        diagonal = true, some_free = false;
+            for (unsigned int r = 0; r < dim; ++r)
+              for (unsigned int c = 0; c < dim; ++c)
+                if (r != c && P[r][c] != 0)
+                  diagonal = false;
+            for (unsigned int c = 0; c < dim; ++c)
+              some_free = some_free || P[c][c] == 1;
+            if (diagonal && some_free)
+              free_nodes.push_back(i);
+          }
+      }
     if (free_nodes.empty())
       return;
     spring_nodes.push_back(free_nodes.front());
@@ -110,10 +129,14 @@ namespace DynamicContact
           for (const auto dof : all[j].dofs)
             local[j] = std::max(local[j], K0.diag_element(dof));
       Utilities::MPI::max(local, problem.discretization.comm, spring_stiffness);
+      // Springs on the free components: S_j = s_j P_j (P_j diagonal).
       for (const unsigned int j : spring_nodes)
         if (owned_index[j] >= 0)
-          for (const auto dof : all[j].dofs)
-            regularized.add(dof, dof, spring_stiffness[j]);
+          for (unsigned int c = 0; c < dim; ++c)
+            if (all[j].constraint_map[c][c] == 1)
+              regularized.add(all[j].dofs[c],
+                              all[j].dofs[c],
+                              spring_stiffness[j]);
       regularized.compress(VectorOperation::add);
     }
     if (problem.parameters.linear_solver ==
@@ -261,11 +284,12 @@ namespace DynamicContact
         if (l.friction.state == ContactState::slip)
           it.base_true[i] += l.friction.value;
         // Condensation with K0' = K0 + S sees the forces minus the springs'.
+        // S_i = s_i P_i, and P_i w_i = w_i (P_i diagonal, 0 or 1).
         const double s = spring_stiffness[i];
         it.g[i]         = it.forces[i] - s * w_nodes[i];
         it.base[i]      = it.base_true[i] - s * w_nodes[i];
         if (s > 0)
-          it.lin[i].block -= s * Tensor<2, dim>(unit_symmetric_tensor<dim>());
+          it.lin[i].block -= s * nodes[i].constraint_map;
         it.signature[i] = l.normal.set_signature() +
                           16 * static_cast<unsigned int>(l.friction.state);
         it.f_scale = std::max(it.f_scale, it.forces[i].norm());

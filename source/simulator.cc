@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/error_messages.h>
@@ -487,6 +488,41 @@ namespace DynamicContact
           << (min_dissipation >= 0 ? "yes" : "NO (" + sig6(min_dissipation) + ")")
           << std::endl;
     write_status("completed");
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  Simulator<dim>::point_displacement(const Point<dim> &point) const
+  {
+    Vector_t ghosted;
+    discretization.reinit_ghosted(ghosted);
+    discretization.expand(u, ghosted);
+    Vector<double> value(dim);
+    double         found = 0;
+    try
+      {
+        const auto cell = GridTools::find_active_cell_around_point(
+          discretization.mapping, discretization.dof_handler, point);
+        if (cell.first->is_locally_owned())
+          {
+            VectorTools::point_value(discretization.mapping,
+                                     discretization.dof_handler,
+                                     ghosted,
+                                     point,
+                                     value);
+            found = 1;
+          }
+      }
+    catch (const std::exception &)
+      {}
+    const double n_found = Utilities::MPI::sum(found, comm);
+    AssertThrow(n_found > 0,
+                ExcMessage("The point is not inside the body."));
+    Tensor<1, dim> result;
+    for (unsigned int c = 0; c < dim; ++c)
+      result[c] = Utilities::MPI::sum(found * value(c), comm) / n_found;
+    return result;
   }
 
 

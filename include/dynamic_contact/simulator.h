@@ -68,12 +68,12 @@ namespace DynamicContact
       return step_solver.node_states();
     }
 
-    /** The nodal displacement at @p node (for tests). */
+    /**
+     * The displacement at a point of the body (collective; for tests and
+     * probes). Throws if no process owns a cell containing the point.
+     */
     Tensor<1, dim>
-    nodal_displacement(const ContactNode<dim> &node) const
-    {
-      return node.value(u);
-    }
+    point_displacement(const Point<dim> &point) const;
 
     /** The displacement (master form) and the discretization (for tests). */
     const Vector_t &

@@ -1,0 +1,92 @@
+#ifndef dynamic_contact_tests_test_tools_h
+#define dynamic_contact_tests_test_tools_h
+
+// Shared helpers of the .cc tests. deal.II's harness compares the file
+// "output" that a test writes (rank 0 only) with NAME.output; the
+// simulator's progress on stdout is then discarded.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <dynamic_contact/parameters.h>
+#include <dynamic_contact/simulator.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace test_tools
+{
+  /** The file the harness compares; written by rank 0 only. */
+  inline std::ostream &
+  out()
+  {
+    static std::ofstream file(
+      dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0 ?
+        "output" :
+        "/dev/null");
+    return file;
+  }
+
+  /** A scene file of the repository's prm/ directory. */
+  inline std::string
+  scene(const std::string &name)
+  {
+    return std::string(SOURCE_DIR) + "/../prm/" + name;
+  }
+
+  /** Fail the test with a message (non-zero exit: the harness reports it). */
+  inline void
+  check(const bool condition, const std::string &what)
+  {
+    out() << (condition ? "OK:     " : "FAILED: ") << what << std::endl;
+    if (!condition)
+      {
+        std::cerr << "FAILED: " << what << std::endl;
+        std::exit(1);
+      }
+  }
+
+  /** |a - b| <= tol max(|a|, |b|). */
+  inline bool
+  close(const double a, const double b, const double tol)
+  {
+    return std::abs(a - b) <= tol * std::max(std::abs(a), std::abs(b));
+  }
+
+  /** A number with n significant digits, for output that compares. */
+  inline std::string
+  digits(const double x, const unsigned int n = 4)
+  {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.*e", n - 1, x);
+    return buffer;
+  }
+
+  /**
+   * Read a scene with overrides (quiet, no timings, no VTU by default), run
+   * it, and return the simulator for inspection.
+   */
+  template <int dim>
+  std::unique_ptr<DynamicContact::Simulator<dim>>
+  run(const std::string &file, std::vector<std::string> overrides)
+  {
+    overrides.insert(overrides.begin(),
+                     {"Output/Print timings=false",
+                      "Output/Progress every=0",
+                      "Output/VTU every=0"});
+    dealii::ParameterHandler prm;
+    const auto               parameters =
+      DynamicContact::read_parameters(file, overrides, prm);
+    auto simulator = std::make_unique<DynamicContact::Simulator<dim>>(
+      parameters, prm, MPI_COMM_WORLD);
+    simulator->run();
+    return simulator;
+  }
+} // namespace test_tools
+
+#endif
