@@ -1,0 +1,63 @@
+// The discrete energy balance of model.md section 6,
+//   E_n - E_{n-1} + D_n = W_n,
+// holds at every step to solver tolerance, and every dissipation term is
+// >= 0, in a scene where every term is at work: viscosity (C != 0),
+// inertia, elasticity, normal compliance from an initial gap, the damped
+// response, and slip-weakening friction.
+
+#include "test_tools.h"
+
+using namespace DynamicContact;
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  auto simulator = test_tools::run<2>(
+    test_tools::scene("barboteu_danan_2016_small.prm"),
+    {"Output/Directory=output-energy",
+     "Material/Viscosity lambda=1e7",
+     "Material/Viscosity mu=5e6",
+     "Foundation/Initial gap/Function expression=0.01*x",
+     "Friction/Law=exponential"});
+
+  const char *terms[] = {"dissipation_inertia",
+                         "dissipation_elastic",
+                         "dissipation_viscous",
+                         "dissipation_compliance",
+                         "dissipation_damping",
+                         "friction_dissipation"};
+  double       worst_defect = 0, most_negative = 0, worst_column = 0;
+  std::vector<double> largest(6, 0.);
+  const auto &rows = simulator->time_series();
+  for (unsigned int n = 1; n < rows.size(); ++n)
+    {
+      const auto &row = rows[n];
+      const double scale =
+        std::max({std::abs(row.get("total_energy")),
+                  std::abs(rows[n - 1].get("total_energy")),
+                  std::abs(row.get("load_work")),
+                  std::abs(row.get("dissipation"))});
+      const double defect = row.get("total_energy") -
+                            rows[n - 1].get("total_energy") +
+                            row.get("dissipation") - row.get("load_work");
+      worst_column =
+        std::max(worst_column,
+                 std::abs(defect - row.get("energy_balance_defect")) / scale);
+      worst_defect = std::max(worst_defect, std::abs(defect) / scale);
+      for (unsigned int t = 0; t < 6; ++t)
+        {
+          most_negative = std::min(most_negative, row.get(terms[t]) / scale);
+          largest[t]    = std::max(largest[t], row.get(terms[t]));
+        }
+    }
+  test_tools::check(worst_column < 1e-9,
+                    "the defect column is E_n - E_{n-1} + D_n - W_n");
+  test_tools::check(worst_defect < 1e-8,
+                    "energy balance at every step to 1e-8 of the energy");
+  test_tools::check(most_negative >= 0,
+                    "every dissipation term >= 0 at every step");
+  for (unsigned int t = 0; t < 6; ++t)
+    test_tools::check(largest[t] > 0,
+                      std::string(terms[t]) + " is at work (> 0 at some step)");
+}

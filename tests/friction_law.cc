@@ -1,0 +1,275 @@
+// The friction coefficient mu(s) of the slip rate (model.md section 1,
+// eq. (90)): constant, exponential (a - b) exp(-alpha s) + b, and a
+// muparser expression in s; values by hand, derivatives against central
+// differences, is_constant, the one-sided Lipschitz constant
+// max(0, -min mu'), check_nonnegative, FrictionLaw::create and its errors.
+
+#include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/friction_law.h>
+
+#include "test_tools.h"
+
+using namespace DynamicContact;
+using test_tools::check;
+using test_tools::close;
+using test_tools::digits;
+using test_tools::out;
+using Law = Parameters::Friction::Law;
+
+namespace
+{
+  Parameters::Friction
+  friction_parameters(const Law law)
+  {
+    Parameters::Friction p{};
+    p.law                 = law;
+    p.coefficient         = 0.4;
+    p.static_coefficient  = 1.;
+    p.dynamic_coefficient = 0.5;
+    p.decay_rate          = 2000.;
+    p.expression          = "0.5 + 0.5*exp(-10*s)";
+    p.maximum_slip_rate   = 1.;
+    return p;
+  }
+
+  /** max |mu'(s) - central difference| / max(1, |mu'(s)|) over @p points. */
+  double
+  derivative_error(const FrictionLaw &law, const std::vector<double> &points)
+  {
+    double worst = 0;
+    for (const double s : points)
+      {
+        const double h  = 1e-4 * s; // s > 0
+        const double fd = (law.value(s + h) - law.value(s - h)) / (2 * h);
+        worst           = std::max(worst,
+                         std::abs(fd - law.derivative(s)) /
+                           std::max(1., std::abs(law.derivative(s))));
+      }
+    return worst;
+  }
+
+  /** The message of the exception @p f throws, or "" if none. */
+  template <typename F>
+  std::string
+  thrown_message(const F &f, bool &is_deal_ii_exception)
+  {
+    is_deal_ii_exception = false;
+    try
+      {
+        f();
+      }
+    catch (const std::exception &e)
+      {
+        is_deal_ii_exception =
+          (dynamic_cast<const dealii::ExceptionBase *>(&e) != nullptr);
+        return error_message(e);
+      }
+    return "";
+  }
+
+  bool
+  contains(const std::string &text, const std::string &part)
+  {
+    return text.find(part) != std::string::npos;
+  }
+
+
+  void
+  test_constant()
+  {
+    out() << "--- constant mu = 0.4" << std::endl;
+    const auto law = FrictionLaw::create(friction_parameters(Law::constant));
+    check(law != nullptr && dynamic_cast<ConstantFriction *>(law.get()),
+          "create(constant) is a ConstantFriction");
+    check(law->value(0.) == 0.4 && law->value(1.) == 0.4 &&
+            law->value(1e3) == 0.4,
+          "mu(0) = mu(1) = mu(1000) = 0.4");
+    check(law->derivative(0.) == 0 && law->derivative(2.) == 0,
+          "mu' = 0");
+    check(law->is_constant(), "is_constant");
+    check(law->one_sided_lipschitz_constant(1.) == 0,
+          "one-sided Lipschitz constant 0");
+    check(law->FrictionLaw::one_sided_lipschitz_constant(1.) == 0,
+          "sampled one-sided Lipschitz constant 0");
+    bool deal_ii;
+    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii)
+            .empty(),
+          "check_nonnegative passes");
+    out() << law->description() << std::endl;
+    check(law->description() == "mu = 0.4", "description");
+  }
+
+
+  void
+  test_exponential()
+  {
+    out() << "--- exponential (a - b) exp(-alpha s) + b, a = 1, b = 0.5, "
+             "alpha = 2000"
+          << std::endl;
+    const auto law = FrictionLaw::create(friction_parameters(Law::exponential));
+    check(law != nullptr && dynamic_cast<ExponentialFriction *>(law.get()),
+          "create(exponential) is an ExponentialFriction");
+    // By hand: 0.5 exp(-2) = 0.0676676416, 0.5 exp(-0.2) = 0.409365377.
+    struct Row
+    {
+      double s, value, derivative;
+    };
+    for (const Row &row : std::vector<Row>{{0., 1., -1000.},
+                                           {1e-4, 0.909365377, -818.730753},
+                                           {1e-3, 0.567667642, -135.335283},
+                                           {1., 0.5, 0.}})
+      {
+        out() << "s = " << digits(row.s, 6)
+              << "  mu = " << digits(law->value(row.s), 6)
+              << "  mu' = " << digits(law->derivative(row.s), 6) << std::endl;
+        check(std::abs(law->value(row.s) - row.value) <= 1e-9 &&
+                std::abs(law->derivative(row.s) - row.derivative) <= 1e-6,
+              "mu and mu' at s = " + digits(row.s, 3));
+      }
+    check(derivative_error(*law, {1e-5, 1e-4, 5e-4, 1e-3, 3e-3, 0.01}) <=
+            1e-6,
+          "mu' = central difference to 1e-6 at 6 points");
+    check(!law->is_constant(), "not is_constant");
+    check(ExponentialFriction(0.5, 0.5, 2000.).is_constant() &&
+            ExponentialFriction(1., 0.5, 0.).is_constant(),
+          "is_constant for a = b or alpha = 0");
+    check(law->one_sided_lipschitz_constant(1.) == 1000.,
+          "one-sided Lipschitz constant alpha (a - b) = 1000");
+    const double sampled = law->FrictionLaw::one_sided_lipschitz_constant(1.);
+    out() << "sampled one-sided Lipschitz constant " << digits(sampled, 4)
+          << std::endl;
+    check(close(sampled, 1000., 1e-4),
+          "sampled one-sided Lipschitz constant = alpha (a - b) to 1e-4");
+    const ExponentialFriction other(0.6, 0.2, 3.);
+    check(close(other.one_sided_lipschitz_constant(5.), 1.2, 1e-15) &&
+            close(other.FrictionLaw::one_sided_lipschitz_constant(5.),
+                  1.2,
+                  1e-4),
+          "a = 0.6, b = 0.2, alpha = 3: one-sided Lipschitz constant 1.2");
+    bool deal_ii;
+    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii)
+            .empty(),
+          "check_nonnegative passes");
+  }
+
+
+  void
+  test_expression()
+  {
+    out() << "--- expression 0.5 + 0.5*exp(-10*s)" << std::endl;
+    const auto law = FrictionLaw::create(friction_parameters(Law::expression));
+    check(law != nullptr && dynamic_cast<ExpressionFriction *>(law.get()),
+          "create(expression) is an ExpressionFriction");
+    // By hand: 0.5 exp(-1) = 0.183939721, 0.5 exp(-0.5) = 0.303265330.
+    struct Row
+    {
+      double s, value, derivative;
+    };
+    for (const Row &row : std::vector<Row>{{0., 1., -5.},
+                                           {0.05, 0.803265330, -3.03265330},
+                                           {0.1, 0.683939721, -1.83939721},
+                                           {10., 0.5, 0.}})
+      {
+        out() << "s = " << digits(row.s, 6)
+              << "  mu = " << digits(law->value(row.s), 6)
+              << "  mu' = " << digits(law->derivative(row.s), 4) << std::endl;
+        check(std::abs(law->value(row.s) - row.value) <= 1e-9 &&
+                std::abs(law->derivative(row.s) - row.derivative) <= 1e-5,
+              "mu and mu' at s = " + digits(row.s, 3));
+      }
+    check(derivative_error(*law, {0.01, 0.05, 0.1, 0.3, 1.}) <= 1e-6,
+          "mu' = central difference to 1e-6 at 5 points");
+    check(!law->is_constant(), "not is_constant");
+    const double lipschitz = law->one_sided_lipschitz_constant(1.);
+    out() << "one-sided Lipschitz constant " << digits(lipschitz, 4)
+          << std::endl;
+    check(close(lipschitz, 5., 1e-4),
+          "one-sided Lipschitz constant -mu'(0) = 5 (sampled) to 1e-4");
+    bool deal_ii;
+    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii)
+            .empty(),
+          "check_nonnegative passes");
+    out() << law->description() << std::endl;
+
+    // Constants, and a law that does not depend on s.
+    const ExpressionFriction with_constants("a*exp(-alpha*s) + b",
+                                            "a=0.3, b=0.2, alpha=4");
+    check(std::abs(with_constants.value(0.) - 0.5) <= 1e-15 &&
+            std::abs(with_constants.value(0.25) - 0.310363832) <= 1e-9,
+          "constants a=0.3, b=0.2, alpha=4: mu(0) = 0.5, mu(0.25) = "
+          "0.3 exp(-1) + 0.2");
+    const ExpressionFriction constant("0.3", "");
+    check(constant.is_constant() && constant.value(7.) == 0.3 &&
+            constant.one_sided_lipschitz_constant(1.) == 0 &&
+            constant.derivative(0.5) == 0,
+          "expression 0.3: is_constant, mu' = 0, Lipschitz constant 0");
+    const ExpressionFriction increasing("0.3 + 0.1*s", "");
+    check(!increasing.is_constant() &&
+            increasing.one_sided_lipschitz_constant(1.) == 0,
+          "increasing expression 0.3 + 0.1 s: Lipschitz constant 0");
+
+    out() << "--- expression 0.5 - s" << std::endl;
+    const ExpressionFriction negative("0.5 - s", "");
+    check(close(negative.one_sided_lipschitz_constant(1.), 1., 1e-4),
+          "0.5 - s: one-sided Lipschitz constant 1");
+    check(thrown_message([&] { negative.check_nonnegative(0.4); }, deal_ii)
+            .empty(),
+          "0.5 - s: check_nonnegative(0.4) passes");
+    const std::string message =
+      thrown_message([&] { negative.check_nonnegative(1.); }, deal_ii);
+    check(!message.empty() && deal_ii,
+          "0.5 - s: check_nonnegative(1) throws a deal.II exception");
+    check(contains(message, "Friction"),
+          "0.5 - s: the message names \"Friction\"");
+    const ExpressionFriction not_a_number("sqrt(s - 2)", "");
+    check(contains(thrown_message([&] { not_a_number.check_nonnegative(1.); },
+                                  deal_ii),
+                   "Friction"),
+          "sqrt(s - 2): check_nonnegative(1) throws (not finite)");
+  }
+
+
+  void
+  test_create_and_errors()
+  {
+    out() << "--- create and errors" << std::endl;
+    check(FrictionLaw::create(friction_parameters(Law::none)) == nullptr,
+          "create(none) = nullptr");
+
+    bool deal_ii;
+    for (const std::string expression : {"0.5 +* s", "0.5 + x", "exp(-s"})
+      {
+        Parameters::Friction p = friction_parameters(Law::expression);
+        p.expression           = expression;
+        const std::string message =
+          thrown_message([&] { FrictionLaw::create(p); }, deal_ii);
+        check(!message.empty() && deal_ii &&
+                contains(message, "Friction/Expression"),
+              "create('" + expression +
+                "') throws, naming \"Friction/Expression\"");
+      }
+    for (const std::string constants : {"a:0.3", "a=x"})
+      {
+        Parameters::Friction p = friction_parameters(Law::expression);
+        p.expression           = "a + 0*s";
+        p.expression_constants = constants;
+        const std::string message =
+          thrown_message([&] { FrictionLaw::create(p); }, deal_ii);
+        check(!message.empty() && deal_ii &&
+                contains(message, "Friction/Expression constants"),
+              "constants '" + constants +
+                "' throw, naming \"Friction/Expression constants\"");
+      }
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  test_constant();
+  test_exponential();
+  test_expression();
+  test_create_and_errors();
+}
