@@ -14,6 +14,13 @@ namespace DynamicContact
   }
 
 
+  bool
+  EnergyBalanceTerms::dissipation_nonnegative(const double previous_energy) const
+  {
+    return min_dissipation_term() >= -roundoff * scale(previous_energy);
+  }
+
+
   double
   EnergyBalanceTerms::scale(const double previous_energy) const
   {
@@ -92,8 +99,7 @@ namespace DynamicContact
                                 nodes[i].gap;
         const double w_nu       = states[i].normal.w_nu;
         const double q          = states[i].normal.pressure - p.value(u_nu);
-        compliance += m * (p.value(u_nu) * (u_nu - u_nu_old) -
-                           (p.primitive(u_nu) - p.primitive(u_nu_old)));
+        compliance += m * p.dissipation(u_nu_old, u_nu);
         damping += k * m * q * w_nu;
         friction += k * (states[i].friction_force *
                          nodes[i].tangential(nodes[i].value(w)));

@@ -226,7 +226,7 @@ namespace DynamicContact
           pv.push_back(states[i].normal.pressure);
           mv.push_back(states[i].mu);
           sv.push_back(static_cast<double>(states[i].state));
-          rv.push_back(nodes[i].tangential(nodes[i].value(w)).norm());
+          rv.push_back(states[i].slip_rate);
         }
       traction_owned.set(vi, tv);
       pressure_owned.set(si, pv);

@@ -97,6 +97,7 @@ namespace DynamicContact
         s.normal = normal_response(foundation, nodes[i], u_old_nodes[g], wi, k);
         s.friction_force = lambda[g];
         s.mu             = mu[g];
+        s.slip_rate      = nodes[i].tangential(wi).norm();
         s.state          = ContactState::free;
         if (friction)
           s.state = friction_response(nodes[i],
@@ -116,6 +117,24 @@ namespace DynamicContact
     statistics.n_stick      = Utilities::MPI::sum(n_stick, comm);
     statistics.n_slip       = Utilities::MPI::sum(n_slip, comm);
   }
+
+
+  namespace
+  {
+    /** mu(s), checked to be finite and >= 0 where it is used. */
+    double
+    checked_coefficient(const FrictionLaw &law, const double s)
+    {
+      const double mu = law.value(s);
+      AssertThrow(std::isfinite(mu) && mu >= 0,
+                  ExcMessage("Friction: the friction coefficient must be "
+                             "finite and >= 0 on the slip rates that occur, "
+                             "but mu(" +
+                             std::to_string(s) + ") = " + std::to_string(mu) +
+                             " (Friction/Law and its parameters)."));
+      return mu;
+    }
+  } // namespace
 
 
   template <int dim>
@@ -142,7 +161,7 @@ namespace DynamicContact
         TimerOutput::Scope t(timer, "Friction: convexification update");
         const auto s = slip_rates(w);
         for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = friction_law->value(s[i]);
+          mu[i] = checked_coefficient(*friction_law, s[i]);
       }
 
     Vector_t u_previous, difference;
@@ -217,7 +236,8 @@ namespace DynamicContact
                 .pressure > 0)
             coefficient_residual =
               std::max(coefficient_residual,
-                       std::abs(mu[i] - friction_law->value(s[i])));
+                       std::abs(mu[i] -
+                                checked_coefficient(*friction_law, s[i])));
         statistics.coefficient_residual = coefficient_residual;
         details << "  convexification pass " << pass + 1 << ": |du|_V/|u|_V "
                 << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
@@ -235,7 +255,8 @@ namespace DynamicContact
         // Relaxed update of the frozen coefficients.
         const double theta = friction_parameters.relaxation;
         for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = (1 - theta) * mu[i] + theta * friction_law->value(s[i]);
+          mu[i] = (1 - theta) * mu[i] +
+                  theta * checked_coefficient(*friction_law, s[i]);
         xi_previous = xi;
       }
 

@@ -18,8 +18,7 @@ main(int argc, char *argv[])
     {"Output/Directory=output-energy",
      "Material/Viscosity lambda=1e7",
      "Material/Viscosity mu=5e6",
-     "Foundation/Initial gap/Function expression=0.01*x",
-     "Friction/Law=exponential"});
+     "Foundation/Initial gap/Function expression=0.01*x"});
 
   const char *terms[] = {"dissipation_inertia",
                          "dissipation_elastic",
@@ -45,6 +44,8 @@ main(int argc, char *argv[])
         std::max(worst_column,
                  std::abs(defect - row.get("energy_balance_defect")) / scale);
       worst_defect = std::max(worst_defect, std::abs(defect) / scale);
+      most_negative =
+        std::min(most_negative, row.get("relative_min_dissipation"));
       for (unsigned int t = 0; t < 6; ++t)
         {
           most_negative = std::min(most_negative, row.get(terms[t]) / scale);
@@ -55,8 +56,9 @@ main(int argc, char *argv[])
                     "the defect column is E_n - E_{n-1} + D_n - W_n");
   test_tools::check(worst_defect < 1e-8,
                     "energy balance at every step to 1e-8 of the energy");
-  test_tools::check(most_negative >= 0,
-                    "every dissipation term >= 0 at every step");
+  test_tools::check(most_negative >= -1e-12,
+                    "every dissipation term >= 0 at every step (to the "
+                    "round-off of its evaluation, 1e-12 of the energy)");
   for (unsigned int t = 0; t < 6; ++t)
     test_tools::check(largest[t] > 0,
                       std::string(terms[t]) + " is at work (> 0 at some step)");

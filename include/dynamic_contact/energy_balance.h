@@ -53,6 +53,17 @@ namespace DynamicContact
     min_dissipation_term() const;
 
     /**
+     * Every dissipation term is >= 0 up to the round-off of its evaluation,
+     * roundoff times scale(): a quadratic form like (1/2) a_E(du, du) of a
+     * nearly rigid du (a sliding block) is computed as a difference of large
+     * numbers. A real violation is of the order of the scale.
+     */
+    bool
+    dissipation_nonnegative(const double previous_energy) const;
+
+    static constexpr double roundoff = 1e-12;
+
+    /**
      * The size of the quantities that balance: the defect relative to it
      * measures the balance.
      */

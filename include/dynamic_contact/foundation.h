@@ -61,6 +61,38 @@ namespace DynamicContact
       return 0.5 * cap * kink + cap * (r - kink);
     }
 
+    /**
+     * The dissipation of a step from a to b of the compliance,
+     *   p(b)(b - a) - (Pi(b) - Pi(a)) = int_min(a,b)^max(a,b) |p(s) - p(b)| ds,
+     * which is >= 0 because p is nondecreasing. Evaluated on the linear
+     * pieces of p, without the cancellation of the left-hand form.
+     */
+    double
+    dissipation(const double a, const double b) const
+    {
+      if (slope == 0 || a == b)
+        return 0.;
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      const double pieces[4] = {lo, std::clamp(0., lo, hi),
+                                std::clamp(kink, lo, hi), hi};
+      double       sum = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          const double s0 = pieces[i], s1 = pieces[i + 1];
+          if (s1 <= s0)
+            continue;
+          // |p(mid) - p(b)| on a piece where p is linear; where b lies in the
+          // same piece use the slope (no cancellation).
+          const double mid      = 0.5 * (s0 + s1);
+          const bool   same     = (b >= s0 && b <= s1);
+          const double gradient = (mid > 0 && mid < kink) ? slope : 0.;
+          const double jump =
+            same ? gradient * std::abs(b - mid) : std::abs(value(b) - value(mid));
+          sum += (s1 - s0) * jump;
+        }
+      return sum;
+    }
+
     double
     get_slope() const
     {

@@ -28,6 +28,8 @@ namespace DynamicContact
     /** The frozen friction coefficient mu_i of the last iterate. */
     double       mu    = 0;
     ContactState state = ContactState::free;
+    /** Slip rate |w_tau|. */
+    double slip_rate = 0;
 
     /** Normal nodal force N_i = m_i (p + q). */
     double

@@ -1,0 +1,509 @@
+// Bad input to the real executable: every case starts from the valid scene
+// prm/pressed_block.prm and changes one thing (or passes a wrong command
+// line), runs the dynamic-contact executable of this build in a directory
+// of its own, and checks what a user sees:
+//   - a normal exit (no signal, no abort) with code 1 (input error) or 2
+//     (usage error),
+//   - exactly one line "dynamic-contact: error: ..." on stderr, that names
+//     the parameter (as Section/Entry) or the file, and nothing else on
+//     stderr (besides the usage text after a usage error),
+//   - no output directory (input errors are found before it is created),
+//     in particular no run_status "completed"; an error found only while
+//     running (Newton iterations exhausted) leaves run_status "failed: ...".
+// Two control cases (the unchanged scene, an empty file with all defaults)
+// must run to completion, so that the checks can tell success from failure.
+//
+// Every case runs first and prints one line; the checks follow, so that a
+// failing test still shows what every case did.
+
+#include "test_tools.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#ifndef DYNAMIC_CONTACT_EXECUTABLE
+#  error "tests/CMakeLists.txt must define DYNAMIC_CONTACT_EXECUTABLE"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace
+{
+  const std::string error_prefix = "dynamic-contact: error:";
+
+  std::string
+  read_text(const fs::path &file)
+  {
+    std::ifstream      in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  void
+  write_text(const fs::path &file, const std::string &text)
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << text;
+  }
+
+  std::vector<std::string>
+  lines_of(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::istringstream       in(text);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  }
+
+  /** One argument for sh, in single quotes. */
+  std::string
+  quote(const std::string &s)
+  {
+    std::string q = "'";
+    for (const char c : s)
+      q += (c == '\'' ? std::string("'\\''") : std::string(1, c));
+    return q + "'";
+  }
+
+  /**
+   * An error line as it compares on every machine and after changes to the
+   * solver or to the comments of prm/pressed_block.prm: absolute paths
+   * replaced by their file names, a Newton residual by "...", and the line
+   * number of the changed line by a description.
+   */
+  std::string
+  deterministic(const std::string &text, const unsigned int changed_line)
+  {
+    static const std::regex path(R"((^|[\s'"<(])/(?:[^\s'"<>()]*/)?)");
+    static const std::regex residual(R"(relative residual [-+.0-9eE]+)");
+    std::string result = std::regex_replace(text, path, "$1");
+    result = std::regex_replace(result, residual, "relative residual ...");
+    if (changed_line > 0)
+      {
+        const std::string line = "Line <" + std::to_string(changed_line) + ">";
+        const auto        position = result.find(line);
+        if (position != std::string::npos)
+          result.replace(position, line.size(), "Line <(the changed line)>");
+      }
+    return result;
+  }
+
+  /** @p text with @p from replaced by @p to; the case is void if it is absent. */
+  std::string
+  changed(const std::string &text,
+          const std::string &from,
+          const std::string &to)
+  {
+    const auto position = text.find(from);
+    if (position == std::string::npos)
+      test_tools::check(false,
+                        "prm/pressed_block.prm contains '" + from +
+                          "' (the test changes it)");
+    return text.substr(0, position) + to +
+           text.substr(position + from.size());
+  }
+
+  struct Case
+  {
+    std::string name;
+    /** Written to scene.prm in the case's directory if given. */
+    std::optional<std::string> prm;
+    std::vector<std::string>   arguments;
+    /** 0: a control that must run; 1: input error; 2: usage error. */
+    int expected_code;
+    /** What the error line must contain. */
+    std::vector<std::string> names;
+    /** If not empty: the line of scene.prm (its text) the error is in. */
+    std::string line_of = "";
+    /** Found only while running: run_status must read "failed: ...". */
+    bool runtime = false;
+    /** Further files to write into the case's directory. */
+    std::vector<std::pair<std::string, std::string>> extra_files = {};
+
+    /** The number of the first line of prm containing line_of, or 0. */
+    unsigned int
+    line_number() const
+    {
+      if (line_of.empty() || !prm)
+        return 0;
+      const auto position = prm->find(line_of);
+      if (position == std::string::npos)
+        return 0;
+      return 1 + std::count(prm->begin(), prm->begin() + position, '\n');
+    }
+  };
+
+  struct Outcome
+  {
+    int                      system_status = -1;
+    bool                     exited        = false;
+    int                      code          = -1;
+    int                      signal        = 0;
+    std::string              stderr_text;
+    std::vector<std::string> error_lines;
+    bool                     stderr_only_message = false;
+    std::vector<std::string> new_directories;
+    std::vector<std::string> completed_status_files;
+    std::vector<std::string> failed_status_files;
+  };
+
+  Outcome
+  run_case(const Case &c, const fs::path &directory)
+  {
+    fs::remove_all(directory);
+    fs::create_directories(directory);
+    if (c.prm)
+      write_text(directory / "scene.prm", *c.prm);
+    for (const auto &[name, text] : c.extra_files)
+      write_text(directory / name, text);
+
+    // exec: a signal that ends the program is seen as such, not as the exit
+    // code 128+N of a shell around it.
+    std::string command =
+      "cd " + quote(directory.string()) + " && exec " +
+      quote(DYNAMIC_CONTACT_EXECUTABLE);
+    for (const auto &a : c.arguments)
+      command += " " + quote(a);
+    command += " </dev/null >stdout.txt 2>stderr.txt";
+
+    Outcome o;
+    o.system_status = std::system(command.c_str());
+    if (o.system_status != -1)
+      {
+        o.exited = WIFEXITED(o.system_status);
+        o.code   = o.exited ? WEXITSTATUS(o.system_status) : -1;
+        o.signal = WIFSIGNALED(o.system_status) ? WTERMSIG(o.system_status) : 0;
+      }
+
+    o.stderr_text = read_text(directory / "stderr.txt");
+    const auto lines = lines_of(o.stderr_text);
+    for (const auto &line : lines)
+      if (line.rfind(error_prefix, 0) == 0)
+        o.error_lines.push_back(line);
+
+    // Only the message; after a usage error the usage text may follow it.
+    if (c.expected_code == 0)
+      o.stderr_only_message = o.stderr_text.empty();
+    else if (!lines.empty() && lines[0].rfind(error_prefix, 0) == 0)
+      {
+        const std::string rest = o.stderr_text.substr(
+          std::min(lines[0].size() + 1, o.stderr_text.size()));
+        o.stderr_only_message =
+          rest.empty() ||
+          (c.expected_code == 2 && rest.rfind("\nUsage: ", 0) == 0);
+      }
+
+    for (const auto &entry : fs::recursive_directory_iterator(directory))
+      {
+        const std::string relative =
+          fs::relative(entry.path(), directory).string();
+        if (entry.is_directory() && relative.find('/') == std::string::npos)
+          o.new_directories.push_back(relative);
+        if (entry.path().filename() == "run_status")
+          {
+            const std::string status = read_text(entry.path());
+            if (status.rfind("completed", 0) == 0)
+              o.completed_status_files.push_back(relative);
+            if (status.rfind("failed: ", 0) == 0)
+              o.failed_status_files.push_back(relative);
+          }
+      }
+    std::sort(o.new_directories.begin(), o.new_directories.end());
+    return o;
+  }
+
+  /** The checks, made after every case has run and printed its line. */
+  struct Checks
+  {
+    std::vector<std::pair<bool, std::string>> list;
+
+    void
+    add(const bool condition, const std::string &what)
+    {
+      list.emplace_back(condition, what);
+    }
+
+    void
+    assert_all() const
+    {
+      for (const auto &[ok, what] : list)
+        if (!ok)
+          std::cerr << "FAILED: " << what << std::endl;
+      for (const auto &[ok, what] : list)
+        test_tools::check(ok, what);
+    }
+  };
+
+  std::string
+  yes_no(const bool b)
+  {
+    return b ? "yes" : "no";
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  // The program runs as a process of its own: OpenMPI refuses root there
+  // unless told (containers and CI run as root).
+  setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+
+  const std::string scene = read_text(test_tools::scene("pressed_block.prm"));
+  test_tools::check(scene.find("subsection Material") != std::string::npos,
+                    "read prm/pressed_block.prm");
+
+  // Binary content: every byte value, control characters first.
+  std::string garbage;
+  for (unsigned int i = 0; i < 512; ++i)
+    garbage += static_cast<char>(i % 256);
+
+  const std::vector<std::string> file = {"scene.prm"};
+  auto with = [&file](std::vector<std::string> more) {
+    more.insert(more.begin(), file.begin(), file.end());
+    return more;
+  };
+
+  std::vector<Case> cases;
+  auto add = [&cases](const std::string &             name,
+                      const std::optional<std::string> prm,
+                      const std::vector<std::string> &arguments,
+                      const int                       expected_code,
+                      const std::vector<std::string> &names) -> Case & {
+    cases.push_back(Case{name, prm, arguments, expected_code, names});
+    return cases.back();
+  };
+
+  // A copy of the scene with @p from changed to @p to.
+  auto change = [&scene](const std::string &from, const std::string &to) {
+    return changed(scene, from, to);
+  };
+
+  const std::string density = "set Density       = 1000";
+  const std::string young   = "set Young modulus = 1e9";
+  const std::string poisson = "set Poisson ratio = 0.3";
+  const std::string step    = "set Time step = 1";
+  const std::string end     = "set End time  = 8";
+  const std::string traction_expression = "set Function expression = 0; -P";
+
+  // Controls: valid input runs to completion.
+  add("control_valid_scene", scene, file, 0, {});
+  add("control_empty_file_all_defaults",
+      "",
+      with({"--set", "Time/End time=0.015625"}),
+      0,
+      {});
+
+  // The file itself.
+  add("missing_file", std::nullopt, {"missing.prm"}, 1, {"missing.prm"});
+  add("binary_garbage_file", garbage, file, 1, {"scene.prm"});
+  add("unknown_entry_top_level", scene + "\nset Foo = 1\n", file, 1,
+      {"scene.prm", "Foo"})
+    .line_of = "set Foo = 1";
+  add("unknown_entry_in_subsection",
+      change(density, density + "\n  set Foo = 1"), file, 1,
+      {"scene.prm", "Material/Foo"})
+    .line_of = "set Foo = 1";
+  add("unknown_subsection",
+      change("subsection Foundation", "subsection Fundation"), file, 1,
+      {"scene.prm", "Fundation"})
+    .line_of = "subsection Fundation";
+  add("misspelt_entry", change(young, "set Youngs modulus = 1e9"), file, 1,
+      {"scene.prm", "Material/Youngs modulus"})
+    .line_of = "set Youngs modulus = 1e9";
+  add("malformed_value", change(density, "set Density = abc"), file, 1,
+      {"scene.prm", "Material/Density", "abc"})
+    .line_of = "set Density = abc";
+  add("nan_value", change(density, "set Density = nan"), file, 1,
+      {"scene.prm", "Material/Density", "nan"})
+    .line_of = "set Density = nan";
+  add("dimension_4", change("set Dimension = 2", "set Dimension = 4"), file,
+      1, {"scene.prm", "Dimension", "4"})
+    .line_of = "set Dimension = 4";
+
+  // Values out of range.
+  add("density_zero", change(density, "set Density = 0"), file, 1,
+      {"Material/Density"});
+  add("density_negative", change(density, "set Density = -1000"), file, 1,
+      {"Material/Density"});
+  add("young_modulus_zero", change(young, "set Young modulus = 0"), file, 1,
+      {"Material/Young modulus"});
+  add("young_modulus_negative", change(young, "set Young modulus = -1e9"),
+      file, 1, {"Material/Young modulus"});
+  add("poisson_ratio_0.5", change(poisson, "set Poisson ratio = 0.5"), file,
+      1, {"Material/Poisson ratio"});
+  add("poisson_ratio_-1", change(poisson, "set Poisson ratio = -1"), file, 1,
+      {"Material/Poisson ratio"});
+  add("time_step_zero", change(step, "set Time step = 0"), file, 1,
+      {"Time/Time step"});
+  add("time_step_negative", change(step, "set Time step = -1"), file, 1,
+      {"Time/Time step"});
+  add("end_time_zero", change(end, "set End time = 0"), file, 1,
+      {"Time/End time"});
+  add("end_time_negative", change(end, "set End time = -8"), file, 1,
+      {"Time/End time"});
+
+  // Boundary conditions against the mesh (ids 0..3 of the rectangle).
+  add("boundary_id_twice", change("set Clamped  =", "set Clamped  = 2"), file,
+      1,
+      {"boundary id 2",
+       "Boundary conditions/Clamped",
+       "Boundary conditions/Contact"});
+  add("boundary_id_unassigned",
+      change("set Roller   = 0, 1", "set Roller   = 0"), file, 1,
+      {"Boundary conditions", "boundary id 1"});
+  add("boundary_id_not_in_mesh",
+      change("set Contact  = 2", "set Contact  = 2\n  set Free = 7"), file, 1,
+      {"Boundary conditions/Free", "boundary id 7"});
+
+  // Functions.
+  add("function_does_not_parse",
+      change(traction_expression, "set Function expression = 0; -P*("),
+      file, 1, {"Boundary conditions/Traction/Function expression"});
+  add("function_wrong_number_of_components",
+      change(traction_expression, "set Function expression = -P"), file, 1,
+      {"Boundary conditions/Traction/Function expression"});
+
+  // Geometry and output.
+  add("gmsh_mesh_file_missing",
+      change("set Type        = rectangle",
+             "set Type        = gmsh\n  set Mesh file = missing.msh"),
+      file, 1, {"Geometry/Mesh file", "missing.msh"});
+  add("output_directory_not_creatable",
+      change("set Directory = output-pressed-block",
+             "set Directory = scene.prm/results"),
+      file, 1, {"Output/Directory", "scene.prm/results"});
+
+  // Found only while running: the run must end as failed, not completed.
+  add("newton_iterations_exhausted",
+      change("subsection Output", "subsection Solver\n  set Maximum Newton "
+                                  "iterations = 1\nend\n\nsubsection Output"),
+      file, 1, {"Solver/Maximum Newton iterations"})
+    .runtime = true;
+
+  // --set.
+  add("set_unknown_entry", scene, with({"--set", "Material/Foo=1"}), 1,
+      {"--set", "Material/Foo"});
+  add("set_unknown_subsection", scene, with({"--set", "Foo/Bar=1"}), 1,
+      {"--set", "Foo/Bar"});
+  add("set_value_out_of_range", scene, with({"--set", "Material/Density=-1"}),
+      1, {"Material/Density"});
+  add("set_malformed_value", scene, with({"--set", "Time/Time step=abc"}), 1,
+      {"Time/Time step", "abc"});
+
+  // The command line (usage errors, exit code 2). --set without '=' cannot
+  // be read at all, like --set without an argument: a usage error.
+  add("set_without_equals", scene, with({"--set", "Material/Density"}), 2,
+      {"--set", "Material/Density"});
+  add("set_without_argument", scene, with({"--set"}), 2, {"--set"});
+  add("unknown_option", scene, with({"--frobnicate"}), 2, {"--frobnicate"});
+  add("two_parameter_files", scene, with({"other.prm"}), 2,
+      {"scene.prm", "other.prm"})
+    .extra_files = {{"other.prm", scene}};
+  add("no_parameter_file", scene, {}, 2, {"parameter file"});
+
+  // Most of a run is MPI's start-up, spent waiting: run a few at a time.
+  std::vector<Outcome> outcomes(cases.size());
+  {
+    std::atomic<unsigned int> next(0);
+    std::vector<std::thread>  workers;
+    for (unsigned int w = 0; w < 6; ++w)
+      workers.emplace_back([&]() {
+        for (unsigned int i = next++; i < cases.size(); i = next++)
+          outcomes[i] = run_case(cases[i], fs::path("case_" + cases[i].name));
+      });
+    for (auto &w : workers)
+      w.join();
+  }
+
+  Checks checks;
+  for (unsigned int i = 0; i < cases.size(); ++i)
+    {
+      const Case &       c    = cases[i];
+      const Outcome &    o    = outcomes[i];
+      const unsigned int line = c.line_number();
+
+      // One line per case, the same on every machine.
+      std::string summary = c.name + " | ";
+      if (c.expected_code == 0)
+        summary += "control, exit code zero: " +
+                   yes_no(o.exited && o.code == 0) +
+                   " | run_status completed: " +
+                   yes_no(o.completed_status_files.size() == 1);
+      else
+        {
+          summary += "exit code nonzero: " + yes_no(o.exited && o.code != 0) +
+                     " | one error line: " + yes_no(o.error_lines.size() == 1);
+          for (const auto &e : o.error_lines)
+            summary += " | " + deterministic(e, line);
+          if (o.error_lines.empty() && !o.stderr_text.empty())
+            summary += " | first line on stderr: " +
+                       deterministic(lines_of(o.stderr_text)[0], line);
+        }
+      test_tools::out() << summary << std::endl;
+
+      const std::string name = c.name + ": ";
+      checks.add(o.system_status != -1 && o.exited,
+                 name + "a normal exit (no signal, no abort)" +
+                   (o.signal != 0 ?
+                      " [signal " + std::to_string(o.signal) + "]" :
+                      ""));
+      checks.add(o.code == c.expected_code,
+                 name + "exit code " + std::to_string(c.expected_code) +
+                   (o.code != c.expected_code ?
+                      " [got " + std::to_string(o.code) + "]" :
+                      ""));
+      if (c.expected_code == 0)
+        {
+          checks.add(o.error_lines.empty() && o.stderr_only_message,
+                     name + "nothing on stderr");
+          checks.add(o.completed_status_files.size() == 1,
+                     name + "run_status reads 'completed'");
+          continue;
+        }
+
+      checks.add(o.error_lines.size() == 1,
+                 name + "exactly one line '" + error_prefix + " ...' on stderr");
+      for (const auto &n : c.names)
+        checks.add(o.error_lines.size() == 1 &&
+                     o.error_lines[0].find(n) != std::string::npos,
+                   name + "the error line names '" + n + "'");
+      if (!c.line_of.empty())
+        checks.add(line > 0 && o.error_lines.size() == 1 &&
+                     o.error_lines[0].find("Line <" + std::to_string(line) +
+                                           ">") != std::string::npos,
+                   name + "the error line gives the number of the line '" +
+                     c.line_of + "'");
+      checks.add(o.stderr_only_message,
+                 name + "stderr holds the error line only" +
+                   (c.expected_code == 2 ? " (and the usage text)" : ""));
+      if (c.runtime)
+        checks.add(o.failed_status_files.size() == 1,
+                   name + "run_status reads 'failed: ...'");
+      else
+        checks.add(o.new_directories.empty(),
+                   name + "no output directory created");
+      checks.add(o.completed_status_files.empty(),
+                 name + "no run_status 'completed' left");
+    }
+
+  test_tools::out() << std::endl;
+  checks.assert_all();
+  return 0;
+}

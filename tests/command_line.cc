@@ -1,0 +1,491 @@
+// The command line of the real executable, as a user meets it:
+//   --help / -h                      usage text on stdout, exit 0;
+//   --print-parameters               every subsection and entry, documented,
+//                                    with the 2D defaults, exit 0;
+//   --print-parameters --set 'Dimension=3'
+//                                    the 3D defaults;
+//   --print-parameters scene.prm --set 'Material/Density=2000'
+//                                    the scene's values and the override,
+//                                    without running anything;
+//   scene.prm --set ... (a short run) exit 0, time_series.csv with steps
+//                                    0, 1, 2, contact_00002.csv, run_status
+//                                    "completed".
+//
+// Every program run happens first and prints what it found; the checks
+// follow, so that a failing test still shows the whole picture.
+
+#include "test_tools.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#ifndef DYNAMIC_CONTACT_EXECUTABLE
+#  error "tests/CMakeLists.txt must define DYNAMIC_CONTACT_EXECUTABLE"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace
+{
+  std::string
+  read_text(const fs::path &file)
+  {
+    std::ifstream      in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  std::vector<std::string>
+  lines_of(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::istringstream       in(text);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  }
+
+  std::string
+  trim(const std::string &s)
+  {
+    const auto begin = s.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos)
+      return "";
+    const auto end = s.find_last_not_of(" \t\r\n");
+    return s.substr(begin, end - begin + 1);
+  }
+
+  std::vector<std::string>
+  split(const std::string &s, const char separator)
+  {
+    std::vector<std::string> parts;
+    std::istringstream       in(s);
+    for (std::string part; std::getline(in, part, separator);)
+      parts.push_back(trim(part));
+    return parts;
+  }
+
+  std::string
+  quote(const std::string &s)
+  {
+    std::string q = "'";
+    for (const char c : s)
+      q += (c == '\'' ? std::string("'\\''") : std::string(1, c));
+    return q + "'";
+  }
+
+  std::string
+  yes_no(const bool b)
+  {
+    return b ? "yes" : "no";
+  }
+
+  struct Run
+  {
+    Run(const std::vector<std::string> &arguments, const std::string &name)
+      : arguments(arguments)
+      , name(name)
+    {}
+
+    std::vector<std::string> arguments;
+    std::string              name;
+    int                      status = -1;
+    bool                     exited = false;
+    int                      code   = -1;
+    std::string              out, err;
+
+    bool
+    succeeded() const
+    {
+      return status != -1 && exited && code == 0;
+    }
+  };
+
+  /** Run the program in the working directory, stdout and stderr to files. */
+  void
+  execute(Run &run)
+  {
+    std::string command = "exec " + quote(DYNAMIC_CONTACT_EXECUTABLE);
+    for (const auto &a : run.arguments)
+      command += " " + quote(a);
+    command += " </dev/null >" + run.name + ".stdout 2>" + run.name + ".stderr";
+    run.status = std::system(command.c_str());
+    if (run.status != -1)
+      {
+        run.exited = WIFEXITED(run.status);
+        run.code   = run.exited ? WEXITSTATUS(run.status) : -1;
+      }
+    run.out = read_text(run.name + ".stdout");
+    run.err = read_text(run.name + ".stderr");
+  }
+
+  /**
+   * The entries of a parameter listing in deal.II's PRM format, by path
+   * "Section/Subsection/Entry", and whether each has a documentation
+   * comment right before it.
+   */
+  struct Listing
+  {
+    std::map<std::string, std::string> values;
+    std::map<std::string, bool>        documented;
+    std::vector<std::string>           top_level_subsections;
+    bool                               balanced = true;
+
+    explicit Listing(const std::string &text)
+    {
+      std::vector<std::string> path;
+      bool                     comment_before = false;
+      for (const auto &raw : lines_of(text))
+        {
+          const std::string line = trim(raw);
+          if (line.empty())
+            continue;
+          if (line[0] == '#')
+            {
+              comment_before = true;
+              continue;
+            }
+          if (line.rfind("subsection ", 0) == 0)
+            {
+              if (path.empty())
+                top_level_subsections.push_back(trim(line.substr(11)));
+              path.push_back(trim(line.substr(11)));
+            }
+          else if (line == "end")
+            {
+              if (path.empty())
+                balanced = false;
+              else
+                path.pop_back();
+            }
+          else if (line.rfind("set ", 0) == 0)
+            {
+              const auto  equal = line.find('=');
+              std::string name  = trim(line.substr(4, equal - 4));
+              std::string value = trim(line.substr(equal + 1));
+              // "value # default: ..." when the value is not the default.
+              value = trim(value.substr(0, value.find('#')));
+              for (auto s = path.rbegin(); s != path.rend(); ++s)
+                name = *s + "/" + name;
+              values[name]     = value;
+              documented[name] = comment_before;
+            }
+          comment_before = false;
+        }
+      balanced = balanced && path.empty();
+    }
+
+    std::string
+    get(const std::string &name) const
+    {
+      const auto it = values.find(name);
+      return it == values.end() ? "<missing>" : it->second;
+    }
+  };
+
+  struct Checks
+  {
+    std::vector<std::pair<bool, std::string>> list;
+
+    void
+    add(const bool condition, const std::string &what)
+    {
+      list.emplace_back(condition, what);
+    }
+
+    void
+    assert_all() const
+    {
+      for (const auto &[ok, what] : list)
+        if (!ok)
+          std::cerr << "FAILED: " << what << std::endl;
+      for (const auto &[ok, what] : list)
+        test_tools::check(ok, what);
+    }
+  };
+
+  /** The rows of a CSV file, split at commas. */
+  std::vector<std::vector<std::string>>
+  read_csv(const fs::path &file)
+  {
+    std::vector<std::vector<std::string>> rows;
+    for (const auto &line : lines_of(read_text(file)))
+      if (!trim(line).empty())
+        rows.push_back(split(line, ','));
+    return rows;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  std::ostream &                           out = test_tools::out();
+
+  // The program runs as a process of its own: OpenMPI refuses root there
+  // unless told (containers and CI run as root).
+  setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+
+  const std::string scene = test_tools::scene("pressed_block.prm");
+  fs::remove_all("run");
+  fs::remove_all("output-pressed-block");
+
+  std::vector<Run> runs = {
+    {{"--help"}, "help"},
+    {{"-h"}, "h"},
+    {{"--print-parameters"}, "print_defaults"},
+    {{"--print-parameters", "--set", "Dimension=3"}, "print_3d"},
+    {{"--print-parameters", scene, "--set", "Material/Density=2000"},
+     "print_scene"},
+    {{scene, "--set", "Output/Directory=run", "--set", "Time/End time=2"},
+     "run"},
+  };
+  // Most of a run is MPI's start-up, spent waiting: run them side by side.
+  {
+    std::vector<std::thread> threads;
+    for (auto &r : runs)
+      threads.emplace_back([&r]() { execute(r); });
+    for (auto &t : threads)
+      t.join();
+  }
+  const Run &help = runs[0], &h = runs[1], &print_defaults = runs[2],
+            &print_3d = runs[3], &print_scene = runs[4];
+
+  Checks checks;
+  for (const auto &r : runs)
+    {
+      checks.add(r.succeeded(),
+                 r.name + ": exits normally with code 0" +
+                   (r.succeeded() ?
+                      "" :
+                      " [status " + std::to_string(r.status) + "]"));
+      checks.add(r.err.empty(), r.name + ": nothing on stderr");
+    }
+
+  // ------------------------------------------------------------ --help
+  {
+    out << "--help:" << std::endl;
+    for (const std::string word : {"Usage:", "--set", "--print-parameters"})
+      {
+        const bool found = help.out.find(word) != std::string::npos;
+        out << "  the usage text mentions '" << word << "': " << yes_no(found)
+            << std::endl;
+        checks.add(found, "--help: the usage text mentions '" + word + "'");
+      }
+    checks.add(h.out == help.out, "-h prints the same text as --help");
+  }
+
+  // ------------------------------------------------ --print-parameters
+  {
+    const Listing listing(print_defaults.out);
+    out << "--print-parameters:" << std::endl;
+    out << "  subsections:";
+    for (const auto &s : listing.top_level_subsections)
+      out << " [" << s << "]";
+    out << std::endl;
+    checks.add(listing.balanced,
+               "--print-parameters: every subsection is closed by 'end'");
+
+    for (const std::string s : {"Geometry",
+                                "Boundary conditions",
+                                "Material",
+                                "Foundation",
+                                "Friction",
+                                "Time",
+                                "Solver",
+                                "Output",
+                                "Body force",
+                                "Initial conditions"})
+      checks.add(std::find(listing.top_level_subsections.begin(),
+                           listing.top_level_subsections.end(),
+                           s) != listing.top_level_subsections.end(),
+                 "--print-parameters: prints subsection " + s);
+
+    // One entry of each part, nested function subsections included.
+    for (const std::string e : {"Dimension",
+                                "Geometry/Lower left",
+                                "Geometry/Mesh file",
+                                "Finite element/Polynomial degree",
+                                "Boundary conditions/Clamped",
+                                "Boundary conditions/Traction",
+                                "Boundary conditions/Traction/Function expression",
+                                "Boundary conditions/Traction/Function constants",
+                                "Material/Density",
+                                "Foundation/Normal damping",
+                                "Foundation/Initial gap/Function expression",
+                                "Friction/Law",
+                                "Time/Time step",
+                                "Solver/Contact solver",
+                                "Output/Directory",
+                                "Body force/Function expression",
+                                "Initial conditions/Displacement/Function expression",
+                                "Initial conditions/Velocity/Function expression"})
+      {
+        const bool found = listing.values.count(e) == 1;
+        out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
+        checks.add(found, "--print-parameters: prints entry " + e);
+      }
+
+    std::vector<std::string> undocumented;
+    for (const auto &[name, documented] : listing.documented)
+      if (!documented)
+        undocumented.push_back(name);
+    out << "  every entry has a documentation comment: "
+        << yes_no(undocumented.empty() && listing.values.size() > 40)
+        << std::endl;
+    for (const auto &name : undocumented)
+      out << "  undocumented: " << name << std::endl;
+    checks.add(listing.values.size() > 40,
+               "--print-parameters: prints more than 40 entries");
+    checks.add(undocumented.empty(),
+               "--print-parameters: every entry has a documentation comment");
+    checks.add(print_defaults.out.find("Mass density rho") !=
+                 std::string::npos,
+               "--print-parameters: documents Material/Density");
+
+    // The 2D defaults, for comparison with the 3D ones.
+    checks.add(split(listing.get("Geometry/Lower left"), ',').size() == 2,
+               "--print-parameters: Geometry/Lower left has two coordinates "
+               "by default (2D)");
+  }
+
+  // ------------------------------ --print-parameters --set Dimension=3
+  {
+    const Listing listing(print_3d.out);
+    out << "--print-parameters --set 'Dimension=3':" << std::endl;
+    for (const std::string e : {"Dimension",
+                                "Geometry/Lower left",
+                                "Geometry/Upper right",
+                                "Geometry/Repetitions",
+                                "Body force/Function expression",
+                                "Body force/Variable names"})
+      out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
+    checks.add(listing.get("Dimension") == "3",
+               "--set 'Dimension=3': Dimension = 3");
+    for (const std::string e :
+         {"Geometry/Lower left", "Geometry/Upper right", "Geometry/Repetitions"})
+      checks.add(split(listing.get(e), ',').size() == 3,
+                 "--set 'Dimension=3': " + e + " has three coordinates");
+    checks.add(split(listing.get("Body force/Function expression"), ';')
+                   .size() == 3,
+               "--set 'Dimension=3': the body force has three components");
+    checks.add(listing.get("Body force/Variable names") == "x,y,z,t",
+               "--set 'Dimension=3': the variables are x,y,z,t");
+  }
+
+  // ------- --print-parameters pressed_block.prm --set Material/Density=2000
+  {
+    const Listing listing(print_scene.out);
+    out << "--print-parameters pressed_block.prm --set "
+           "'Material/Density=2000':"
+        << std::endl;
+    const std::vector<std::pair<std::string, std::string>> expected = {
+      {"Material/Density", "2000"},
+      {"Material/Young modulus", "1e9"},
+      {"Geometry/Repetitions", "4, 2"},
+      {"Boundary conditions/Roller", "0, 1"},
+      {"Time/End time", "8"},
+      {"Boundary conditions/Traction/Function constants", "P=1e7"},
+      {"Boundary conditions/Traction/Function expression", "0; -P"}};
+    for (const auto &[e, value] : expected)
+      {
+        out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
+        checks.add(listing.get(e) == value,
+                   "--print-parameters pressed_block.prm: " + e + " = " +
+                     value);
+      }
+    checks.add(print_scene.out.find("# default: 1000") != std::string::npos,
+               "--print-parameters pressed_block.prm: the overridden density "
+               "shows its default");
+    checks.add(!fs::exists("output-pressed-block"),
+               "--print-parameters pressed_block.prm: runs nothing (no output "
+               "directory)");
+  }
+
+  // ----------------------------------------------------- a short run
+  {
+    out << "pressed_block.prm --set 'Output/Directory=run' --set 'Time/End "
+           "time=2':"
+        << std::endl;
+    const std::string status = trim(read_text("run/run_status"));
+    out << "  run_status: " << status << std::endl;
+    checks.add(status == "completed", "run: run_status reads 'completed'");
+
+    const auto series = read_csv("run/time_series.csv");
+    const std::vector<std::string> header =
+      series.empty() ? std::vector<std::string>() : series[0];
+    for (const std::string column : {"step",
+                                     "time",
+                                     "normal_force",
+                                     "kinetic_energy",
+                                     "elastic_energy",
+                                     "foundation_energy",
+                                     "load_work",
+                                     "dissipation",
+                                     "energy_balance_defect",
+                                     "newton_iterations",
+                                     "n_contact",
+                                     "dofs",
+                                     "cells"})
+      checks.add(std::find(header.begin(), header.end(), column) !=
+                   header.end(),
+                 "run: time_series.csv has the column " + column);
+
+    const unsigned int n_rows = series.empty() ? 0 : series.size() - 1;
+    out << "  time_series.csv: " << n_rows << " rows" << std::endl;
+    checks.add(n_rows == 3, "run: time_series.csv has 3 rows");
+
+    auto column = [&header](const std::string &name) {
+      return static_cast<unsigned int>(
+        std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    bool fields_match = true, steps_match = true;
+    for (unsigned int r = 1; r < series.size(); ++r)
+      {
+        const auto &row = series[r];
+        fields_match    = fields_match && row.size() == header.size();
+        if (row.size() != header.size())
+          continue;
+        const std::string step = row[column("step")];
+        const double      time = std::atof(row[column("time")].c_str());
+        const double normal    = std::atof(row[column("normal_force")].c_str());
+        steps_match = steps_match && step == std::to_string(r - 1) &&
+                      time == static_cast<double>(r - 1);
+        out << "  step " << step << "  time " << test_tools::digits(time)
+            << "  normal_force " << test_tools::digits(normal) << std::endl;
+      }
+    checks.add(fields_match,
+               "run: every row of time_series.csv has a field per column");
+    checks.add(steps_match && n_rows == 3,
+               "run: the rows are the steps 0, 1, 2 at times 0, 1, 2");
+
+    const auto contact = read_csv("run/contact_00002.csv");
+    const std::string contact_header =
+      lines_of(read_text("run/contact_00002.csv")).empty() ?
+        "<missing>" :
+        lines_of(read_text("run/contact_00002.csv"))[0];
+    out << "  contact_00002.csv: " << contact_header << ", "
+        << (contact.empty() ? 0 : contact.size() - 1) << " rows" << std::endl;
+    checks.add(contact_header == "x,y,u_nu,w_nu,normal_pressure",
+               "run: contact_00002.csv has the header "
+               "x,y,u_nu,w_nu,normal_pressure");
+    checks.add(contact.size() == 6,
+               "run: contact_00002.csv has a row per contact node (5)");
+  }
+
+  out << std::endl;
+  checks.assert_all();
+  return 0;
+}
