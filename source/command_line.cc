@@ -38,6 +38,12 @@ namespace DynamicContact
             return c;
           }
       }
+    for (const auto &o : c.overrides)
+      if (o.find('=') == std::string::npos)
+        {
+          c.error = "--set '" + o + "': expected 'Section/Entry=value'.";
+          return c;
+        }
     if (!c.help && !c.print_parameters && c.parameter_file.empty())
       c.error = "no parameter file given.";
     return c;

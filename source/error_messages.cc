@@ -2,6 +2,8 @@
 
 #include <dynamic_contact/error_messages.h>
 
+#include <iostream>
+#include <regex>
 #include <sstream>
 
 namespace DynamicContact
@@ -38,5 +40,36 @@ namespace DynamicContact
           }
       }
     return result;
+  }
+
+
+  namespace
+  {
+    std::ostringstream &
+    sink()
+    {
+      static std::ostringstream s;
+      return s;
+    }
+  } // namespace
+
+  SilenceStderr::SilenceStderr()
+    : saved(std::cerr.rdbuf(sink().rdbuf()))
+  {}
+
+  SilenceStderr::~SilenceStderr()
+  {
+    std::cerr.rdbuf(saved);
+    sink().str("");
+  }
+
+
+  std::string
+  expression_error_message(const std::exception &e)
+  {
+    // deal.II 9.4 reports muparser's error code as a column.
+    return std::regex_replace(error_message(e),
+                              std::regex(R"(Parsing Error at Column -?\d+\. )"),
+                              "");
   }
 } // namespace DynamicContact

@@ -132,6 +132,7 @@ namespace DynamicContact
       }
     try
       {
+        const SilenceStderr silence;
         parser.initialize("s", expression, constant_map);
         parser.value(Point<1>(0.));
       }
@@ -139,7 +140,7 @@ namespace DynamicContact
       {
         AssertThrow(false,
                     ExcMessage("Friction/Expression: cannot parse '" +
-                               expression + "': " + error_message(e)));
+                               expression + "': " + expression_error_message(e)));
       }
   }
 

@@ -20,7 +20,8 @@ main(int argc, char *argv[])
   if (!command_line.error.empty())
     {
       if (root)
-        std::cerr << "dynamic-contact: " << command_line.error << "\n\n"
+        std::cerr << "dynamic-contact: error: " << command_line.error
+                  << "\n\n"
                   << CommandLine::usage();
       return 2;
     }

@@ -36,6 +36,8 @@ namespace DynamicContact
   KelvinVoigtMaterial<dim>::KelvinVoigtMaterial(
     const Parameters::Material &p)
     : rho(p.density)
+    , plane_strain(dim == 2 &&
+                   p.plane_model == Parameters::Material::PlaneModel::plane_strain)
   {
     const double E     = p.young_modulus;
     const double kappa = p.poisson_ratio;
@@ -46,9 +48,9 @@ namespace DynamicContact
     elasticity_tensor = isotropic_tensor<dim>(lame_lambda, lame_mu);
 
     viscous = (p.viscosity_lambda != 0 || p.viscosity_mu != 0);
-    viscosity_tensor = isotropic_tensor<dim>(
-      effective_lambda(p.viscosity_lambda, p.viscosity_mu, p.plane_model, dim),
-      p.viscosity_mu);
+    viscous_lambda =
+      effective_lambda(p.viscosity_lambda, p.viscosity_mu, p.plane_model, dim);
+    viscosity_tensor = isotropic_tensor<dim>(viscous_lambda, p.viscosity_mu);
   }
 
 
@@ -67,9 +69,30 @@ namespace DynamicContact
 
   template <int dim>
   double
-  von_mises_stress(const SymmetricTensor<2, dim> &stress)
+  KelvinVoigtMaterial<dim>::out_of_plane_stress(
+    const SymmetricTensor<2, dim> &strain,
+    const SymmetricTensor<2, dim> &strain_rate) const
   {
-    const SymmetricTensor<2, dim> s = deviator(stress);
+    if (!plane_strain)
+      return 0.;
+    return lame_lambda * trace(strain) +
+           (viscous ? viscous_lambda * trace(strain_rate) : 0.);
+  }
+
+
+  template <int dim>
+  double
+  von_mises_stress(const SymmetricTensor<2, dim> &stress,
+                   const double                   out_of_plane)
+  {
+    // The deviator of the 3D stress (in 2D with sigma_zz = out_of_plane).
+    SymmetricTensor<2, 3> sigma;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        sigma[i][j] = stress[i][j];
+    if (dim == 2)
+      sigma[2][2] = out_of_plane;
+    const SymmetricTensor<2, 3> s = deviator(sigma);
     return std::sqrt(1.5 * scalar_product(s, s));
   }
 
@@ -81,7 +104,7 @@ namespace DynamicContact
   template class KelvinVoigtMaterial<2>;
   template class KelvinVoigtMaterial<3>;
   template double
-  von_mises_stress<2>(const SymmetricTensor<2, 2> &);
+  von_mises_stress<2>(const SymmetricTensor<2, 2> &, const double);
   template double
-  von_mises_stress<3>(const SymmetricTensor<2, 3> &);
+  von_mises_stress<3>(const SymmetricTensor<2, 3> &, const double);
 } // namespace DynamicContact

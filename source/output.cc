@@ -88,6 +88,7 @@ namespace DynamicContact
   write_contact_csv(const std::string &                       filename,
                     const ContactBoundary<dim> &              boundary,
                     const std::vector<ContactNodeState<dim>> &states,
+                    const Vector_t &                          u,
                     const Vector_t &                          w,
                     const bool                                friction,
                     const MPI_Comm                            comm)
@@ -116,8 +117,12 @@ namespace DynamicContact
               row.push_back(-(s.friction_force * node.tangents[j]) /
                             node.weight);
             row.push_back(s.mu);
-            row.push_back(static_cast<double>(s.state));
           }
+        const Tensor<1, dim> displacement = node.value(u);
+        for (unsigned int d = 0; d < dim; ++d)
+          row.push_back(displacement[d]);
+        if (friction)
+          row.push_back(static_cast<double>(s.state)); // last: printed as text
         rows.push_back(row);
       }
 
@@ -145,7 +150,10 @@ namespace DynamicContact
       out << (dim == 2 ?
                 ",w_tau,tangential_traction" :
                 ",w_tau_1,w_tau_2,tangential_traction_1,tangential_traction_2")
-          << ",mu,state";
+          << ",mu";
+    out << (dim == 2 ? ",u_x,u_y" : ",u_x,u_y,u_z");
+    if (friction)
+      out << ",state";
     out << '\n';
     for (const auto &row : all)
       {
@@ -273,17 +281,20 @@ namespace DynamicContact
             fe_values[displacement].get_function_symmetric_gradients(w_ghosted,
                                                                      eps_w);
             SymmetricTensor<2, dim> sigma;
-            double                  volume = 0;
+            double                  sigma_zz = 0, volume = 0;
             for (unsigned int q = 0; q < quadrature.size(); ++q)
               {
                 sigma += material.stress(eps_u[q], eps_w[q]) * fe_values.JxW(q);
+                sigma_zz += material.out_of_plane_stress(eps_u[q], eps_w[q]) *
+                            fe_values.JxW(q);
                 volume += fe_values.JxW(q);
               }
             sigma /= volume;
+            sigma_zz /= volume;
             const unsigned int index = cell->active_cell_index();
             for (unsigned int c = 0; c < n_components; ++c)
               stress[c](index) = sigma.access_raw_entry(c);
-            von_mises(index) = von_mises_stress(sigma);
+            von_mises(index) = von_mises_stress(sigma, sigma_zz);
             subdomain(index) = cell->subdomain_id();
           }
     }
@@ -349,12 +360,14 @@ namespace DynamicContact
                        const ContactBoundary<2> &,
                        const std::vector<ContactNodeState<2>> &,
                        const Vector_t &,
+                       const Vector_t &,
                        const bool,
                        const MPI_Comm);
   template void
   write_contact_csv<3>(const std::string &,
                        const ContactBoundary<3> &,
                        const std::vector<ContactNodeState<3>> &,
+                       const Vector_t &,
                        const Vector_t &,
                        const bool,
                        const MPI_Comm);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 namespace DynamicContact
@@ -210,7 +211,7 @@ namespace DynamicContact
                           "3",
                           ids,
                           "Boundary ids where the traction of the subsection "
-                          "'Traction' acts (Gamma_2).");
+                          "'Traction function' acts (Gamma_2).");
         prm.declare_entry("Contact",
                           "2",
                           ids,
@@ -221,7 +222,7 @@ namespace DynamicContact
                           ids,
                           "Boundary ids without load (zero traction).");
         declare_function(prm,
-                         "Traction",
+                         "Traction function",
                          dim,
                          zeros(dim),
                          "Traction f_2(x, t) on the 'Traction' ids (Pa), one "
@@ -837,6 +838,93 @@ namespace DynamicContact
         }
     }
 
+    /** The subsection path ("A/B") open before line @p line of a file. */
+    std::string
+    subsection_path(const std::string &file, const unsigned int line)
+    {
+      std::ifstream            in(file);
+      std::vector<std::string> path;
+      std::string              text;
+      for (unsigned int n = 1; n < line && std::getline(in, text); ++n)
+        {
+          text = Utilities::trim(text.substr(0, text.find('#')));
+          if (text.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(text.substr(11)));
+          else if (text == "end" && !path.empty())
+            path.pop_back();
+        }
+      std::string result;
+      for (const auto &p : path)
+        result += p + "/";
+      return result;
+    }
+
+    /** A pattern description as a user reads it. */
+    std::string
+    readable_pattern(const std::string &pattern)
+    {
+      if (pattern.rfind("[Double", 0) == 0)
+        return "a number";
+      if (pattern.rfind("[Integer", 0) == 0)
+        {
+          std::smatch m;
+          if (std::regex_search(pattern,
+                                m,
+                                std::regex(R"(range (-?\d+)\.\.\.(-?\d+))")))
+            return "an integer from " + m[1].str() + " to " + m[2].str();
+          return "an integer";
+        }
+      if (pattern.rfind("[Bool", 0) == 0)
+        return "true or false";
+      if (pattern.rfind("[Selection", 0) == 0)
+        return "one of " +
+               Utilities::trim(pattern.substr(10, pattern.size() - 11));
+      if (pattern.rfind("[List", 0) == 0)
+        return "a comma-separated list (" + pattern + ")";
+      return pattern;
+    }
+
+    /**
+     * Rewrite a ParameterHandler error so that it names the parameter as
+     * Section/Entry and the line: "line 2: Material/Density = 'abc' is not a
+     * number."
+     */
+    std::string
+    describe_parse_error(const std::string &file, const std::string &message)
+    {
+      std::smatch line_match;
+      if (!std::regex_search(message,
+                             line_match,
+                             std::regex(R"(Line <(\d+)> of file <[^:>]*>?:\s*)")))
+        return "'" + file + "': " + message;
+      const unsigned int line  = std::stoi(line_match[1].str());
+      const std::string  rest  = line_match.suffix().str();
+      const std::string  where = "'" + file + "', line " +
+                                std::to_string(line) + ": ";
+      const std::string  path  = subsection_path(file, line);
+      std::smatch        m;
+      if (std::regex_search(
+            rest,
+            m,
+            std::regex(R"(No entry with name <([^>]*)> was declared)")))
+        return where + "there is no parameter '" + path + m[1].str() +
+               "' (misspelt? --print-parameters lists every parameter).";
+      if (std::regex_search(
+            rest,
+            m,
+            std::regex(
+              R"(The entry value (.*) for the entry named (.*) does not match the given pattern: (.*))")))
+        return where + path + Utilities::trim(m[2].str()) + " = '" +
+               Utilities::trim(m[1].str()) + "' is not " +
+               readable_pattern(Utilities::trim(m[3].str())) + ".";
+      if (std::regex_search(
+            rest, m, std::regex(R"(no such subsection to be entered: (.*))")))
+        return where + "there is no subsection '" + path +
+               Utilities::trim(m[1].str()) +
+               "' (misspelt? --print-parameters lists every subsection).";
+      return where + rest;
+    }
+
     void
     parse_file(ParameterHandler & prm,
                const std::string &parameter_file,
@@ -849,9 +937,9 @@ namespace DynamicContact
       catch (const std::exception &e)
         {
           AssertThrow(false,
-                      ExcMessage("Error in the parameter file '" +
-                                 parameter_file +
-                                 "': " + error_message(e)));
+                      ExcMessage("Error in the parameter file " +
+                                 describe_parse_error(parameter_file,
+                                                      error_message(e))));
         }
     }
   } // namespace
@@ -890,9 +978,24 @@ namespace DynamicContact
       {
         for (; entered > 0; --entered)
           prm.leave_subsection();
+        const std::string message = error_message(e);
+        std::string       full_path;
+        for (const auto &s : sections)
+          full_path += s + "/";
+        full_path += entry;
+        std::smatch m;
+        std::string reason = message;
+        if (message.find("not yet declared") != std::string::npos)
+          reason = "there is no parameter '" + full_path +
+                   "' (--print-parameters lists every parameter).";
+        else if (std::regex_search(
+                   message,
+                   m,
+                   std::regex(R"(does not match the given pattern <(.*)>)")))
+          reason = full_path + " = '" + value + "' is not " +
+                   readable_pattern(Utilities::trim(m[1].str())) + ".";
         AssertThrow(false,
-                    ExcMessage("--set '" + assignment + "': " +
-                               error_message(e)));
+                    ExcMessage("--set '" + assignment + "': " + reason));
       }
     for (; entered > 0; --entered)
       prm.leave_subsection();

@@ -33,6 +33,7 @@ namespace DynamicContact
       std::string expression;
       try
         {
+          const SilenceStderr silence;
           expression = prm.get("Function expression");
           function->parse_parameters(prm);
           // Evaluate once: muparser reports some errors only then.
@@ -48,7 +49,7 @@ namespace DynamicContact
                                  expression + "' (" +
                                  std::to_string(n_components) +
                                  " component(s), separated by ';'): " +
-                                 error_message(e)));
+                                 expression_error_message(e)));
         }
       for (unsigned int i = 0; i < path.size(); ++i)
         prm.leave_subsection();
@@ -70,7 +71,7 @@ namespace DynamicContact
   {
     bool unused;
     traction_function   = parse_function<dim>(prm,
-                                            {"Boundary conditions", "Traction"},
+                                            {"Boundary conditions", "Traction function"},
                                             dim,
                                             traction_nonzero);
     body_force_function =

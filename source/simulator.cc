@@ -72,15 +72,15 @@ namespace DynamicContact
     , details(std::cout,
               Utilities::MPI::this_mpi_process(comm) == 0 &&
                 parameters.output.solver_details)
+    , scene(parameters, prm)
+    , material(parameters.material)
+    , foundation(parameters.foundation)
+    , friction_law(FrictionLaw::create(parameters.friction))
     , timer(comm,
             pcout,
             parameters.output.print_timings ? TimerOutput::summary :
                                               TimerOutput::never,
             TimerOutput::wall_times)
-    , scene(parameters, prm)
-    , material(parameters.material)
-    , foundation(parameters.foundation)
-    , friction_law(FrictionLaw::create(parameters.friction))
     , discretization(comm, parameters.finite_element.degree)
     , bulk(discretization, material)
     , step_solver(discretization,
@@ -341,6 +341,7 @@ namespace DynamicContact
       write_contact_csv(parameters.output.directory + name,
                         contact_boundary,
                         step_solver.node_states(),
+                        u,
                         w,
                         step_solver.has_friction(),
                         comm);

@@ -93,10 +93,10 @@ namespace
     result = std::regex_replace(result, residual, "relative residual ...");
     if (changed_line > 0)
       {
-        const std::string line = "Line <" + std::to_string(changed_line) + ">";
+        const std::string line = "line " + std::to_string(changed_line) + ":";
         const auto        position = result.find(line);
         if (position != std::string::npos)
-          result.replace(position, line.size(), "Line <(the changed line)>");
+          result.replace(position, line.size(), "line (the changed line):");
       }
     return result;
   }
@@ -375,10 +375,10 @@ main(int argc, char **argv)
   // Functions.
   add("function_does_not_parse",
       change(traction_expression, "set Function expression = 0; -P*("),
-      file, 1, {"Boundary conditions/Traction/Function expression"});
+      file, 1, {"Boundary conditions/Traction function/Function expression"});
   add("function_wrong_number_of_components",
       change(traction_expression, "set Function expression = -P"), file, 1,
-      {"Boundary conditions/Traction/Function expression"});
+      {"Boundary conditions/Traction function/Function expression"});
 
   // Geometry and output.
   add("gmsh_mesh_file_missing",
@@ -486,8 +486,8 @@ main(int argc, char **argv)
                    name + "the error line names '" + n + "'");
       if (!c.line_of.empty())
         checks.add(line > 0 && o.error_lines.size() == 1 &&
-                     o.error_lines[0].find("Line <" + std::to_string(line) +
-                                           ">") != std::string::npos,
+                     o.error_lines[0].find("line " + std::to_string(line) +
+                                           ":") != std::string::npos,
                    name + "the error line gives the number of the line '" +
                      c.line_of + "'");
       checks.add(o.stderr_only_message,

@@ -320,8 +320,8 @@ main(int argc, char **argv)
                                 "Finite element/Polynomial degree",
                                 "Boundary conditions/Clamped",
                                 "Boundary conditions/Traction",
-                                "Boundary conditions/Traction/Function expression",
-                                "Boundary conditions/Traction/Function constants",
+                                "Boundary conditions/Traction function/Function expression",
+                                "Boundary conditions/Traction function/Function constants",
                                 "Material/Density",
                                 "Foundation/Normal damping",
                                 "Foundation/Initial gap/Function expression",
@@ -397,8 +397,8 @@ main(int argc, char **argv)
       {"Geometry/Repetitions", "4, 2"},
       {"Boundary conditions/Roller", "0, 1"},
       {"Time/End time", "8"},
-      {"Boundary conditions/Traction/Function constants", "P=1e7"},
-      {"Boundary conditions/Traction/Function expression", "0; -P"}};
+      {"Boundary conditions/Traction function/Function constants", "P=1e7"},
+      {"Boundary conditions/Traction function/Function expression", "0; -P"}};
     for (const auto &[e, value] : expected)
       {
         out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
@@ -478,9 +478,9 @@ main(int argc, char **argv)
         lines_of(read_text("run/contact_00002.csv"))[0];
     out << "  contact_00002.csv: " << contact_header << ", "
         << (contact.empty() ? 0 : contact.size() - 1) << " rows" << std::endl;
-    checks.add(contact_header == "x,y,u_nu,w_nu,normal_pressure",
-               "run: contact_00002.csv has the header "
-               "x,y,u_nu,w_nu,normal_pressure");
+    checks.add(contact_header.rfind("x,y,u_nu,w_nu,normal_pressure", 0) == 0,
+               "run: contact_00002.csv has the columns "
+               "x,y,u_nu,w_nu,normal_pressure first");
     checks.add(contact.size() == 6,
                "run: contact_00002.csv has a row per contact node (5)");
   }

@@ -131,7 +131,7 @@ namespace
           simpson([&](const double s) { return p.value(s); }, r, 20000);
         out() << "r = " << digits(r, 6)
               << "  Pi = " << digits(p.primitive(r), 6)
-              << "  Simpson = " << digits(quadrature, 6) << std::endl;
+              << "  Simpson = " << digits(quadrature + 0., 6) << std::endl;
         check(near(p.primitive(r), quadrature, 1e-6 * (1 + std::abs(quadrature))),
               "Pi(" + digits(r, 3) + ") = Simpson to 1e-6");
       }
@@ -151,6 +151,38 @@ namespace
         convex = convex && p.primitive(0.5 * (a + b)) <=
                              0.5 * (p.primitive(a) + p.primitive(b)) + 1e-15;
     check(convex, "Pi convex: Pi((a+b)/2) <= (Pi(a) + Pi(b))/2");
+
+    // The step dissipation of model.md section 6,
+    // p(b)(b - a) - (Pi(b) - Pi(a)) >= 0, by hand and from Pi.
+    out() << "--- dissipation p(b)(b - a) - (Pi(b) - Pi(a))" << std::endl;
+    struct Step
+    {
+      double a, b, expected;
+    };
+    for (const Step &step : std::vector<Step>{{-1., 0.5, 1.25},
+                                              {0.5, -1., 0.25},
+                                              {0.2, 1., 0.64},
+                                              {1., 0.2, 0.64},
+                                              {1., 2., 0.25},
+                                              {2., 1., 0.75},
+                                              {-1., 3., 5.25},
+                                              {3., -1., 6.75},
+                                              {2., 5., 0.},
+                                              {0.7, 0.7, 0.}})
+      {
+        const double d = p.dissipation(step.a, step.b);
+        const double from_primitive =
+          p.value(step.b) * (step.b - step.a) -
+          (p.primitive(step.b) - p.primitive(step.a));
+        out() << "a = " << digits(step.a, 6) << "  b = " << digits(step.b, 6)
+              << "  dissipation = " << digits(d, 6) << std::endl;
+        check(d >= 0 && near(d, step.expected, 1e-13) &&
+                near(d, from_primitive, 1e-13),
+              "dissipation(" + digits(step.a, 3) + ", " + digits(step.b, 3) +
+                ") >= 0, by hand and from Pi");
+      }
+    check(CappedRamp(0., 3.).dissipation(-1., 2.) == 0,
+          "zero stiffness: no dissipation");
   }
 
 

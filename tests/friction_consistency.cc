@@ -45,14 +45,14 @@ main(int argc, char *argv[])
       std::getline(in, line);
       if (step == 1)
         test_tools::check(line == "x,y,u_nu,w_nu,normal_pressure,w_tau,"
-                                  "tangential_traction,mu,state",
+                                  "tangential_traction,mu,u_x,u_y,state",
                           "contact CSV header");
       while (std::getline(in, line))
         {
           const auto fields = Utilities::split_string_list(line, ',');
           const double p = std::stod(fields[4]), w_tau = std::stod(fields[5]),
                        t = std::stod(fields[6]), m = std::stod(fields[7]);
-          const std::string &state = fields[8];
+          const std::string &state = fields[10];
           ++count[state];
           p_max = std::max(p_max, p);
           if (state == "slip")

@@ -121,7 +121,8 @@ namespace
       {
         out() << "s = " << digits(row.s, 6)
               << "  mu = " << digits(law->value(row.s), 6)
-              << "  mu' = " << digits(law->derivative(row.s), 6) << std::endl;
+              << "  mu' = " << digits(law->derivative(row.s) + 0., 6)
+              << std::endl;
         check(std::abs(law->value(row.s) - row.value) <= 1e-9 &&
                 std::abs(law->derivative(row.s) - row.derivative) <= 1e-6,
               "mu and mu' at s = " + digits(row.s, 3));

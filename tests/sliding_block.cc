@@ -19,7 +19,7 @@ check_block(const std::string &name, const double T,
   const double P = 1e6, mu = 0.5, rho = 1000, H = 0.2, L = 1;
   const double area = (dim == 3 ? L * L : L);
   overrides.push_back("Output/Directory=output-" + name);
-  overrides.push_back("Boundary conditions/Traction/Function constants=P=1e6, T=" +
+  overrides.push_back("Boundary conditions/Traction function/Function constants=P=1e6, T=" +
                       std::to_string(T));
   auto simulator = test_tools::run<dim>(
     test_tools::scene(dim == 2 ? "sliding_block.prm" : "sliding_block_3d.prm"),

@@ -2,6 +2,7 @@
 #define dynamic_contact_error_messages_h
 
 #include <exception>
+#include <iosfwd>
 #include <string>
 
 namespace DynamicContact
@@ -13,6 +14,25 @@ namespace DynamicContact
    */
   std::string
   error_message(const std::exception &e);
+
+  /**
+   * While alive, discard what is written to std::cerr (muparser's error
+   * dump, which deal.II prints before throwing: the exception carries the
+   * same information, and the user gets it once, as our one error line).
+   */
+  class SilenceStderr
+  {
+  public:
+    SilenceStderr();
+    ~SilenceStderr();
+
+  private:
+    std::streambuf *saved;
+  };
+
+  /** A muparser error as a user reads it (no "Parsing Error at Column"). */
+  std::string
+  expression_error_message(const std::exception &e);
 } // namespace DynamicContact
 
 #endif

@@ -5,6 +5,7 @@
 
 #include <dynamic_contact/parameters.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -112,11 +113,11 @@ namespace DynamicContact
     }
     std::string
     description() const override;
-    /** alpha (a - b): the steepest descent, at s = 0. */
+    /** alpha (a - b): the steepest descent, at s = 0 (0 if mu grows). */
     double
     one_sided_lipschitz_constant(const double) const override
     {
-      return alpha * (a - b);
+      return std::max(0., alpha * (a - b));
     }
 
   private:

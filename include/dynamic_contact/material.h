@@ -90,19 +90,35 @@ namespace DynamicContact
     stress(const SymmetricTensor<2, dim> &strain,
            const SymmetricTensor<2, dim> &strain_rate) const;
 
+    /**
+     * In 2D, the stress sigma_zz normal to the plane: lambda tr eps(u) +
+     * lambda_v tr eps(w) in plane strain, 0 in plane stress (and in 3D).
+     */
+    double
+    out_of_plane_stress(const SymmetricTensor<2, dim> &strain,
+                        const SymmetricTensor<2, dim> &strain_rate) const;
+
   private:
     double                  rho;
+    bool                    plane_strain;
     double                  lame_lambda;
+    double                  viscous_lambda;
     double                  lame_mu;
     bool                    viscous;
     SymmetricTensor<4, dim> elasticity_tensor;
     SymmetricTensor<4, dim> viscosity_tensor;
   };
 
-  /** Von Mises equivalent stress of a (2D: in-plane) stress tensor. */
+  /**
+   * Von Mises equivalent stress sqrt(3/2 s:s), s the deviator of the 3D
+   * stress; in 2D the stress normal to the plane is @p out_of_plane (zero in
+   * plane stress, KelvinVoigtMaterial::out_of_plane_stress() in plane
+   * strain).
+   */
   template <int dim>
   double
-  von_mises_stress(const SymmetricTensor<2, dim> &stress);
+  von_mises_stress(const SymmetricTensor<2, dim> &stress,
+                   const double                   out_of_plane = 0);
 } // namespace DynamicContact
 
 #endif

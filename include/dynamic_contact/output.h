@@ -62,13 +62,15 @@ namespace DynamicContact
    * contact_NNNNN.csv: one row per node of Gamma_3, gathered from all
    * processes on rank 0 and sorted by coordinates. Columns: x, y (, z),
    * u_nu, w_nu, normal_pressure (= p + q), then the friction columns when
-   * the scene has friction.
+   * the scene has friction, then the displacement u_x, u_y (, u_z) (for
+   * drawing the deformed boundary).
    */
   template <int dim>
   void
   write_contact_csv(const std::string &                        filename,
                     const ContactBoundary<dim> &               boundary,
                     const std::vector<ContactNodeState<dim>> &states,
+                    const Vector_t &                           u,
                     const Vector_t &                           w,
                     const bool                                 friction,
                     const MPI_Comm                             comm);

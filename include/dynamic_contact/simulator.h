@@ -92,12 +92,14 @@ namespace DynamicContact
     MPI_Comm            comm;
     ConditionalOStream  pcout;
     ConditionalOStream  details;
-    TimerOutput         timer;
 
+    // The input is parsed (and can fail) before anything else is built.
     Scene<dim>                   scene;
     KelvinVoigtMaterial<dim>     material;
     Foundation                   foundation;
     std::unique_ptr<FrictionLaw> friction_law;
+
+    TimerOutput timer;
 
     Discretization<dim>  discretization;
     ContactBoundary<dim> contact_boundary;
