@@ -565,6 +565,127 @@ namespace DynamicContact
               "Friction/Complementarity constant must be >= 0 (0: automatic).");
     }
 
+    // ------------------------------------------------------ MeshRefinement
+    void
+    MeshRefinement::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh refinement");
+      {
+        prm.declare_entry(
+          "Strategy",
+          "none",
+          Patterns::List(Patterns::Selection(
+            "none|error indicator|load following|contact following")),
+          "How the mesh adapts, a list of: 'none' (a uniform mesh), "
+          "'error indicator' (Kelly's indicator on displacement and "
+          "velocity: the largest 'Refine fraction' of the cells refined, the "
+          "smallest 'Coarsen fraction' coarsened), 'load following' (the "
+          "finest level in a window around where the traction and body "
+          "force are large, predicted until the next adaptation from their "
+          "expressions), 'contact following' (the finest level around the "
+          "nodes that penetrate the foundation). With several, every cell "
+          "gets the finest level any of them asks for; cells none asks for "
+          "are coarsened towards the minimum level (behind the load).");
+        prm.declare_entry("Refine every",
+                          "4",
+                          Patterns::Integer(1),
+                          "Adapt the mesh before every N-th step.");
+        prm.declare_entry("Minimum level",
+                          "0",
+                          Patterns::Integer(0, 30),
+                          "Coarsest level (0: the coarse mesh); raised to "
+                          "Geometry/Global refinements if below it.");
+        prm.declare_entry("Maximum level",
+                          "3",
+                          Patterns::Integer(0, 30),
+                          "Finest level (0: the coarse mesh).");
+        prm.declare_entry("Cell budget",
+                          "0",
+                          Patterns::Integer(0),
+                          "Most active cells allowed (0: no limit): above it "
+                          "the finest level of this adaptation is lowered "
+                          "until the mesh fits.");
+        prm.declare_entry("Load window",
+                          "0.2",
+                          Patterns::Double(0),
+                          "Load following: cells closer than this (m) to a "
+                          "point where the load is large get the finest "
+                          "level. It must reach from the loaded boundary to "
+                          "the contact boundary if both should be fine.");
+        prm.declare_entry("Load threshold",
+                          "0.05",
+                          Patterns::Double(0, 1),
+                          "Load following: the load is large where its "
+                          "magnitude exceeds this fraction of its maximum.");
+        prm.declare_entry("Look-ahead steps",
+                          "0",
+                          Patterns::Integer(0),
+                          "Load following: how many steps ahead the load is "
+                          "sampled (0: until the next adaptation, 'Refine "
+                          "every' steps).");
+        prm.declare_entry("Contact window",
+                          "0.05",
+                          Patterns::Double(0),
+                          "Contact following: cells closer than this (m) to "
+                          "a node that penetrates the foundation get the "
+                          "finest level.");
+        prm.declare_entry("Refine fraction",
+                          "0.3",
+                          Patterns::Double(0, 1),
+                          "Error indicator: fraction of the cells refined.");
+        prm.declare_entry("Coarsen fraction",
+                          "0.1",
+                          Patterns::Double(0, 1),
+                          "Error indicator: fraction of the cells coarsened.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    MeshRefinement::parse_parameters(ParameterHandler & prm,
+                                     const unsigned int global_refinements)
+    {
+      prm.enter_subsection("Mesh refinement");
+      {
+        const auto strategies =
+          Utilities::split_string_list(prm.get("Strategy"));
+        error_indicator = load_following = contact_following = false;
+        for (const auto &s : strategies)
+          {
+            error_indicator   = error_indicator || s == "error indicator";
+            load_following    = load_following || s == "load following";
+            contact_following = contact_following || s == "contact following";
+          }
+        require(!(std::find(strategies.begin(), strategies.end(), "none") !=
+                    strategies.end() &&
+                  strategies.size() > 1),
+                "Mesh refinement/Strategy: 'none' cannot be combined with "
+                "other strategies.");
+        refine_every     = prm.get_integer("Refine every");
+        minimum_level    = std::max<unsigned int>(prm.get_integer("Minimum level"),
+                                               global_refinements);
+        maximum_level    = prm.get_integer("Maximum level");
+        cell_budget      = prm.get_integer("Cell budget");
+        load_window      = prm.get_double("Load window");
+        load_threshold   = prm.get_double("Load threshold");
+        lookahead_steps  = prm.get_integer("Look-ahead steps");
+        contact_window   = prm.get_double("Contact window");
+        refine_fraction  = prm.get_double("Refine fraction");
+        coarsen_fraction = prm.get_double("Coarsen fraction");
+      }
+      prm.leave_subsection();
+      if (enabled())
+        require(maximum_level >= minimum_level,
+                "Mesh refinement/Maximum level (" +
+                  std::to_string(maximum_level) +
+                  ") must not be below the minimum level (" +
+                  std::to_string(minimum_level) +
+                  ", at least Geometry/Global refinements).");
+      require(refine_fraction + coarsen_fraction <= 1,
+              "Mesh refinement: Refine fraction + Coarsen fraction must not "
+              "exceed 1.");
+    }
+
     // ---------------------------------------------------------------- Time
     void
     Time::declare_parameters(ParameterHandler &prm)
@@ -765,6 +886,7 @@ namespace DynamicContact
     Parameters::Material::declare_parameters(prm);
     Parameters::Foundation::declare_parameters(prm, dim);
     Parameters::Friction::declare_parameters(prm);
+    Parameters::MeshRefinement::declare_parameters(prm);
     Parameters::Time::declare_parameters(prm);
     Parameters::Solver::declare_parameters(prm);
     Parameters::Output::declare_parameters(prm);
@@ -805,6 +927,7 @@ namespace DynamicContact
     material.parse_parameters(prm);
     foundation.parse_parameters(prm);
     friction.parse_parameters(prm);
+    mesh_refinement.parse_parameters(prm, geometry.global_refinements);
     time.parse_parameters(prm);
     solver.parse_parameters(prm);
     output.parse_parameters(prm);

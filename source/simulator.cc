@@ -1,12 +1,11 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/error_messages.h>
-#include <dynamic_contact/force_balance.h>
 #include <dynamic_contact/simulator.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -59,6 +58,69 @@ namespace DynamicContact
       for (unsigned int d = 0; d < dim; ++d)
         row.add(name + axes[d], v[d]);
     }
+
+    /** Everything a row of time_series.csv says about a step. */
+    template <int dim>
+    struct StepRecord
+    {
+      unsigned int                         step             = 0;
+      double                               time             = 0;
+      double                               time_step        = 0;
+      double                               normal_force     = 0;
+      double                               tangential_force = 0;
+      ForceBalance<dim>                    forces;
+      EnergyBalanceTerms                   terms;
+      double                               previous_energy = 0;
+      typename StepSolver<dim>::Statistics statistics;
+      double                               remesh_energy_change = 0;
+      unsigned long long                   dofs                 = 0;
+      unsigned long long                   cells                = 0;
+
+      TimeSeriesRow
+      row() const
+      {
+        TimeSeriesRow r;
+        r.add_integer("step", step);
+        r.add("time", time);
+        r.add("time_step", time_step);
+        r.add("normal_force", normal_force);
+        r.add("tangential_force", tangential_force);
+        add_vector_columns(r, "applied_force", forces.applied);
+        add_vector_columns(r, "reaction_force", forces.reaction);
+        add_vector_columns(r, "inertia_force", forces.inertia);
+        r.add("kinetic_energy", terms.energy.kinetic);
+        r.add("elastic_energy", terms.energy.elastic);
+        r.add("foundation_energy", terms.energy.foundation);
+        r.add("total_energy", terms.energy.total());
+        r.add("load_work", terms.load_work);
+        r.add("dissipation", terms.dissipation());
+        r.add("dissipation_inertia", terms.inertia);
+        r.add("dissipation_elastic", terms.elastic);
+        r.add("dissipation_viscous", terms.viscous);
+        r.add("dissipation_compliance", terms.compliance);
+        r.add("dissipation_damping", terms.damping);
+        r.add("friction_dissipation", terms.friction);
+        r.add("energy_balance_defect", terms.defect);
+        r.add("relative_energy_defect",
+              std::abs(terms.defect) / terms.scale(previous_energy));
+        r.add("relative_min_dissipation",
+              terms.min_dissipation_term() / terms.scale(previous_energy));
+        r.add("remesh_energy_change", remesh_energy_change);
+        r.add_integer("newton_iterations", statistics.newton_iterations);
+        r.add_integer("convexification_iterations",
+                      statistics.convexification_iterations);
+        r.add_integer("convexification_converged",
+                      statistics.convexification_converged ? 1 : 0);
+        r.add("coefficient_residual", statistics.coefficient_residual);
+        r.add_integer("factorizations", statistics.factorizations);
+        r.add_integer("n_contact", statistics.n_contact);
+        r.add_integer("n_stick", statistics.n_stick);
+        r.add_integer("n_slip", statistics.n_slip);
+        r.add_integer("dofs", dofs);
+        r.add_integer("cells", cells);
+        return r;
+      }
+    };
   } // namespace
 
 
@@ -98,6 +160,8 @@ namespace DynamicContact
                      material.density(),
                      comm)
     , force_balance(discretization, material, scene)
+    , mesh_adaptation(parameters.mesh_refinement, scene, discretization)
+    , times(time_points(parameters.time.end_time, parameters.time.time_step))
   {}
 
 
@@ -107,13 +171,23 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::setup_system()
+  Simulator<dim>::setup_dofs()
   {
-    TimerOutput::Scope t(timer, "Setup: DoFs, Gamma_3, bulk matrices");
+    TimerOutput::Scope t(timer, "Setup: DoFs and Gamma_3");
     discretization.setup_dofs(parameters.boundary_conditions);
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
+    for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs})
+      discretization.reinit_owned(*v);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::setup_operators()
+  {
+    TimerOutput::Scope t(timer, "Setup: bulk matrices");
     bulk.reinit();
     force_balance.reinit();
     // c_t of the friction complementarity function, like E/h.
@@ -123,8 +197,6 @@ namespace DynamicContact
         parameters.material.young_modulus /
           discretization.minimal_cell_diameter();
     step_solver.reinit(c_t);
-    for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs})
-      discretization.reinit_owned(*v);
   }
 
 
@@ -144,6 +216,119 @@ namespace DynamicContact
                              w);
     discretization.constraints.set_zero(u);
     discretization.constraints.set_zero(w);
+  }
+
+
+  template <int dim>
+  std::vector<Point<dim>>
+  Simulator<dim>::penetrating_nodes() const
+  {
+    std::vector<Point<dim>> local;
+    for (const auto &node : contact_boundary.nodes())
+      if (node.value(u) * node.normal - node.gap > 0)
+        local.push_back(node.position);
+    std::vector<Point<dim>> all;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      all.insert(all.end(), part.begin(), part.end());
+    return all;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::refine_initial_mesh()
+  {
+    // Refine towards the load of the first steps, with the initial
+    // conditions interpolated anew on each mesh (no transfer needed).
+    const double k  = parameters.time.time_step;
+    const double t1 = std::min(parameters.time.end_time,
+                               mesh_adaptation.lookahead_steps() * k);
+    for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
+      {
+        set_initial_conditions();
+        Vector_t u_ghosted, w_ghosted;
+        discretization.reinit_ghosted(u_ghosted);
+        discretization.reinit_ghosted(w_ghosted);
+        discretization.expand(u, u_ghosted);
+        discretization.expand(w, w_ghosted);
+        if (!mesh_adaptation.flag_cells(
+              0., t1, k, penetrating_nodes(), u_ghosted, w_ghosted))
+          break;
+        const auto before = mesh_adaptation.fingerprint();
+        discretization.triangulation.execute_coarsening_and_refinement();
+        setup_dofs();
+        if (mesh_adaptation.fingerprint() == before)
+          break;
+      }
+  }
+
+
+  template <int dim>
+  double
+  Simulator<dim>::adapt_mesh(const double t0, const double t1, const double k)
+  {
+    TimerOutput::Scope scope(timer, "Mesh adaptation");
+    const double       energy_before = energy_balance.energy(u, w).total();
+    std::vector<Tensor<1, dim>> lambda = step_solver.friction_forces();
+    bool                        changed = false;
+    for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
+      {
+        // What the next step needs, as finite element fields: u, w, and the
+        // friction forces as a traction lambda_i/m_i at the nodes of Gamma_3.
+        Vector_t traction;
+        discretization.reinit_owned(traction);
+        {
+          const auto &                         nodes  = contact_boundary.nodes();
+          const auto &                         global = contact_boundary.global_indices();
+          std::vector<types::global_dof_index> indices;
+          std::vector<double>                  values;
+          for (unsigned int i = 0; i < nodes.size(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                indices.push_back(nodes[i].dofs[c]);
+                values.push_back(lambda[global[i]][c] / nodes[i].weight);
+              }
+          traction.set(indices, values);
+          traction.compress(VectorOperation::insert);
+        }
+        Vector_t u_ghosted, w_ghosted, traction_ghosted;
+        for (auto *v : {&u_ghosted, &w_ghosted, &traction_ghosted})
+          discretization.reinit_ghosted(*v);
+        discretization.expand(u, u_ghosted);
+        discretization.expand(w, w_ghosted);
+        traction_ghosted = traction;
+
+        if (!mesh_adaptation.flag_cells(
+              t0, t1, k, penetrating_nodes(), u_ghosted, w_ghosted))
+          break;
+        parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
+          discretization.dof_handler);
+        transfer.prepare_for_coarsening_and_refinement(
+          {&u_ghosted, &w_ghosted, &traction_ghosted});
+        const auto before = mesh_adaptation.fingerprint();
+        discretization.triangulation.execute_coarsening_and_refinement();
+        setup_dofs();
+        const bool unchanged = (mesh_adaptation.fingerprint() == before);
+        std::vector<Vector_t *> fields = {&u, &w, &traction};
+        transfer.interpolate(fields);
+        discretization.constraints.set_zero(u);
+        discretization.constraints.set_zero(w);
+
+        const auto nodal_traction = contact_boundary.gather_values(traction);
+        const auto &all           = contact_boundary.all_nodes();
+        lambda.assign(all.size(), Tensor<1, dim>());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          lambda[i] = all[i].weight * all[i].tangential(nodal_traction[i]);
+        changed = true;
+        if (unchanged)
+          break;
+      }
+    if (changed)
+      {
+        setup_operators();
+        step_solver.set_friction_forces(lambda);
+      }
+    return energy_balance.energy(u, w).total() - energy_before;
   }
 
 
@@ -201,9 +386,13 @@ namespace DynamicContact
   Simulator<dim>::print_header() const
   {
     pcout << "dynamic-contact: " << dim << "D, Q" << discretization.fe.degree
-          << " elements, " << discretization.triangulation.n_global_active_cells()
-          << " cells, " << discretization.dof_handler.n_dofs() << " DoFs, "
-          << contact_boundary.n_global_nodes() << " contact nodes\n";
+          << " elements, "
+          << discretization.triangulation.n_global_active_cells() << " cells, "
+          << discretization.dof_handler.n_dofs() << " DoFs, "
+          << contact_boundary.n_global_nodes() << " contact nodes";
+    if (mesh_adaptation.enabled())
+      pcout << " (adaptive)";
+    pcout << '\n';
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
             << ", parameter file: " << parameters.parameter_file << '\n';
@@ -227,13 +416,21 @@ namespace DynamicContact
 
   template <int dim>
   TimeSeriesRow
-  Simulator<dim>::do_time_step(const unsigned int step,
+  Simulator<dim>::do_time_step(const unsigned int n,
                                const double       t,
-                               const double       k)
+                               const double       k,
+                               const double       remesh_energy_change)
   {
     u_old = u;
     w_old = w;
-    const double previous_energy = energy_balance.energy(u_old, w_old).total();
+    StepRecord<dim> record;
+    record.step      = n;
+    record.time      = t;
+    record.time_step = k;
+    // The energy change of a mesh transfer before this step has its own
+    // column: E_{n-1} below is that of the transferred fields.
+    record.remesh_energy_change = remesh_energy_change;
+    record.previous_energy = energy_balance.energy(u_old, w_old).total();
 
     {
       TimerOutput::Scope scope(timer, "Step: load and right-hand side");
@@ -248,27 +445,32 @@ namespace DynamicContact
     }
 
     w = w_old; // initial guess
-    const auto statistics = step_solver.solve(rhs, u_old, w);
+    record.statistics = step_solver.solve(rhs, u_old, w);
 
     // u_n = u_{n-1} + k w_n
     u = u_old;
     u.add(k, w);
 
-    TimerOutput::Scope scope(timer, "Step: energy balance");
-    const EnergyBalanceTerms terms = energy_balance.step_terms(
-      u_old, w_old, u, w, load, k, step_solver.node_states(), previous_energy);
-
-    double normal_force = 0, tangential_force = 0;
+    TimerOutput::Scope scope(timer, "Step: energy and force balance");
+    record.terms = energy_balance.step_terms(u_old,
+                                             w_old,
+                                             u,
+                                             w,
+                                             load,
+                                             k,
+                                             step_solver.node_states(),
+                                             record.previous_energy);
     const auto &nodes = contact_boundary.nodes();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        normal_force += step_solver.node_states()[i].normal_force(nodes[i].weight);
-        tangential_force += step_solver.node_states()[i].friction_force.norm();
+        record.normal_force +=
+          step_solver.node_states()[i].normal_force(nodes[i].weight);
+        record.tangential_force +=
+          step_solver.node_states()[i].friction_force.norm();
       }
-    normal_force     = Utilities::MPI::sum(normal_force, comm);
-    tangential_force = Utilities::MPI::sum(tangential_force, comm);
-
-    ForceBalance<dim> forces;
+    record.normal_force = Utilities::MPI::sum(record.normal_force, comm);
+    record.tangential_force =
+      Utilities::MPI::sum(record.tangential_force, comm);
     {
       Vector_t u_ghosted, w_ghosted, w_old_ghosted;
       for (auto *v : {&u_ghosted, &w_ghosted, &w_old_ghosted})
@@ -276,67 +478,30 @@ namespace DynamicContact
       discretization.expand(u, u_ghosted);
       discretization.expand(w, w_ghosted);
       discretization.expand(w_old, w_old_ghosted);
-      forces = force_balance.compute(contact_boundary,
-                                     step_solver.node_states(),
-                                     t,
-                                     k,
-                                     u_ghosted,
-                                     w_ghosted,
-                                     w_old_ghosted);
+      record.forces = force_balance.compute(contact_boundary,
+                                            step_solver.node_states(),
+                                            t,
+                                            k,
+                                            u_ghosted,
+                                            w_ghosted,
+                                            w_old_ghosted);
     }
-
-    TimeSeriesRow row;
-    row.add_integer("step", step);
-    row.add("time", t);
-    row.add("time_step", k);
-    row.add("normal_force", normal_force);
-    row.add("tangential_force", tangential_force);
-    add_vector_columns(row, "applied_force", forces.applied);
-    add_vector_columns(row, "reaction_force", forces.reaction);
-    add_vector_columns(row, "inertia_force", forces.inertia);
-    row.add("kinetic_energy", terms.energy.kinetic);
-    row.add("elastic_energy", terms.energy.elastic);
-    row.add("foundation_energy", terms.energy.foundation);
-    row.add("total_energy", terms.energy.total());
-    row.add("load_work", terms.load_work);
-    row.add("dissipation", terms.dissipation());
-    row.add("dissipation_inertia", terms.inertia);
-    row.add("dissipation_elastic", terms.elastic);
-    row.add("dissipation_viscous", terms.viscous);
-    row.add("dissipation_compliance", terms.compliance);
-    row.add("dissipation_damping", terms.damping);
-    row.add("friction_dissipation", terms.friction);
-    row.add("energy_balance_defect", terms.defect);
-    row.add("relative_energy_defect",
-            std::abs(terms.defect) / terms.scale(previous_energy));
-    row.add("relative_min_dissipation",
-            terms.min_dissipation_term() / terms.scale(previous_energy));
-    row.add_integer("newton_iterations", statistics.newton_iterations);
-    row.add_integer("convexification_iterations",
-                    statistics.convexification_iterations);
-    row.add_integer("convexification_converged",
-                    statistics.convexification_converged ? 1 : 0);
-    row.add("coefficient_residual", statistics.coefficient_residual);
-    row.add_integer("factorizations", statistics.factorizations);
-    row.add_integer("n_contact", statistics.n_contact);
-    row.add_integer("n_stick", statistics.n_stick);
-    row.add_integer("n_slip", statistics.n_slip);
-    row.add_integer("dofs", discretization.dof_handler.n_dofs());
-    row.add_integer("cells", discretization.triangulation.n_global_active_cells());
-    return row;
+    record.dofs  = discretization.dof_handler.n_dofs();
+    record.cells = discretization.triangulation.n_global_active_cells();
+    return record.row();
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::output_results(const unsigned int step,
+  Simulator<dim>::output_results(const unsigned int n,
                                  const double       t,
                                  const bool         contact_csv,
                                  const bool         vtu)
   {
     TimerOutput::Scope scope(timer, "Output");
     char               name[64];
-    std::snprintf(name, sizeof(name), "/contact_%05u.csv", step);
+    std::snprintf(name, sizeof(name), "/contact_%05u.csv", n);
     if (contact_csv)
       write_contact_csv(parameters.output.directory + name,
                         contact_boundary,
@@ -346,7 +511,7 @@ namespace DynamicContact
                         step_solver.has_friction(),
                         comm);
     if (vtu)
-      vtu_writer->write(step,
+      vtu_writer->write(n,
                         t,
                         discretization,
                         material,
@@ -360,9 +525,43 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::run()
+  Simulator<dim>::print_progress(const TimeSeriesRow &row) const
   {
-    const auto wall_start = std::chrono::steady_clock::now();
+    // Iteration counts (like times) follow the round-off of the parallel
+    // direct solver near the stopping thresholds: they are left out of the
+    // deterministic output of regression runs.
+    const bool interactive = parameters.output.print_timings;
+    pcout << "step " << std::setw(5) << step << '/' << times.size()
+          << "  t = " << sig6(row.get("time"));
+    if (interactive)
+      {
+        pcout << "  Newton " << row.get("newton_iterations");
+        if (step_solver.has_friction())
+          pcout << "  convexification "
+                << row.get("convexification_iterations");
+      }
+    pcout << "  contact " << row.get("n_contact");
+    if (mesh_adaptation.enabled())
+      pcout << "  cells " << row.get("cells");
+    pcout << "  N = " << sig6(row.get("normal_force"))
+          << "  E = " << sig6(row.get("total_energy"));
+    if (interactive)
+      {
+        const double elapsed = std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - wall_start)
+                                 .count();
+        pcout << "  (" << seconds(elapsed) << ", ~"
+              << seconds(elapsed / step * (times.size() - step)) << " left)";
+      }
+    pcout << std::endl;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::initialize()
+  {
+    wall_start = std::chrono::steady_clock::now();
 
     // Everything that can be wrong with the input is checked before any
     // result is written.
@@ -372,7 +571,10 @@ namespace DynamicContact
     }
     if (friction_law)
       friction_law->check_nonnegative(parameters.friction.maximum_slip_rate);
-    setup_system();
+    setup_dofs();
+    if (mesh_adaptation.enabled())
+      refine_initial_mesh();
+    setup_operators();
     prepare_output_directory();
     write_status("running");
     time_series_writer = std::make_unique<TimeSeriesWriter>(
@@ -383,140 +585,109 @@ namespace DynamicContact
     print_header();
     set_initial_conditions();
 
-    {
-      const Energy  e = energy_balance.energy(u, w);
-      TimeSeriesRow row;
-      row.add_integer("step", 0);
-      row.add("time", 0);
-      row.add("time_step", 0);
-      row.add("normal_force", 0);
-      row.add("tangential_force", 0);
-      for (const char *name :
-           {"applied_force", "reaction_force", "inertia_force"})
-        add_vector_columns(row, name, Tensor<1, dim>());
-      row.add("kinetic_energy", e.kinetic);
-      row.add("elastic_energy", e.elastic);
-      row.add("foundation_energy", e.foundation);
-      row.add("total_energy", e.total());
-      for (const char *name : {"load_work",
-                               "dissipation",
-                               "dissipation_inertia",
-                               "dissipation_elastic",
-                               "dissipation_viscous",
-                               "dissipation_compliance",
-                               "dissipation_damping",
-                               "friction_dissipation",
-                               "energy_balance_defect",
-                               "relative_energy_defect",
-                               "relative_min_dissipation"})
-        row.add(name, 0);
-      for (const char *name : {"newton_iterations",
-                               "convexification_iterations",
-                               "convexification_converged"})
-        row.add_integer(name, 0);
-      row.add("coefficient_residual", 0);
-      for (const char *name : {"factorizations",
-                               "n_contact",
-                               "n_stick",
-                               "n_slip"})
-        row.add_integer(name, 0);
-      row.add_integer("dofs", discretization.dof_handler.n_dofs());
-      row.add_integer("cells",
-                      discretization.triangulation.n_global_active_cells());
-      time_series_writer->write(row);
-      rows.push_back(row);
-    }
+    StepRecord<dim> record;
+    record.terms.energy    = energy_balance.energy(u, w);
+    record.previous_energy = record.terms.energy.total();
+    record.dofs            = discretization.dof_handler.n_dofs();
+    record.cells = discretization.triangulation.n_global_active_cells();
+    const TimeSeriesRow row = record.row();
+    time_series_writer->write(row);
+    rows.push_back(row);
     output_results(0, 0., true, parameters.output.vtu_every > 0);
+  }
 
-    const std::vector<double> times =
-      time_points(parameters.time.end_time, parameters.time.time_step);
-    double max_relative_defect = 0, min_dissipation = 0;
-    unsigned int total_newton  = 0;
-    for (unsigned int n = 1; n <= times.size(); ++n)
-      {
-        const double t = times[n - 1];
-        const double k = t - (n > 1 ? times[n - 2] : 0.);
-        const TimeSeriesRow row = do_time_step(n, t, k);
-        time_series_writer->write(row);
-        rows.push_back(row);
 
-        max_relative_defect =
-          std::max(max_relative_defect, row.get("relative_energy_defect"));
-        min_dissipation =
-          std::min(min_dissipation, row.get("relative_min_dissipation"));
-        total_newton += row.get("newton_iterations");
+  template <int dim>
+  bool
+  Simulator<dim>::advance()
+  {
+    if (step >= times.size())
+      return false;
+    ++step;
+    const double t = times[step - 1];
+    const double k = t - (step > 1 ? times[step - 2] : 0.);
 
-        if (row.get("convexification_converged") == 0)
-          pcout << "Warning: step " << n << " (t = " << sig6(t)
-                << "): the convexification loop reached Friction/Maximum "
-                   "convexification iterations = "
-                << parameters.friction.max_convexification_iterations
-                << " without converging; max |mu_i - mu(|w_tau,i|)| = "
-                << sig6(row.get("coefficient_residual")) << std::endl;
+    double remesh_energy_change = 0;
+    if (mesh_adaptation.due(step))
+      remesh_energy_change = adapt_mesh(
+        t - k,
+        std::min(parameters.time.end_time,
+                 t - k + mesh_adaptation.lookahead_steps() * k),
+        k);
 
-        const bool last = (n == times.size());
-        // An output time is due at the first step reaching it.
-        bool at_output_time = false;
-        for (const double t_out : parameters.output.output_times)
-          at_output_time = at_output_time ||
-                           (t_out <= t * (1 + 1e-12) && t_out > t - k * (1 + 1e-12));
-        const unsigned int csv_every = parameters.output.output_every;
-        const unsigned int vtu_every = parameters.output.vtu_every;
-        output_results(n,
-                       t,
-                       last || at_output_time ||
-                         (csv_every > 0 && n % csv_every == 0),
-                       vtu_every > 0 &&
-                         (last || at_output_time || n % vtu_every == 0));
+    const TimeSeriesRow row = do_time_step(step, t, k, remesh_energy_change);
+    time_series_writer->write(row);
+    rows.push_back(row);
 
-        const unsigned int progress = parameters.output.progress_every;
-        if (progress > 0 && (n % progress == 0 || last))
-          {
-            // Iteration counts (like times) follow the round-off of the
-            // parallel direct solver near the stopping thresholds: they are
-            // left out of the deterministic output of regression runs.
-            const bool interactive = parameters.output.print_timings;
-            pcout << "step " << std::setw(5) << n << '/' << times.size()
-                  << "  t = " << sig6(t);
-            if (interactive)
-              {
-                pcout << "  Newton " << row.get("newton_iterations");
-                if (step_solver.has_friction())
-                  pcout << "  convexification "
-                        << row.get("convexification_iterations");
-              }
-            pcout << "  contact " << row.get("n_contact")
-                  << "  N = " << sig6(row.get("normal_force"))
-                  << "  E = " << sig6(row.get("total_energy"));
-            if (parameters.output.print_timings)
-              {
-                const double elapsed =
-                  std::chrono::duration<double>(
-                    std::chrono::steady_clock::now() - wall_start)
-                    .count();
-                pcout << "  (" << seconds(elapsed) << ", ~"
-                      << seconds(elapsed / n * (times.size() - n)) << " left)";
-              }
-            pcout << std::endl;
-          }
-      }
+    max_relative_defect =
+      std::max(max_relative_defect, row.get("relative_energy_defect"));
+    min_dissipation =
+      std::min(min_dissipation, row.get("relative_min_dissipation"));
+    total_newton += row.get("newton_iterations");
 
-    pcout << "Completed " << times.size() << " steps";
+    if (row.get("convexification_converged") == 0)
+      pcout << "Warning: step " << step << " (t = " << sig6(t)
+            << "): the convexification loop reached Friction/Maximum "
+               "convexification iterations = "
+            << parameters.friction.max_convexification_iterations
+            << " without converging; max |mu_i - mu(|w_tau,i|)| = "
+            << sig6(row.get("coefficient_residual")) << std::endl;
+
+    const bool last = (step == times.size());
+    // An output time is due at the first step reaching it.
+    bool at_output_time = false;
+    for (const double t_out : parameters.output.output_times)
+      at_output_time =
+        at_output_time ||
+        (t_out <= t * (1 + 1e-12) && t_out > t - k * (1 + 1e-12));
+    const unsigned int csv_every = parameters.output.output_every;
+    const unsigned int vtu_every = parameters.output.vtu_every;
+    output_results(step,
+                   t,
+                   last || at_output_time ||
+                     (csv_every > 0 && step % csv_every == 0),
+                   vtu_every > 0 &&
+                     (last || at_output_time || step % vtu_every == 0));
+
+    const unsigned int progress = parameters.output.progress_every;
+    if (progress > 0 && (step % progress == 0 || last))
+      print_progress(row);
+    return true;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::finish()
+  {
+    pcout << "Completed " << step << " steps";
     if (parameters.output.print_timings)
       pcout << ", " << total_newton << " Newton iterations (mean "
             << std::fixed << std::setprecision(2)
-            << static_cast<double>(total_newton) / times.size()
+            << static_cast<double>(total_newton) / std::max(step, 1u)
             << std::defaultfloat << " per step)";
     pcout << ".\n"
           << "  energy balance: max relative defect "
-          << (max_relative_defect < 1e-8 ? "below 1e-8" : "ABOVE 1e-8 (" +
-                                                            sig6(max_relative_defect) + ")")
+          << (max_relative_defect < 1e-8 ?
+                "below 1e-8" :
+                "ABOVE 1e-8 (" + sig6(max_relative_defect) + ")")
           << ", every dissipation term >= 0: "
           << (min_dissipation >= -EnergyBalanceTerms::roundoff ?
                 "yes" :
                 "NO (" + sig6(min_dissipation) + " of the energy)")
           << std::endl;
     write_status("completed");
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::run()
+  {
+    initialize();
+    while (advance())
+      ;
+    finish();
   }
 
 
@@ -546,8 +717,7 @@ namespace DynamicContact
     catch (const std::exception &)
       {}
     const double n_found = Utilities::MPI::sum(found, comm);
-    AssertThrow(n_found > 0,
-                ExcMessage("The point is not inside the body."));
+    AssertThrow(n_found > 0, ExcMessage("The point is not inside the body."));
     Tensor<1, dim> result;
     for (unsigned int c = 0; c < dim; ++c)
       result[c] = Utilities::MPI::sum(found * value(c), comm) / n_found;

@@ -151,6 +151,39 @@ namespace DynamicContact
       }
     };
 
+    /**
+     * Adaptive refinement (issue: the mesh follows the moving load and the
+     * contact zone). Levels are those of deal.II: 0 for the cells of the
+     * coarse mesh (Geometry/Repetitions), + Geometry/Global refinements.
+     */
+    struct MeshRefinement
+    {
+      bool         error_indicator   = false;
+      bool         load_following    = false;
+      bool         contact_following = false;
+      unsigned int refine_every;
+      unsigned int minimum_level;
+      unsigned int maximum_level;
+      unsigned int cell_budget;
+      double       load_window;
+      double       load_threshold;
+      unsigned int lookahead_steps;
+      double       contact_window;
+      double       refine_fraction;
+      double       coarsen_fraction;
+
+      bool
+      enabled() const
+      {
+        return error_indicator || load_following || contact_following;
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm, const unsigned int global_refinements);
+    };
+
     struct Time
     {
       double end_time;
@@ -221,6 +254,7 @@ namespace DynamicContact
     Parameters::Material           material;
     Parameters::Foundation         foundation;
     Parameters::Friction           friction;
+    Parameters::MeshRefinement     mesh_refinement;
     Parameters::Time               time;
     Parameters::Solver             solver;
     Parameters::Output             output;

@@ -13,11 +13,13 @@
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/material.h>
+#include <dynamic_contact/mesh_adaptation.h>
 #include <dynamic_contact/output.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/scene.h>
 #include <dynamic_contact/step_solver.h>
 
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -25,9 +27,12 @@ namespace DynamicContact
 {
   /**
    * Owns the mesh, the DoFs and the fields, and runs the time loop: for each
-   * step, form K0 for k, assemble the load, solve the step (convexification
-   * loop around the active-set Newton), check the energy balance, write the
-   * outputs.
+   * step, adapt the mesh if due, form K0 for k, assemble the load, solve the
+   * step (convexification loop around the active-set Newton), check the
+   * energy balance, write the outputs.
+   *
+   * run() = initialize(), then advance() until it returns false, then
+   * finish(); tests drive the three themselves to look between steps.
    */
   template <int dim>
   class Simulator
@@ -43,25 +48,42 @@ namespace DynamicContact
     run();
 
     /**
-     * After a failure of run(): mark the output as failed and silence the
-     * timer summary (the processes may no longer be in step).
+     * Build the mesh (refined for the initial load when adaptive), check the
+     * input, prepare the output directory, set the initial state and write
+     * step 0.
+     */
+    void
+    initialize();
+
+    /** One time step; false (and nothing done) once the end time is reached. */
+    bool
+    advance();
+
+    /** Print the summary and mark the output as complete. */
+    void
+    finish();
+
+    /**
+     * After a failure: mark the output as failed and silence the timer
+     * summary (the processes may no longer be in step).
      */
     void
     abandon(const std::string &reason);
 
-    /** The rows written to time_series.csv so far (for tests). */
+    /** The rows written to time_series.csv so far. */
     const std::vector<TimeSeriesRow> &
     time_series() const
     {
       return rows;
     }
 
-    /** The contact boundary and node states of the last step (for tests). */
     const ContactBoundary<dim> &
     contact() const
     {
       return contact_boundary;
     }
+
+    /** The node states of the last step, aligned with contact().nodes(). */
     const std::vector<ContactNodeState<dim>> &
     node_states() const
     {
@@ -69,22 +91,40 @@ namespace DynamicContact
     }
 
     /**
-     * The displacement at a point of the body (collective; for tests and
-     * probes). Throws if no process owns a cell containing the point.
+     * The displacement at a point of the body (collective). Throws if the
+     * point is outside the body.
      */
     Tensor<1, dim>
     point_displacement(const Point<dim> &point) const;
 
-    /** The displacement (master form) and the discretization (for tests). */
+    /** Displacement and velocity, in master form. */
     const Vector_t &
     displacement() const
     {
       return u;
     }
+    const Vector_t &
+    velocity() const
+    {
+      return w;
+    }
+
     const Discretization<dim> &
     get_discretization() const
     {
       return discretization;
+    }
+
+    /** The time and number of the last step done (0 before the first). */
+    double
+    time() const
+    {
+      return step == 0 ? 0. : times[step - 1];
+    }
+    unsigned int
+    step_number() const
+    {
+      return step;
     }
 
   private:
@@ -101,12 +141,13 @@ namespace DynamicContact
 
     TimerOutput timer;
 
-    Discretization<dim>  discretization;
-    ContactBoundary<dim> contact_boundary;
-    BulkOperator<dim>    bulk;
-    StepSolver<dim>      step_solver;
-    EnergyBalance<dim>   energy_balance;
+    Discretization<dim>        discretization;
+    ContactBoundary<dim>       contact_boundary;
+    BulkOperator<dim>          bulk;
+    StepSolver<dim>            step_solver;
+    EnergyBalance<dim>         energy_balance;
     ForceBalanceEvaluator<dim> force_balance;
+    MeshAdaptation<dim>        mesh_adaptation;
 
     // Fields in master form (constrained entries zero).
     Vector_t u, w, u_old, w_old, load, rhs;
@@ -115,23 +156,57 @@ namespace DynamicContact
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
     std::vector<TimeSeriesRow>        rows;
 
+    // The time loop: step n goes from times[n-2] (0 for n = 1) to
+    // times[n-1].
+    std::vector<double>                   times;
+    unsigned int                          step = 0;
+    std::chrono::steady_clock::time_point wall_start;
+    double                                max_relative_defect = 0;
+    double                                min_dissipation     = 0;
+    unsigned int                          total_newton        = 0;
+
+    /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
-    setup_system();
+    setup_dofs();
+    /** The operators that depend on the mesh: bulk matrices, solvers. */
+    void
+    setup_operators();
     void
     set_initial_conditions();
+    /** Before the first step: refine for the initial load (adaptive runs). */
+    void
+    refine_initial_mesh();
+    /**
+     * Adapt the mesh for the times [t0, t1], transferring u, w and the
+     * friction forces; returns the change of the energy E the transfer made.
+     */
+    double
+    adapt_mesh(const double t0, const double t1, const double k);
+    /** Positions of the nodes that penetrate the foundation (all processes). */
+    std::vector<Point<dim>>
+    penetrating_nodes() const;
+
     void
     prepare_output_directory();
     void
     print_header() const;
-    /** One step from t - k to t; returns the time series row. */
+    /**
+     * One step from t - k to t; returns the time series row (which records
+     * the energy change of a mesh transfer just before the step).
+     */
     TimeSeriesRow
-    do_time_step(const unsigned int step, const double t, const double k);
+    do_time_step(const unsigned int step,
+                 const double       t,
+                 const double       k,
+                 const double       remesh_energy_change);
     /** Write the contact CSV and/or the VTU fields of the current step. */
     void
     output_results(const unsigned int step,
                    const double       t,
                    const bool         contact_csv,
                    const bool         vtu);
+    void
+    print_progress(const TimeSeriesRow &row) const;
     void
     write_status(const std::string &status) const;
   };

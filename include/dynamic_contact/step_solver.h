@@ -101,6 +101,22 @@ namespace DynamicContact
       return states;
     }
 
+    /**
+     * The friction forces lambda_i of every node of Gamma_3 (all processes;
+     * the warm start of the next step), and their replacement after a
+     * change of the mesh.
+     */
+    const std::vector<Tensor<1, dim>> &
+    friction_forces() const
+    {
+      return lambda;
+    }
+    void
+    set_friction_forces(const std::vector<Tensor<1, dim>> &forces)
+    {
+      lambda = forces;
+    }
+
     /** True if the scene has friction (a law with a nonzero coefficient). */
     bool
     has_friction() const
