@@ -497,9 +497,12 @@ namespace DynamicContact
                           << ", law " << it.law_residual / it.f_scale
                           << "), active nodes " << it.active.size()
                           << std::endl;
+          // Stagnation near round-off (the cancellation in w_free - C f of
+          // an ill-conditioned K0): phase 2 polishes.
           const bool stagnated = iteration > 0 &&
                                  it.signature == previous_signature &&
-                                 residual > 0.1 * previous_residual;
+                                 residual > 0.1 * previous_residual &&
+                                 residual < std::sqrt(tol);
           if (residual <= tol || stagnated)
             break;
           result.residual = residual;

@@ -81,8 +81,14 @@ namespace DynamicContact
     // solution (lambda . w_tau >= 0: friction dissipates): the iterate has
     // crossed w_tau = 0, and stick is the prediction. Without this rule the
     // active sets of neighbouring nodes can ping-pong between the two slip
-    // directions; with it a genuine reversal costs one more iteration.
-    const bool reversed = lambda_tau * node.tangential(w) < 0;
+    // directions; with it a genuine reversal costs one more iteration. It
+    // only applies to a slip velocity that matters in z: at a stick solution
+    // w_tau is round-off of either sign, and a multiplier above the
+    // threshold must then be allowed to slip.
+    const Tensor<1, dim> w_tau = node.tangential(w);
+    const bool           reversed =
+      lambda_tau * w_tau < 0 &&
+      c_node * w_tau.norm() > 1e-6 * std::max(r.threshold, lambda_tau.norm());
     if (norm <= r.threshold || reversed)
       {
         r.state = ContactState::stick;
