@@ -30,13 +30,17 @@ namespace DynamicContact
       owned_index[global[i]] = i;
     direct.reset();
     amg.reset();
-    prepared_k = 0;
+    prepared_k          = 0;
+    free_response_valid = false;
     regularized.reinit(problem.bulk.sparsity_pattern());
     choose_spring_nodes();
     problem.discretization.reinit_owned(solution);
     problem.discretization.reinit_owned(right_hand_side);
     problem.discretization.reinit_owned(residual);
     problem.discretization.reinit_owned(increment);
+    problem.discretization.reinit_owned(scratch);
+    problem.discretization.reinit_owned(free_response);
+    problem.discretization.reinit_owned(cached_rhs);
   }
 
 
@@ -164,7 +168,8 @@ namespace DynamicContact
         amg->initialize(regularized, data);
       }
     ++result.factorizations;
-    prepared_k = k;
+    prepared_k          = k;
+    free_response_valid = false;
     // C depends on K0: forget it.
     for (auto &c : columns)
       c.clear();
@@ -452,15 +457,28 @@ namespace DynamicContact
                              std::to_string(result.residual) + ")."));
     };
 
-    // The free response: the body without the foundation.
-    solve_bulk(rhs, solution, result);
+    // The free response: the body without the foundation. The passes of a
+    // convexification loop share it (same b, same K0').
+    bool same_rhs = free_response_valid && cached_rhs.size() == rhs.size();
+    if (same_rhs)
+      {
+        scratch = rhs;
+        scratch -= cached_rhs;
+        same_rhs = (scratch.linfty_norm() == 0);
+      }
+    if (!same_rhs)
+      {
+        solve_bulk(rhs, free_response, result);
+        cached_rhs          = rhs;
+        w_free_nodes        = problem.boundary.gather_values(free_response);
+        free_response_valid = true;
+      }
     if (n == 0)
       {
-        w = solution;
+        w = free_response;
         return result;
       }
-    const std::vector<Tensor<1, dim>> w_free =
-      problem.boundary.gather_values(solution);
+    const std::vector<Tensor<1, dim>> &w_free = w_free_nodes;
 
     // Phase 1, on Gamma_3 only: w_i = w_free,i - sum_j C_ij f_j, from the
     // initial guess given (w_{n-1}, or the last convexification pass). No

@@ -73,7 +73,12 @@ namespace DynamicContact
     /** For each node of all_nodes(): its index among the owned nodes, or -1. */
     std::vector<int> owned_index;
 
-    Vector_t solution, right_hand_side, residual, increment;
+    Vector_t solution, right_hand_side, residual, increment, scratch;
+
+    /** K0'^{-1} b for the last b (the passes of a step share it). */
+    Vector_t                    free_response, cached_rhs;
+    std::vector<Tensor<1, dim>> w_free_nodes;
+    bool                        free_response_valid = false;
 
     /** The linearization of every node at an iterate. */
     struct Iterate
