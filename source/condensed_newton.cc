@@ -15,6 +15,7 @@ namespace DynamicContact
   template <int dim>
   CondensedNewton<dim>::CondensedNewton(const ContactProblem<dim> &problem)
     : problem(problem)
+    , bulk_solver(problem.parameters)
   {}
 
 
@@ -28,8 +29,6 @@ namespace DynamicContact
     const auto &global = problem.boundary.global_indices();
     for (unsigned int i = 0; i < global.size(); ++i)
       owned_index[global[i]] = i;
-    direct.reset();
-    amg.reset();
     prepared_k          = 0;
     free_response_valid = false;
     regularized.reinit(problem.bulk.sparsity_pattern());
@@ -143,30 +142,18 @@ namespace DynamicContact
                               spring_stiffness[j]);
       regularized.compress(VectorOperation::add);
     }
-    if (problem.parameters.linear_solver ==
-        Parameters::Solver::LinearSolver::direct)
-      {
-        TimerOutput::Scope t(problem.timer, "Bulk: factorization of K0");
-        direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_control,
-          TrilinosWrappers::SolverDirect::AdditionalData(
-            false, problem.parameters.direct_solver_package));
-        direct->initialize(regularized);
-      }
-    else
-      {
-        TimerOutput::Scope t(problem.timer, "Bulk: AMG setup for K0");
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = problem.discretization.fe.degree > 1;
-        data.smoother_sweeps       = 2;
-        data.aggregation_threshold = 0.02;
+    {
+      TimerOutput::Scope t(problem.timer, "Bulk: factorization of K0");
+      std::vector<std::vector<bool>> constant_modes;
+      if (problem.parameters.linear_solver ==
+          Parameters::Solver::LinearSolver::iterative)
         DoFTools::extract_constant_modes(problem.discretization.dof_handler,
                                          ComponentMask(),
-                                         data.constant_modes);
-        amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(regularized, data);
-      }
+                                         constant_modes);
+      bulk_solver.initialize(regularized,
+                             constant_modes,
+                             problem.discretization.fe.degree > 1);
+    }
     ++result.factorizations;
     prepared_k          = k;
     free_response_valid = false;
@@ -183,18 +170,7 @@ namespace DynamicContact
                                    Result &        result)
   {
     TimerOutput::Scope t(problem.timer, "Bulk: solves with K0");
-    if (direct)
-      direct->solve(x, b);
-    else
-      {
-        // K0' = (rho/k) M + A + k B + S is symmetric positive definite.
-        SolverControl control(problem.parameters.max_linear_iterations,
-                              problem.parameters.linear_tolerance *
-                                b.l2_norm());
-        SolverCG<Vector_t> cg(control);
-        x = 0;
-        cg.solve(regularized, x, b, *amg);
-      }
+    bulk_solver.solve(b, x);
     problem.discretization.constraints.set_zero(x);
     ++result.bulk_solves;
   }
@@ -202,33 +178,68 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::compute_column(const unsigned int j, Result &result)
+  CondensedNewton<dim>::compute_columns(const std::vector<unsigned int> &nodes,
+                                        Result &                         result)
   {
-    if (!columns[j].empty())
+    std::vector<unsigned int> missing;
+    for (const unsigned int j : nodes)
+      if (columns[j].empty())
+        missing.push_back(j);
+    if (missing.empty())
       return;
-    const auto &all = problem.boundary.all_nodes();
-    columns[j].assign(all.size(), Tensor<2, dim>());
-    for (unsigned int c = 0; c < dim; ++c)
-      {
-        // A unit force in direction c at node j, through the node's
-        // constraints into the condensed right-hand side.
-        right_hand_side = 0;
-        if (owned_index[j] >= 0)
-          {
-            const auto &   node = all[j];
-            Tensor<1, dim> unit;
-            unit[c]                    = 1;
-            const Tensor<1, dim> force = transpose(node.constraint_map) * unit;
-            for (unsigned int r = 0; r < dim; ++r)
-              right_hand_side(node.dofs[r]) = force[r];
-          }
-        right_hand_side.compress(VectorOperation::insert);
-        solve_bulk(right_hand_side, solution, result);
-        const auto response = problem.boundary.gather_values(solution);
-        for (unsigned int i = 0; i < all.size(); ++i)
+    TimerOutput::Scope t(problem.timer, "Bulk: compliance columns");
+
+    // One right-hand side per missing node and direction: a unit force in
+    // direction c at node j, through the node's constraints (P_j^T e_c).
+    const auto &                           all = problem.boundary.all_nodes();
+    std::vector<BulkSolver::SparseColumn> rhs;
+    for (const unsigned int j : missing)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          BulkSolver::SparseColumn column;
           for (unsigned int r = 0; r < dim; ++r)
-            columns[j][i][r][c] = response[i][r];
-      }
+            if (all[j].constraint_map[c][r] != 0)
+              column.emplace_back(all[j].dofs[r], all[j].constraint_map[c][r]);
+          rhs.push_back(column);
+        }
+    // The responses at the owned nodes, then at every node.
+    const auto &                         owned  = problem.boundary.nodes();
+    const auto &                         global = problem.boundary.global_indices();
+    std::vector<types::global_dof_index> rows;
+    for (const auto &node : owned)
+      for (unsigned int r = 0; r < dim; ++r)
+        rows.push_back(node.dofs[r]);
+    std::vector<std::vector<double>> values;
+    bulk_solver.solve_columns(rhs, rows, values);
+    result.bulk_solves += rhs.size();
+
+    std::vector<double> packed;
+    for (unsigned int m = 0; m < missing.size(); ++m)
+      for (unsigned int c = 0; c < dim; ++c)
+        for (unsigned int i = 0; i < owned.size(); ++i)
+          {
+            Tensor<1, dim> raw;
+            for (unsigned int r = 0; r < dim; ++r)
+              raw[r] = values[dim * m + c][dim * i + r];
+            const Tensor<1, dim> response = owned[i].constraint_map * raw;
+            packed.push_back(m);
+            packed.push_back(c);
+            packed.push_back(global[i]);
+            for (unsigned int r = 0; r < dim; ++r)
+              packed.push_back(response[r]);
+          }
+    for (const unsigned int j : missing)
+      columns[j].assign(all.size(), Tensor<2, dim>());
+    for (const auto &part :
+         Utilities::MPI::all_gather(problem.discretization.comm, packed))
+      for (std::size_t p = 0; p < part.size(); p += 3 + dim)
+        {
+          const unsigned int j = missing[static_cast<unsigned int>(part[p])];
+          const unsigned int c = static_cast<unsigned int>(part[p + 1]);
+          const unsigned int i = static_cast<unsigned int>(part[p + 2]);
+          for (unsigned int r = 0; r < dim; ++r)
+            columns[j][i][r][c] = part[p + 3 + r];
+        }
   }
 
 
@@ -498,8 +509,7 @@ namespace DynamicContact
       for (unsigned int iteration = 0;; ++iteration)
         {
           linearize(u_old, mu, lambda, it.w, it);
-          for (const unsigned int j : it.active)
-            compute_column(j, result);
+          compute_columns(it.active, result);
           compliance_response(w_free, it.g, it.active, response);
           double equilibrium = 0;
           for (unsigned int i = 0; i < n; ++i)
@@ -575,8 +585,7 @@ namespace DynamicContact
         residual *= -1.;
         solve_bulk(residual, solution, result);
         const auto z = problem.boundary.gather_values(solution);
-        for (const unsigned int j : it.active)
-          compute_column(j, result);
+        compute_columns(it.active, result);
         r.resize(it.active.size());
         for (unsigned int a = 0; a < it.active.size(); ++a)
           r[a] = z[it.active[a]];

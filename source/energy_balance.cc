@@ -78,6 +78,9 @@ namespace DynamicContact
     EnergyBalanceTerms t;
     t.energy = energy(u, w);
 
+    // The scratch vector takes the layout of the current mesh (it changes
+    // with adaptive refinement and repartitioning).
+    difference.reinit(u, true);
     difference = u;
     difference -= u_old;
     t.load_work = load * difference;

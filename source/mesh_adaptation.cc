@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/error_estimator.h>
@@ -245,6 +246,42 @@ namespace DynamicContact
   }
 
 
+  template <int dim>
+  void
+  refine_and_transfer(Discretization<dim> &          d,
+                      const std::vector<Vector_t *> &fields,
+                      const std::function<void()> &  after_refinement)
+  {
+    std::vector<Vector_t>         ghosted(fields.size());
+    std::vector<const Vector_t *> input;
+    for (unsigned int i = 0; i < fields.size(); ++i)
+      {
+        d.reinit_ghosted(ghosted[i]);
+        d.expand(*fields[i], ghosted[i]);
+        input.push_back(&ghosted[i]);
+      }
+    parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
+      d.dof_handler);
+    transfer.prepare_for_coarsening_and_refinement(input);
+    d.triangulation.execute_coarsening_and_refinement();
+    after_refinement();
+    std::vector<Vector_t *> output(fields);
+    for (auto *f : output)
+      d.reinit_owned(*f);
+    transfer.interpolate(output);
+    for (auto *f : fields)
+      d.constraints.set_zero(*f);
+  }
+
+
   template class MeshAdaptation<2>;
   template class MeshAdaptation<3>;
+  template void
+  refine_and_transfer<2>(Discretization<2> &,
+                         const std::vector<Vector_t *> &,
+                         const std::function<void()> &);
+  template void
+  refine_and_transfer<3>(Discretization<3> &,
+                         const std::vector<Vector_t *> &,
+                         const std::function<void()> &);
 } // namespace DynamicContact

@@ -1,5 +1,4 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -273,13 +272,22 @@ namespace DynamicContact
     bool                        changed = false;
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
       {
+        Vector_t u_ghosted, w_ghosted;
+        discretization.reinit_ghosted(u_ghosted);
+        discretization.reinit_ghosted(w_ghosted);
+        discretization.expand(u, u_ghosted);
+        discretization.expand(w, w_ghosted);
+        if (!mesh_adaptation.flag_cells(
+              t0, t1, k, penetrating_nodes(), u_ghosted, w_ghosted))
+          break;
+
         // What the next step needs, as finite element fields: u, w, and the
         // friction forces as a traction lambda_i/m_i at the nodes of Gamma_3.
         Vector_t traction;
         discretization.reinit_owned(traction);
         {
-          const auto &                         nodes  = contact_boundary.nodes();
-          const auto &                         global = contact_boundary.global_indices();
+          const auto &nodes  = contact_boundary.nodes();
+          const auto &global = contact_boundary.global_indices();
           std::vector<types::global_dof_index> indices;
           std::vector<double>                  values;
           for (unsigned int i = 0; i < nodes.size(); ++i)
@@ -291,36 +299,18 @@ namespace DynamicContact
           traction.set(indices, values);
           traction.compress(VectorOperation::insert);
         }
-        Vector_t u_ghosted, w_ghosted, traction_ghosted;
-        for (auto *v : {&u_ghosted, &w_ghosted, &traction_ghosted})
-          discretization.reinit_ghosted(*v);
-        discretization.expand(u, u_ghosted);
-        discretization.expand(w, w_ghosted);
-        traction_ghosted = traction;
-
-        if (!mesh_adaptation.flag_cells(
-              t0, t1, k, penetrating_nodes(), u_ghosted, w_ghosted))
-          break;
-        parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
-          discretization.dof_handler);
-        transfer.prepare_for_coarsening_and_refinement(
-          {&u_ghosted, &w_ghosted, &traction_ghosted});
         const auto before = mesh_adaptation.fingerprint();
-        discretization.triangulation.execute_coarsening_and_refinement();
-        setup_dofs();
-        const bool unchanged = (mesh_adaptation.fingerprint() == before);
-        std::vector<Vector_t *> fields = {&u, &w, &traction};
-        transfer.interpolate(fields);
-        discretization.constraints.set_zero(u);
-        discretization.constraints.set_zero(w);
+        refine_and_transfer(discretization, {&u, &w, &traction}, [this]() {
+          setup_dofs();
+        });
+        changed = true;
 
-        const auto nodal_traction = contact_boundary.gather_values(traction);
-        const auto &all           = contact_boundary.all_nodes();
+        const auto  nodal_traction = contact_boundary.gather_values(traction);
+        const auto &all            = contact_boundary.all_nodes();
         lambda.assign(all.size(), Tensor<1, dim>());
         for (unsigned int i = 0; i < all.size(); ++i)
           lambda[i] = all[i].weight * all[i].tangential(nodal_traction[i]);
-        changed = true;
-        if (unchanged)
+        if (mesh_adaptation.fingerprint() == before)
           break;
       }
     if (changed)

@@ -73,7 +73,9 @@ namespace test_tools
    */
   template <int dim>
   std::unique_ptr<DynamicContact::Simulator<dim>>
-  run(const std::string &file, std::vector<std::string> overrides)
+  make(const std::string &       file,
+       std::vector<std::string>  overrides,
+       const MPI_Comm            comm = MPI_COMM_WORLD)
   {
     overrides.insert(overrides.begin(),
                      {"Output/Print timings=false",
@@ -82,8 +84,18 @@ namespace test_tools
     dealii::ParameterHandler prm;
     const auto               parameters =
       DynamicContact::read_parameters(file, overrides, prm);
-    auto simulator = std::make_unique<DynamicContact::Simulator<dim>>(
-      parameters, prm, MPI_COMM_WORLD);
+    return std::make_unique<DynamicContact::Simulator<dim>>(parameters,
+                                                            prm,
+                                                            comm);
+  }
+
+  template <int dim>
+  std::unique_ptr<DynamicContact::Simulator<dim>>
+  run(const std::string &       file,
+      std::vector<std::string>  overrides,
+      const MPI_Comm            comm = MPI_COMM_WORLD)
+  {
+    auto simulator = make<dim>(file, overrides, comm);
     simulator->run();
     return simulator;
   }

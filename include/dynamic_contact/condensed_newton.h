@@ -1,9 +1,7 @@
 #ifndef dynamic_contact_condensed_newton_h
 #define dynamic_contact_condensed_newton_h
 
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
-
+#include <dynamic_contact/bulk_solver.h>
 #include <dynamic_contact/contact_newton.h>
 
 #include <memory>
@@ -63,10 +61,8 @@ namespace DynamicContact
     std::vector<double>       spring_stiffness; // one per node of all_nodes()
 
     /** Solver for K0': a factorization, or CG with AMG. */
-    SolverControl                                      direct_control;
-    std::unique_ptr<TrilinosWrappers::SolverDirect>    direct;
-    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-    double                                             prepared_k = 0;
+    BulkSolver bulk_solver;
+    double     prepared_k = 0;
 
     /** columns[j][i] = C_ij, empty until node j was first active. */
     std::vector<std::vector<Tensor<2, dim>>> columns;
@@ -134,9 +130,9 @@ namespace DynamicContact
     void
     solve_bulk(const Vector_t &b, Vector_t &x, Result &result);
 
-    /** Make sure C_:j exists. */
+    /** Make sure C_:j exists for every j of @p nodes (one block solve). */
     void
-    compute_column(const unsigned int j, Result &result);
+    compute_columns(const std::vector<unsigned int> &nodes, Result &result);
 
     /** w_i = w_free,i - sum_j C_ij f_j over the nodes with a force. */
     void

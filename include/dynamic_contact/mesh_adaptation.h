@@ -8,6 +8,7 @@
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/scene.h>
 
+#include <functional>
 #include <vector>
 
 namespace DynamicContact
@@ -97,6 +98,23 @@ namespace DynamicContact
     const Scene<dim> &               scene;
     Discretization<dim> &            discretization;
   };
+
+
+  /**
+   * Execute the refinement and coarsening flagged on the mesh of
+   * @p discretization and carry @p fields (vectors in master form) over to
+   * the new mesh: expanded (hanging nodes filled in), transferred with
+   * parallel::distributed::SolutionTransfer (p4est repartitions the mesh),
+   * and brought back to master form. @p after_refinement must set up the
+   * new DoFs and constraints (Discretization::setup_dofs, and what depends
+   * on them). Interpolation onto children and back to the parent is exact:
+   * refining and coarsening back returns the fields unchanged.
+   */
+  template <int dim>
+  void
+  refine_and_transfer(Discretization<dim> &          discretization,
+                      const std::vector<Vector_t *> &fields,
+                      const std::function<void()> &  after_refinement);
 } // namespace DynamicContact
 
 #endif

@@ -1,0 +1,75 @@
+// The transfer of fields between meshes (refine_and_transfer): a finite
+// element function refined and coarsened back is returned exactly, on a
+// distributed mesh with hanging nodes and clamped boundaries (fields in
+// master form).
+
+#include <deal.II/base/function_lib.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <dynamic_contact/discretization.h>
+#include <dynamic_contact/mesh_adaptation.h>
+
+#include "test_tools.h"
+
+using namespace DynamicContact;
+
+template <int dim>
+void
+check(const unsigned int degree)
+{
+  Discretization<dim> d(MPI_COMM_WORLD, degree);
+  GridGenerator::subdivided_hyper_rectangle(
+    d.triangulation,
+    std::vector<unsigned int>(dim, 4),
+    Point<dim>(),
+    dim == 2 ? Point<dim>(2., 1.) : Point<dim>(2., 1., 1.),
+    true);
+  d.triangulation.refine_global(1);
+  Parameters::BoundaryConditions bc;
+  bc.clamped = {0};
+  d.setup_dofs(bc);
+
+  // A smooth field in master form.
+  Vector_t original;
+  d.reinit_owned(original);
+  VectorTools::interpolate(d.mapping,
+                           d.dof_handler,
+                           Functions::CosineFunction<dim>(dim),
+                           original);
+  d.constraints.set_zero(original);
+  Vector_t field = original;
+
+  // Refine the cells of the left half (hanging nodes appear) ...
+  for (const auto &cell : d.triangulation.active_cell_iterators())
+    if (cell->is_locally_owned() && cell->center()[0] < 1.)
+      cell->set_refine_flag();
+  refine_and_transfer(d, {&field}, [&]() { d.setup_dofs(bc); });
+  test_tools::check(d.triangulation.n_global_active_cells() >
+                      (dim == 2 ? 64u : 512u),
+                    std::to_string(dim) + "D Q" + std::to_string(degree) +
+                      ": refined");
+  // ... and coarsen them back.
+  for (const auto &cell : d.triangulation.active_cell_iterators())
+    if (cell->is_locally_owned() && cell->level() == 2)
+      cell->set_coarsen_flag();
+  refine_and_transfer(d, {&field}, [&]() { d.setup_dofs(bc); });
+  test_tools::check(d.triangulation.n_global_active_cells() ==
+                      (dim == 2 ? 64u : 512u),
+                    std::to_string(dim) + "D Q" + std::to_string(degree) +
+                      ": coarsened back");
+
+  field -= original;
+  test_tools::check(field.linfty_norm() <= 1e-14 * original.linfty_norm(),
+                    std::to_string(dim) + "D Q" + std::to_string(degree) +
+                      ": the field is returned exactly");
+}
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check<2>(1);
+  check<2>(2);
+  check<3>(1);
+}
