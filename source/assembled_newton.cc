@@ -65,7 +65,7 @@ namespace DynamicContact
   AssembledNewton<dim>::solve_linear_system(
     const std::vector<Tensor<2, dim>> &blocks,
     const std::vector<bool> &          stick,
-    const Vector_t &                   w)
+    const std::vector<Tensor<1, dim>> &w_effective)
   {
     const auto & nodes = problem.boundary.nodes();
     const double k     = problem.bulk.time_step();
@@ -151,13 +151,15 @@ namespace DynamicContact
           Tensor<1, dim> r;
           for (unsigned int c = 0; c < dim; ++c)
             r[c] = scratch[node.dofs[c]];
-          const Tensor<1, dim> wi   = node.value(w);
-          const unsigned int   host = host_component(node);
-          scratch(node.dofs[host])  = node.normal * r;
-          unsigned int s            = 0;
+          // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
+          const Tensor<1, dim> &w_e  = w_effective[i];
+          const unsigned int    host = host_component(node);
+          scratch(node.dofs[host])   = node.normal * r;
+          unsigned int s             = 0;
           for (unsigned int c = 0; c < dim; ++c)
             if (c != host)
-              scratch(node.dofs[c]) = -(node.tangents[s++] * wi);
+              scratch(node.dofs[c]) =
+                -(node.tangents[s++] * w_e) / problem.theta;
         }
     scratch.compress(VectorOperation::insert);
 
@@ -221,6 +223,7 @@ namespace DynamicContact
   typename AssembledNewton<dim>::Result
   AssembledNewton<dim>::solve(const Vector_t &                    rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
+                              const std::vector<Tensor<1, dim>> &w_old,
                               const std::vector<double> &         mu,
                               std::vector<Tensor<1, dim>> &       lambda,
                               Vector_t &                          w)
@@ -243,13 +246,17 @@ namespace DynamicContact
           TimerOutput::Scope t(problem.timer, "Newton: residual");
           for (unsigned int i = 0; i < nodes.size(); ++i)
             {
-              const unsigned int   g  = global[i];
-              const Tensor<1, dim> wi = nodes[i].value(w);
+              const unsigned int   g   = global[i];
+              const Tensor<1, dim> wi  = nodes[i].value(w);
+              const double         th  = problem.theta;
+              const Tensor<1, dim> w_e = th * wi + (1 - th) * w_old[g];
               lin[i]    = linearize_node(problem.foundation,
                                       nodes[i],
                                       u_old[g],
+                                      w_old[g],
                                       wi,
                                       k,
+                                      th,
                                       problem.friction,
                                       lambda[g],
                                       problem.friction ? mu[g] : 0.,
@@ -264,7 +271,7 @@ namespace DynamicContact
                            (lambda[g] -
                             projected_friction_force(nodes[i],
                                                      lin[i].friction.threshold,
-                                                     wi,
+                                                     w_e,
                                                      lambda[g],
                                                      problem.c_t * k))
                              .norm());
@@ -304,8 +311,12 @@ namespace DynamicContact
             blocks[i]               = transpose(P) * lin[i].block * P;
             stick[i] = (lin[i].friction.state == ContactState::stick);
           }
+        std::vector<Tensor<1, dim>> w_effective(nodes.size());
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          w_effective[i] = problem.theta * nodes[i].value(w) +
+                           (1 - problem.theta) * w_old[global[i]];
         compute_residual(rhs, w, base);
-        if (solve_linear_system(blocks, stick, w))
+        if (solve_linear_system(blocks, stick, w_effective))
           ++result.factorizations;
         w += increment;
         ++result.iterations;

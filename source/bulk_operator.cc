@@ -110,25 +110,27 @@ namespace DynamicContact
       viscosity_matrix.compress(VectorOperation::add);
 
     bulk_matrix.reinit(pattern);
-    current_k = 0;
+    current_k     = 0;
+    current_theta = 1;
     discretization.reinit_owned(tmp);
   }
 
 
   template <int dim>
   void
-  BulkOperator<dim>::set_time_step(const double k)
+  BulkOperator<dim>::set_time_step(const double k, const double theta)
   {
     Assert(k > 0, ExcMessage("The time step must be positive."));
-    if (k == current_k)
+    if (k == current_k && theta == current_theta)
       return;
-    // K0 = (rho/k) M + A + k B.
+    // K0 = (rho/k) M + theta A + theta^2 k B.
     bulk_matrix.copy_from(elasticity_matrix);
-    bulk_matrix *= k;
+    bulk_matrix *= theta * theta * k;
     bulk_matrix.add(material.density() / k, mass_matrix);
     if (material.has_viscosity())
-      bulk_matrix.add(1.0, viscosity_matrix);
-    current_k = k;
+      bulk_matrix.add(theta, viscosity_matrix);
+    current_k     = k;
+    current_theta = theta;
   }
 
 
@@ -178,7 +180,9 @@ namespace DynamicContact
     const bool body_force = scene.has_body_force();
     const bool traction   = scene.has_traction() &&
                           !scene.boundary_conditions().traction.empty();
-    if (!body_force && !traction)
+    const bool source     = scene.has_contact_source() &&
+                        !scene.boundary_conditions().contact.empty();
+    if (!body_force && !traction && !source)
       return;
     scene.set_time(t);
 
@@ -202,6 +206,9 @@ namespace DynamicContact
     const std::set<types::boundary_id>   traction_ids(
       scene.boundary_conditions().traction.begin(),
       scene.boundary_conditions().traction.end());
+    const std::set<types::boundary_id> contact_ids(
+      scene.boundary_conditions().contact.begin(),
+      scene.boundary_conditions().contact.end());
 
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -225,16 +232,19 @@ namespace DynamicContact
                 }
               has_load = true;
             }
-          if (traction)
-            for (const auto f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  traction_ids.count(cell->face(f)->boundary_id()))
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                ((traction && traction_ids.count(cell->face(f)->boundary_id())) ||
+                 (source && contact_ids.count(cell->face(f)->boundary_id()))))
                 {
+                  Function<dim> &g =
+                    traction_ids.count(cell->face(f)->boundary_id()) ?
+                      scene.traction() :
+                      scene.contact_source();
                   fe_face.reinit(cell, f);
                   for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                     {
-                      scene.traction().vector_value(fe_face.quadrature_point(q),
-                                                    value);
+                      g.vector_value(fe_face.quadrature_point(q), value);
                       for (unsigned int i = 0; i < n; ++i)
                         {
                           const unsigned int c =

@@ -261,6 +261,7 @@ namespace DynamicContact
   template <int dim>
   void
   CondensedNewton<dim>::linearize(const std::vector<Tensor<1, dim>> &u_old,
+                                  const std::vector<Tensor<1, dim>> &w_old,
                                   const std::vector<double> &         mu,
                                   const std::vector<Tensor<1, dim>> &lambda,
                                   const std::vector<Tensor<1, dim>> &w_nodes,
@@ -269,6 +270,8 @@ namespace DynamicContact
     const auto &       nodes = problem.boundary.all_nodes();
     const unsigned int n     = nodes.size();
     const double       k     = problem.bulk.time_step();
+    const double       theta = problem.theta;
+    it.w_old = w_old;
     it.lin.resize(n);
     it.forces.resize(n);
     it.base_true.resize(n);
@@ -283,8 +286,10 @@ namespace DynamicContact
         const auto &l = it.lin[i] = linearize_node(problem.foundation,
                                                    nodes[i],
                                                    u_old[i],
+                                                   w_old[i],
                                                    w_nodes[i],
                                                    k,
+                                                   theta,
                                                    problem.friction,
                                                    lambda[i],
                                                    problem.friction ? mu[i] :
@@ -312,11 +317,13 @@ namespace DynamicContact
         if (problem.friction)
           it.law_residual =
             std::max(it.law_residual,
-                     (lambda[i] - projected_friction_force(nodes[i],
-                                                           l.friction.threshold,
-                                                           w_nodes[i],
-                                                           lambda[i],
-                                                           problem.c_t * k))
+                     (lambda[i] -
+                      projected_friction_force(nodes[i],
+                                               l.friction.threshold,
+                                               theta * w_nodes[i] +
+                                                 (1 - theta) * w_old[i],
+                                               lambda[i],
+                                               problem.c_t * k))
                        .norm());
         if (l.active() || it.forces[i].norm_square() > 0 || s > 0)
           it.active.push_back(i);
@@ -395,7 +402,11 @@ namespace DynamicContact
               for (unsigned int p = 0; p < dim; ++p)
                 matrix(stick_offset[a] + s, dim * a + p) =
                   nodes[i].tangents[s][p];
-              vector(stick_offset[a] + s) = -(nodes[i].tangents[s] * it.w[i]);
+              // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
+              vector(stick_offset[a] + s) =
+                -(nodes[i].tangents[s] *
+                  (problem.theta * it.w[i] + (1 - problem.theta) * it.w_old[i])) /
+                problem.theta;
             }
       }
     matrix.compute_lu_factorization();
@@ -450,6 +461,7 @@ namespace DynamicContact
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::solve(const Vector_t &                    rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
+                              const std::vector<Tensor<1, dim>> &w_old,
                               const std::vector<double> &         mu,
                               std::vector<Tensor<1, dim>> &       lambda,
                               Vector_t &                          w)
@@ -508,7 +520,7 @@ namespace DynamicContact
       TimerOutput::Scope t(problem.timer, "Contact: boundary Newton");
       for (unsigned int iteration = 0;; ++iteration)
         {
-          linearize(u_old, mu, lambda, it.w, it);
+          linearize(u_old, w_old, mu, lambda, it.w, it);
           compute_columns(it.active, result);
           compliance_response(w_free, it.g, it.active, response);
           double equilibrium = 0;
@@ -563,7 +575,7 @@ namespace DynamicContact
       {
         TimerOutput::Scope t(problem.timer, "Contact: refinement");
         it.w = problem.boundary.gather_values(w);
-        linearize(u_old, mu, lambda, it.w, it);
+        linearize(u_old, w_old, mu, lambda, it.w, it);
         problem.bulk.newton_matrix().vmult(residual, w);
         const double scale =
           std::max({rhs.l2_norm(), residual.l2_norm(), 1e-300});

@@ -20,6 +20,36 @@ namespace DynamicContact
 
   NormalResponse
   normal_response(const Foundation &foundation,
+                  const double      u_nu_old,
+                  const double      u_nu,
+                  const double      w_nu,
+                  const double      k,
+                  const double      theta)
+  {
+    if (theta == 1)
+      return normal_response(foundation, u_nu, w_nu, k);
+    const CappedRamp &p = foundation.compliance();
+    const CappedRamp &q = foundation.damping();
+    NormalResponse    r;
+    r.u_nu                 = u_nu;
+    r.w_nu                 = w_nu;
+    r.compliance_active    = p.active(u_nu) || p.active(u_nu_old);
+    r.compliance_saturated = p.saturated(u_nu);
+    const bool damping     = foundation.damping_acts(u_nu);
+    r.damping_active       = damping && q.active(w_nu);
+    r.damping_saturated    = damping && q.saturated(w_nu);
+    r.pressure = p.discrete_gradient(u_nu_old, u_nu) +
+                 (damping ? q.value(w_nu) : 0.);
+    // d u_n/d w_n = theta k, d w_e/d w_n = theta.
+    r.dpressure_dw =
+      theta * k * p.discrete_gradient_derivative(u_nu_old, u_nu) +
+      (damping ? theta * q.derivative(w_nu) : 0.);
+    return r;
+  }
+
+
+  NormalResponse
+  normal_response(const Foundation &foundation,
                   const double      u_nu,
                   const double      w_nu,
                   const double      k)
@@ -65,7 +95,8 @@ namespace DynamicContact
                     const Tensor<1, dim> &  w,
                     const Tensor<1, dim> &  lambda,
                     const double            mu,
-                    const double            c)
+                    const double            c,
+                    const double            theta)
   {
     FrictionResponse<dim> r;
     r.threshold = mu * node.weight * normal.pressure;
@@ -112,7 +143,7 @@ namespace DynamicContact
         //   lambda' = t (g + dg.dw) + beta P dw_tau - alpha/(1-alpha) P lambda,
         //   beta = alpha c m_i/(1-alpha).
         const double   alpha = r.threshold / norm;
-        const double   beta  = alpha * c_node / (1 - alpha);
+        const double   beta  = theta * alpha * c_node / (1 - alpha);
         Tensor<2, dim> P     = unit_symmetric_tensor<dim>();
         P -= outer_product(node.normal, node.normal);
         P -= outer_product(r.direction, r.direction);
@@ -143,12 +174,14 @@ namespace DynamicContact
                     const Tensor<1, 2> &,
                     const Tensor<1, 2> &,
                     const double,
+                    const double,
                     const double);
   template FrictionResponse<3>
   friction_response(const ContactNode<3> &,
                     const NormalResponse &,
                     const Tensor<1, 3> &,
                     const Tensor<1, 3> &,
+                    const double,
                     const double,
                     const double);
 } // namespace DynamicContact

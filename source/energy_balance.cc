@@ -73,7 +73,8 @@ namespace DynamicContact
     const Vector_t &                          load,
     const double                              k,
     const std::vector<ContactNodeState<dim>> &states,
-    const double                              previous_energy) const
+    const double                              previous_energy,
+    const double                              theta) const
   {
     EnergyBalanceTerms t;
     t.energy = energy(u, w);
@@ -84,11 +85,18 @@ namespace DynamicContact
     difference = u;
     difference -= u_old;
     t.load_work = load * difference;
-    t.elastic   = 0.5 * bulk.elastic_product(difference, difference);
+    t.elastic   = (theta - 0.5) * bulk.elastic_product(difference, difference);
     difference  = w;
     difference -= w_old;
-    t.inertia = 0.5 * density * bulk.mass_product(difference, difference);
-    t.viscous = k * bulk.viscous_product(w, w);
+    t.inertia =
+      (theta - 0.5) * density * bulk.mass_product(difference, difference);
+    if (bulk.has_viscosity())
+      {
+        difference = w;
+        difference *= theta;
+        difference.add(1 - theta, w_old); // w_e
+        t.viscous = k * bulk.viscous_product(difference, difference);
+      }
 
     // Nodal terms, with the states of the converged solve.
     const auto &nodes      = contact_boundary.nodes();
@@ -100,12 +108,22 @@ namespace DynamicContact
         const double u_nu       = states[i].normal.u_nu;
         const double u_nu_old   = nodes[i].value(u_old) * nodes[i].normal -
                                 nodes[i].gap;
-        const double w_nu       = states[i].normal.w_nu;
-        const double q          = states[i].normal.pressure - p.value(u_nu);
-        compliance += m * p.dissipation(u_nu_old, u_nu);
+        const double w_nu       = states[i].normal.w_nu; // w_e . nu
+        const double P = theta == 1 ? p.value(u_nu) :
+                                      p.discrete_gradient(u_nu_old, u_nu);
+        const double q = states[i].normal.pressure - P;
+        // The compliance force's work minus the change of Pi: >= 0 for
+        // p(u_n) (evaluated without cancellation), 0 for the discrete
+        // gradient.
+        compliance += theta == 1 ?
+                        m * p.dissipation(u_nu_old, u_nu) :
+                        m * (P * (u_nu - u_nu_old) -
+                             (p.primitive(u_nu) - p.primitive(u_nu_old)));
         damping += k * m * q * w_nu;
-        friction += k * (states[i].friction_force *
-                         nodes[i].tangential(nodes[i].value(w)));
+        const Tensor<1, dim> w_e =
+          theta * nodes[i].value(w) + (1 - theta) * nodes[i].value(w_old);
+        friction +=
+          k * (states[i].friction_force * nodes[i].tangential(w_e));
       }
     t.compliance = Utilities::MPI::sum(compliance, comm);
     t.damping    = Utilities::MPI::sum(damping, comm);

@@ -71,7 +71,9 @@ namespace DynamicContact
     const std::vector<ContactNodeState<dim>> &states,
     const double                              t,
     const double                              k,
+    const double                              theta,
     const Vector_t &                          u,
+    const Vector_t &                          w_theta,
     const Vector_t &                          w,
     const Vector_t &                          w_old) const
   {
@@ -88,7 +90,19 @@ namespace DynamicContact
         }
       b.inertia *= material.density() / k;
     }
-    scene.set_time(t);
+    // theta f(t) + (1 - theta) f(t - k) at a point.
+    Vector<double> value_old(dim);
+    auto load = [&](Function<dim> &f, const Point<dim> &p, Vector<double> &v) {
+      scene.set_time(t);
+      f.vector_value(p, v);
+      if (theta < 1)
+        {
+          scene.set_time(t - k);
+          f.vector_value(p, value_old);
+          v *= theta;
+          v.add(1 - theta, value_old);
+        }
+    };
     const auto &       fe = d.fe;
     const unsigned int n  = fe.n_dofs_per_cell();
     const QGauss<dim>     quadrature(fe.degree + 2);
@@ -112,6 +126,9 @@ namespace DynamicContact
     Vector<double>                       value(dim), residual(n);
     const auto &bc         = scene.boundary_conditions();
     const bool  body_force = scene.has_body_force();
+    const bool  source     = scene.has_contact_source();
+    const std::set<types::boundary_id> contact_ids(bc.contact.begin(),
+                                                   bc.contact.end());
     const std::set<types::boundary_id> traction_ids(bc.traction.begin(),
                                                     bc.traction.end());
 
@@ -130,9 +147,11 @@ namespace DynamicContact
             has_support = has_support || supported(dof);
           bool has_traction = false;
           for (const auto f : cell->face_indices())
-            has_traction = has_traction ||
-                           (cell->face(f)->at_boundary() &&
-                            traction_ids.count(cell->face(f)->boundary_id()));
+            has_traction =
+              has_traction ||
+              (cell->face(f)->at_boundary() &&
+               (traction_ids.count(cell->face(f)->boundary_id()) ||
+                (source && contact_ids.count(cell->face(f)->boundary_id()))));
           if (!has_support && !has_traction && !body_force)
             continue;
 
@@ -143,7 +162,7 @@ namespace DynamicContact
               fe_values[displacement].get_function_values(w_old, w_old_q);
               fe_values[displacement].get_function_symmetric_gradients(u,
                                                                        eps_u);
-              fe_values[displacement].get_function_symmetric_gradients(w,
+              fe_values[displacement].get_function_symmetric_gradients(w_theta,
                                                                        eps_w);
             }
           residual = 0;
@@ -151,8 +170,7 @@ namespace DynamicContact
             {
               value = 0;
               if (body_force)
-                scene.body_force().vector_value(fe_values.quadrature_point(q),
-                                                value);
+                load(scene.body_force(), fe_values.quadrature_point(q), value);
               for (unsigned int c = 0; c < dim; ++c)
                 b.applied[c] += value(c) * fe_values.JxW(q);
               if (has_support)
@@ -175,13 +193,17 @@ namespace DynamicContact
             }
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
-                traction_ids.count(cell->face(f)->boundary_id()))
+                (traction_ids.count(cell->face(f)->boundary_id()) ||
+                 (source && contact_ids.count(cell->face(f)->boundary_id()))))
               {
+                Function<dim> &g =
+                  traction_ids.count(cell->face(f)->boundary_id()) ?
+                    scene.traction() :
+                    scene.contact_source();
                 fe_face.reinit(cell, f);
                 for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                   {
-                    scene.traction().vector_value(fe_face.quadrature_point(q),
-                                                  value);
+                    load(g, fe_face.quadrature_point(q), value);
                     for (unsigned int c = 0; c < dim; ++c)
                       b.applied[c] += value(c) * fe_face.JxW(q);
                     if (has_support)

@@ -227,6 +227,14 @@ namespace DynamicContact
                          zeros(dim),
                          "Traction f_2(x, t) on the 'Traction' ids (Pa), one "
                          "expression per component separated by ';'.");
+        declare_function(
+          prm,
+          "Contact source",
+          dim,
+          zeros(dim),
+          "An additional traction s(x, t) on the 'Contact' ids (Pa), added to "
+          "the foundation's response: sigma nu = s - (p + q) nu - friction. "
+          "Zero in physical scenes; manufactured solutions use it.");
       }
       prm.leave_subsection();
     }
@@ -700,6 +708,17 @@ namespace DynamicContact
                         Patterns::Double(),
                         "Time step k (s), > 0. If it does not divide the "
                         "end time, the last step is shortened to end at T.");
+      prm.declare_entry(
+        "Scheme",
+        "backward Euler",
+        Patterns::Selection("backward Euler|trapezoidal"),
+        "'backward Euler': the paper's scheme (eqs. (52)-(54)), first order. "
+        "'trapezoidal': second order, u_n = u_{n-1} + k (w_n + w_{n-1})/2, "
+        "the equation of motion at the midpoint, the compliance force the "
+        "discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}), damping "
+        "and friction on (w_n + w_{n-1})/2: energy-consistent (no numerical "
+        "dissipation; the balance of model.md section 6 still holds exactly, "
+        "with only the physical dissipation).");
       prm.leave_subsection();
     }
 
@@ -709,6 +728,8 @@ namespace DynamicContact
       prm.enter_subsection("Time");
       end_time  = prm.get_double("End time");
       time_step = prm.get_double("Time step");
+      scheme    = (prm.get("Scheme") == "trapezoidal" ? Scheme::trapezoidal :
+                                                     Scheme::backward_euler);
       prm.leave_subsection();
       require(std::isfinite(end_time) && end_time > 0,
               "Time/End time must be positive, got " + str(end_time) + ".");
@@ -896,6 +917,21 @@ namespace DynamicContact
                      dim,
                      zeros(dim),
                      "Body force density f_0(x, t) (N/m^3).");
+
+    prm.enter_subsection("Exact solution");
+    declare_function(prm,
+                     "Displacement",
+                     dim,
+                     "",
+                     "The exact displacement u(x, t), if known (a "
+                     "manufactured solution): empty for none. When given, "
+                     "every step records the errors of model.md section 7.");
+    declare_function(prm,
+                     "Velocity",
+                     dim,
+                     "",
+                     "The exact velocity du/dt(x, t) (with Displacement).");
+    prm.leave_subsection();
 
     prm.enter_subsection("Initial conditions");
     declare_function(prm,

@@ -82,6 +82,25 @@ namespace DynamicContact
       prm, {"Initial conditions", "Velocity"}, dim, unused);
     initial_gap_function =
       parse_function<dim>(prm, {"Foundation", "Initial gap"}, 1, unused);
+    contact_source_function =
+      parse_function<dim>(prm,
+                          {"Boundary conditions", "Contact source"},
+                          dim,
+                          contact_source_nonzero);
+
+    // The exact solution is optional: an empty expression means none.
+    prm.enter_subsection("Exact solution");
+    prm.enter_subsection("Displacement");
+    const bool exact = !Utilities::trim(prm.get("Function expression")).empty();
+    prm.leave_subsection();
+    prm.leave_subsection();
+    if (exact)
+      {
+        exact_displacement_function = parse_function<dim>(
+          prm, {"Exact solution", "Displacement"}, dim, unused);
+        exact_velocity_function =
+          parse_function<dim>(prm, {"Exact solution", "Velocity"}, dim, unused);
+      }
   }
 
 
@@ -91,6 +110,7 @@ namespace DynamicContact
   {
     traction_function->set_time(t);
     body_force_function->set_time(t);
+    contact_source_function->set_time(t);
   }
 
 

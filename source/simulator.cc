@@ -3,6 +3,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/error_norms.h>
 #include <dynamic_contact/simulator.h>
 
 #include <cmath>
@@ -74,6 +75,8 @@ namespace DynamicContact
       double                               remesh_energy_change = 0;
       unsigned long long                   dofs                 = 0;
       unsigned long long                   cells                = 0;
+      bool                                 has_errors           = false;
+      Errors                               errors;
 
       TimeSeriesRow
       row() const
@@ -117,6 +120,15 @@ namespace DynamicContact
         r.add_integer("n_slip", statistics.n_slip);
         r.add_integer("dofs", dofs);
         r.add_integer("cells", cells);
+        if (has_errors)
+          {
+            // model.md section 7; Theorem 6's error is the maximum over the
+            // steps of error_theorem6.
+            r.add("error_strain", errors.strain);
+            r.add("error_velocity", errors.velocity);
+            r.add("error_theorem6", errors.strain + errors.velocity);
+            r.add("error_energy", errors.energy);
+          }
         return r;
       }
     };
@@ -177,7 +189,7 @@ namespace DynamicContact
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
-    for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs})
+    for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs, &scratch})
       discretization.reinit_owned(*v);
   }
 
@@ -195,7 +207,7 @@ namespace DynamicContact
         parameters.friction.complementarity_constant :
         parameters.material.young_modulus /
           discretization.minimal_cell_diameter();
-    step_solver.reinit(c_t);
+    step_solver.reinit(c_t, parameters.time.theta());
   }
 
 
@@ -422,24 +434,42 @@ namespace DynamicContact
     record.remesh_energy_change = remesh_energy_change;
     record.previous_energy = energy_balance.energy(u_old, w_old).total();
 
+    const double theta = parameters.time.theta();
     {
       TimerOutput::Scope scope(timer, "Step: load and right-hand side");
-      bulk.set_time_step(k);
+      bulk.set_time_step(k, theta);
+      // f_theta = theta f_n + (1 - theta) f_{n-1}.
       bulk.assemble_load_vector(scene, t, load);
-      // b = (rho/k) M w_{n-1} - B u_{n-1} + f_n
+      if (theta < 1)
+        {
+          bulk.assemble_load_vector(scene, t - k, scratch);
+          load *= theta;
+          load.add(1 - theta, scratch);
+        }
+      // b = (rho/k) M w_{n-1} - (1 - theta) A w_{n-1}
+      //     - B (u_{n-1} + theta (1 - theta) k w_{n-1}) + f_theta
       bulk.mass().vmult(rhs, w_old);
       rhs *= material.density() / k;
-      bulk.elasticity().vmult(u, u_old); // u as scratch
+      scratch = u_old;
+      scratch.add(theta * (1 - theta) * k, w_old);
+      bulk.elasticity().vmult(u, scratch); // u as scratch
       rhs -= u;
+      if (theta < 1 && bulk.has_viscosity())
+        {
+          bulk.viscosity().vmult(u, w_old);
+          rhs.add(-(1 - theta), u);
+        }
       rhs += load;
     }
 
     w = w_old; // initial guess
-    record.statistics = step_solver.solve(rhs, u_old, w);
+    record.statistics = step_solver.solve(rhs, u_old, w_old, w);
 
-    // u_n = u_{n-1} + k w_n
+    // u_n = u_{n-1} + k (theta w_n + (1 - theta) w_{n-1})
     u = u_old;
-    u.add(k, w);
+    u.add(k * theta, w);
+    if (theta < 1)
+      u.add(k * (1 - theta), w_old);
 
     TimerOutput::Scope scope(timer, "Step: energy and force balance");
     record.terms = energy_balance.step_terms(u_old,
@@ -449,7 +479,8 @@ namespace DynamicContact
                                              load,
                                              k,
                                              step_solver.node_states(),
-                                             record.previous_energy);
+                                             record.previous_energy,
+                                             theta);
     const auto &nodes = contact_boundary.nodes();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
@@ -462,19 +493,36 @@ namespace DynamicContact
     record.tangential_force =
       Utilities::MPI::sum(record.tangential_force, comm);
     {
-      Vector_t u_ghosted, w_ghosted, w_old_ghosted;
-      for (auto *v : {&u_ghosted, &w_ghosted, &w_old_ghosted})
+      Vector_t u_ghosted, w_ghosted, w_old_ghosted, u_theta, w_theta;
+      for (auto *v : {&u_ghosted, &w_ghosted, &w_old_ghosted, &u_theta, &w_theta})
         discretization.reinit_ghosted(*v);
       discretization.expand(u, u_ghosted);
       discretization.expand(w, w_ghosted);
       discretization.expand(w_old, w_old_ghosted);
+      // The stress of the scheme's equation: at u_theta, w_theta.
+      scratch = u;
+      scratch *= theta;
+      scratch.add(1 - theta, u_old);
+      discretization.expand(scratch, u_theta);
+      scratch = w;
+      scratch *= theta;
+      scratch.add(1 - theta, w_old);
+      discretization.expand(scratch, w_theta);
       record.forces = force_balance.compute(contact_boundary,
                                             step_solver.node_states(),
                                             t,
                                             k,
-                                            u_ghosted,
+                                            theta,
+                                            u_theta,
+                                            w_theta,
                                             w_ghosted,
                                             w_old_ghosted);
+      if (scene.has_exact_solution())
+        {
+          record.has_errors = true;
+          record.errors     = compute_errors(
+            discretization, material, scene, t, u_ghosted, w_ghosted);
+        }
     }
     record.dofs  = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
@@ -576,6 +624,17 @@ namespace DynamicContact
     set_initial_conditions();
 
     StepRecord<dim> record;
+    if (scene.has_exact_solution())
+      {
+        Vector_t u_ghosted, w_ghosted;
+        discretization.reinit_ghosted(u_ghosted);
+        discretization.reinit_ghosted(w_ghosted);
+        discretization.expand(u, u_ghosted);
+        discretization.expand(w, w_ghosted);
+        record.has_errors = true;
+        record.errors =
+          compute_errors(discretization, material, scene, 0., u_ghosted, w_ghosted);
+      }
     record.terms.energy    = energy_balance.energy(u, w);
     record.previous_energy = record.terms.energy.total();
     record.dofs            = discretization.dof_handler.n_dofs();

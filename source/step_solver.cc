@@ -52,9 +52,11 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::reinit(const double complementarity_constant)
+  StepSolver<dim>::reinit(const double complementarity_constant,
+                          const double theta_)
   {
-    c_t = complementarity_constant;
+    c_t   = complementarity_constant;
+    theta = theta_;
     const ContactProblem<dim> problem{discretization,
                                       bulk,
                                       contact_boundary,
@@ -63,7 +65,8 @@ namespace DynamicContact
                                       timer,
                                       details,
                                       friction,
-                                      c_t};
+                                      c_t,
+                                      theta};
     if (parameters.contact_solver ==
         Parameters::Solver::ContactSolver::condensed)
       newton = std::make_unique<CondensedNewton<dim>>(problem);
@@ -82,6 +85,7 @@ namespace DynamicContact
   void
   StepSolver<dim>::update_states(
     const std::vector<Tensor<1, dim>> &u_old_nodes,
+    const std::vector<Tensor<1, dim>> &w_old_nodes,
     const Vector_t &                   w,
     Statistics &                       statistics)
   {
@@ -91,21 +95,19 @@ namespace DynamicContact
     unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        const unsigned int   g  = global[i];
-        const Tensor<1, dim> wi = nodes[i].value(w);
-        auto &               s  = states[i];
-        s.normal = normal_response(foundation, nodes[i], u_old_nodes[g], wi, k);
+        const unsigned int   g   = global[i];
+        const Tensor<1, dim> wi  = nodes[i].value(w);
+        const Tensor<1, dim> w_e = theta * wi + (1 - theta) * w_old_nodes[g];
+        auto &               s   = states[i];
+        s.normal         = normal_response(
+          foundation, nodes[i], u_old_nodes[g], w_old_nodes[g], wi, k, theta);
         s.friction_force = lambda[g];
         s.mu             = mu[g];
-        s.slip_rate      = nodes[i].tangential(wi).norm();
+        s.slip_rate      = nodes[i].tangential(w_e).norm();
         s.state          = ContactState::free;
         if (friction)
-          s.state = friction_response(nodes[i],
-                                      s.normal,
-                                      wi,
-                                      lambda[g],
-                                      mu[g],
-                                      c_t * k)
+          s.state = friction_response(
+                      nodes[i], s.normal, w_e, lambda[g], mu[g], c_t * k, theta)
                       .state;
         if (s.normal.pressure > 0)
           ++n_contact;
@@ -139,21 +141,28 @@ namespace DynamicContact
 
   template <int dim>
   typename StepSolver<dim>::Statistics
-  StepSolver<dim>::solve(const Vector_t &rhs, const Vector_t &u_old, Vector_t &w)
+  StepSolver<dim>::solve(const Vector_t &rhs,
+                         const Vector_t &u_old,
+                         const Vector_t &w_old,
+                         Vector_t &      w)
   {
     Statistics   statistics;
     const double k           = bulk.time_step();
     const auto   u_old_nodes = contact_boundary.gather_values(u_old);
+    const auto   w_old_nodes = contact_boundary.gather_values(w_old);
     const auto & all         = contact_boundary.all_nodes();
 
     // Convexification loop (model.md section 4): mu frozen from the
     // previous iterate, starting from w^(0) = w_{n-1}.
     const bool loop = friction && !friction_law->is_constant();
-    auto       slip_rates = [&](const Vector_t &v) {
+    // Slip rates of the effective velocity w_e = theta w + (1-theta) w_old.
+    auto slip_rates = [&](const Vector_t &v) {
       const auto          values = contact_boundary.gather_values(v);
       std::vector<double> s(all.size());
       for (unsigned int i = 0; i < all.size(); ++i)
-        s[i] = all[i].tangential(values[i]).norm();
+        s[i] = all[i]
+                 .tangential(theta * values[i] + (1 - theta) * w_old_nodes[i])
+                 .norm();
       return s;
     };
     if (loop)
@@ -178,9 +187,14 @@ namespace DynamicContact
       std::vector<Tensor<1, dim>> xi(all.size());
       for (unsigned int i = 0; i < all.size(); ++i)
         {
-          const double S =
-            normal_response(foundation, all[i], u_old_nodes[i], values[i], k)
-              .pressure;
+          const double S = normal_response(foundation,
+                                           all[i],
+                                           u_old_nodes[i],
+                                           w_old_nodes[i],
+                                           values[i],
+                                           k,
+                                           theta)
+                             .pressure;
           if (S > 0)
             xi[i] = forces[i] / (all[i].weight * S);
         }
@@ -202,7 +216,8 @@ namespace DynamicContact
             u_previous = u_old;
             u_previous.add(k, w);
           }
-        const auto result = newton->solve(rhs, u_old_nodes, mu, lambda, w);
+        const auto result =
+          newton->solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
         statistics.newton_iterations += result.iterations;
         statistics.factorizations += result.factorizations;
         statistics.bulk_solves += result.bulk_solves;
@@ -232,7 +247,13 @@ namespace DynamicContact
         const auto values               = contact_boundary.gather_values(w);
         double     coefficient_residual = 0;
         for (unsigned int i = 0; i < all.size(); ++i)
-          if (normal_response(foundation, all[i], u_old_nodes[i], values[i], k)
+          if (normal_response(foundation,
+                              all[i],
+                              u_old_nodes[i],
+                              w_old_nodes[i],
+                              values[i],
+                              k,
+                              theta)
                 .pressure > 0)
             coefficient_residual =
               std::max(coefficient_residual,
@@ -260,7 +281,7 @@ namespace DynamicContact
         xi_previous = xi;
       }
 
-    update_states(u_old_nodes, w, statistics);
+    update_states(u_old_nodes, w_old_nodes, w, statistics);
     return statistics;
   }
 

@@ -35,6 +35,7 @@ namespace DynamicContact
     Result
     solve(const Vector_t &                    rhs,
           const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<Tensor<1, dim>> &w_old,
           const std::vector<double> &         mu,
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) override;
@@ -68,7 +69,7 @@ namespace DynamicContact
     bool
     solve_linear_system(const std::vector<Tensor<2, dim>> &blocks,
                         const std::vector<bool> &          stick,
-                        const Vector_t &                   w);
+                        const std::vector<Tensor<1, dim>> &w_effective);
   };
 } // namespace DynamicContact
 

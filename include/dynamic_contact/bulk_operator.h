@@ -16,7 +16,8 @@ namespace DynamicContact
   using Matrix_t = TrilinosWrappers::SparseMatrix;
 
   /**
-   * The linear part of the scheme (model.md section 2): the mass matrix M
+   * The linear part of the scheme (model.md section 2; the theta-scheme
+   * generalizes it, theta = 1 being backward Euler): the mass matrix M
    * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
    * of a_C (and the Gram matrix of (eps(u), eps(v)), for the norm of V that
    * the convexification loop and the error norms use), assembled once per
@@ -37,11 +38,14 @@ namespace DynamicContact
     void
     reinit();
 
-    /** Form K0 for the time step k (a no-op if k is unchanged). */
+    /**
+     * Form K0 = (rho/k) M + theta A + theta^2 k B for the time step k and the
+     * scheme's theta (a no-op if both are unchanged).
+     */
     void
-    set_time_step(const double k);
+    set_time_step(const double k, const double theta = 1);
 
-    /** K0 = (rho/k) M + A + k B for the last k. */
+    /** K0 for the last k and theta. */
     const Matrix_t &
     newton_matrix() const
     {
@@ -114,7 +118,8 @@ namespace DynamicContact
     Matrix_t                          viscosity_matrix;
     Matrix_t                          strain_matrix;
     Matrix_t                          bulk_matrix;
-    double                            current_k = 0;
+    double                            current_k     = 0;
+    double                            current_theta = 1;
     mutable Vector_t                  tmp;
   };
 } // namespace DynamicContact

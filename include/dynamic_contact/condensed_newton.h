@@ -43,6 +43,7 @@ namespace DynamicContact
     Result
     solve(const Vector_t &                    rhs,
           const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<Tensor<1, dim>> &w_old,
           const std::vector<double> &         mu,
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) override;
@@ -79,7 +80,8 @@ namespace DynamicContact
     /** The linearization of every node at an iterate. */
     struct Iterate
     {
-      std::vector<Tensor<1, dim>>         w; // nodal velocities
+      std::vector<Tensor<1, dim>>         w; // nodal velocities w_n
+      std::vector<Tensor<1, dim>>         w_old; // w_{n-1}
       std::vector<NodeLinearization<dim>> lin;
       std::vector<Tensor<1, dim>>         forces; // f_i at the iterate
       std::vector<Tensor<1, dim>>         base_true; // normal force + slip value
@@ -95,6 +97,7 @@ namespace DynamicContact
 
     void
     linearize(const std::vector<Tensor<1, dim>> &u_old,
+              const std::vector<Tensor<1, dim>> &w_old,
               const std::vector<double> &         mu,
               const std::vector<Tensor<1, dim>> &lambda,
               const std::vector<Tensor<1, dim>> &w_nodes,

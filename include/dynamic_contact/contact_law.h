@@ -54,6 +54,22 @@ namespace DynamicContact
                   const double      w_nu,
                   const double      k);
 
+  /**
+   * The normal law of the theta-scheme (Time/Scheme): u_n = u_{n-1} + k w_e
+   * with the effective velocity w_e = theta w_n + (1 - theta) w_{n-1}; q acts
+   * on w_e,nu, and the compliance force is p(u_n) for theta = 1 (backward
+   * Euler) and the discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1})
+   * for theta < 1 (the energy-consistent trapezoidal scheme). dpressure_dw
+   * is the derivative with respect to w_n,nu; w_nu is w_e,nu.
+   */
+  NormalResponse
+  normal_response(const Foundation &foundation,
+                  const double      u_nu_old,
+                  const double      u_nu,
+                  const double      w_nu_effective,
+                  const double      k,
+                  const double      theta);
+
   /** The normal response of @p node for the nodal u_{n-1} and w. */
   template <int dim>
   NormalResponse
@@ -68,6 +84,27 @@ namespace DynamicContact
                            u * node.normal - node.gap,
                            w * node.normal,
                            k);
+  }
+
+  /** The same for the theta-scheme, given w_{n-1} at the node too. */
+  template <int dim>
+  NormalResponse
+  normal_response(const Foundation &      foundation,
+                  const ContactNode<dim> &node,
+                  const Tensor<1, dim> &  u_old,
+                  const Tensor<1, dim> &  w_old,
+                  const Tensor<1, dim> &  w,
+                  const double            k,
+                  const double            theta)
+  {
+    const Tensor<1, dim> w_e = theta * w + (1 - theta) * w_old;
+    const Tensor<1, dim> u   = u_old + k * w_e;
+    return normal_response(foundation,
+                           u_old * node.normal - node.gap,
+                           u * node.normal - node.gap,
+                           w_e * node.normal,
+                           k,
+                           theta);
   }
 
 
@@ -97,7 +134,11 @@ namespace DynamicContact
 
   /**
    * @p lambda is the current friction force, @p normal the normal response
-   * at w, @p c = c_t k the complementarity constant. Nodes with a constrained
+   * at w, @p c = c_t k the complementarity constant. With the theta-scheme
+   * @p w is the effective velocity w_e (friction acts on its slip) and the
+   * Jacobian is with respect to w_n = (w_e - (1-theta) w_{n-1})/theta (the
+   * direction term scaled by theta; normal.dpressure_dw already is).
+   * Nodes with a constrained
    * component are frictionless (their tangential motion is prescribed).
    */
   template <int dim>
@@ -107,7 +148,8 @@ namespace DynamicContact
                     const Tensor<1, dim> &  w,
                     const Tensor<1, dim> &  lambda,
                     const double            mu,
-                    const double            c);
+                    const double            c,
+                    const double            theta = 1);
 
   /**
    * The friction force the law assigns to (lambda, w): the projection of
@@ -161,15 +203,41 @@ namespace DynamicContact
                  const double            mu,
                  const double            c)
   {
+    return linearize_node(
+      foundation, node, u_old, w, w, k, 1., friction, lambda, mu, c);
+  }
+
+  /**
+   * The theta-scheme version: @p w_old is w_{n-1} at the node, the laws act
+   * on u_n and w_e = theta w + (1 - theta) w_old, the block is the derivative
+   * with respect to w (= w_n).
+   */
+  template <int dim>
+  NodeLinearization<dim>
+  linearize_node(const Foundation &      foundation,
+                 const ContactNode<dim> &node,
+                 const Tensor<1, dim> &  u_old,
+                 const Tensor<1, dim> &  w_old,
+                 const Tensor<1, dim> &  w,
+                 const double            k,
+                 const double            theta,
+                 const bool              friction,
+                 const Tensor<1, dim> &  lambda,
+                 const double            mu,
+                 const double            c)
+  {
     NodeLinearization<dim> l;
-    l.normal = normal_response(foundation, node, u_old, w, k);
+    const Tensor<1, dim>   w_e = theta * w + (1 - theta) * w_old;
+    l.normal =
+      normal_response(foundation, node, u_old, w_old, w, k, theta);
     const double N = node.weight * l.normal.pressure;
     l.force        = N * node.normal;
     l.block        = (node.weight * l.normal.dpressure_dw) *
               outer_product(node.normal, node.normal);
     if (friction)
       {
-        l.friction = friction_response(node, l.normal, w, lambda, mu, c);
+        l.friction =
+          friction_response(node, l.normal, w_e, lambda, mu, c, theta);
         l.force += l.friction.value;
         l.block += l.friction.jacobian;
       }

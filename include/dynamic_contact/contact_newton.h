@@ -32,6 +32,12 @@ namespace DynamicContact
      * nodal laws use c = c_t k.
      */
     double c_t;
+    /**
+     * The time scheme's theta: 1 backward Euler, 1/2 the energy-consistent
+     * trapezoidal scheme (Time/Scheme); the laws act on u_n and
+     * w_e = theta w_n + (1 - theta) w_{n-1}.
+     */
+    double theta;
   };
 
 
@@ -66,8 +72,9 @@ namespace DynamicContact
     reinit() = 0;
 
     /**
-     * Solve one frozen-coefficient problem. @p u_old holds u_{n-1} at every
-     * node, @p mu the frozen coefficients, @p lambda the friction forces
+     * Solve one frozen-coefficient problem. @p u_old and @p w_old hold u_{n-1}
+     * and w_{n-1} at every node, @p mu the frozen coefficients, @p lambda the
+     * friction forces
      * (in: initial guess, out: result; every node, on every process); @p w
      * the initial guess and the result (master form). Throws if the
      * iteration does not converge.
@@ -75,6 +82,7 @@ namespace DynamicContact
     virtual Result
     solve(const Vector_t &                    rhs,
           const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<Tensor<1, dim>> &w_old,
           const std::vector<double> &         mu,
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) = 0;

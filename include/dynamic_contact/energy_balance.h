@@ -33,13 +33,18 @@ namespace DynamicContact
   struct EnergyBalanceTerms
   {
     Energy energy;
-    double load_work = 0; // W_n = (f_n, u_n - u_{n-1})
-    double inertia   = 0; // (rho/2)|w_n - w_{n-1}|^2
-    double elastic   = 0; // a_E(u_n - u_{n-1}, u_n - u_{n-1})/2
-    double viscous   = 0; // k a_C(w_n, w_n)
-    double compliance = 0; // sum m_i [p(u_n)(u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))]
-    double damping   = 0; // k sum m_i q(w_nu) w_nu
-    double friction  = 0; // k sum lambda_i . w_tau,i
+    // With the theta-scheme (theta = 1: backward Euler, the paper's and
+    // model.md's terms; theta = 1/2 trapezoidal), w_e = theta w_n +
+    // (1 - theta) w_{n-1}, and the load f_theta = theta f_n + (1-theta)
+    // f_{n-1}:
+    double load_work = 0; // W_n = (f_theta, u_n - u_{n-1})
+    double inertia   = 0; // (theta - 1/2) rho |w_n - w_{n-1}|^2
+    double elastic   = 0; // (theta - 1/2) a_E(u_n - u_{n-1}, u_n - u_{n-1})
+    double viscous   = 0; // k a_C(w_e, w_e)
+    double compliance = 0; // sum m_i [P (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))],
+                           // P = p(u_n) (theta = 1) or the discrete gradient (0)
+    double damping   = 0; // k sum m_i q(w_e,nu) w_e,nu
+    double friction  = 0; // k sum lambda_i . w_e,tau,i
     double defect    = 0; // E_n - E_{n-1} + D_n - W_n
 
     double
@@ -99,7 +104,8 @@ namespace DynamicContact
                const Vector_t &                         load,
                const double                             k,
                const std::vector<ContactNodeState<dim>> &states,
-               const double                             previous_energy) const;
+               const double                             previous_energy,
+               const double                             theta = 1) const;
 
   private:
     const BulkOperator<dim> &    bulk;

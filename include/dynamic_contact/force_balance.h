@@ -14,7 +14,8 @@ namespace DynamicContact
   /**
    * The total forces on the body at step n (per unit depth in 2D), each as
    * the force the body feels:
-   *   applied  = int_Omega f_0 + int_Gamma_2 f_2,
+   *   applied  = int_Omega f_0 + int_Gamma_2 f_2 (+ int_Gamma_3 s, the source
+   *              of manufactured solutions), at the scheme's time,
    *   contact  = -sum_i (N_i nu_i + lambda_i)   (from the foundation),
    *   reaction = from the clamped and roller boundaries,
    *   inertia  = int_Omega rho (w_n - w_{n-1})/k,
@@ -49,15 +50,20 @@ namespace DynamicContact
     reinit();
 
     /**
-     * @p u, @p w, @p w_old are ghosted vectors with the constrained entries
-     * filled in (Discretization::expand).
+     * For the step from t - k to t of the theta-scheme: the stress at
+     * @p u_theta, @p w_theta (theta-averages of the two ends), the loads
+     * theta f(t) + (1 - theta) f(t - k), the inertia from @p w and @p w_old.
+     * All ghosted, with the constrained entries filled in
+     * (Discretization::expand).
      */
     ForceBalance<dim>
     compute(const ContactBoundary<dim> &              boundary,
             const std::vector<ContactNodeState<dim>> &states,
             const double                              t,
             const double                              k,
-            const Vector_t &                          u,
+            const double                              theta,
+            const Vector_t &                          u_theta,
+            const Vector_t &                          w_theta,
             const Vector_t &                          w,
             const Vector_t &                          w_old) const;
 

@@ -4,6 +4,7 @@
 #include <dynamic_contact/parameters.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace DynamicContact
 {
@@ -91,6 +92,35 @@ namespace DynamicContact
           sum += (s1 - s0) * jump;
         }
       return sum;
+    }
+
+    /**
+     * The discrete gradient (Pi(b) - Pi(a))/(b - a): the compliance force of
+     * the energy-consistent trapezoidal scheme, with which the work of the
+     * force over a step is exactly the change of Pi (p((a+b)/2) as b -> a).
+     */
+    double
+    discrete_gradient(const double a, const double b) const
+    {
+      if (std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+        return value(0.5 * (a + b));
+      return (primitive(b) - primitive(a)) / (b - a);
+    }
+
+    /**
+     * d/db of the discrete gradient: (p(b)(b - a) - (Pi(b) - Pi(a)))/(b - a)^2
+     * = dissipation(a, b)/(b - a)^2; p'/2 where a and b lie on one linear
+     * piece of p.
+     */
+    double
+    discrete_gradient_derivative(const double a, const double b) const
+    {
+      const bool linear_piece =
+        (a > 0 && b > 0 && a < kink && b < kink) || (a <= 0 && b <= 0) ||
+        (a >= kink && b >= kink);
+      if (linear_piece || std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+        return 0.5 * derivative(0.5 * (a + b));
+      return dissipation(a, b) / ((b - a) * (b - a));
     }
 
     double

@@ -186,8 +186,21 @@ namespace DynamicContact
 
     struct Time
     {
+      enum class Scheme
+      {
+        backward_euler,
+        trapezoidal
+      };
       double end_time;
       double time_step;
+      Scheme scheme;
+
+      /** 1 for backward Euler, 1/2 for the trapezoidal scheme. */
+      double
+      theta() const
+      {
+        return scheme == Scheme::backward_euler ? 1. : 0.5;
+      }
 
       static void
       declare_parameters(ParameterHandler &prm);

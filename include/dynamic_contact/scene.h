@@ -66,6 +66,38 @@ namespace DynamicContact
       return *initial_velocity_function;
     }
 
+    /** The additional traction s(x, t) on Gamma_3 (manufactured solutions). */
+    Function<dim> &
+    contact_source() const
+    {
+      return *contact_source_function;
+    }
+
+    bool
+    has_contact_source() const
+    {
+      return contact_source_nonzero;
+    }
+
+    /** An exact solution is known (a manufactured solution). */
+    bool
+    has_exact_solution() const
+    {
+      return exact_displacement_function != nullptr;
+    }
+
+    /** The exact displacement and velocity (has_exact_solution()). */
+    Function<dim> &
+    exact_displacement() const
+    {
+      return *exact_displacement_function;
+    }
+    Function<dim> &
+    exact_velocity() const
+    {
+      return *exact_velocity_function;
+    }
+
     /** Initial gap g0(x) >= 0 of Gamma_3 to the foundation. */
     Function<dim> &
     initial_gap() const
@@ -87,7 +119,7 @@ namespace DynamicContact
       return body_force_nonzero;
     }
 
-    /** Set the time of the time-dependent functions (loads). */
+    /** Set the time of the time-dependent functions (loads, source). */
     void
     set_time(const double t) const;
 
@@ -106,8 +138,12 @@ namespace DynamicContact
     std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> initial_gap_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> contact_source_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> exact_displacement_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>> exact_velocity_function;
     bool traction_nonzero;
     bool body_force_nonzero;
+    bool contact_source_nonzero;
 
     void
     check_boundary_ids(const Triangulation<dim> &tria) const;

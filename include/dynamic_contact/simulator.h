@@ -150,7 +150,7 @@ namespace DynamicContact
     MeshAdaptation<dim>        mesh_adaptation;
 
     // Fields in master form (constrained entries zero).
-    Vector_t u, w, u_old, w_old, load, rhs;
+    Vector_t u, w, u_old, w_old, load, rhs, scratch;
 
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;

@@ -28,7 +28,7 @@ namespace DynamicContact
     /** The frozen friction coefficient mu_i of the last iterate. */
     double       mu    = 0;
     ContactState state = ContactState::free;
-    /** Slip rate |w_tau|. */
+    /** Slip rate |w_e,tau| (w_e = w_n for backward Euler). */
     double slip_rate = 0;
 
     /** Normal nodal force N_i = m_i (p + q). */
@@ -85,14 +85,17 @@ namespace DynamicContact
      * @p c_t is the complementarity constant of friction.
      */
     void
-    reinit(const double complementarity_constant);
+    reinit(const double complementarity_constant, const double theta = 1);
 
     /**
      * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
      * in master form. Throws if Newton does not converge.
      */
     Statistics
-    solve(const Vector_t &rhs, const Vector_t &u_old, Vector_t &w);
+    solve(const Vector_t &rhs,
+          const Vector_t &u_old,
+          const Vector_t &w_old,
+          Vector_t &      w);
 
     /** Node data of the last solve, aligned with contact_boundary.nodes(). */
     const std::vector<ContactNodeState<dim>> &
@@ -135,7 +138,8 @@ namespace DynamicContact
     TimerOutput &                timer;
     const ConditionalOStream &   details;
     const bool                   friction;
-    double                       c_t = 0;
+    double                       c_t   = 0;
+    double                       theta = 1;
 
     std::unique_ptr<ContactNewton<dim>> newton;
 
@@ -148,6 +152,7 @@ namespace DynamicContact
     /** Evaluate the owned nodes' states at the converged (w, lambda). */
     void
     update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
+                  const std::vector<Tensor<1, dim>> &w_old_nodes,
                   const Vector_t &                   w,
                   Statistics &                       statistics);
   };
