@@ -171,9 +171,12 @@ namespace DynamicContact
 
   // ------------------------------------------------------------- VtuWriter
   template <int dim>
-  VtuWriter<dim>::VtuWriter(const std::string &directory, const MPI_Comm comm)
+  VtuWriter<dim>::VtuWriter(const std::string &directory,
+                            const MPI_Comm     comm,
+                            const unsigned int subdivisions)
     : directory(directory)
     , comm(comm)
+    , subdivisions(subdivisions)
   {}
 
 
@@ -342,7 +345,8 @@ namespace DynamicContact
     data_out.add_data_vector(subdomain,
                              "subdomain",
                              DataOut<dim>::type_cell_data);
-    data_out.build_patches(d.mapping, d.fe.degree);
+    data_out.build_patches(d.mapping,
+                           subdivisions > 0 ? subdivisions : d.fe.degree);
 
     const std::string pvtu = data_out.write_vtu_with_pvtu_record(
       directory + "/", "solution", step, comm, 5, 0);

@@ -843,6 +843,12 @@ namespace DynamicContact
                           "Write solution_NNNNN.pvtu/.vtu (indexed by "
                           "solution.pvd) every N steps, and at the initial "
                           "and final state; 0: no VTU output at all.");
+        prm.declare_entry("VTU subdivisions",
+                          "0",
+                          Patterns::Integer(0, 16),
+                          "Subdivisions of each cell in the VTU files (0: the "
+                          "polynomial degree, which shows Q_p fields at their "
+                          "nodes).");
         prm.declare_entry(
           "Output times",
           "",
@@ -880,6 +886,7 @@ namespace DynamicContact
       directory      = prm.get("Directory");
       output_every   = prm.get_integer("Output every");
       vtu_every      = prm.get_integer("VTU every");
+      vtu_subdivisions = prm.get_integer("VTU subdivisions");
       output_times   = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Output times")));
       progress_every = prm.get_integer("Progress every");

@@ -617,8 +617,8 @@ namespace DynamicContact
     write_status("running");
     time_series_writer = std::make_unique<TimeSeriesWriter>(
       parameters.output.directory + "/time_series.csv", comm);
-    vtu_writer =
-      std::make_unique<VtuWriter<dim>>(parameters.output.directory, comm);
+    vtu_writer = std::make_unique<VtuWriter<dim>>(
+      parameters.output.directory, comm, parameters.output.vtu_subdivisions);
 
     print_header();
     set_initial_conditions();

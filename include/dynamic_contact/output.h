@@ -86,7 +86,9 @@ namespace DynamicContact
   class VtuWriter
   {
   public:
-    VtuWriter(const std::string &directory, const MPI_Comm comm);
+    VtuWriter(const std::string &directory,
+              const MPI_Comm     comm,
+              const unsigned int subdivisions = 0);
 
     void
     write(const unsigned int                         step,
@@ -106,6 +108,7 @@ namespace DynamicContact
   private:
     std::string                               directory;
     MPI_Comm                                  comm;
+    unsigned int                              subdivisions;
     std::vector<std::pair<double, std::string>> records;
   };
 } // namespace DynamicContact

@@ -239,6 +239,7 @@ namespace DynamicContact
       std::string         directory;
       unsigned int        output_every;
       unsigned int        vtu_every;
+      unsigned int        vtu_subdivisions;
       std::vector<double> output_times;
       unsigned int progress_every;
       bool         print_timings;
