@@ -281,6 +281,7 @@ namespace DynamicContact
     it.active.clear();
     it.f_scale      = 1e-300;
     it.law_residual = 0;
+    it.law_squares  = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
         const auto &l = it.lin[i] = linearize_node(problem.foundation,
@@ -315,16 +316,19 @@ namespace DynamicContact
                           16 * static_cast<unsigned int>(l.friction.state);
         it.f_scale = std::max(it.f_scale, it.forces[i].norm());
         if (problem.friction)
-          it.law_residual =
-            std::max(it.law_residual,
-                     (lambda[i] -
-                      projected_friction_force(nodes[i],
-                                               l.friction.threshold,
-                                               theta * w_nodes[i] +
-                                                 (1 - theta) * w_old[i],
-                                               lambda[i],
-                                               problem.c_t * k))
-                       .norm());
+          {
+            const double law =
+              (lambda[i] -
+               projected_friction_force(nodes[i],
+                                        l.friction.threshold,
+                                        theta * w_nodes[i] +
+                                          (1 - theta) * w_old[i],
+                                        lambda[i],
+                                        problem.c_t * k))
+                .norm();
+            it.law_residual = std::max(it.law_residual, law);
+            it.law_squares += law * law;
+          }
         if (l.active() || it.forces[i].norm_square() > 0 || s > 0)
           it.active.push_back(i);
       }
@@ -508,55 +512,129 @@ namespace DynamicContact
     // solve with K0 but for new columns of C. It finds the active sets; where
     // K0 is nearly singular (a body held only by the foundation) the
     // cancellation in w_free - C f limits its accuracy, and phase 2 polishes.
-    Iterate it;
+    Iterate it, trial;
     it.w = problem.boundary.gather_values(w);
     double w_scale = 1e-300;
     for (unsigned int i = 0; i < n; ++i)
-      w_scale = std::max(w_scale, w_free[i].norm());
-    std::vector<unsigned int>   previous_signature;
-    double                      previous_residual = 0;
-    std::vector<Tensor<1, dim>> dw, new_forces, response, r;
+      w_scale = std::max({w_scale, w_free[i].norm(), it.w[i].norm()});
+    std::vector<Tensor<1, dim>> dw, new_forces, response, r, w_full,
+      lambda_full;
+
+    // The residual of an iterate: its largest entries (relative, for the
+    // stopping test) and the merit function (1/2 the sum of squares, with
+    // the scales of the current iterate) that the line search decreases.
+    struct Measure
+    {
+      double residual = 0, equilibrium = 0, equilibrium_squares = 0;
+    };
+    auto evaluate = [&](const std::vector<Tensor<1, dim>> &w_nodes,
+                        const std::vector<Tensor<1, dim>> &lam,
+                        Iterate &                          state) {
+      linearize(u_old, w_old, mu, lam, w_nodes, state);
+      state.w = w_nodes;
+      compute_columns(state.active, result);
+      compliance_response(w_free, state.g, state.active, response);
+      Measure m;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double e = (w_nodes[i] - response[i]).norm();
+          m.equilibrium  = std::max(m.equilibrium, e);
+          m.equilibrium_squares += e * e;
+        }
+      m.residual =
+        std::max(m.equilibrium / w_scale, state.law_residual / state.f_scale);
+      return m;
+    };
+    auto merit = [&](const Measure &m, const Iterate &state, const double f) {
+      return 0.5 * (m.equilibrium_squares / (w_scale * w_scale) +
+                    state.law_squares / (f * f));
+    };
+
     {
       TimerOutput::Scope t(problem.timer, "Contact: boundary Newton");
+      Measure                                current = evaluate(it.w, lambda, it);
+      std::vector<std::vector<unsigned int>> history; // active sets seen
+      std::vector<double>                    merits;
+      bool                                   monotone = false;
       for (unsigned int iteration = 0;; ++iteration)
         {
-          linearize(u_old, w_old, mu, lambda, it.w, it);
-          compute_columns(it.active, result);
-          compliance_response(w_free, it.g, it.active, response);
-          double equilibrium = 0;
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              w_scale     = std::max(w_scale, it.w[i].norm());
-              equilibrium = std::max(equilibrium, (it.w[i] - response[i]).norm());
-            }
-          const double residual =
-            std::max(equilibrium / w_scale, it.law_residual / it.f_scale);
           problem.details << "    Newton " << result.iterations
-                          << " (on Gamma_3): residual " << residual
-                          << " (equilibrium " << equilibrium / w_scale
+                          << " (on Gamma_3): residual " << current.residual
+                          << " (equilibrium " << current.equilibrium / w_scale
                           << ", law " << it.law_residual / it.f_scale
                           << "), active nodes " << it.active.size()
                           << std::endl;
           // Stagnation near round-off (the cancellation in w_free - C f of
           // an ill-conditioned K0): phase 2 polishes.
-          const bool stagnated = iteration > 0 &&
-                                 it.signature == previous_signature &&
-                                 residual > 0.1 * previous_residual &&
-                                 residual < std::sqrt(tol);
-          if (residual <= tol || stagnated)
+          const bool stagnated = iteration > 0 && !history.empty() &&
+                                 it.signature == history.back() &&
+                                 current.residual > 0.1 * result.residual &&
+                                 current.residual < std::sqrt(tol);
+          if (current.residual <= tol || stagnated)
             break;
-          result.residual = residual;
+          result.residual = current.residual;
           check_cap(result.iterations);
-          previous_signature = it.signature;
-          previous_residual  = residual;
 
-          // r_i = w_free,i - w_i - sum_j C_ij base_j.
+          // Active-set cycling: a return to sets seen before, with other
+          // sets in between (keeping the last sets, as a damped step does,
+          // is no cycle). The line search then damps the step (the remedy).
+          const bool cycling =
+            history.size() >= 2 && it.signature != history.back() &&
+            std::find(history.begin(), history.end() - 1, it.signature) !=
+              history.end() - 1;
+          result.cycles += cycling;
+          monotone = monotone || cycling;
+          history.push_back(it.signature);
+          const double f_scale     = it.f_scale;
+          const double merit_now   = merit(current, it, f_scale);
+          merits.push_back(merit_now);
+
+          // The full semismooth Newton step.
           compliance_response(w_free, it.base, it.active, response);
           r.resize(it.active.size());
           for (unsigned int a = 0; a < it.active.size(); ++a)
             r[a] = response[it.active[a]] - it.w[it.active[a]];
-          dense_step(it, r, dw, lambda, new_forces);
-          compliance_response(w_free, new_forces, it.active, it.w);
+          lambda_full = lambda;
+          dense_step(it, r, dw, lambda_full, new_forces);
+          compliance_response(w_free, new_forces, it.active, w_full);
+
+          // Accept it unless the sets cycle, or, after the first iterations
+          // (where set changes may raise the merit while Newton converges),
+          // the merit rises above that of the last five iterates
+          // (non-monotone), or, once a cycle was seen, above the current one
+          // (monotone from then on); otherwise backtrack along it (Armijo). Measured on
+          // the stress scenes: it costs a few iterations where plain Newton
+          // converges and completes the scenes where the sets cycle.
+          Measure      trial_measure = evaluate(w_full, lambda_full, trial);
+          const double reference     = *std::max_element(
+            merits.end() - std::min<std::size_t>(merits.size(), 5),
+            merits.end());
+          const double merit_full = merit(trial_measure, trial, f_scale);
+          if (problem.parameters.line_search &&
+              (cycling || (monotone && merit_full > merit_now) ||
+               (iteration >= 4 && merit_full > reference)))
+            {
+              std::vector<Tensor<1, dim>> w_trial(n), lambda_trial(n);
+              for (double alpha = 0.5;; alpha *= 0.5)
+                {
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      w_trial[i] = it.w[i] + alpha * (w_full[i] - it.w[i]);
+                      lambda_trial[i] =
+                        lambda[i] + alpha * (lambda_full[i] - lambda[i]);
+                    }
+                  trial_measure = evaluate(w_trial, lambda_trial, trial);
+                  ++result.line_search_steps;
+                  if (merit(trial_measure, trial, f_scale) <=
+                        (1 - 1e-4 * alpha) * merit_now ||
+                      alpha < 1. / 64)
+                    break;
+                }
+              lambda_full = lambda_trial;
+            }
+          std::swap(it, trial);
+          lambda  = lambda_full;
+          current = trial_measure;
           ++result.iterations;
         }
     }

@@ -759,6 +759,15 @@ namespace DynamicContact
           "'assembled': the sparse Newton matrix (K0 plus the contact "
           "blocks, stick constraints imposed on its rows) is factorized "
           "whenever it changes, as in deal.II's step-42.");
+        prm.declare_entry(
+          "Line search",
+          "true",
+          Patterns::Bool(),
+          "Globalize the semismooth Newton iteration (condensed solver): "
+          "when the active sets cycle (return to sets seen before) or, from "
+          "the fifth iteration on, the merit function (half the squared "
+          "residual) rises above that of the last five iterates, backtrack "
+          "along the Newton step until it decreases (Armijo).");
         prm.declare_entry("Newton tolerance",
                           "1e-10",
                           Patterns::Double(),
@@ -801,6 +810,7 @@ namespace DynamicContact
       contact_solver        = (prm.get("Contact solver") == "assembled" ?
                                  ContactSolver::assembled :
                                  ContactSolver::condensed);
+      line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");
       linear_solver         = (prm.get("Linear solver") == "iterative" ?

@@ -115,6 +115,8 @@ namespace DynamicContact
                       statistics.convexification_converged ? 1 : 0);
         r.add("coefficient_residual", statistics.coefficient_residual);
         r.add_integer("factorizations", statistics.factorizations);
+        r.add_integer("active_set_cycles", statistics.cycles);
+        r.add_integer("line_search_steps", statistics.line_search_steps);
         r.add_integer("n_contact", statistics.n_contact);
         r.add_integer("n_stick", statistics.n_stick);
         r.add_integer("n_slip", statistics.n_slip);

@@ -221,6 +221,8 @@ namespace DynamicContact
         statistics.newton_iterations += result.iterations;
         statistics.factorizations += result.factorizations;
         statistics.bulk_solves += result.bulk_solves;
+        statistics.cycles += result.cycles;
+        statistics.line_search_steps += result.line_search_steps;
         statistics.residual = result.residual;
         ++statistics.convexification_iterations;
         if (!loop)

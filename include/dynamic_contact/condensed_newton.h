@@ -92,7 +92,8 @@ namespace DynamicContact
       std::vector<unsigned int>           signature; // sets, per node
       std::vector<unsigned int>           active;
       double                              f_scale      = 0;
-      double                              law_residual = 0;
+      double                              law_residual = 0; // largest
+      double                              law_squares  = 0; // sum of squares
     };
 
     void

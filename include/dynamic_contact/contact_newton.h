@@ -63,6 +63,10 @@ namespace DynamicContact
       unsigned int factorizations = 0;
       unsigned int bulk_solves    = 0;
       double       residual       = 0;
+      /** Iterations whose active sets had been seen before (cycling). */
+      unsigned int cycles = 0;
+      /** Damped trial steps of the line search. */
+      unsigned int line_search_steps = 0;
     };
 
     virtual ~ContactNewton() = default;

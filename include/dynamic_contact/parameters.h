@@ -221,6 +221,7 @@ namespace DynamicContact
         assembled
       };
       ContactSolver contact_solver;
+      bool         line_search;
       double       newton_tolerance;
       unsigned int max_newton_iterations;
       LinearSolver linear_solver;

@@ -61,6 +61,8 @@ namespace DynamicContact
       bool         convexification_converged  = true;
       unsigned int factorizations             = 0;
       unsigned int bulk_solves                = 0;
+      unsigned int cycles                     = 0;
+      unsigned int line_search_steps          = 0;
       double       residual                   = 0;
       /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
       double       coefficient_residual       = 0;

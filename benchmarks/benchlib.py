@@ -1,0 +1,198 @@
+"""Shared pieces of benchmarks/figure4 and benchmarks/work-precision: the
+Python with numpy/matplotlib, the executable, one timed run of a scene, the
+cached 128 x 128 reference run of the paper's scene, the machine line.
+
+Not a command; imported by the two scripts (and usable on its own).
+"""
+import csv
+import json
+import os
+import platform
+import shutil
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BENCH = os.path.join(ROOT, "benchmarks")
+RESULTS = os.path.join(BENCH, "results")
+FIGURES = os.path.join(ROOT, "doc", "figures")
+SCRATCH = os.path.join(ROOT, "build", "benchmarks")
+VENV = os.path.join(ROOT, "build", "figures-venv")
+
+PAPER_PRM = os.path.join(ROOT, "prm", "barboteu_danan_2016.prm")
+ADAPTIVE_PRM = os.path.join(ROOT, "prm", "barboteu_danan_2016_adaptive.prm")
+
+# The comparison times: multiples of 1/8 s lie on the time grid of every run
+# with k = 1/n, n a multiple of 8 (and k = 1/(2n)).
+COMMON_TIMES = [i / 8 for i in range(1, 9)]
+
+# The reference: the paper's resolution, uniform Q1, h = k = 1/128.
+REFERENCE_N = 128
+REFERENCE_DIR = os.path.join(SCRATCH, "reference-%d" % REFERENCE_N)
+
+# 'Output/VTU every = 0' writes no VTU at all (not even at 'Output times'),
+# so the runs use a cadence larger than any number of steps: VTU at the
+# initial state, at the output times and at the last step only.
+NO_PERIODIC_VTU = 1000000
+
+# 'Output/Output times': the program writes at every step with
+# t_out <= t and t_out > t - k (1 + 1e-12); an output time that is exactly a
+# step time therefore also triggers the *next* step (one extra VTU and contact
+# CSV per time). Asking for t - 1e-7 (well below any step, well above the
+# 1e-12 tolerance) gives exactly the step at t, with or without that quirk.
+OUTPUT_TIME_SHIFT = 1e-7
+
+
+def ensure_python():
+    """Re-execute the calling script with a Python that has numpy and
+    matplotlib: this one, else build/figures-venv (created as
+    scripts/make-figures does if missing)."""
+    try:
+        import matplotlib  # noqa: F401
+        import numpy  # noqa: F401
+        return
+    except ImportError:
+        pass
+    python = os.path.join(VENV, "bin", "python")
+    if os.environ.get("BENCHLIB_REEXECUTED"):
+        sys.exit("%s lacks numpy or matplotlib: %s/bin/python -m pip install numpy matplotlib"
+                 % (VENV, VENV))
+    if not os.path.exists(python):
+        print("== creating %s with matplotlib and numpy" % VENV, flush=True)
+        subprocess.run([sys.executable, "-m", "venv", VENV], check=True)
+        subprocess.run([python, "-m", "pip", "install", "--quiet", "--upgrade", "pip"], check=True)
+        subprocess.run([python, "-m", "pip", "install", "--quiet", "matplotlib", "numpy"], check=True)
+    os.environ["BENCHLIB_REEXECUTED"] = "1"
+    os.execv(python, [python] + sys.argv)
+
+
+def executable():
+    """$DYNAMIC_CONTACT, else build/dynamic-contact (built with scripts/build
+    if missing)."""
+    exe = os.environ.get("DYNAMIC_CONTACT")
+    if exe:
+        if not os.path.exists(exe):
+            sys.exit("no executable %s ($DYNAMIC_CONTACT)" % exe)
+        return os.path.abspath(exe)
+    exe = os.path.join(ROOT, "build", "dynamic-contact")
+    if not os.path.exists(exe):
+        print("== building %s (scripts/build)" % exe, flush=True)
+        subprocess.run([os.path.join(ROOT, "scripts", "build")], check=True)
+    return exe
+
+
+def output_times_entry(times):
+    return ", ".join("%.10g" % (t - OUTPUT_TIME_SHIFT) for t in times)
+
+
+def comparison_overrides(times):
+    """Every output off except the VTU (and, unavoidably, the contact CSV) at
+    the comparison times."""
+    return ["Output/Output every=0",
+            "Output/VTU every=%d" % NO_PERIODIC_VTU,
+            "Output/Output times=" + output_times_entry(times),
+            "Output/Progress every=0",
+            "Output/Print timings=false"]
+
+
+def run_scene(exe, prm, overrides, directory, log=None):
+    """One run of the program (one MPI process, the whole process timed).
+    Returns (wall time in s, return code, tail of the output)."""
+    if os.path.exists(directory):
+        shutil.rmtree(directory)
+    command = [exe, prm, "--set", "Output/Directory=" + directory]
+    for o in overrides:
+        command += ["--set", o]
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMP_NUM_THREADS="1")
+    start = time.perf_counter()
+    result = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True)
+    wall = time.perf_counter() - start
+    if log:
+        with open(log, "w") as f:
+            f.write("$ " + " ".join("'%s'" % c if " " in c else c for c in command) + "\n")
+            f.write(result.stdout)
+            f.write("\n[exit code %d, wall time %.3f s]\n" % (result.returncode, wall))
+    return wall, result.returncode, result.stdout[-3000:], command
+
+
+def run_status(directory):
+    try:
+        with open(os.path.join(directory, "run_status")) as f:
+            return f.read().strip()
+    except OSError:
+        return None
+
+
+def read_time_series(directory):
+    with open(os.path.join(directory, "time_series.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def mean_dofs(directory):
+    """Mean of the dofs column over the steps (row 0, the initial state, left
+    out)."""
+    rows = read_time_series(directory)[1:]
+    return statistics.mean(int(r["dofs"]) for r in rows), len(rows)
+
+
+def reference_overrides(times=COMMON_TIMES):
+    n = REFERENCE_N
+    return ["Geometry/Repetitions=%d, %d" % (n, n),
+            "Time/Time step=%.17g" % (1.0 / n),
+            "Finite element/Polynomial degree=1",
+            "Time/Scheme=backward Euler"] + comparison_overrides(times)
+
+
+def ensure_reference(exe, directory=REFERENCE_DIR, times=COMMON_TIMES):
+    """The reference run (uniform Q1 128 x 128, k = 1/128, backward Euler,
+    VTU at the comparison times), made once and kept in `directory`: it is
+    run again only if its run_status is not 'completed'. Returns a dict with
+    its wall time (of the run that made it) and its directory."""
+    info_path = os.path.join(directory, "benchmark_reference.json")
+    if run_status(directory) == "completed":
+        info = {}
+        if os.path.exists(info_path):
+            with open(info_path) as f:
+                info = json.load(f)
+        info["reused"] = True
+        info["directory"] = directory
+        print("== reference %s: run_status 'completed', reused (wall time of the run: %s s)"
+              % (os.path.relpath(directory, ROOT), info.get("wall_time", "unknown")), flush=True)
+        return info
+    print("== reference: uniform Q1 %d x %d, k = 1/%d, into %s"
+          % (REFERENCE_N, REFERENCE_N, REFERENCE_N, os.path.relpath(directory, ROOT)), flush=True)
+    log = directory + ".log"
+    os.makedirs(os.path.dirname(directory), exist_ok=True)
+    wall, code, tail, command = run_scene(exe, PAPER_PRM, reference_overrides(times), directory, log)
+    if code != 0 or run_status(directory) != "completed":
+        sys.exit("reference run failed (exit code %d, log %s):\n%s" % (code, log, tail))
+    dofs, steps = mean_dofs(directory)
+    info = {"wall_time": round(wall, 3), "date": time.strftime("%Y-%m-%d %H:%M:%S"),
+            "machine": machine_line(), "executable": exe, "command": command,
+            "dofs": dofs, "steps": steps}
+    with open(info_path, "w") as f:
+        json.dump(info, f, indent=1)
+    print("   done in %.1f s" % wall, flush=True)
+    info["reused"] = False
+    info["directory"] = directory
+    return info
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.lower().startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def machine_line():
+    return "%s, %s, %d cores, %s" % (time.strftime("%Y-%m-%d"), cpu_model(), os.cpu_count(),
+                                     " ".join(platform.uname()[0:3]))
