@@ -7,9 +7,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace DynamicContact
 {
+  namespace
+  {
+    std::string
+    scientific(const double x)
+    {
+      char buffer[32];
+      std::snprintf(buffer, sizeof(buffer), "%.3e", x);
+      return buffer;
+    }
+  } // namespace
+
   template <int dim>
   AssembledNewton<dim>::AssembledNewton(const ContactProblem<dim> &problem)
     : problem(problem)
@@ -291,13 +303,14 @@ namespace DynamicContact
                         << law_residual / f_scale << ")" << std::endl;
         if (result.residual <= problem.parameters.newton_tolerance)
           break;
-        AssertThrow(iteration < problem.parameters.max_newton_iterations,
-                    ExcMessage(
-                      "The semismooth Newton iteration did not converge in "
-                      "Solver/Maximum Newton iterations = " +
-                      std::to_string(problem.parameters.max_newton_iterations) +
-                      " iterations (relative residual " +
-                      std::to_string(result.residual) + ")."));
+        if (iteration >= problem.parameters.max_newton_iterations ||
+            !std::isfinite(result.residual))
+          throw StepFailure(
+            "the semismooth Newton iteration did not converge in "
+            "Solver/Maximum Newton iterations = " +
+            std::to_string(problem.parameters.max_newton_iterations) +
+            " iterations (relative residual " +
+            scientific(result.residual) + ")");
 
         // The linearized forces: normal law and slip values; at stick
         // nodes the tangential force is what the solve determines.

@@ -9,9 +9,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace DynamicContact
 {
+  namespace
+  {
+    std::string
+    scientific(const double x)
+    {
+      char buffer[32];
+      std::snprintf(buffer, sizeof(buffer), "%.3e", x);
+      return buffer;
+    }
+  } // namespace
+
   template <int dim>
   CondensedNewton<dim>::CondensedNewton(const ContactProblem<dim> &problem)
     : problem(problem)
@@ -476,12 +488,12 @@ namespace DynamicContact
     const unsigned int cap = problem.parameters.max_newton_iterations;
     const double       tol = problem.parameters.newton_tolerance;
     auto check_cap = [&](const unsigned int iterations) {
-      AssertThrow(iterations < cap,
-                  ExcMessage("The semismooth Newton iteration did not "
-                             "converge in Solver/Maximum Newton iterations = " +
-                             std::to_string(cap) +
-                             " iterations (relative residual " +
-                             std::to_string(result.residual) + ")."));
+      if (iterations >= cap || !std::isfinite(result.residual))
+        throw StepFailure(
+          "the semismooth Newton iteration did not converge in Solver/Maximum "
+          "Newton iterations = " +
+          std::to_string(cap) + " iterations (relative residual " +
+          scientific(result.residual) + ")");
     };
 
     // The free response: the body without the foundation. The passes of a

@@ -709,6 +709,15 @@ namespace DynamicContact
                         "Time step k (s), > 0. If it does not divide the "
                         "end time, the last step is shortened to end at T.");
       prm.declare_entry(
+        "Minimum time step",
+        "0",
+        Patterns::Double(0),
+        "A step the solver cannot solve is retried with half the time step "
+        "(again and again, down to this; 0: Time step/1024), and the time "
+        "step grows back (doubling after three good steps) to Time step. A "
+        "step that fails even at the minimum stops the run, the last good "
+        "state written. Set it equal to Time step for no cut-back.");
+      prm.declare_entry(
         "Scheme",
         "backward Euler",
         Patterns::Selection("backward Euler|trapezoidal"),
@@ -728,6 +737,9 @@ namespace DynamicContact
       prm.enter_subsection("Time");
       end_time  = prm.get_double("End time");
       time_step = prm.get_double("Time step");
+      minimum_time_step = prm.get_double("Minimum time step");
+      if (minimum_time_step == 0)
+        minimum_time_step = time_step / 1024;
       scheme    = (prm.get("Scheme") == "trapezoidal" ? Scheme::trapezoidal :
                                                      Scheme::backward_euler);
       prm.leave_subsection();
@@ -735,6 +747,8 @@ namespace DynamicContact
               "Time/End time must be positive, got " + str(end_time) + ".");
       require(std::isfinite(time_step) && time_step > 0,
               "Time/Time step must be positive, got " + str(time_step) + ".");
+      require(minimum_time_step <= time_step,
+              "Time/Minimum time step must not exceed Time/Time step.");
       require(end_time / time_step < 1e8,
               "Time/Time step: " + str(end_time / time_step) +
                 " steps to reach Time/End time; at most 1e8 are allowed.");
@@ -999,6 +1013,18 @@ namespace DynamicContact
                              parameter_file + "'."));
       // A parameter file is text: refuse binary content with a clear message
       // rather than a confusing parse error about an unprintable line.
+      // And a scene that sets nothing is a mistake, not the default scene.
+      bool sets_something = false;
+      {
+        std::ifstream lines(parameter_file);
+        std::string   line;
+        while (std::getline(lines, line))
+          {
+            line = Utilities::trim(line.substr(0, line.find('#')));
+            if (line.rfind("set ", 0) == 0 || line.rfind("include ", 0) == 0)
+              sets_something = true;
+          }
+      }
       char c;
       unsigned int line = 1;
       while (in.get(c))
@@ -1012,6 +1038,11 @@ namespace DynamicContact
                                  "in line " +
                                  std::to_string(line) + ")."));
         }
+      AssertThrow(sets_something,
+                  ExcMessage("The parameter file '" + parameter_file +
+                             "' is empty: it sets no parameter (write the "
+                             "scene in it; --print-parameters lists every "
+                             "parameter)."));
     }
 
     /** The subsection path ("A/B") open before line @p line of a file. */

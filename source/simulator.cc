@@ -33,20 +33,6 @@ namespace DynamicContact
       return out.str();
     }
 
-    /** The times t_1 < ... < t_N = T of steps of length k (the last may be shorter). */
-    std::vector<double>
-    time_points(const double end_time, const double k)
-    {
-      const double ratio = end_time / k;
-      unsigned int n     = static_cast<unsigned int>(std::llround(ratio));
-      if (std::abs(ratio - n) > 1e-9 * std::max(1., ratio))
-        n = static_cast<unsigned int>(std::ceil(ratio));
-      std::vector<double> t(n);
-      for (unsigned int i = 0; i < n; ++i)
-        t[i] = (i + 1 == n ? end_time : (i + 1) * k);
-      return t;
-    }
-
     /** Columns name_x, name_y (, name_z) of a vector. */
     template <int dim>
     void
@@ -73,6 +59,7 @@ namespace DynamicContact
       double                               previous_energy = 0;
       typename StepSolver<dim>::Statistics statistics;
       double                               remesh_energy_change = 0;
+      unsigned int                         cutbacks             = 0;
       unsigned long long                   dofs                 = 0;
       unsigned long long                   cells                = 0;
       bool                                 has_errors           = false;
@@ -85,6 +72,7 @@ namespace DynamicContact
         r.add_integer("step", step);
         r.add("time", time);
         r.add("time_step", time_step);
+        r.add_integer("cutbacks", cutbacks);
         r.add("normal_force", normal_force);
         r.add("tangential_force", tangential_force);
         add_vector_columns(r, "applied_force", forces.applied);
@@ -174,7 +162,7 @@ namespace DynamicContact
                      comm)
     , force_balance(discretization, material, scene)
     , mesh_adaptation(parameters.mesh_refinement, scene, discretization)
-    , times(time_points(parameters.time.end_time, parameters.time.time_step))
+    , k_current(parameters.time.time_step)
   {}
 
 
@@ -423,7 +411,8 @@ namespace DynamicContact
   Simulator<dim>::do_time_step(const unsigned int n,
                                const double       t,
                                const double       k,
-                               const double       remesh_energy_change)
+                               const double       remesh_energy_change,
+                               const unsigned int cutbacks)
   {
     u_old = u;
     w_old = w;
@@ -434,6 +423,7 @@ namespace DynamicContact
     // The energy change of a mesh transfer before this step has its own
     // column: E_{n-1} below is that of the transferred fields.
     record.remesh_energy_change = remesh_energy_change;
+    record.cutbacks             = cutbacks;
     record.previous_energy = energy_balance.energy(u_old, w_old).total();
 
     const double theta = parameters.time.theta();
@@ -466,6 +456,9 @@ namespace DynamicContact
 
     w = w_old; // initial guess
     record.statistics = step_solver.solve(rhs, u_old, w_old, w);
+
+    if (!std::isfinite(w.l2_norm()))
+      throw StepFailure("the solution is not finite");
 
     // u_n = u_{n-1} + k (theta w_n + (1 - theta) w_{n-1})
     u = u_old;
@@ -571,8 +564,12 @@ namespace DynamicContact
     // direct solver near the stopping thresholds: they are left out of the
     // deterministic output of regression runs.
     const bool interactive = parameters.output.print_timings;
-    pcout << "step " << std::setw(5) << step << '/' << times.size()
+    pcout << "step " << std::setw(5) << step << '/' << step + remaining_steps()
           << "  t = " << sig6(row.get("time"));
+    if (row.get("time_step") != parameters.time.time_step ||
+        row.get("cutbacks") > 0)
+      pcout << "  k = " << sig6(row.get("time_step")) << " ("
+            << row.get("cutbacks") << " cut-backs)";
     if (interactive)
       {
         pcout << "  Newton " << row.get("newton_iterations");
@@ -591,7 +588,7 @@ namespace DynamicContact
                                  std::chrono::steady_clock::now() - wall_start)
                                  .count();
         pcout << "  (" << seconds(elapsed) << ", ~"
-              << seconds(elapsed / step * (times.size() - step)) << " left)";
+              << seconds(elapsed / step * remaining_steps()) << " left)";
       }
     pcout << std::endl;
   }
@@ -649,24 +646,94 @@ namespace DynamicContact
 
 
   template <int dim>
+  unsigned int
+  Simulator<dim>::remaining_steps() const
+  {
+    const double k0 = parameters.time.time_step;
+    return static_cast<unsigned int>(
+      std::ceil((parameters.time.end_time - current_time) / k0 - 1e-9));
+  }
+
+
+  template <int dim>
   bool
   Simulator<dim>::advance()
   {
-    if (step >= times.size())
+    const double T  = parameters.time.end_time;
+    const double k0 = parameters.time.time_step;
+    if (current_time >= T - 1e-9 * k0)
       return false;
-    ++step;
-    const double t = times[step - 1];
-    const double k = t - (step > 1 ? times[step - 2] : 0.);
 
     double remesh_energy_change = 0;
-    if (mesh_adaptation.due(step))
+    if (mesh_adaptation.due(step + 1))
       remesh_energy_change = adapt_mesh(
-        t - k,
-        std::min(parameters.time.end_time,
-                 t - k + mesh_adaptation.lookahead_steps() * k),
-        k);
+        current_time,
+        std::min(T, current_time + mesh_adaptation.lookahead_steps() * k0),
+        k0);
 
-    const TimeSeriesRow row = do_time_step(step, t, k, remesh_energy_change);
+    // A step the solver cannot solve is retried from the last good state
+    // with half the time step, down to Time/Minimum time step.
+    const Vector_t      u_good = u, w_good = w;
+    const auto          lambda_good = step_solver.friction_forces();
+    unsigned int        cutbacks    = 0;
+    double              k           = 0;
+    TimeSeriesRow       row;
+    for (;;)
+      {
+        k = std::min(k_current, T - current_time);
+        if (T - current_time - k < 1e-9 * k0) // no sliver of a last step
+          k = T - current_time;
+        try
+          {
+            row = do_time_step(
+              step + 1, current_time + k, k, remesh_energy_change, cutbacks);
+            break;
+          }
+        catch (const StepFailure &failure)
+          {
+            u = u_good;
+            w = w_good;
+            step_solver.set_friction_forces(lambda_good);
+            if (k / 2 < parameters.time.minimum_time_step * (1 - 1e-12))
+              {
+                // Stop, with the last good state written out.
+                output_results(step, current_time, true, vtu_writer != nullptr);
+                AssertThrow(false,
+                            ExcMessage(
+                              "step " + std::to_string(step + 1) +
+                              " (from t = " + sig6(current_time) +
+                              " s) could not be solved even with the "
+                              "minimum time step (Time/Minimum time step = " +
+                              sig6(parameters.time.minimum_time_step) +
+                              " s): " + failure.what() +
+                              ". The last good state (step " +
+                              std::to_string(step) + ") is written to '" +
+                              parameters.output.directory + "'."));
+              }
+            k_current = k / 2;
+            ++cutbacks;
+            good_steps_since_cutback = 0;
+            pcout << "  step " << step + 1 << " (t = " << sig6(current_time)
+                  << " s): " << failure.what() << "; retrying with k = "
+                  << sig6(k_current) << std::endl;
+          }
+      }
+    ++step;
+    current_time += k;
+    // Back on the nominal grid (and on T) up to round-off.
+    const double n_nominal = std::round(current_time / k0);
+    if (std::abs(current_time - n_nominal * k0) < 1e-9 * k0)
+      current_time = std::min(n_nominal * k0, T);
+    if (std::abs(current_time - T) < 1e-9 * k0)
+      current_time = T;
+    // The time step grows back after good steps.
+    if (cutbacks == 0 && k_current < k0 && ++good_steps_since_cutback >= 3)
+      {
+        k_current                = std::min(2 * k_current, k0);
+        good_steps_since_cutback = 0;
+      }
+    const double t = current_time;
+
     time_series_writer->write(row);
     rows.push_back(row);
 
@@ -684,7 +751,7 @@ namespace DynamicContact
             << " without converging; max |mu_i - mu(|w_tau,i|)| = "
             << sig6(row.get("coefficient_residual")) << std::endl;
 
-    const bool last = (step == times.size());
+    const bool last = (current_time >= T - 1e-9 * k0);
     // An output time is due at the first step reaching it.
     bool at_output_time = false;
     for (const double t_out : parameters.output.output_times)

@@ -304,13 +304,10 @@ main(int argc, char **argv)
 
   // Controls: valid input runs to completion.
   add("control_valid_scene", scene, file, 0, {});
-  add("control_empty_file_all_defaults",
-      "",
-      with({"--set", "Time/End time=0.015625"}),
-      0,
-      {});
 
   // The file itself.
+  add("empty_file", "", file, 1, {"scene.prm", "empty"});
+  add("only_comments", "# nothing set\n\n", file, 1, {"scene.prm", "empty"});
   add("missing_file", std::nullopt, {"missing.prm"}, 1, {"missing.prm"});
   add("binary_garbage_file", garbage, file, 1, {"scene.prm"});
   add("unknown_entry_top_level", scene + "\nset Foo = 1\n", file, 1,

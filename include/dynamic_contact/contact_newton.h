@@ -9,10 +9,25 @@
 #include <dynamic_contact/contact_law.h>
 #include <dynamic_contact/foundation.h>
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace DynamicContact
 {
+  /**
+   * A step the solver could not solve (Newton did not converge, or the
+   * solution is not finite): the time loop answers with a shorter step.
+   * Thrown on every process alike (the decisions use global quantities).
+   */
+  class StepFailure : public std::runtime_error
+  {
+  public:
+    explicit StepFailure(const std::string &what)
+      : std::runtime_error(what)
+    {}
+  };
+
   /** What a Newton solver for one step needs to know. */
   template <int dim>
   struct ContactProblem

@@ -193,6 +193,7 @@ namespace DynamicContact
       };
       double end_time;
       double time_step;
+      double minimum_time_step;
       Scheme scheme;
 
       /** 1 for backward Euler, 1/2 for the trapezoidal scheme. */

@@ -119,7 +119,7 @@ namespace DynamicContact
     double
     time() const
     {
-      return step == 0 ? 0. : times[step - 1];
+      return current_time;
     }
     unsigned int
     step_number() const
@@ -156,9 +156,11 @@ namespace DynamicContact
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
     std::vector<TimeSeriesRow>        rows;
 
-    // The time loop: step n goes from times[n-2] (0 for n = 1) to
-    // times[n-1].
-    std::vector<double>                   times;
+    // The time loop: steps of the nominal Time/Time step, or shorter after a
+    // cut-back (k_current), growing back after good steps.
+    double                                current_time = 0;
+    double                                k_current;
+    unsigned int                          good_steps_since_cutback = 0;
     unsigned int                          step = 0;
     std::chrono::steady_clock::time_point wall_start;
     double                                max_relative_defect = 0;
@@ -198,7 +200,12 @@ namespace DynamicContact
     do_time_step(const unsigned int step,
                  const double       t,
                  const double       k,
-                 const double       remesh_energy_change);
+                 const double       remesh_energy_change,
+                 const unsigned int cutbacks);
+
+    /** Steps left at the nominal time step (for progress lines). */
+    unsigned int
+    remaining_steps() const;
     /** Write the contact CSV and/or the VTU fields of the current step. */
     void
     output_results(const unsigned int step,
