@@ -13,6 +13,8 @@ namespace DynamicContact
           c.help = true;
         else if (arg == "--print-parameters")
           c.print_parameters = true;
+        else if (arg == "--resume")
+          c.resume = true;
         else if (arg == "--set" || arg == "-s")
           {
             if (i + 1 >= argc)
@@ -65,6 +67,9 @@ namespace DynamicContact
            "  --print-parameters      print every parameter with its value,\n"
            "                          default and documentation, and exit\n"
            "                          (the values of scene.prm if given)\n"
+           "  --resume                continue from the newest complete\n"
+           "                          checkpoint in Output/Directory\n"
+           "                          (see Checkpoint/Every)\n"
            "  --set 'Section/Entry=value'\n"
            "                          override one entry of the parameter\n"
            "                          file (repeatable), e.g.\n"

@@ -63,7 +63,8 @@ main(int argc, char *argv[])
 
       run_simulation(command_line.parameter_file,
                      command_line.overrides,
-                     comm);
+                     comm,
+                     command_line.resume);
     }
   catch (const std::exception &e)
     {

@@ -51,13 +51,15 @@ namespace DynamicContact
 
   // ------------------------------------------------------ TimeSeriesWriter
   TimeSeriesWriter::TimeSeriesWriter(const std::string &filename,
-                                     const MPI_Comm     comm)
+                                     const MPI_Comm     comm,
+                                     const bool         append)
     : filename(filename)
     , root(Utilities::MPI::this_mpi_process(comm) == 0)
+    , header_written(append)
   {
     if (root)
       {
-        out.open(filename);
+        out.open(filename, append ? std::ios::app : std::ios::out);
         AssertThrow(static_cast<bool>(out),
                     ExcMessage("Cannot write '" + filename + "'."));
       }
@@ -178,19 +180,6 @@ namespace DynamicContact
     , comm(comm)
     , subdivisions(subdivisions)
   {}
-
-
-  template <int dim>
-  void
-  VtuWriter<dim>::truncate_after(const double time)
-  {
-    records.erase(std::remove_if(records.begin(),
-                                 records.end(),
-                                 [time](const auto &r) {
-                                   return r.first > time;
-                                 }),
-                  records.end());
-  }
 
 
   template <int dim>

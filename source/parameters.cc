@@ -844,6 +844,36 @@ namespace DynamicContact
                 str(linear_tolerance) + ".");
     }
 
+    // ---------------------------------------------------------- Checkpoint
+    void
+    Checkpoint::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      prm.declare_entry(
+        "Every",
+        "0",
+        Patterns::Integer(0),
+        "Write a checkpoint (mesh, fields, state) into Output/Directory every "
+        "N steps (0: never); 'dynamic-contact --resume scene.prm' continues "
+        "from the newest complete one. A checkpoint is written into a "
+        "temporary directory and renamed when complete, so a run killed while "
+        "writing leaves the previous checkpoint intact.");
+      prm.declare_entry("Keep",
+                        "2",
+                        Patterns::Integer(1),
+                        "How many complete checkpoints to keep (the newest).");
+      prm.leave_subsection();
+    }
+
+    void
+    Checkpoint::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      every = prm.get_integer("Every");
+      keep  = prm.get_integer("Keep");
+      prm.leave_subsection();
+    }
+
     // -------------------------------------------------------------- Output
     void
     Output::declare_parameters(ParameterHandler &prm)
@@ -941,6 +971,7 @@ namespace DynamicContact
     Parameters::MeshRefinement::declare_parameters(prm);
     Parameters::Time::declare_parameters(prm);
     Parameters::Solver::declare_parameters(prm);
+    Parameters::Checkpoint::declare_parameters(prm);
     Parameters::Output::declare_parameters(prm);
 
     declare_function(prm,
@@ -997,6 +1028,7 @@ namespace DynamicContact
     mesh_refinement.parse_parameters(prm, geometry.global_refinements);
     time.parse_parameters(prm);
     solver.parse_parameters(prm);
+    checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
   }
 

@@ -116,7 +116,8 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Scene<dim>::create_mesh(parallel::distributed::Triangulation<dim> &tria) const
+  Scene<dim>::create_mesh(parallel::distributed::Triangulation<dim> &tria,
+                          const bool refine_globally) const
   {
     if (geometry.type == Parameters::Geometry::Type::rectangle)
       {
@@ -152,7 +153,8 @@ namespace DynamicContact
           }
       }
     check_boundary_ids(tria);
-    tria.refine_global(geometry.global_refinements);
+    if (refine_globally)
+      tria.refine_global(geometry.global_refinements);
   }
 
 

@@ -7,6 +7,8 @@
 #include <dynamic_contact/simulator.h>
 
 #include <cmath>
+#include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -163,7 +165,21 @@ namespace DynamicContact
     , force_balance(discretization, material, scene)
     , mesh_adaptation(parameters.mesh_refinement, scene, discretization)
     , k_current(parameters.time.time_step)
-  {}
+  {
+    if (const char *kill = std::getenv("DYNAMIC_CONTACT_KILL"))
+      {
+        std::istringstream in(kill);
+        std::string        where;
+        unsigned int       at = 0;
+        in >> where >> at;
+        AssertThrow(in && (where == "after-step" || where == "in-checkpoint"),
+                    ExcMessage("The environment variable DYNAMIC_CONTACT_KILL "
+                               "(fault injection for tests) must read "
+                               "'after-step N' or 'in-checkpoint N', not '" +
+                               std::string(kill) + "'."));
+        (where == "after-step" ? kill_after_step : kill_in_checkpoint) = at;
+      }
+  }
 
 
   template <int dim>
@@ -236,6 +252,73 @@ namespace DynamicContact
 
 
   template <int dim>
+  Vector_t
+  Simulator<dim>::friction_traction() const
+  {
+    Vector_t traction;
+    discretization.reinit_owned(traction);
+    const auto &                         nodes  = contact_boundary.nodes();
+    const auto &                         global = contact_boundary.global_indices();
+    const auto &                         lambda = step_solver.friction_forces();
+    std::vector<types::global_dof_index> indices;
+    std::vector<double>                  values;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          indices.push_back(nodes[i].dofs[c]);
+          values.push_back(
+            global[i] < lambda.size() ? lambda[global[i]][c] / nodes[i].weight :
+                                        0.);
+        }
+    traction.set(indices, values);
+    traction.compress(VectorOperation::insert);
+    return traction;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::set_friction_from_traction(const Vector_t &traction)
+  {
+    const auto                  nodal = contact_boundary.gather_values(traction);
+    const auto &                all   = contact_boundary.all_nodes();
+    std::vector<Tensor<1, dim>> lambda(all.size());
+    for (unsigned int i = 0; i < all.size(); ++i)
+      lambda[i] = all[i].weight * all[i].tangential(nodal[i]);
+    step_solver.set_friction_forces(lambda);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::checkpoint()
+  {
+    TimerOutput::Scope scope(timer, "Checkpoint");
+    RunState           state;
+    state.step                     = step;
+    state.time                     = current_time;
+    state.time_step                = k_current;
+    state.good_steps_since_cutback = good_steps_since_cutback;
+    state.max_relative_defect      = max_relative_defect;
+    state.min_dissipation          = min_dissipation;
+    state.total_newton             = total_newton;
+    state.vtu_records              = vtu_writer->get_records();
+    for (const auto &lambda : step_solver.friction_forces())
+      for (unsigned int c = 0; c < dim; ++c)
+        state.friction_forces.push_back(lambda[c]);
+    write_checkpoint(parameters.output.directory,
+                     discretization,
+                     {&u, &w},
+                     state,
+                     parameters.checkpoint.keep,
+                     [this]() {
+                       if (kill_in_checkpoint == step)
+                         std::raise(SIGKILL);
+                     });
+  }
+
+
+  template <int dim>
   void
   Simulator<dim>::refine_initial_mesh()
   {
@@ -270,8 +353,7 @@ namespace DynamicContact
   {
     TimerOutput::Scope scope(timer, "Mesh adaptation");
     const double       energy_before = energy_balance.energy(u, w).total();
-    std::vector<Tensor<1, dim>> lambda = step_solver.friction_forces();
-    bool                        changed = false;
+    bool               changed       = false;
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
       {
         Vector_t u_ghosted, w_ghosted;
@@ -284,49 +366,31 @@ namespace DynamicContact
           break;
 
         // What the next step needs, as finite element fields: u, w, and the
-        // friction forces as a traction lambda_i/m_i at the nodes of Gamma_3.
-        Vector_t traction;
-        discretization.reinit_owned(traction);
-        {
-          const auto &nodes  = contact_boundary.nodes();
-          const auto &global = contact_boundary.global_indices();
-          std::vector<types::global_dof_index> indices;
-          std::vector<double>                  values;
-          for (unsigned int i = 0; i < nodes.size(); ++i)
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                indices.push_back(nodes[i].dofs[c]);
-                values.push_back(lambda[global[i]][c] / nodes[i].weight);
-              }
-          traction.set(indices, values);
-          traction.compress(VectorOperation::insert);
-        }
-        const auto before = mesh_adaptation.fingerprint();
+        // friction forces as a traction at the nodes of Gamma_3.
+        Vector_t   traction = friction_traction();
+        const auto before   = mesh_adaptation.fingerprint();
         refine_and_transfer(discretization, {&u, &w, &traction}, [this]() {
           setup_dofs();
         });
+        set_friction_from_traction(traction); // on the new nodes
         changed = true;
-
-        const auto  nodal_traction = contact_boundary.gather_values(traction);
-        const auto &all            = contact_boundary.all_nodes();
-        lambda.assign(all.size(), Tensor<1, dim>());
-        for (unsigned int i = 0; i < all.size(); ++i)
-          lambda[i] = all[i].weight * all[i].tangential(nodal_traction[i]);
         if (mesh_adaptation.fingerprint() == before)
           break;
       }
     if (changed)
       {
-        setup_operators();
-        step_solver.set_friction_forces(lambda);
+        const Vector_t traction = friction_traction();
+        setup_operators(); // resets the step solver
+        set_friction_from_traction(traction);
       }
     return energy_balance.energy(u, w).total() - energy_before;
   }
 
 
+
   template <int dim>
   void
-  Simulator<dim>::prepare_output_directory()
+  Simulator<dim>::prepare_output_directory(const bool resume)
   {
     const std::string &directory = parameters.output.directory;
     bool               ok        = true;
@@ -347,15 +411,16 @@ namespace DynamicContact
                            "'" + (reason.empty() ? "" : " (" + reason + ")") +
                            "."));
     // Results of an earlier run in the same directory must not pass for
-    // ours: remove what this program writes.
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
+    // ours: remove what this program writes (unless continuing it).
+    if (!resume && Utilities::MPI::this_mpi_process(comm) == 0)
       for (const auto &entry : std::filesystem::directory_iterator(directory))
         {
           const std::string name = entry.path().filename().string();
           if (name == "time_series.csv" || name == "solution.pvd" ||
               name == "run_status" || name.rfind("contact_", 0) == 0 ||
-              name.rfind("solution_", 0) == 0)
-            std::filesystem::remove(entry.path());
+              name.rfind("solution_", 0) == 0 ||
+              name.rfind("checkpoint_", 0) == 0)
+            std::filesystem::remove_all(entry.path());
         }
     MPI_Barrier(comm);
   }
@@ -596,23 +661,79 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::initialize()
+  Simulator<dim>::initialize(const bool resume)
   {
     wall_start = std::chrono::steady_clock::now();
-
     // Everything that can be wrong with the input is checked before any
-    // result is written.
+    // result is written (the scene's functions and boundary ids when the
+    // mesh is made).
+    if (friction_law)
+      friction_law->check_nonnegative(parameters.friction.maximum_slip_rate);
+    if (resume)
+      {
+        // The newest complete checkpoint: mesh, fields, state; the time
+        // series continues after its step (later rows are dropped).
+        const std::string latest =
+          find_latest_checkpoint(parameters.output.directory, comm);
+        AssertThrow(!latest.empty(),
+                    ExcMessage("--resume: there is no complete checkpoint in "
+                               "Output/Directory '" +
+                               parameters.output.directory +
+                               "' (the interrupted run needs Checkpoint/Every "
+                               "> 0)."));
+        {
+          TimerOutput::Scope t(timer, "Setup: mesh");
+          scene.create_mesh(discretization.triangulation, false);
+        }
+        const RunState state = read_checkpoint(latest,
+                                               discretization,
+                                               {&u, &w},
+                                               [this]() { setup_dofs(); });
+        setup_operators();
+        const unsigned int n_nodes = contact_boundary.all_nodes().size();
+        AssertThrow(state.friction_forces.size() == dim * n_nodes,
+                    ExcMessage("The checkpoint '" + latest +
+                               "' is damaged (state.txt: friction forces)."));
+        std::vector<Tensor<1, dim>> lambda(n_nodes);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            lambda[i][c] = state.friction_forces[dim * i + c];
+        step_solver.set_friction_forces(lambda);
+        step                     = state.step;
+        current_time             = state.time;
+        k_current                = state.time_step;
+        good_steps_since_cutback = state.good_steps_since_cutback;
+        max_relative_defect      = state.max_relative_defect;
+        min_dissipation          = state.min_dissipation;
+        total_newton             = state.total_newton;
+
+        prepare_output_directory(true);
+        write_status("running");
+        truncate_time_series(parameters.output.directory + "/time_series.csv",
+                             step,
+                             comm);
+        time_series_writer = std::make_unique<TimeSeriesWriter>(
+          parameters.output.directory + "/time_series.csv", comm, true);
+        vtu_writer = std::make_unique<VtuWriter<dim>>(
+          parameters.output.directory,
+          comm,
+          parameters.output.vtu_subdivisions);
+        vtu_writer->set_records(state.vtu_records);
+        print_header();
+        pcout << "  resumed from " << latest << " (step " << step
+              << ", t = " << sig6(current_time) << " s)" << std::endl;
+        return;
+      }
+
     {
       TimerOutput::Scope t(timer, "Setup: mesh");
       scene.create_mesh(discretization.triangulation);
     }
-    if (friction_law)
-      friction_law->check_nonnegative(parameters.friction.maximum_slip_rate);
     setup_dofs();
     if (mesh_adaptation.enabled())
       refine_initial_mesh();
     setup_operators();
-    prepare_output_directory();
+    prepare_output_directory(false);
     write_status("running");
     time_series_writer = std::make_unique<TimeSeriesWriter>(
       parameters.output.directory + "/time_series.csv", comm);
@@ -696,8 +817,10 @@ namespace DynamicContact
             step_solver.set_friction_forces(lambda_good);
             if (k / 2 < parameters.time.minimum_time_step * (1 - 1e-12))
               {
-                // Stop, with the last good state written out.
+                // Stop, with the last good state written out (fields and a
+                // checkpoint to continue from with other settings).
                 output_results(step, current_time, true, vtu_writer != nullptr);
+                checkpoint();
                 AssertThrow(false,
                             ExcMessage(
                               "step " + std::to_string(step + 1) +
@@ -770,6 +893,11 @@ namespace DynamicContact
     const unsigned int progress = parameters.output.progress_every;
     if (progress > 0 && (step % progress == 0 || last))
       print_progress(row);
+    if (parameters.checkpoint.every > 0 &&
+        step % parameters.checkpoint.every == 0 && !last)
+      checkpoint();
+    if (kill_after_step == step)
+      std::raise(SIGKILL);
     return true;
   }
 
@@ -800,9 +928,9 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::run()
+  Simulator<dim>::run(const bool resume)
   {
-    initialize();
+    initialize(resume);
     while (advance())
       ;
     finish();
@@ -857,7 +985,8 @@ namespace DynamicContact
   void
   run_dimension(const RunParameters &parameters,
                 ParameterHandler &   prm,
-                const MPI_Comm       comm)
+                const MPI_Comm       comm,
+                const bool           resume)
   {
     // Catch inside the simulator's lifetime, so that it is destroyed with no
     // exception in flight (its timer would otherwise warn about it).
@@ -866,7 +995,7 @@ namespace DynamicContact
       Simulator<dim> simulator(parameters, prm, comm);
       try
         {
-          simulator.run();
+          simulator.run(resume);
         }
       catch (const std::exception &e)
         {
@@ -882,15 +1011,16 @@ namespace DynamicContact
   void
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
-                 const MPI_Comm                  comm)
+                 const MPI_Comm                  comm,
+                 const bool                      resume)
   {
     ParameterHandler    prm;
     const RunParameters parameters =
       read_parameters(parameter_file, overrides, prm);
     if (parameters.dimension == 2)
-      run_dimension<2>(parameters, prm, comm);
+      run_dimension<2>(parameters, prm, comm, resume);
     else
-      run_dimension<3>(parameters, prm, comm);
+      run_dimension<3>(parameters, prm, comm, resume);
   }
 
 

@@ -16,9 +16,7 @@
 // Every case runs first and prints one line; the checks follow, so that a
 // failing test still shows what every case did.
 
-#include "test_tools.h"
-
-#include <sys/wait.h>
+#include "program_tools.h"
 
 #include <algorithm>
 #include <atomic>
@@ -32,51 +30,13 @@
 #include <thread>
 #include <vector>
 
-#ifndef DYNAMIC_CONTACT_EXECUTABLE
-#  error "tests/CMakeLists.txt must define DYNAMIC_CONTACT_EXECUTABLE"
-#endif
-
 namespace fs = std::filesystem;
 
 namespace
 {
+  using namespace program_tools;
+
   const std::string error_prefix = "dynamic-contact: error:";
-
-  std::string
-  read_text(const fs::path &file)
-  {
-    std::ifstream      in(file, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  void
-  write_text(const fs::path &file, const std::string &text)
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << text;
-  }
-
-  std::vector<std::string>
-  lines_of(const std::string &text)
-  {
-    std::vector<std::string> lines;
-    std::istringstream       in(text);
-    for (std::string line; std::getline(in, line);)
-      lines.push_back(line);
-    return lines;
-  }
-
-  /** One argument for sh, in single quotes. */
-  std::string
-  quote(const std::string &s)
-  {
-    std::string q = "'";
-    for (const char c : s)
-      q += (c == '\'' ? std::string("'\\''") : std::string(1, c));
-    return q + "'";
-  }
 
   /**
    * An error line as it compares on every machine and after changes to the
@@ -146,13 +106,9 @@ namespace
     }
   };
 
-  struct Outcome
+  /** A run of the program and what it left behind. */
+  struct Result : Outcome
   {
-    int                      system_status = -1;
-    bool                     exited        = false;
-    int                      code          = -1;
-    int                      signal        = 0;
-    std::string              stderr_text;
     std::vector<std::string> error_lines;
     bool                     stderr_only_message = false;
     std::vector<std::string> new_directories;
@@ -160,7 +116,7 @@ namespace
     std::vector<std::string> failed_status_files;
   };
 
-  Outcome
+  Result
   run_case(const Case &c, const fs::path &directory)
   {
     fs::remove_all(directory);
@@ -170,37 +126,24 @@ namespace
     for (const auto &[name, text] : c.extra_files)
       write_text(directory / name, text);
 
-    // exec: a signal that ends the program is seen as such, not as the exit
-    // code 128+N of a shell around it.
-    std::string command =
-      "cd " + quote(directory.string()) + " && exec " +
-      quote(DYNAMIC_CONTACT_EXECUTABLE);
-    for (const auto &a : c.arguments)
-      command += " " + quote(a);
-    command += " </dev/null >stdout.txt 2>stderr.txt";
+    Launch launch;
+    launch.directory = directory;
+    launch.name      = "program";
+    Result o;
+    static_cast<Outcome &>(o) = execute(c.arguments, launch);
 
-    Outcome o;
-    o.system_status = std::system(command.c_str());
-    if (o.system_status != -1)
-      {
-        o.exited = WIFEXITED(o.system_status);
-        o.code   = o.exited ? WEXITSTATUS(o.system_status) : -1;
-        o.signal = WIFSIGNALED(o.system_status) ? WTERMSIG(o.system_status) : 0;
-      }
-
-    o.stderr_text = read_text(directory / "stderr.txt");
-    const auto lines = lines_of(o.stderr_text);
+    const auto lines = lines_of(o.err);
     for (const auto &line : lines)
       if (line.rfind(error_prefix, 0) == 0)
         o.error_lines.push_back(line);
 
     // Only the message; after a usage error the usage text may follow it.
     if (c.expected_code == 0)
-      o.stderr_only_message = o.stderr_text.empty();
+      o.stderr_only_message = o.err.empty();
     else if (!lines.empty() && lines[0].rfind(error_prefix, 0) == 0)
       {
-        const std::string rest = o.stderr_text.substr(
-          std::min(lines[0].size() + 1, o.stderr_text.size()));
+        const std::string rest = o.err.substr(
+          std::min(lines[0].size() + 1, o.err.size()));
         o.stderr_only_message =
           rest.empty() ||
           (c.expected_code == 2 && rest.rfind("\nUsage: ", 0) == 0);
@@ -225,33 +168,6 @@ namespace
     return o;
   }
 
-  /** The checks, made after every case has run and printed its line. */
-  struct Checks
-  {
-    std::vector<std::pair<bool, std::string>> list;
-
-    void
-    add(const bool condition, const std::string &what)
-    {
-      list.emplace_back(condition, what);
-    }
-
-    void
-    assert_all() const
-    {
-      for (const auto &[ok, what] : list)
-        if (!ok)
-          std::cerr << "FAILED: " << what << std::endl;
-      for (const auto &[ok, what] : list)
-        test_tools::check(ok, what);
-    }
-  };
-
-  std::string
-  yes_no(const bool b)
-  {
-    return b ? "yes" : "no";
-  }
 } // namespace
 
 
@@ -260,10 +176,6 @@ main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
 
-  // The program runs as a process of its own: OpenMPI refuses root there
-  // unless told (containers and CI run as root).
-  setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-  setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
 
   const std::string scene = read_text(test_tools::scene("pressed_block.prm"));
   test_tools::check(scene.find("subsection Material") != std::string::npos,
@@ -416,7 +328,7 @@ main(int argc, char **argv)
   add("no_parameter_file", scene, {}, 2, {"parameter file"});
 
   // Most of a run is MPI's start-up, spent waiting: run a few at a time.
-  std::vector<Outcome> outcomes(cases.size());
+  std::vector<Result> outcomes(cases.size());
   {
     std::atomic<unsigned int> next(0);
     std::vector<std::thread>  workers;
@@ -433,7 +345,7 @@ main(int argc, char **argv)
   for (unsigned int i = 0; i < cases.size(); ++i)
     {
       const Case &       c    = cases[i];
-      const Outcome &    o    = outcomes[i];
+      const Result &     o    = outcomes[i];
       const unsigned int line = c.line_number();
 
       // One line per case, the same on every machine.
@@ -449,14 +361,14 @@ main(int argc, char **argv)
                      " | one error line: " + yes_no(o.error_lines.size() == 1);
           for (const auto &e : o.error_lines)
             summary += " | " + deterministic(e, line);
-          if (o.error_lines.empty() && !o.stderr_text.empty())
+          if (o.error_lines.empty() && !o.err.empty())
             summary += " | first line on stderr: " +
-                       deterministic(lines_of(o.stderr_text)[0], line);
+                       deterministic(lines_of(o.err)[0], line);
         }
       test_tools::out() << summary << std::endl;
 
       const std::string name = c.name + ": ";
-      checks.add(o.system_status != -1 && o.exited,
+      checks.add(o.status != -1 && o.exited,
                  name + "a normal exit (no signal, no abort)" +
                    (o.signal != 0 ?
                       " [signal " + std::to_string(o.signal) + "]" :

@@ -14,9 +14,7 @@
 // Every program run happens first and prints what it found; the checks
 // follow, so that a failing test still shows the whole picture.
 
-#include "test_tools.h"
-
-#include <sys/wait.h>
+#include "program_tools.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -28,69 +26,14 @@
 #include <thread>
 #include <vector>
 
-#ifndef DYNAMIC_CONTACT_EXECUTABLE
-#  error "tests/CMakeLists.txt must define DYNAMIC_CONTACT_EXECUTABLE"
-#endif
-
 namespace fs = std::filesystem;
 
 namespace
 {
-  std::string
-  read_text(const fs::path &file)
-  {
-    std::ifstream      in(file, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  using namespace program_tools;
 
-  std::vector<std::string>
-  lines_of(const std::string &text)
-  {
-    std::vector<std::string> lines;
-    std::istringstream       in(text);
-    for (std::string line; std::getline(in, line);)
-      lines.push_back(line);
-    return lines;
-  }
-
-  std::string
-  trim(const std::string &s)
-  {
-    const auto begin = s.find_first_not_of(" \t\r\n");
-    if (begin == std::string::npos)
-      return "";
-    const auto end = s.find_last_not_of(" \t\r\n");
-    return s.substr(begin, end - begin + 1);
-  }
-
-  std::vector<std::string>
-  split(const std::string &s, const char separator)
-  {
-    std::vector<std::string> parts;
-    std::istringstream       in(s);
-    for (std::string part; std::getline(in, part, separator);)
-      parts.push_back(trim(part));
-    return parts;
-  }
-
-  std::string
-  quote(const std::string &s)
-  {
-    std::string q = "'";
-    for (const char c : s)
-      q += (c == '\'' ? std::string("'\\''") : std::string(1, c));
-    return q + "'";
-  }
-
-  std::string
-  yes_no(const bool b)
-  {
-    return b ? "yes" : "no";
-  }
-
-  struct Run
+  /** One run of the program in the working directory. */
+  struct Run : Outcome
   {
     Run(const std::vector<std::string> &arguments, const std::string &name)
       : arguments(arguments)
@@ -99,34 +42,14 @@ namespace
 
     std::vector<std::string> arguments;
     std::string              name;
-    int                      status = -1;
-    bool                     exited = false;
-    int                      code   = -1;
-    std::string              out, err;
-
-    bool
-    succeeded() const
-    {
-      return status != -1 && exited && code == 0;
-    }
   };
 
-  /** Run the program in the working directory, stdout and stderr to files. */
   void
   execute(Run &run)
   {
-    std::string command = "exec " + quote(DYNAMIC_CONTACT_EXECUTABLE);
-    for (const auto &a : run.arguments)
-      command += " " + quote(a);
-    command += " </dev/null >" + run.name + ".stdout 2>" + run.name + ".stderr";
-    run.status = std::system(command.c_str());
-    if (run.status != -1)
-      {
-        run.exited = WIFEXITED(run.status);
-        run.code   = run.exited ? WEXITSTATUS(run.status) : -1;
-      }
-    run.out = read_text(run.name + ".stdout");
-    run.err = read_text(run.name + ".stderr");
+    Launch launch;
+    launch.name                 = run.name;
+    static_cast<Outcome &>(run) = program_tools::execute(run.arguments, launch);
   }
 
   /**
@@ -193,37 +116,6 @@ namespace
     }
   };
 
-  struct Checks
-  {
-    std::vector<std::pair<bool, std::string>> list;
-
-    void
-    add(const bool condition, const std::string &what)
-    {
-      list.emplace_back(condition, what);
-    }
-
-    void
-    assert_all() const
-    {
-      for (const auto &[ok, what] : list)
-        if (!ok)
-          std::cerr << "FAILED: " << what << std::endl;
-      for (const auto &[ok, what] : list)
-        test_tools::check(ok, what);
-    }
-  };
-
-  /** The rows of a CSV file, split at commas. */
-  std::vector<std::vector<std::string>>
-  read_csv(const fs::path &file)
-  {
-    std::vector<std::vector<std::string>> rows;
-    for (const auto &line : lines_of(read_text(file)))
-      if (!trim(line).empty())
-        rows.push_back(split(line, ','));
-    return rows;
-  }
 } // namespace
 
 
@@ -233,10 +125,6 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   std::ostream &                           out = test_tools::out();
 
-  // The program runs as a process of its own: OpenMPI refuses root there
-  // unless told (containers and CI run as root).
-  setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-  setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
 
   const std::string scene = test_tools::scene("pressed_block.prm");
   fs::remove_all("run");
@@ -277,7 +165,7 @@ main(int argc, char **argv)
   // ------------------------------------------------------------ --help
   {
     out << "--help:" << std::endl;
-    for (const std::string word : {"Usage:", "--set", "--print-parameters"})
+    for (const std::string word : {"Usage:", "--set", "--print-parameters", "--resume"})
       {
         const bool found = help.out.find(word) != std::string::npos;
         out << "  the usage text mentions '" << word << "': " << yes_no(found)

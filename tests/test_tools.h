@@ -21,14 +21,21 @@
 
 namespace test_tools
 {
-  /** The file the harness compares; written by rank 0 only. */
+  /**
+   * The file the harness compares; written by rank 0 only (by the one
+   * process of a test that does not initialize MPI).
+   */
   inline std::ostream &
   out()
   {
-    static std::ofstream file(
-      dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0 ?
-        "output" :
-        "/dev/null");
+    static std::ofstream file([]() {
+      int initialized = 0;
+      MPI_Initialized(&initialized);
+      return (initialized == 0 ||
+              dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0) ?
+               "output" :
+               "/dev/null";
+    }());
     return file;
   }
 

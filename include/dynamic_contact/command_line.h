@@ -11,6 +11,7 @@ namespace DynamicContact
   {
     bool                     help             = false;
     bool                     print_parameters = false;
+    bool                     resume           = false;
     std::string              parameter_file;
     std::vector<std::string> overrides; // "Section/Entry=value"
     std::string              error;     // non-empty: a usage error

@@ -45,7 +45,10 @@ namespace DynamicContact
   class TimeSeriesWriter
   {
   public:
-    TimeSeriesWriter(const std::string &filename, const MPI_Comm comm);
+    /** @p append: continue an existing file (no header; after --resume). */
+    TimeSeriesWriter(const std::string &filename,
+                     const MPI_Comm     comm,
+                     const bool         append = false);
 
     void
     write(const TimeSeriesRow &row);
@@ -101,9 +104,17 @@ namespace DynamicContact
           const Vector_t &                           w,
           const bool                                 friction);
 
-    /** Forget records after @p time (a restart that rewinds). */
+    /** The time index (solution.pvd): (time, pvtu file) pairs. */
+    const std::vector<std::pair<double, std::string>> &
+    get_records() const
+    {
+      return records;
+    }
     void
-    truncate_after(const double time);
+    set_records(const std::vector<std::pair<double, std::string>> &r)
+    {
+      records = r;
+    }
 
   private:
     std::string                               directory;

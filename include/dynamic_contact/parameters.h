@@ -236,6 +236,17 @@ namespace DynamicContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    struct Checkpoint
+    {
+      unsigned int every;
+      unsigned int keep;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     struct Output
     {
       std::string         directory;
@@ -273,6 +284,7 @@ namespace DynamicContact
     Parameters::MeshRefinement     mesh_refinement;
     Parameters::Time               time;
     Parameters::Solver             solver;
+    Parameters::Checkpoint         checkpoint;
     Parameters::Output             output;
 
     /** Declare every entry for a problem in @p dim dimensions. */

@@ -38,7 +38,8 @@ namespace DynamicContact
      * every id the parameter file names exists, then refine globally.
      */
     void
-    create_mesh(parallel::distributed::Triangulation<dim> &tria) const;
+    create_mesh(parallel::distributed::Triangulation<dim> &tria,
+                const bool refine_globally = true) const;
 
     /** Traction f_2(x, t) on the Traction ids. Call set_time() first. */
     Function<dim> &

@@ -6,6 +6,7 @@
 #include <deal.II/base/timer.h>
 
 #include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/checkpoint.h>
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/energy_balance.h>
@@ -43,17 +44,21 @@ namespace DynamicContact
               const MPI_Comm       comm);
     ~Simulator();
 
-    /** Run the whole simulation. */
+    /**
+     * Run the whole simulation; with @p resume from the newest complete
+     * checkpoint in the output directory.
+     */
     void
-    run();
+    run(const bool resume = false);
 
     /**
      * Build the mesh (refined for the initial load when adaptive), check the
      * input, prepare the output directory, set the initial state and write
-     * step 0.
+     * step 0. With @p resume: load the newest complete checkpoint of the
+     * output directory instead, and continue its time_series.csv.
      */
     void
-    initialize();
+    initialize(const bool resume = false);
 
     /** One time step; false (and nothing done) once the end time is reached. */
     bool
@@ -163,6 +168,14 @@ namespace DynamicContact
     unsigned int                          good_steps_since_cutback = 0;
     unsigned int                          step = 0;
     std::chrono::steady_clock::time_point wall_start;
+    /**
+     * Fault injection for the restart test, from the environment variable
+     * DYNAMIC_CONTACT_KILL = "after-step N" or "in-checkpoint N": the run
+     * kills itself (SIGKILL) after step N, or while writing the checkpoint
+     * of step N (everything written, not yet renamed).
+     */
+    unsigned int kill_after_step    = numbers::invalid_unsigned_int;
+    unsigned int kill_in_checkpoint = numbers::invalid_unsigned_int;
     double                                max_relative_defect = 0;
     double                                min_dissipation     = 0;
     unsigned int                          total_newton        = 0;
@@ -184,12 +197,27 @@ namespace DynamicContact
      */
     double
     adapt_mesh(const double t0, const double t1, const double k);
+    /**
+     * The friction forces as a finite element field: the traction
+     * lambda_i/m_i at the nodes of Gamma_3 (zero elsewhere), and back: the
+     * form in which they survive a change of the mesh or a restart.
+     */
+    Vector_t
+    friction_traction() const;
+    void
+    set_friction_from_traction(const Vector_t &traction);
+
+    /** Write a checkpoint of the current state (Checkpoint/Every). */
+    void
+    checkpoint();
+
     /** Positions of the nodes that penetrate the foundation (all processes). */
     std::vector<Point<dim>>
     penetrating_nodes() const;
 
+    /** Create it; on a new run remove what an earlier run left there. */
     void
-    prepare_output_directory();
+    prepare_output_directory(const bool resume);
     void
     print_header() const;
     /**
@@ -227,7 +255,8 @@ namespace DynamicContact
   void
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
-                 const MPI_Comm                  comm);
+                 const MPI_Comm                  comm,
+                 const bool                      resume = false);
 } // namespace DynamicContact
 
 #endif

@@ -1,0 +1,524 @@
+// Checkpoint and restart of the real executable, killed the hard way.
+//
+// Two scenes run 48 steps with a checkpoint every 10 steps: the small paper
+// scene (uniform 32 x 8 mesh, friction) and the adaptive one (friction,
+// load-following refinement and coarsening every 8 steps). The program is
+// killed with SIGKILL (the fault-injection hook DYNAMIC_CONTACT_KILL) and
+// continued with --resume:
+//   after_step      uniform: killed after step 25 (checkpoints 10 and 20
+//                   complete, rows 21..25 written beyond the newest), resumed;
+//   in_checkpoint   uniform: killed while writing the checkpoint of step 30
+//                   (its temporary directory left behind), resumed;
+//   adaptive        adaptive: killed after step 25, resumed;
+//   two_processes   adaptive: run, killed and resumed on 2 processes;
+//   one_to_two      adaptive: killed on 1 process, resumed on 2.
+// Every interrupted-and-resumed run must end "completed" with the results of
+// the uninterrupted run: time_series.csv with each step once, every
+// contact_NNNNN.csv, solution.pvd and the VTU files.
+//   On the uniform mesh they agree to the last printed digit, except the
+// column `factorizations` (the resumed run factorizes its matrix anew: an
+// honest count of work): the checkpoint holds the whole state.
+//   On the adaptive mesh a loaded mesh stores its cells in another order
+// than the same mesh reached by refining and coarsening, so the sums over
+// cells round differently and the Newton iterations stop at other iterates
+// within their tolerance; on 2 processes the direct solver is not bitwise
+// reproducible either. There the physical columns must agree to 1e-8 of
+// their largest value, and the work counters are not compared.
+// Two misuses give one clear error and leave the results alone: --resume
+// where no checkpoint was written, and --resume with another mesh.
+
+#include "program_tools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+  using namespace program_tools;
+
+  /** Steps run and the checkpoint interval (see the header). */
+  const std::vector<std::string> settings = {"--set",
+                                             "Time/End time=0.375",
+                                             "--set",
+                                             "Checkpoint/Every=10",
+                                             "--set",
+                                             "Checkpoint/Keep=2",
+                                             "--set",
+                                             "Output/VTU every=8",
+                                             "--set",
+                                             "Output/Progress every=0",
+                                             "--set",
+                                             "Output/Print timings=false"};
+  const unsigned int             n_steps  = 48;
+
+  /** Run the uniform or the adaptive scene into @p directory. */
+  std::vector<std::string>
+  arguments(const bool         adaptive,
+            const std::string &directory,
+            const bool         resume = false)
+  {
+    std::vector<std::string> a = {test_tools::scene(
+      adaptive ? "barboteu_danan_2016_adaptive_small.prm" :
+                 "barboteu_danan_2016_small.prm")};
+    if (resume)
+      a.insert(a.begin(), "--resume");
+    a.insert(a.end(), settings.begin(), settings.end());
+    a.push_back("--set");
+    a.push_back("Output/Directory=" + directory);
+    return a;
+  }
+
+  Outcome
+  run(const std::string &             name,
+      const std::vector<std::string> &args,
+      const unsigned int              processes,
+      const std::string &             kill = "")
+  {
+    Launch launch;
+    launch.name      = name;
+    launch.processes = processes;
+    if (!kill.empty())
+      launch.environment.push_back("DYNAMIC_CONTACT_KILL=" + kill);
+    return execute(args, launch);
+  }
+
+  std::string
+  status_of(const std::string &directory)
+  {
+    return trim(read_text(fs::path(directory) / "run_status"));
+  }
+
+  /** The names of the complete checkpoints and of the temporary ones. */
+  std::string
+  checkpoints_in(const std::string &directory)
+  {
+    std::set<std::string> names;
+    for (const auto &e : fs::directory_iterator(directory))
+      if (e.path().filename().string().rfind("checkpoint_", 0) == 0)
+        names.insert(e.path().filename().string());
+    std::string list;
+    for (const auto &n : names)
+      list += (list.empty() ? "" : " ") + n;
+    return list.empty() ? "none" : list;
+  }
+
+  /** The result files of a run (no checkpoints), sorted. */
+  std::vector<std::string>
+  result_files(const std::string &directory)
+  {
+    std::vector<std::string> names;
+    for (const auto &e : fs::directory_iterator(directory))
+      {
+        const std::string n = e.path().filename().string();
+        if (e.is_regular_file() && n != "run_status")
+          names.push_back(n);
+      }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  /** The steps of time_series.csv, in order. */
+  std::vector<unsigned int>
+  steps_of(const std::string &directory)
+  {
+    std::vector<unsigned int> steps;
+    const auto rows = read_csv(fs::path(directory) / "time_series.csv");
+    for (unsigned int r = 1; r < rows.size(); ++r)
+      steps.push_back(std::stoul(rows[r][0]));
+    return steps;
+  }
+
+  /** Each step 0..n_steps once, in order. */
+  bool
+  each_step_once(const std::vector<unsigned int> &steps)
+  {
+    if (steps.size() != n_steps + 1)
+      return false;
+    for (unsigned int i = 0; i < steps.size(); ++i)
+      if (steps[i] != i)
+        return false;
+    return true;
+  }
+
+  /**
+   * Compare two CSV files of the same shape. Columns in @p skipped are not
+   * compared. With tolerance 0 the other entries must be equal as text;
+   * otherwise numbers may differ by tolerance times the largest magnitude in
+   * their column (text entries must be equal). Returns the columns that
+   * differ ("shape" if the header or the number of rows differs).
+   */
+  std::set<std::string>
+  differing_columns(const fs::path &             a_file,
+                    const fs::path &             b_file,
+                    const double                 tolerance,
+                    const std::set<std::string> &skipped = {})
+  {
+    const auto a = read_csv(a_file), b = read_csv(b_file);
+    if (a.empty() || a.size() != b.size() || a[0] != b[0])
+      return {"shape"};
+    const auto &          header = a[0];
+    std::set<std::string> differ;
+    for (unsigned int c = 0; c < header.size(); ++c)
+      {
+        if (skipped.count(header[c]) > 0)
+          continue;
+        double scale = 0;
+        for (unsigned int r = 1; r < a.size(); ++r)
+          {
+            if (a[r].size() != header.size() || b[r].size() != header.size())
+              return {"shape"};
+            try
+              {
+                scale = std::max(scale, std::abs(std::stod(a[r][c])));
+              }
+            catch (const std::exception &)
+              {}
+          }
+        for (unsigned int r = 1; r < a.size(); ++r)
+          {
+            if (a[r][c] == b[r][c])
+              continue;
+            bool close = false;
+            if (tolerance > 0)
+              try
+                {
+                  close = std::abs(std::stod(a[r][c]) - std::stod(b[r][c])) <=
+                          tolerance * scale;
+                }
+              catch (const std::exception &)
+                {}
+            if (!close)
+              differ.insert(header[c]);
+          }
+      }
+    return differ;
+  }
+
+  std::string
+  join(const std::set<std::string> &s)
+  {
+    std::string list;
+    for (const auto &x : s)
+      list += (list.empty() ? "" : ", ") + x;
+    return list.empty() ? "none" : list;
+  }
+
+  bool
+  ends_with(const std::string &s, const std::string &end)
+  {
+    return s.size() >= end.size() &&
+           s.compare(s.size() - end.size(), end.size(), end) == 0;
+  }
+
+  /** A file without the line that dates it ("generated ... on DATE"). */
+  std::string
+  without_date(const fs::path &file)
+  {
+    std::string text;
+    for (const auto &line : lines_of(read_text(file)))
+      if (line.find("generated by the deal.II library on") == std::string::npos)
+        text += line + '\n';
+    return text;
+  }
+
+  /**
+   * The differences of a resumed run from the uninterrupted one: the columns
+   * of time_series.csv, and the other result files (by name) that differ.
+   */
+  struct Comparison
+  {
+    std::set<std::string> time_series;
+    std::set<std::string> files;
+  };
+
+  Comparison
+  compare(const std::string &full, const std::string &resumed, const bool exact)
+  {
+    // Unless exact: the work counters may differ (see the header), and the
+    // round-off-sized columns are checked against a bound instead.
+    const std::set<std::string> not_physical = {"newton_iterations",
+                                                "convexification_iterations",
+                                                "factorizations",
+                                                "active_set_cycles",
+                                                "line_search_steps",
+                                                "coefficient_residual",
+                                                "energy_balance_defect",
+                                                "relative_energy_defect",
+                                                "relative_min_dissipation"};
+    const double tolerance = exact ? 0 : 1e-8;
+    Comparison   result;
+    result.time_series =
+      differing_columns(fs::path(full) / "time_series.csv",
+                        fs::path(resumed) / "time_series.csv",
+                        tolerance,
+                        exact ? std::set<std::string>{} : not_physical);
+    // Unless exact, the VTU files (on 2 processes even their pieces
+    // NAME.0.vtu, NAME.1.vtu, ...) are not compared: the fields are, in the
+    // contact files and the time series.
+    auto compared = [exact](const std::vector<std::string> &all) {
+      std::vector<std::string> names;
+      for (const auto &n : all)
+        if (exact || !ends_with(n, "vtu")) // .vtu, .pvtu
+          names.push_back(n);
+      return names;
+    };
+    const auto names = compared(result_files(full));
+    if (names != compared(result_files(resumed)))
+      result.files.insert("(the list of files)");
+    for (const auto &n : names)
+      {
+        const fs::path a = fs::path(full) / n, b = fs::path(resumed) / n;
+        if (n == "time_series.csv" || !fs::exists(b))
+          continue;
+        if (ends_with(n, ".csv") ? !differing_columns(a, b, tolerance).empty() :
+                                   without_date(a) != without_date(b))
+          result.files.insert(n);
+      }
+    return result;
+  }
+
+  /** The largest |relative_energy_defect| of a run. */
+  double
+  max_relative_defect(const std::string &directory)
+  {
+    const auto rows   = read_csv(fs::path(directory) / "time_series.csv");
+    const auto column = std::find(rows[0].begin(),
+                                  rows[0].end(),
+                                  "relative_energy_defect") -
+                        rows[0].begin();
+    double max = 0;
+    for (unsigned int r = 1; r < rows.size(); ++r)
+      max = std::max(max, std::abs(std::stod(rows[r][column])));
+    return max;
+  }
+} // namespace
+
+
+int
+main()
+{
+  std::ostream &out = test_tools::out();
+  Checks        checks;
+
+  struct Case
+  {
+    std::string  directory;
+    bool         adaptive;
+    std::string  kill;
+    unsigned int processes_first, processes_resumed;
+    // What the kill leaves: the checkpoints and the last row.
+    std::string  checkpoints_left;
+    unsigned int last_row;
+    Outcome      killed;
+  };
+  const std::string two = "checkpoint_00010 checkpoint_00020";
+  std::vector<Case> cases = {
+    {"after_step", false, "after-step 25", 0, 0, two, 25, {}},
+    {"in_checkpoint",
+     false,
+     "in-checkpoint 30",
+     0,
+     0,
+     two + " checkpoint_00030.tmp",
+     30,
+     {}},
+    {"adaptive", true, "after-step 25", 0, 0, two, 25, {}},
+    {"two_processes", true, "after-step 25", 2, 2, two, 25, {}},
+    {"one_to_two", true, "after-step 25", 0, 2, two, 25, {}}};
+
+  for (const std::string d :
+       {"full_uniform", "full_adaptive", "never_checkpointed"})
+    fs::remove_all(d);
+  for (const auto &c : cases)
+    fs::remove_all(c.directory);
+
+  // The uninterrupted runs and the first (killed) part of each case; runs
+  // on one process side by side (most of a short run is start-up).
+  Outcome full_uniform, full_adaptive;
+  {
+    std::vector<std::thread> threads;
+    threads.emplace_back([&]() {
+      full_uniform =
+        run("full_uniform", arguments(false, "full_uniform"), 0);
+    });
+    threads.emplace_back([&]() {
+      full_adaptive =
+        run("full_adaptive", arguments(true, "full_adaptive"), 0);
+    });
+    for (auto &c : cases)
+      if (c.processes_first == 0)
+        threads.emplace_back([&c]() {
+          c.killed = run(c.directory + ".1",
+                         arguments(c.adaptive, c.directory),
+                         0,
+                         c.kill);
+        });
+    for (auto &t : threads)
+      t.join();
+    for (auto &c : cases)
+      if (c.processes_first > 0)
+        c.killed = run(c.directory + ".1",
+                       arguments(c.adaptive, c.directory),
+                       c.processes_first,
+                       c.kill);
+  }
+
+  for (const auto &[name, o] :
+       {std::make_pair("full_uniform", &full_uniform),
+        std::make_pair("full_adaptive", &full_adaptive)})
+    {
+      out << name << " (uninterrupted): exit code " << o->code << ", "
+          << status_of(name) << ", " << steps_of(name).size() - 1 << " steps"
+          << std::endl;
+      checks.add(o->succeeded() && status_of(name) == "completed" &&
+                   each_step_once(steps_of(name)),
+                 std::string(name) + ": the uninterrupted run completes all " +
+                   std::to_string(n_steps) + " steps");
+    }
+
+  // What the kills left behind.
+  for (const auto &c : cases)
+    {
+      const bool ended_by_kill =
+        c.killed.signal == 9 || (c.killed.exited && c.killed.code != 0);
+      const auto steps = steps_of(c.directory);
+      out << c.directory << ", killed (" << c.kill << ") on "
+          << std::max(c.processes_first, 1u) << " process"
+          << (c.processes_first > 1 ? "es" : "")
+          << ": ended abnormally: " << yes_no(ended_by_kill)
+          << ", run_status: " << status_of(c.directory) << ", last row: step "
+          << (steps.empty() ? 0 : steps.back())
+          << ", checkpoints: " << checkpoints_in(c.directory) << std::endl;
+      checks.add(ended_by_kill && status_of(c.directory) == "running",
+                 c.directory + ": the killed run ended abnormally and its "
+                               "status is not 'completed'");
+      checks.add(!steps.empty() && steps.back() == c.last_row,
+                 c.directory + ": the killed run wrote rows up to step " +
+                   std::to_string(c.last_row));
+      checks.add(checkpoints_in(c.directory) == c.checkpoints_left,
+                 c.directory + ": checkpoints left: " + c.checkpoints_left);
+    }
+
+  // Resume each.
+  for (const auto &c : cases)
+    {
+      const Outcome o = run(c.directory + ".2",
+                            arguments(c.adaptive, c.directory, true),
+                            c.processes_resumed);
+      const bool said_so =
+        o.out.find("resumed from " + c.directory + "/checkpoint_00020") !=
+        std::string::npos;
+      const bool        exact = !c.adaptive;
+      const std::string full  = c.adaptive ? "full_adaptive" : "full_uniform";
+      const auto        steps = steps_of(c.directory);
+      const auto        diff  = compare(full, c.directory, exact);
+      out << c.directory << ", resumed on "
+          << std::max(c.processes_resumed, 1u) << " process"
+          << (c.processes_resumed > 1 ? "es" : "") << ": exit code " << o.code
+          << ", " << status_of(c.directory)
+          << ", from checkpoint_00020: " << yes_no(said_so)
+          << ", each step once: " << yes_no(each_step_once(steps))
+          << ", checkpoints: " << checkpoints_in(c.directory) << std::endl;
+      out << "  vs the uninterrupted run"
+          << (exact ? " (as printed)" : " (to 1e-8, physical columns)")
+          << ": time series columns differing: " << join(diff.time_series)
+          << "; other files differing: " << join(diff.files) << std::endl;
+      const double defect = max_relative_defect(c.directory);
+      out << "  max relative energy defect below 1e-10: "
+          << yes_no(defect < 1e-10) << std::endl;
+
+      checks.add(o.succeeded() && o.err.empty() &&
+                   status_of(c.directory) == "completed",
+                 c.directory + ": the resumed run completes, nothing on stderr");
+      checks.add(said_so,
+                 c.directory + ": resumed from the newest complete "
+                               "checkpoint (step 20)");
+      checks.add(each_step_once(steps),
+                 c.directory + ": time_series.csv holds each step once");
+      checks.add(checkpoints_in(c.directory) ==
+                   "checkpoint_00030 checkpoint_00040",
+                 c.directory + ": the newest two checkpoints are kept, no "
+                               "temporary one is left");
+      if (exact)
+        checks.add(diff.time_series ==
+                       std::set<std::string>{"factorizations"} &&
+                     diff.files.empty(),
+                   c.directory + ": the results are those of the "
+                                 "uninterrupted run, except the "
+                                 "factorization count");
+      else
+        checks.add(diff.time_series.empty() && diff.files.empty(),
+                   c.directory + ": the results agree with the uninterrupted "
+                                 "run to 1e-8");
+      checks.add(defect < 1e-10,
+                 c.directory + ": the energy balance holds across the restart");
+    }
+
+  // Misuse 1: --resume where the run wrote no checkpoint. The results must
+  // stay as they are.
+  {
+    std::vector<std::string> args = arguments(false, "never_checkpointed");
+    args.push_back("--set");
+    args.push_back("Checkpoint/Every=0");
+    args.push_back("--set");
+    args.push_back("Time/End time=0.03125");
+    const Outcome first = run("never_checkpointed.1", args, 0);
+    args.insert(args.begin(), "--resume");
+    const Outcome second = run("never_checkpointed.2", args, 0);
+    const auto    lines  = lines_of(second.err);
+    const bool    one_error =
+      lines.size() == 1 && lines[0].rfind("dynamic-contact: error:", 0) == 0;
+    const bool names = one_error &&
+                       lines[0].find("Output/Directory") != std::string::npos &&
+                       lines[0].find("Checkpoint/Every") != std::string::npos;
+    out << "--resume without a checkpoint: exit code " << second.code
+        << ", one error line naming Output/Directory and Checkpoint/Every: "
+        << yes_no(names) << ", results untouched: "
+        << yes_no(status_of("never_checkpointed") == "completed" &&
+                  steps_of("never_checkpointed").size() == 5)
+        << std::endl;
+    checks.add(first.succeeded(), "the run without checkpoints completes");
+    checks.add(second.exited && second.code == 1 && names,
+               "--resume without a checkpoint: exit code 1 and one error "
+               "line that names Output/Directory and Checkpoint/Every");
+    checks.add(status_of("never_checkpointed") == "completed" &&
+                 steps_of("never_checkpointed").size() == 5,
+               "--resume without a checkpoint leaves the results alone");
+  }
+
+  // Misuse 2: --resume with another mesh than the checkpoint's.
+  {
+    const std::string before = read_text("full_uniform/time_series.csv");
+    std::vector<std::string> args = arguments(false, "full_uniform", true);
+    args.push_back("--set");
+    args.push_back("Geometry/Repetitions=16, 4");
+    const Outcome o     = run("other_mesh", args, 0);
+    const auto    lines = lines_of(o.err);
+    const bool    one_error =
+      lines.size() == 1 && lines[0].rfind("dynamic-contact: error:", 0) == 0;
+    const bool names = one_error &&
+                       lines[0].find("checkpoint_00040") != std::string::npos &&
+                       lines[0].find("Geometry") != std::string::npos;
+    out << "--resume with another mesh: exit code " << o.code
+        << ", one error line naming the checkpoint and Geometry: "
+        << yes_no(names) << ", results untouched: "
+        << yes_no(read_text("full_uniform/time_series.csv") == before &&
+                  status_of("full_uniform") == "completed")
+        << std::endl;
+    checks.add(o.exited && o.code == 1 && names,
+               "--resume with another mesh: exit code 1 and one error line "
+               "that names the checkpoint and Geometry");
+    checks.add(read_text("full_uniform/time_series.csv") == before &&
+                 status_of("full_uniform") == "completed",
+               "--resume with another mesh leaves the results alone");
+  }
+
+  checks.assert_all();
+}

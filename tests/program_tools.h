@@ -1,0 +1,208 @@
+#ifndef dynamic_contact_tests_program_tools_h
+#define dynamic_contact_tests_program_tools_h
+
+// Shared helpers of the tests that run the dynamic-contact executable as a
+// user does (bad_input, command_line, checkpoint_restart): text and CSV
+// files, a shell command line, the outcome of one run of the program (with
+// or without mpiexec), and a list of checks made after every run has
+// printed what it found.
+
+#include "test_tools.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#ifndef DYNAMIC_CONTACT_EXECUTABLE
+#  error "tests/CMakeLists.txt must define DYNAMIC_CONTACT_EXECUTABLE"
+#endif
+
+namespace program_tools
+{
+  namespace fs = std::filesystem;
+
+  inline std::string
+  read_text(const fs::path &file)
+  {
+    std::ifstream      in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  inline void
+  write_text(const fs::path &file, const std::string &text)
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << text;
+  }
+
+  inline std::vector<std::string>
+  lines_of(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::istringstream       in(text);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  }
+
+  inline std::string
+  trim(const std::string &s)
+  {
+    const auto begin = s.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos)
+      return "";
+    const auto end = s.find_last_not_of(" \t\r\n");
+    return s.substr(begin, end - begin + 1);
+  }
+
+  inline std::vector<std::string>
+  split(const std::string &s, const char separator)
+  {
+    std::vector<std::string> parts;
+    std::istringstream       in(s);
+    for (std::string part; std::getline(in, part, separator);)
+      parts.push_back(trim(part));
+    return parts;
+  }
+
+  /** The rows of a CSV file, split at commas (blank lines skipped). */
+  inline std::vector<std::vector<std::string>>
+  read_csv(const fs::path &file)
+  {
+    std::vector<std::vector<std::string>> rows;
+    for (const auto &line : lines_of(read_text(file)))
+      if (!trim(line).empty())
+        rows.push_back(split(line, ','));
+    return rows;
+  }
+
+  /** One argument for sh, in single quotes. */
+  inline std::string
+  quote(const std::string &s)
+  {
+    std::string q = "'";
+    for (const char c : s)
+      q += (c == '\'' ? std::string("'\\''") : std::string(1, c));
+    return q + "'";
+  }
+
+  inline std::string
+  yes_no(const bool b)
+  {
+    return b ? "yes" : "no";
+  }
+
+  /** How one run of the program ended, and what it printed. */
+  struct Outcome
+  {
+    int         status = -1; // of std::system
+    bool        exited = false;
+    int         code   = -1; // exit code if exited
+    int         signal = 0;  // the signal that ended it, if any
+    std::string out, err;
+
+    bool
+    succeeded() const
+    {
+      return status != -1 && exited && code == 0;
+    }
+  };
+
+  /** How to run the program. */
+  struct Launch
+  {
+    /** Working directory (created if missing; "" for the current one). */
+    fs::path directory = "";
+    /** stdout and stderr go to NAME.stdout and NAME.stderr there. */
+    std::string name = "run";
+    /** Environment variables "NAME=value" for this run only. */
+    std::vector<std::string> environment = {};
+    /** 0: the program itself; N > 0: under mpiexec with N processes. */
+    unsigned int processes = 0;
+  };
+
+  /**
+   * Run the executable of this build with @p arguments, stdin empty. Without
+   * mpiexec the program is exec'ed by the shell, so a signal that ends it is
+   * seen as such (not as the exit code 128 + N of a shell around it).
+   */
+  inline Outcome
+  execute(const std::vector<std::string> &arguments, const Launch &launch = {})
+  {
+    std::string command;
+    if (!launch.directory.empty())
+      {
+        fs::create_directories(launch.directory);
+        command += "cd " + quote(launch.directory.string()) + " && ";
+      }
+    // The program is a process of its own: OpenMPI refuses root there
+    // unless told (containers and CI run as root). Set for the child only
+    // (runs may be started from several threads).
+    command +=
+      "exec env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+    for (const auto &e : launch.environment)
+      command += " " + quote(e);
+#ifdef DYNAMIC_CONTACT_MPIEXEC
+    if (launch.processes > 0)
+      command += " " + quote(DYNAMIC_CONTACT_MPIEXEC) + " -n " +
+                 std::to_string(launch.processes) +
+                 " --allow-run-as-root --oversubscribe";
+#else
+    if (launch.processes > 0)
+      test_tools::check(false,
+                        "tests/CMakeLists.txt defines DYNAMIC_CONTACT_MPIEXEC");
+#endif
+    command += " " + quote(DYNAMIC_CONTACT_EXECUTABLE);
+    for (const auto &a : arguments)
+      command += " " + quote(a);
+    command += " </dev/null >" + quote(launch.name + ".stdout") + " 2>" +
+               quote(launch.name + ".stderr");
+
+    Outcome o;
+    o.status = std::system(command.c_str());
+    if (o.status != -1)
+      {
+        o.exited = WIFEXITED(o.status);
+        o.code   = o.exited ? WEXITSTATUS(o.status) : -1;
+        o.signal = WIFSIGNALED(o.status) ? WTERMSIG(o.status) : 0;
+      }
+    o.out = read_text(launch.directory / (launch.name + ".stdout"));
+    o.err = read_text(launch.directory / (launch.name + ".stderr"));
+    return o;
+  }
+
+  /**
+   * Checks collected while the runs print what they found, and made at the
+   * end, so that a failing test still shows the whole picture.
+   */
+  struct Checks
+  {
+    std::vector<std::pair<bool, std::string>> list;
+
+    void
+    add(const bool condition, const std::string &what)
+    {
+      list.emplace_back(condition, what);
+    }
+
+    void
+    assert_all() const
+    {
+      for (const auto &[ok, what] : list)
+        if (!ok)
+          std::cerr << "FAILED: " << what << std::endl;
+      for (const auto &[ok, what] : list)
+        test_tools::check(ok, what);
+    }
+  };
+} // namespace program_tools
+
+#endif
