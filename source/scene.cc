@@ -173,18 +173,28 @@ namespace DynamicContact
     for (const auto &[id, list] : boundaries.all_ids())
       assigned[id] = list;
 
+    // Where the ids come from, for the messages.
+    std::string ids;
     for (const auto id : mesh_ids)
-      AssertThrow(assigned.count(id) == 1,
-                  ExcMessage("Boundary conditions: boundary id " +
-                             std::to_string(id) +
-                             " of the mesh is not assigned a condition; list "
-                             "it in one of Clamped, Roller, Traction, "
-                             "Contact, Free."));
+      ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+    const std::string mesh =
+      geometry.type == Parameters::Geometry::Type::gmsh ?
+        "the mesh of Geometry/Mesh file '" + geometry.mesh_file +
+          "' (its boundary ids: " + ids + ")" :
+        "the mesh (its boundary ids: " + ids + ")";
+
+    // First what the prm names, then what it leaves out.
     for (const auto &[id, list] : assigned)
       AssertThrow(mesh_ids.count(id) == 1,
                   ExcMessage("Boundary conditions/" + list +
                              ": boundary id " + std::to_string(id) +
-                             " does not exist in the mesh."));
+                             " does not exist in " + mesh + "."));
+    for (const auto id : mesh_ids)
+      AssertThrow(assigned.count(id) == 1,
+                  ExcMessage("Boundary conditions: boundary id " +
+                             std::to_string(id) + " of " + mesh +
+                             " is not assigned a condition; list it in one "
+                             "of Clamped, Roller, Traction, Contact, Free."));
   }
 
 

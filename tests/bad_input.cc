@@ -294,6 +294,39 @@ main(int argc, char **argv)
       change("set Type        = rectangle",
              "set Type        = gmsh\n  set Mesh file = missing.msh"),
       file, 1, {"Geometry/Mesh file", "missing.msh"});
+  // A Gmsh mesh of the block (1 x 0.5, two quadrilaterals): the control
+  // tags the right, bottom and top edges 1, 2, 3 and leaves the left one
+  // untagged (deal.II gives it id 0), as the rectangle's ids; the other tags
+  // the left and right edges 10, so ids 0 and 1 named by Roller are missing.
+  auto msh = [](const std::string &side_tag, const std::string &left_line) {
+    return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+           "$Nodes\n6\n1 0 0 0\n2 0.5 0 0\n3 1 0 0\n4 0 0.5 0\n"
+           "5 0.5 0.5 0\n6 1 0.5 0\n$EndNodes\n"
+           "$Elements\n" +
+           std::string(left_line.empty() ? "7" : "8") +
+           "\n"
+           "1 1 2 2 2 1 2\n2 1 2 2 2 2 3\n"
+           "3 1 2 " +
+           side_tag + " " + side_tag +
+           " 3 6\n"
+           "4 1 2 3 3 6 5\n5 1 2 3 3 5 4\n" +
+           left_line +
+           "7 3 2 5 5 1 2 5 4\n8 3 2 5 5 2 3 6 5\n$EndElements\n";
+  };
+  const std::string gmsh_scene =
+    change("set Type        = rectangle",
+           "set Type        = gmsh\n  set Mesh file = block.msh");
+  add("control_gmsh_scene", gmsh_scene, file, 0, {}).extra_files = {
+    {"block.msh", msh("1", "")}};
+  add("gmsh_mesh_lacks_boundary_ids", gmsh_scene, file, 1,
+      {"Boundary conditions/Roller", "boundary id 0", "block.msh"})
+    .extra_files = {{"block.msh", msh("10", "6 1 2 10 10 4 1\n")}};
+  add("gmsh_mesh_file_garbage", gmsh_scene, file, 1,
+      {"Geometry/Mesh file", "block.msh"})
+    .extra_files = {{"block.msh", garbage}};
+  add("gmsh_mesh_file_truncated", gmsh_scene, file, 1,
+      {"Geometry/Mesh file", "block.msh"})
+    .extra_files = {{"block.msh", msh("1", "").substr(0, 120)}};
   add("output_directory_not_creatable",
       change("set Directory = output-pressed-block",
              "set Directory = scene.prm/results"),
