@@ -2,6 +2,7 @@
 
 #include <dynamic_contact/error_messages.h>
 
+#include <cstdio>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -23,7 +24,7 @@ namespace DynamicContact
     else
       text = e.what();
 
-    // One paragraph: collapse line breaks and runs of blanks.
+    // One printable paragraph: collapse line breaks and runs of blanks.
     std::string result;
     bool        blank = false;
     for (const char c : text)
@@ -35,7 +36,17 @@ namespace DynamicContact
           {
             if (blank)
               result += ' ';
-            result += c;
+            // Other control characters (from a binary file quoted in a
+            // parser's message) as \xNN: the message stays printable text.
+            const unsigned char u = static_cast<unsigned char>(c);
+            if (u < 0x20 || u == 0x7f)
+              {
+                char escaped[8];
+                std::snprintf(escaped, sizeof(escaped), "\\x%02x", u);
+                result += escaped;
+              }
+            else
+              result += c;
             blank = false;
           }
       }
