@@ -8,6 +8,7 @@ import csv
 import json
 import os
 import platform
+import resource
 import shutil
 import statistics
 import subprocess
@@ -99,7 +100,8 @@ def comparison_overrides(times):
 
 def run_scene(exe, prm, overrides, directory, log=None):
     """One run of the program (one MPI process, the whole process timed).
-    Returns (wall time in s, return code, tail of the output)."""
+    Returns (wall time in s, return code, tail of the output, command); the
+    CPU time (user + system) of the process is in run_scene.last_cpu_time."""
     if os.path.exists(directory):
         shutil.rmtree(directory)
     command = [exe, prm, "--set", "Output/Directory=" + directory]
@@ -107,16 +109,22 @@ def run_scene(exe, prm, overrides, directory, log=None):
         command += ["--set", o]
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMP_NUM_THREADS="1")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     result = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             text=True)
     wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    run_scene.last_cpu_time = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     if log:
         with open(log, "w") as f:
             f.write("$ " + " ".join("'%s'" % c if " " in c else c for c in command) + "\n")
             f.write(result.stdout)
             f.write("\n[exit code %d, wall time %.3f s]\n" % (result.returncode, wall))
     return wall, result.returncode, result.stdout[-3000:], command
+
+
+run_scene.last_cpu_time = None
 
 
 def run_status(directory):
@@ -160,6 +168,11 @@ def ensure_reference(exe, directory=REFERENCE_DIR, times=COMMON_TIMES):
                 info = json.load(f)
         info["reused"] = True
         info["directory"] = directory
+        stamp = _executable_stamp(exe)
+        if info.get("executable_stamp") not in (None, stamp):
+            print("   warning: the reference was made by another executable (%s, %s), not by %s "
+                  "(%s); delete %s to redo it" % (info.get("executable"), info.get("executable_stamp"),
+                                                  exe, stamp, directory), flush=True)
         print("== reference %s: run_status 'completed', reused (wall time of the run: %s s)"
               % (os.path.relpath(directory, ROOT), info.get("wall_time", "unknown")), flush=True)
         return info
@@ -171,8 +184,10 @@ def ensure_reference(exe, directory=REFERENCE_DIR, times=COMMON_TIMES):
     if code != 0 or run_status(directory) != "completed":
         sys.exit("reference run failed (exit code %d, log %s):\n%s" % (code, log, tail))
     dofs, steps = mean_dofs(directory)
-    info = {"wall_time": round(wall, 3), "date": time.strftime("%Y-%m-%d %H:%M:%S"),
-            "machine": machine_line(), "executable": exe, "command": command,
+    info = {"wall_time": round(wall, 3), "cpu_time": round(run_scene.last_cpu_time, 3),
+            "load_1min_after": round(os.getloadavg()[0], 2), "date": time.strftime("%Y-%m-%d %H:%M:%S"),
+            "machine": machine_line(), "executable": exe,
+            "executable_stamp": _executable_stamp(exe), "command": command,
             "dofs": dofs, "steps": steps}
     with open(info_path, "w") as f:
         json.dump(info, f, indent=1)
@@ -180,6 +195,13 @@ def ensure_reference(exe, directory=REFERENCE_DIR, times=COMMON_TIMES):
     info["reused"] = False
     info["directory"] = directory
     return info
+
+
+def _executable_stamp(exe):
+    """Size and modification time of the executable: tells a rebuilt one."""
+    st = os.stat(exe)
+    return "%d bytes, modified %s" % (st.st_size, time.strftime("%Y-%m-%d %H:%M:%S",
+                                                                time.localtime(st.st_mtime)))
 
 
 def cpu_model():

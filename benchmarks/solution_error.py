@@ -263,8 +263,9 @@ def compare(run_dir, ref_dir, times=None, young=1e11, poisson=0.3, density=1000.
         nested_all = nested_all and info["nested"] and sub == 1
         max_disagreement = max([max_disagreement] + list(info["disagreement"].values()))
         if sub is None or sub > 1:
-            notes.add("the run's VTU has %s subdivisions per cell: its fields (Q2 or higher?) "
-                      "are approximated by bilinear interpolation between the VTU points"
+            notes.add("the run's VTU has %s subdivisions per cell: between its VTU points the "
+                      "run's fields (Q2: not bilinear) are approximated by bilinear "
+                      "interpolation - an approximation of the run's own field"
                       % (sub if sub else "unknown"))
         elif not info["nested"]:
             notes.add("the run's VTU points are not all reference grid vertices (not nested): "
