@@ -896,7 +896,8 @@ namespace DynamicContact
                           Patterns::Integer(0),
                           "Write solution_NNNNN.pvtu/.vtu (indexed by "
                           "solution.pvd) every N steps, and at the initial "
-                          "and final state; 0: no VTU output at all.");
+                          "and final state; 0: no VTU output at all (not even at Output "
+                          "times).");
         prm.declare_entry("VTU subdivisions",
                           "0",
                           Patterns::Integer(0, 16),
@@ -907,8 +908,9 @@ namespace DynamicContact
           "Output times",
           "",
           Patterns::List(Patterns::Double()),
-          "Times (s) at which both contact_NNNNN.csv and the VTU fields are "
-          "written in addition: at the first step that reaches each time. "
+          "Times (s) at which contact_NNNNN.csv and (unless VTU every = 0) "
+          "the VTU fields are written in addition: at the first step that "
+          "reaches each time. "
           "E.g. '0.2, 0.4, 0.6, 0.8' for the paper's Figure 2.");
         prm.declare_entry("Progress every",
                           "1",

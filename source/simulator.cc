@@ -875,12 +875,14 @@ namespace DynamicContact
             << sig6(row.get("coefficient_residual")) << std::endl;
 
     const bool last = (current_time >= T - 1e-9 * k0);
-    // An output time is due at the first step reaching it.
-    bool at_output_time = false;
+    // An output time is due at the first step reaching it: t - k < t_out <=
+    // t, with a round-off allowance that moves both ends up (an output time
+    // on the time grid belongs to the step ending there, not the next).
+    bool         at_output_time = false;
+    const double allowance      = 1e-12 * std::max(std::abs(t), k);
     for (const double t_out : parameters.output.output_times)
-      at_output_time =
-        at_output_time ||
-        (t_out <= t * (1 + 1e-12) && t_out > t - k * (1 + 1e-12));
+      at_output_time = at_output_time || (t_out <= t + allowance &&
+                                          t_out > t - k + allowance);
     const unsigned int csv_every = parameters.output.output_every;
     const unsigned int vtu_every = parameters.output.vtu_every;
     output_results(step,
