@@ -500,7 +500,8 @@ namespace DynamicContact
                           "50",
                           Patterns::Integer(1),
                           "Cap on the convexification loop; a step that "
-                          "reaches it is reported.");
+                          "reaches it has failed: it is retried with half "
+                          "the time step (see Time/Minimum time step).");
         prm.declare_entry(
           "Complementarity constant",
           "0",

@@ -101,8 +101,6 @@ namespace DynamicContact
         r.add_integer("newton_iterations", statistics.newton_iterations);
         r.add_integer("convexification_iterations",
                       statistics.convexification_iterations);
-        r.add_integer("convexification_converged",
-                      statistics.convexification_converged ? 1 : 0);
         r.add("coefficient_residual", statistics.coefficient_residual);
         r.add_integer("factorizations", statistics.factorizations);
         r.add_integer("active_set_cycles", statistics.cycles);
@@ -652,8 +650,21 @@ namespace DynamicContact
         const double elapsed = std::chrono::duration<double>(
                                  std::chrono::steady_clock::now() - wall_start)
                                  .count();
-        pcout << "  (" << seconds(elapsed) << ", ~"
-              << seconds(elapsed / step * remaining_steps()) << " left)";
+        pcout << "  (" << seconds(elapsed);
+        if (stepping_start)
+          {
+            const double stepping =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            stepping_start->first)
+                .count();
+            const double simulated = current_time - stepping_start->second;
+            if (simulated > 0)
+              pcout << ", ~"
+                    << seconds(stepping / simulated *
+                               (parameters.time.end_time - current_time))
+                    << " left";
+          }
+        pcout << ")";
       }
     pcout << std::endl;
   }
@@ -780,6 +791,8 @@ namespace DynamicContact
   bool
   Simulator<dim>::advance()
   {
+    if (!stepping_start)
+      stepping_start.emplace(std::chrono::steady_clock::now(), current_time);
     const double T  = parameters.time.end_time;
     const double k0 = parameters.time.time_step;
     if (current_time >= T - 1e-9 * k0)
@@ -865,14 +878,6 @@ namespace DynamicContact
     min_dissipation =
       std::min(min_dissipation, row.get("relative_min_dissipation"));
     total_newton += row.get("newton_iterations");
-
-    if (row.get("convexification_converged") == 0)
-      pcout << "Warning: step " << step << " (t = " << sig6(t)
-            << "): the convexification loop reached Friction/Maximum "
-               "convexification iterations = "
-            << parameters.friction.max_convexification_iterations
-            << " without converging; max |mu_i - mu(|w_tau,i|)| = "
-            << sig6(row.get("coefficient_residual")) << std::endl;
 
     const bool last = (current_time >= T - 1e-9 * k0);
     // An output time is due at the first step reaching it: t - k < t_out <=

@@ -5,6 +5,8 @@
 #include <dynamic_contact/step_solver.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace DynamicContact
 {
@@ -271,10 +273,17 @@ namespace DynamicContact
         if (rule_85 &&
             coefficient_residual <= friction_parameters.coefficient_tolerance)
           break;
+        // A loop that does not converge leaves mu_i != mu(|w_tau,i|): the
+        // friction law would not hold. The step is retried with a smaller
+        // time step instead (the fixed point contracts better with k).
         if (pass + 1 == max_passes)
           {
-            statistics.convexification_converged = false;
-            break;
+            std::ostringstream message;
+            message << "the convexification loop did not converge in "
+                       "Friction/Maximum convexification iterations = "
+                    << max_passes << " passes (max |mu_i - mu(|w_tau,i|)| = "
+                    << std::setprecision(4) << coefficient_residual << ")";
+            throw StepFailure(message.str());
           }
         // Relaxed update of the frozen coefficients.
         const double theta = friction_parameters.relaxation;

@@ -127,10 +127,14 @@ namespace program_tools
     std::vector<std::string> environment = {};
     /** 0: the program itself; N > 0: under mpiexec with N processes. */
     unsigned int processes = 0;
+    /** What to run: this build's dynamic-contact unless told otherwise (a
+     *  script that runs it in turn). */
+    std::string program = DYNAMIC_CONTACT_EXECUTABLE;
   };
 
   /**
-   * Run the executable of this build with @p arguments, stdin empty. Without
+   * Run the executable of this build (or launch.program) with @p arguments,
+   * stdin empty. Without
    * mpiexec the program is exec'ed by the shell, so a signal that ends it is
    * seen as such (not as the exit code 128 + N of a shell around it).
    */
@@ -160,7 +164,7 @@ namespace program_tools
       test_tools::check(false,
                         "tests/CMakeLists.txt defines DYNAMIC_CONTACT_MPIEXEC");
 #endif
-    command += " " + quote(DYNAMIC_CONTACT_EXECUTABLE);
+    command += " " + quote(launch.program);
     for (const auto &a : arguments)
       command += " " + quote(a);
     command += " </dev/null >" + quote(launch.name + ".stdout") + " 2>" +

@@ -22,6 +22,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace DynamicContact
@@ -168,6 +169,14 @@ namespace DynamicContact
     unsigned int                          good_steps_since_cutback = 0;
     unsigned int                          step = 0;
     std::chrono::steady_clock::time_point wall_start;
+    /**
+     * Wall clock and simulated time when this process took its first step:
+     * the estimate of the time left is the wall time per simulated second
+     * since then (cut-backs and a resume included) times the simulated time
+     * left.
+     */
+    std::optional<std::pair<std::chrono::steady_clock::time_point, double>>
+      stepping_start;
     /**
      * Fault injection for the restart test, from the environment variable
      * DYNAMIC_CONTACT_KILL = "after-step N" or "in-checkpoint N": the run

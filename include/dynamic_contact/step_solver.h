@@ -59,7 +59,6 @@ namespace DynamicContact
     {
       unsigned int newton_iterations          = 0;
       unsigned int convexification_iterations = 0;
-      bool         convexification_converged  = true;
       unsigned int factorizations             = 0;
       unsigned int bulk_solves                = 0;
       unsigned int cycles                     = 0;
