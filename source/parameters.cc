@@ -501,7 +501,9 @@ namespace DynamicContact
                           Patterns::Integer(1),
                           "Cap on the convexification loop; a step that "
                           "reaches it has failed: it is retried with half "
-                          "the time step (see Time/Minimum time step).");
+                          "the time step (see Time/Minimum time step). At "
+                          "the minimum time step it is kept, with a warning "
+                          "and convexification_converged = 0.");
         prm.declare_entry(
           "Complementarity constant",
           "0",

@@ -101,6 +101,8 @@ namespace DynamicContact
         r.add_integer("newton_iterations", statistics.newton_iterations);
         r.add_integer("convexification_iterations",
                       statistics.convexification_iterations);
+        r.add_integer("convexification_converged",
+                      statistics.convexification_converged ? 1 : 0);
         r.add("coefficient_residual", statistics.coefficient_residual);
         r.add_integer("factorizations", statistics.factorizations);
         r.add_integer("active_set_cycles", statistics.cycles);
@@ -518,7 +520,10 @@ namespace DynamicContact
     }
 
     w = w_old; // initial guess
-    record.statistics = step_solver.solve(rhs, u_old, w_old, w);
+    // At the smallest time step a convexification loop that reaches its
+    // cap is kept (reported) rather than failing the run.
+    record.statistics =
+      step_solver.solve(rhs, u_old, w_old, w, !can_cut_back(k));
 
     if (!std::isfinite(w.l2_norm()))
       throw StepFailure("the solution is not finite");
@@ -789,6 +794,14 @@ namespace DynamicContact
 
   template <int dim>
   bool
+  Simulator<dim>::can_cut_back(const double k) const
+  {
+    return k / 2 >= parameters.time.minimum_time_step * (1 - 1e-12);
+  }
+
+
+  template <int dim>
+  bool
   Simulator<dim>::advance()
   {
     if (!stepping_start)
@@ -828,7 +841,7 @@ namespace DynamicContact
             u = u_good;
             w = w_good;
             step_solver.set_friction_forces(lambda_good);
-            if (k / 2 < parameters.time.minimum_time_step * (1 - 1e-12))
+            if (!can_cut_back(k))
               {
                 // Stop, with the last good state written out (fields and a
                 // checkpoint to continue from with other settings).
@@ -878,6 +891,15 @@ namespace DynamicContact
     min_dissipation =
       std::min(min_dissipation, row.get("relative_min_dissipation"));
     total_newton += row.get("newton_iterations");
+
+    if (row.get("convexification_converged") == 0)
+      pcout << "Warning: step " << step << " (t = " << sig6(t)
+            << "): the convexification loop reached Friction/Maximum "
+               "convexification iterations = "
+            << parameters.friction.max_convexification_iterations
+            << " at the minimum time step without converging; kept, with "
+               "max |mu_i - mu(|w_tau,i|)| = "
+            << sig6(row.get("coefficient_residual")) << std::endl;
 
     const bool last = (current_time >= T - 1e-9 * k0);
     // An output time is due at the first step reaching it: t - k < t_out <=

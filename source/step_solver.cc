@@ -147,7 +147,8 @@ namespace DynamicContact
   StepSolver<dim>::solve(const Vector_t &rhs,
                          const Vector_t &u_old,
                          const Vector_t &w_old,
-                         Vector_t &      w)
+                         Vector_t &      w,
+                         const bool      accept_unconverged_loop)
   {
     Statistics   statistics;
     const double k           = bulk.time_step();
@@ -275,7 +276,13 @@ namespace DynamicContact
           break;
         // A loop that does not converge leaves mu_i != mu(|w_tau,i|): the
         // friction law would not hold. The step is retried with a smaller
-        // time step instead (the fixed point contracts better with k).
+        // time step instead (the fixed point contracts better with k); at
+        // the smallest one it is kept and reported.
+        if (pass + 1 == max_passes && accept_unconverged_loop)
+          {
+            statistics.convexification_converged = false;
+            break;
+          }
         if (pass + 1 == max_passes)
           {
             std::ostringstream message;

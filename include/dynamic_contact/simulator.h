@@ -243,6 +243,10 @@ namespace DynamicContact
     /** Steps left at the nominal time step (for progress lines). */
     unsigned int
     remaining_steps() const;
+    /** Whether a step of size @p k that fails may be retried with k/2
+     *  (Time/Minimum time step). */
+    bool
+    can_cut_back(const double k) const;
     /** Write the contact CSV and/or the VTU fields of the current step. */
     void
     output_results(const unsigned int step,

@@ -59,6 +59,7 @@ namespace DynamicContact
     {
       unsigned int newton_iterations          = 0;
       unsigned int convexification_iterations = 0;
+      bool         convexification_converged  = true;
       unsigned int factorizations             = 0;
       unsigned int bulk_solves                = 0;
       unsigned int cycles                     = 0;
@@ -91,13 +92,17 @@ namespace DynamicContact
 
     /**
      * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
-     * in master form. Throws if Newton does not converge.
+     * in master form. Throws StepFailure if Newton does not converge, and if
+     * the convexification loop reaches its cap unless
+     * @p accept_unconverged_loop (the smallest time step: the step is then
+     * kept, with Statistics::convexification_converged = false).
      */
     Statistics
     solve(const Vector_t &rhs,
           const Vector_t &u_old,
           const Vector_t &w_old,
-          Vector_t &      w);
+          Vector_t &      w,
+          const bool      accept_unconverged_loop = false);
 
     /** Node data of the last solve, aligned with contact_boundary.nodes(). */
     const std::vector<ContactNodeState<dim>> &

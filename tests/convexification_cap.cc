@@ -1,0 +1,77 @@
+// A convexification loop that reaches Friction/Maximum convexification
+// iterations is never accepted silently. In the small paper scene (first
+// quarter second) with a cap of 3 passes (the scene needs up to a dozen):
+//   - by default such a step fails and is retried with half the time step
+//     (cut-back): the run completes, every kept step converged, and its
+//     coefficients match the law (coefficient_residual <= Friction/
+//     Coefficient tolerance);
+//   - with Time/Minimum time step = Time step (no cut-back) such steps are
+//     kept and reported: convexification_converged = 0, and their
+//     coefficient_residual shows by how much the law is missed.
+
+#include "test_tools.h"
+
+using namespace DynamicContact;
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const std::string scene = test_tools::scene("barboteu_danan_2016_small.prm");
+  const double      tolerance = 1e-6; // Friction/Coefficient tolerance
+  const std::vector<std::string> common = {
+    "Friction/Maximum convexification iterations=3",
+    "Friction/Coefficient tolerance=1e-6",
+    "Time/End time=0.25",
+    "Output/Output every=0"};
+
+  struct Counts
+  {
+    unsigned int rows = 0, cutbacks = 0, unconverged = 0;
+    double       worst_converged = 0, worst_unconverged = 0;
+  };
+  const auto count = [](const auto &simulator) {
+    Counts c;
+    for (const auto &row : simulator->time_series())
+      {
+        if (row.get("step") == 0)
+          continue;
+        ++c.rows;
+        c.cutbacks += row.get("cutbacks");
+        const double residual = row.get("coefficient_residual");
+        if (row.get("convexification_converged") == 0)
+          {
+            ++c.unconverged;
+            c.worst_unconverged = std::max(c.worst_unconverged, residual);
+          }
+        else
+          c.worst_converged = std::max(c.worst_converged, residual);
+      }
+    return c;
+  };
+
+  auto with_cut_back = common;
+  with_cut_back.push_back("Output/Directory=output-cut-back");
+  const Counts a = count(test_tools::run<2>(scene, with_cut_back));
+
+  auto without = common;
+  without.push_back("Output/Directory=output-kept");
+  without.push_back("Time/Minimum time step=0.0078125");
+  const Counts b = count(test_tools::run<2>(scene, without));
+
+  test_tools::check(a.cutbacks > 0,
+                    "cut-back: steps whose loop reached the cap were retried");
+  test_tools::check(a.unconverged == 0 && a.worst_converged <= tolerance,
+                    "cut-back: every kept step converged, mu_i = mu(|w_tau|) "
+                    "to the coefficient tolerance");
+  test_tools::check(a.rows > 32, "cut-back: more steps than the 32 nominal");
+  test_tools::check(b.rows == 32 && b.cutbacks == 0,
+                    "no cut-back: the 32 nominal steps");
+  test_tools::check(b.unconverged > 0,
+                    "no cut-back: steps at the cap are kept and reported "
+                    "(convexification_converged = 0)");
+  test_tools::check(b.worst_unconverged > tolerance,
+                    "no cut-back: their coefficient_residual shows the miss");
+  test_tools::check(b.worst_converged <= tolerance,
+                    "no cut-back: the other steps converged");
+}
