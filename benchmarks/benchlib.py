@@ -174,19 +174,24 @@ def read_time_series(directory):
         return list(csv.DictReader(f))
 
 
-def mean_dofs(directory):
-    """Mean of the dofs column over the steps (row 0, the initial state, left
-    out)."""
-    rows = read_time_series(directory)[1:]
-    return statistics.mean(int(r["dofs"]) for r in rows), len(rows)
+def mean_dofs(steps):
+    """Mean of the dofs column over the rows of the steps (time_series.csv
+    without row 0, the initial state), and their number."""
+    return statistics.mean(int(r["dofs"]) for r in steps), len(steps)
+
+
+def uniform_overrides(n, k, degree=1, scheme="backward Euler"):
+    """The paper's scene on a uniform n x n mesh with time step k: how every
+    run compared with the reference (and the reference itself) is set up."""
+    return ["Geometry/Repetitions=%d, %d" % (n, n),
+            "Time/Time step=%.17g" % k,
+            "Finite element/Polynomial degree=%d" % degree,
+            "Time/Scheme=" + scheme]
 
 
 def reference_overrides(times=COMMON_TIMES):
     n = REFERENCE_N
-    return ["Geometry/Repetitions=%d, %d" % (n, n),
-            "Time/Time step=%.17g" % (1.0 / n),
-            "Finite element/Polynomial degree=1",
-            "Time/Scheme=backward Euler"] + comparison_overrides(times)
+    return uniform_overrides(n, 1.0 / n) + comparison_overrides(times)
 
 
 def ensure_reference(exe, directory=REFERENCE_DIR, times=COMMON_TIMES):
@@ -217,7 +222,7 @@ def ensure_reference(exe, directory=REFERENCE_DIR, times=COMMON_TIMES):
     wall, code, tail, command = run_scene(exe, PAPER_PRM, reference_overrides(times), directory, log)
     if code != 0 or run_status(directory) != "completed":
         sys.exit("reference run failed (exit code %d, log %s):\n%s" % (code, log, tail))
-    dofs, steps = mean_dofs(directory)
+    dofs, steps = mean_dofs(read_time_series(directory)[1:])
     info = {"wall_time": round(wall, 3), "cpu_time": round(run_scene.last_cpu_time, 3),
             "load_1min_after": round(os.getloadavg()[0], 2), "date": time.strftime("%Y-%m-%d %H:%M:%S"),
             "machine": machine_line(), "executable": exe,

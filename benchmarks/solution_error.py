@@ -215,15 +215,22 @@ def _pick(pvd, t, what):
     return best
 
 
-def _subdivisions(run_dir, vtu_time, vtu_cells):
-    """The VTU subdivisions of the run at that time: sqrt(VTU cells / mesh
-    cells), from time_series.csv (None if unknown)."""
+def _time_series(run_dir):
+    """The rows of the run's time_series.csv (None if it cannot be read)."""
     try:
         with open(os.path.join(run_dir, "time_series.csv")) as f:
-            rows = list(csv.DictReader(f))
+            return list(csv.DictReader(f))
+    except OSError:
+        return None
+
+
+def _subdivisions(rows, vtu_time, vtu_cells):
+    """The VTU subdivisions of the run at that time: sqrt(VTU cells / mesh
+    cells), from the rows of time_series.csv (None if unknown)."""
+    try:
         row = min(rows, key=lambda r: abs(float(r["time"]) - vtu_time))
         return int(round(math.sqrt(vtu_cells / float(row["cells"]))))
-    except (OSError, KeyError, ValueError, ZeroDivisionError):
+    except (TypeError, KeyError, ValueError, ZeroDivisionError):
         return None
 
 
@@ -242,6 +249,7 @@ def compare(run_dir, ref_dir, times=None, young=1e11, poisson=0.3, density=1000.
             raise ValueError("no common VTU time > 0 in %s and %s" % (run_dir, ref_dir))
     cache = reference_cache if reference_cache is not None else {}
     rows, notes = [], set()
+    run_series = _time_series(run_dir)
     nested_all, max_disagreement = True, 0.0
     for t in times:
         ref_time, ref_file = _pick(ref_pvd, t, ref_dir)
@@ -259,7 +267,7 @@ def compare(run_dir, ref_dir, times=None, young=1e11, poisson=0.3, density=1000.
         eu = fields["displacement"] - ref_fields["displacement"]
         ew = fields["velocity"] - ref_fields["velocity"]
         e = norms(grid, eu, ew, young, poisson, density)
-        sub = _subdivisions(run_dir, run_time, info["vtu_cells"])
+        sub = _subdivisions(run_series, run_time, info["vtu_cells"])
         nested_all = nested_all and info["nested"] and sub == 1
         max_disagreement = max([max_disagreement] + list(info["disagreement"].values()))
         if sub is None or sub > 1:

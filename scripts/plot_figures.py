@@ -90,6 +90,7 @@ class Run:
                              % directory)
         self.load = read_load(prm_file) if prm_file else None
         self._meshes = {}
+        self._contacts = {}
 
     def step_near(self, t):
         """The VTU step whose time is closest to t, and that time."""
@@ -110,7 +111,13 @@ class Run:
         return float(np.sum(dx[c["u_nu"] > 0]))
 
     def contact(self, step):
-        """Columns of contact_NNNNN.csv as float arrays (state as strings)."""
+        """Columns of contact_NNNNN.csv as float arrays (state as strings),
+        read once per step."""
+        if step not in self._contacts:
+            self._contacts[step] = self._read_contact(step)
+        return self._contacts[step]
+
+    def _read_contact(self, step):
         path = os.path.join(self.directory, "contact_%05d.csv" % step)
         with open(path) as f:
             rows = list(csv.DictReader(f))

@@ -7,21 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace DynamicContact
 {
-  namespace
-  {
-    std::string
-    scientific(const double x)
-    {
-      char buffer[32];
-      std::snprintf(buffer, sizeof(buffer), "%.3e", x);
-      return buffer;
-    }
-  } // namespace
-
   template <int dim>
   AssembledNewton<dim>::AssembledNewton(const ContactProblem<dim> &problem)
     : problem(problem)
@@ -53,21 +41,8 @@ namespace DynamicContact
   {
     problem.bulk.newton_matrix().vmult(residual, w);
     residual -= rhs;
-    const auto &                         nodes = problem.boundary.nodes();
-    std::vector<types::global_dof_index> indices;
-    std::vector<double>                  values;
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      {
-        const Tensor<1, dim> f =
-          transpose(nodes[i].constraint_map) * owned_forces[i];
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            indices.push_back(nodes[i].dofs[c]);
-            values.push_back(f[c]);
-          }
-      }
-    residual.add(indices, values);
-    residual.compress(VectorOperation::add);
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return owned_forces[i]; }, 1., residual);
     return residual.l2_norm();
   }
 
@@ -303,14 +278,7 @@ namespace DynamicContact
                         << law_residual / f_scale << ")" << std::endl;
         if (result.residual <= problem.parameters.newton_tolerance)
           break;
-        if (iteration >= problem.parameters.max_newton_iterations ||
-            !std::isfinite(result.residual))
-          throw StepFailure(
-            "the semismooth Newton iteration did not converge in "
-            "Solver/Maximum Newton iterations = " +
-            std::to_string(problem.parameters.max_newton_iterations) +
-            " iterations (relative residual " +
-            scientific(result.residual) + ")");
+        check_newton_cap(iteration, result.residual, problem.parameters);
 
         // The linearized forces: normal law and slip values; at stick
         // nodes the tangential force is what the solve determines.

@@ -81,7 +81,6 @@ namespace DynamicContact
         x = 0;
         cg.solve(*matrix, x, b, *amg);
       }
-    ++solves;
   }
 
 
@@ -115,7 +114,6 @@ namespace DynamicContact
             for (unsigned int c = 0; c < n; ++c)
               for (unsigned int i = 0; i < rows.size(); ++i)
                 values[first + c][i] = X[c][map.LID(static_cast<int>(rows[i]))];
-            solves += n;
           }
       }
     else

@@ -9,21 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace DynamicContact
 {
-  namespace
-  {
-    std::string
-    scientific(const double x)
-    {
-      char buffer[32];
-      std::snprintf(buffer, sizeof(buffer), "%.3e", x);
-      return buffer;
-    }
-  } // namespace
-
   template <int dim>
   CondensedNewton<dim>::CondensedNewton(const ContactProblem<dim> &problem)
     : problem(problem)
@@ -52,16 +40,6 @@ namespace DynamicContact
     problem.discretization.reinit_owned(scratch);
     problem.discretization.reinit_owned(free_response);
     problem.discretization.reinit_owned(cached_rhs);
-  }
-
-
-  template <int dim>
-  unsigned int
-  CondensedNewton<dim>::n_columns() const
-  {
-    return std::count_if(columns.begin(), columns.end(), [](const auto &c) {
-      return !c.empty();
-    });
   }
 
 
@@ -454,22 +432,9 @@ namespace DynamicContact
                                          const double      factor,
                                          Vector_t &        v) const
   {
-    const auto &                         owned  = problem.boundary.nodes();
-    const auto &                         global = problem.boundary.global_indices();
-    std::vector<types::global_dof_index> indices;
-    std::vector<double>                  values;
-    for (unsigned int i = 0; i < owned.size(); ++i)
-      {
-        const Tensor<1, dim> condensed =
-          transpose(owned[i].constraint_map) * f[global[i]];
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            indices.push_back(owned[i].dofs[c]);
-            values.push_back(factor * condensed[c]);
-          }
-      }
-    v.add(indices, values);
-    v.compress(VectorOperation::add);
+    const auto &global = problem.boundary.global_indices();
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return f[global[i]]; }, factor, v);
   }
 
 
@@ -485,16 +450,7 @@ namespace DynamicContact
     Result result;
     prepare(result);
     const unsigned int n   = problem.boundary.all_nodes().size();
-    const unsigned int cap = problem.parameters.max_newton_iterations;
     const double       tol = problem.parameters.newton_tolerance;
-    auto check_cap = [&](const unsigned int iterations) {
-      if (iterations >= cap || !std::isfinite(result.residual))
-        throw StepFailure(
-          "the semismooth Newton iteration did not converge in Solver/Maximum "
-          "Newton iterations = " +
-          std::to_string(cap) + " iterations (relative residual " +
-          scientific(result.residual) + ")");
-    };
 
     // The free response: the body without the foundation. The passes of a
     // convexification loop share it (same b, same K0').
@@ -585,7 +541,7 @@ namespace DynamicContact
           if (current.residual <= tol || stagnated)
             break;
           result.residual = current.residual;
-          check_cap(result.iterations);
+          check_newton_cap(result.iterations, result.residual, problem.parameters);
 
           // Active-set cycling: a return to sets seen before, with other
           // sets in between (keeping the last sets, as a damped step does,
@@ -695,7 +651,7 @@ namespace DynamicContact
                                result.residual < std::sqrt(tol);
         if (result.residual <= tol || stagnated)
           break;
-        check_cap(result.iterations);
+        check_newton_cap(result.iterations, result.residual, problem.parameters);
         previous_residual  = result.residual;
         previous_signature = it.signature;
 

@@ -297,14 +297,6 @@ namespace DynamicContact
                ExcInternalError());
         owned_to_global.push_back(it - every_node.begin());
       }
-
-    double local_weight = 0;
-    for (const auto &node : owned_nodes)
-      local_weight += node.weight;
-    n_nodes      = Utilities::MPI::sum(static_cast<unsigned int>(
-                                    owned_nodes.size()),
-                                  discretization.comm);
-    total_weight = Utilities::MPI::sum(local_weight, discretization.comm);
   }
 
 

@@ -14,13 +14,6 @@ namespace DynamicContact
   }
 
 
-  bool
-  EnergyBalanceTerms::dissipation_nonnegative(const double previous_energy) const
-  {
-    return min_dissipation_term() >= -roundoff * scale(previous_energy);
-  }
-
-
   double
   EnergyBalanceTerms::scale(const double previous_energy) const
   {

@@ -83,4 +83,13 @@ namespace DynamicContact
                               std::regex(R"(Parsing Error at Column -?\d+\. )"),
                               "");
   }
+
+
+  std::string
+  scientific(const double x, const unsigned int decimals)
+  {
+    char buffer[48];
+    std::snprintf(buffer, sizeof(buffer), "%.*e", static_cast<int>(decimals), x);
+    return buffer;
+  }
 } // namespace DynamicContact

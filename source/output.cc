@@ -4,32 +4,21 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/output.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <iomanip>
 #include <sstream>
 
 namespace DynamicContact
 {
-  namespace
-  {
-    std::string
-    format(const double value)
-    {
-      char buffer[32];
-      std::snprintf(buffer, sizeof(buffer), "%.10e", value);
-      return buffer;
-    }
-  } // namespace
-
 
   // --------------------------------------------------------- TimeSeriesRow
   void
   TimeSeriesRow::add(const std::string &name, const double value)
   {
-    entries.emplace_back(name, format(value));
+    entries.emplace_back(name, scientific(value, 10));
   }
 
   void
@@ -53,8 +42,7 @@ namespace DynamicContact
   TimeSeriesWriter::TimeSeriesWriter(const std::string &filename,
                                      const MPI_Comm     comm,
                                      const bool         append)
-    : filename(filename)
-    , root(Utilities::MPI::this_mpi_process(comm) == 0)
+    : root(Utilities::MPI::this_mpi_process(comm) == 0)
     , header_written(append)
   {
     if (root)
@@ -161,7 +149,7 @@ namespace DynamicContact
       {
         const unsigned int n_numbers = row.size() - (friction ? 1 : 0);
         for (unsigned int c = 0; c < n_numbers; ++c)
-          out << (c ? "," : "") << format(row[c]);
+          out << (c ? "," : "") << scientific(row[c], 10);
         if (friction)
           out << ','
               << to_string(static_cast<ContactState>(

@@ -22,9 +22,7 @@ namespace DynamicContact
     std::string
     sig6(const double x)
     {
-      char buffer[32];
-      std::snprintf(buffer, sizeof(buffer), "%.5e", x);
-      return buffer;
+      return scientific(x, 5);
     }
 
     std::string
@@ -240,6 +238,9 @@ namespace DynamicContact
   std::vector<Point<dim>>
   Simulator<dim>::penetrating_nodes() const
   {
+    // Only contact following asks for them (the same on every process).
+    if (!parameters.mesh_refinement.contact_following)
+      return {};
     std::vector<Point<dim>> local;
     for (const auto &node : contact_boundary.nodes())
       if (node.value(u) * node.normal - node.gap > 0)
@@ -819,8 +820,10 @@ namespace DynamicContact
         k0);
 
     // A step the solver cannot solve is retried from the last good state
-    // with half the time step, down to Time/Minimum time step.
-    const Vector_t      u_good = u, w_good = w;
+    // with half the time step, down to Time/Minimum time step. Of that
+    // state, do_time_step keeps u and w as u_old and w_old (its first
+    // statements; it throws only after them); the friction forces are kept
+    // here.
     const auto          lambda_good = step_solver.friction_forces();
     unsigned int        cutbacks    = 0;
     double              k           = 0;
@@ -838,8 +841,8 @@ namespace DynamicContact
           }
         catch (const StepFailure &failure)
           {
-            u = u_good;
-            w = w_good;
+            u = u_old;
+            w = w_old;
             step_solver.set_friction_forces(lambda_good);
             if (!can_cut_back(k))
               {

@@ -5,8 +5,6 @@
 #include <dynamic_contact/step_solver.h>
 
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 namespace DynamicContact
 {
@@ -105,8 +103,7 @@ namespace DynamicContact
           foundation, nodes[i], u_old_nodes[g], w_old_nodes[g], wi, k, theta);
         s.friction_force = lambda[g];
         s.mu             = mu[g];
-        s.slip_velocity  = nodes[i].tangential(w_e);
-        s.slip_rate      = s.slip_velocity.norm();
+        s.slip_rate      = nodes[i].tangential(w_e).norm();
         s.state          = ContactState::free;
         if (friction)
           s.state = friction_response(
@@ -159,49 +156,42 @@ namespace DynamicContact
     // Convexification loop (model.md section 4): mu frozen from the
     // previous iterate, starting from w^(0) = w_{n-1}.
     const bool loop = friction && !friction_law->is_constant();
-    // Slip rates of the effective velocity w_e = theta w + (1-theta) w_old.
-    auto slip_rates = [&](const Vector_t &v) {
-      const auto          values = contact_boundary.gather_values(v);
-      std::vector<double> s(all.size());
-      for (unsigned int i = 0; i < all.size(); ++i)
-        s[i] = all[i]
-                 .tangential(theta * values[i] + (1 - theta) * w_old_nodes[i])
-                 .norm();
-      return s;
+    // What the loop needs of an iterate w, at every node of Gamma_3, from one
+    // gather: the slip rate of the effective velocity w_e = theta w +
+    // (1-theta) w_old and the normal pressure S = p + q.
+    struct NodalIterate
+    {
+      std::vector<double> slip_rate, pressure;
     };
-    if (loop)
-      {
-        TimerOutput::Scope t(timer, "Friction: convexification update");
-        const auto s = slip_rates(w);
-        for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = checked_coefficient(*friction_law, s[i]);
-      }
-
-    Vector_t u_previous, difference;
-    discretization.reinit_owned(u_previous);
-    discretization.reinit_owned(difference);
-    const unsigned int max_passes =
-      loop ? friction_parameters.max_convexification_iterations : 1;
-    std::vector<Tensor<1, dim>> xi_previous;
-    auto friction_density = [&](const std::vector<Tensor<1, dim>> &forces,
-                                const Vector_t &                   v) {
-      // xi_i = lambda_i / (m_i S_i), S = p + q: the selection of the
-      // subdifferential in eq. (52).
-      const auto                  values = contact_boundary.gather_values(v);
-      std::vector<Tensor<1, dim>> xi(all.size());
+    auto nodal_iterate = [&](const Vector_t &v) {
+      const auto   values = contact_boundary.gather_values(v);
+      NodalIterate n{std::vector<double>(all.size()),
+                     std::vector<double>(all.size())};
       for (unsigned int i = 0; i < all.size(); ++i)
         {
-          const double S = normal_response(foundation,
-                                           all[i],
-                                           u_old_nodes[i],
-                                           w_old_nodes[i],
-                                           values[i],
-                                           k,
-                                           theta)
-                             .pressure;
-          if (S > 0)
-            xi[i] = forces[i] / (all[i].weight * S);
+          n.slip_rate[i] =
+            all[i]
+              .tangential(theta * values[i] + (1 - theta) * w_old_nodes[i])
+              .norm();
+          n.pressure[i] = normal_response(foundation,
+                                          all[i],
+                                          u_old_nodes[i],
+                                          w_old_nodes[i],
+                                          values[i],
+                                          k,
+                                          theta)
+                            .pressure;
         }
+      return n;
+    };
+    // xi_i = lambda_i / (m_i S_i): the selection of the subdifferential in
+    // eq. (52).
+    auto friction_density = [&](const std::vector<Tensor<1, dim>> &forces,
+                                const NodalIterate &               n) {
+      std::vector<Tensor<1, dim>> xi(all.size());
+      for (unsigned int i = 0; i < all.size(); ++i)
+        if (n.pressure[i] > 0)
+          xi[i] = forces[i] / (all[i].weight * n.pressure[i]);
       return xi;
     };
     auto l2_gamma = [&](const std::vector<Tensor<1, dim>> &xi) {
@@ -210,8 +200,21 @@ namespace DynamicContact
         sum += all[i].weight * xi[i].norm_square();
       return std::sqrt(sum);
     };
+
+    Vector_t u_previous, difference;
+    discretization.reinit_owned(u_previous);
+    discretization.reinit_owned(difference);
+    const unsigned int max_passes =
+      loop ? friction_parameters.max_convexification_iterations : 1;
+    std::vector<Tensor<1, dim>> xi_previous;
     if (loop)
-      xi_previous = friction_density(lambda, w);
+      {
+        TimerOutput::Scope t(timer, "Friction: convexification update");
+        const NodalIterate start = nodal_iterate(w);
+        for (unsigned int i = 0; i < all.size(); ++i)
+          mu[i] = checked_coefficient(*friction_law, start.slip_rate[i]);
+        xi_previous = friction_density(lambda, start);
+      }
 
     for (unsigned int pass = 0; pass < max_passes; ++pass)
       {
@@ -241,7 +244,8 @@ namespace DynamicContact
         const double du = std::sqrt(bulk.strain_product(difference, difference));
         const double u_norm =
           std::sqrt(bulk.strain_product(u_previous, u_previous));
-        const auto xi = friction_density(lambda, w);
+        const NodalIterate iterate = nodal_iterate(w);
+        const auto         xi      = friction_density(lambda, iterate);
         std::vector<Tensor<1, dim>> dxi(all.size());
         for (unsigned int i = 0; i < all.size(); ++i)
           dxi[i] = xi[i] - xi_previous[i];
@@ -249,22 +253,18 @@ namespace DynamicContact
         const bool   rule_85 =
           du <= eps * u_norm && l2_gamma(dxi) <= eps * l2_gamma(xi_previous);
 
-        const auto s                    = slip_rates(w);
-        const auto values               = contact_boundary.gather_values(w);
-        double     coefficient_residual = 0;
+        // mu(|w_tau,i|), at the nodes in contact first (the others only if
+        // the loop goes on: a node out of contact does not decide it).
+        std::vector<double> mu_new(all.size());
+        double              coefficient_residual = 0;
         for (unsigned int i = 0; i < all.size(); ++i)
-          if (normal_response(foundation,
-                              all[i],
-                              u_old_nodes[i],
-                              w_old_nodes[i],
-                              values[i],
-                              k,
-                              theta)
-                .pressure > 0)
-            coefficient_residual =
-              std::max(coefficient_residual,
-                       std::abs(mu[i] -
-                                checked_coefficient(*friction_law, s[i])));
+          if (iterate.pressure[i] > 0)
+            {
+              mu_new[i] =
+                checked_coefficient(*friction_law, iterate.slip_rate[i]);
+              coefficient_residual =
+                std::max(coefficient_residual, std::abs(mu[i] - mu_new[i]));
+            }
         statistics.coefficient_residual = coefficient_residual;
         details << "  convexification pass " << pass + 1 << ": |du|_V/|u|_V "
                 << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
@@ -284,19 +284,21 @@ namespace DynamicContact
             break;
           }
         if (pass + 1 == max_passes)
-          {
-            std::ostringstream message;
-            message << "the convexification loop did not converge in "
-                       "Friction/Maximum convexification iterations = "
-                    << max_passes << " passes (max |mu_i - mu(|w_tau,i|)| = "
-                    << std::setprecision(4) << coefficient_residual << ")";
-            throw StepFailure(message.str());
-          }
+          throw StepFailure(
+            "the convexification loop did not converge in "
+            "Friction/Maximum convexification iterations = " +
+            std::to_string(max_passes) +
+            " passes (max |mu_i - mu(|w_tau,i|)| = " +
+            scientific(coefficient_residual) + ")");
         // Relaxed update of the frozen coefficients.
-        const double theta = friction_parameters.relaxation;
+        const double relaxation = friction_parameters.relaxation;
         for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = (1 - theta) * mu[i] +
-                  theta * checked_coefficient(*friction_law, s[i]);
+          {
+            if (!(iterate.pressure[i] > 0))
+              mu_new[i] =
+                checked_coefficient(*friction_law, iterate.slip_rate[i]);
+            mu[i] = (1 - relaxation) * mu[i] + relaxation * mu_new[i];
+          }
         xi_previous = xi;
       }
 

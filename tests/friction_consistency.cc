@@ -38,18 +38,19 @@ main(int argc, char *argv[])
     {
       char name[64];
       std::snprintf(name, sizeof(name), "/contact_%05u.csv", step);
-      std::ifstream in(directory + name);
-      if (!in)
+      const auto rows = test_tools::read_csv(directory + name);
+      if (rows.empty())
         test_tools::check(false, std::string("read ") + name);
-      std::string line;
-      std::getline(in, line);
       if (step == 1)
-        test_tools::check(line == "x,y,u_nu,w_nu,normal_pressure,w_tau,"
-                                  "tangential_traction,mu,u_x,u_y,state",
+        test_tools::check(rows[0] ==
+                            test_tools::split("x,y,u_nu,w_nu,normal_pressure,"
+                                              "w_tau,tangential_traction,mu,"
+                                              "u_x,u_y,state",
+                                              ','),
                           "contact CSV header");
-      while (std::getline(in, line))
+      for (std::size_t r = 1; r < rows.size(); ++r)
         {
-          const auto fields = Utilities::split_string_list(line, ',');
+          const auto &fields = rows[r];
           const double p = std::stod(fields[4]), w_tau = std::stod(fields[5]),
                        t = std::stod(fields[6]), m = std::stod(fields[7]);
           const std::string &state = fields[10];

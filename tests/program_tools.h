@@ -27,62 +27,12 @@ namespace program_tools
 {
   namespace fs = std::filesystem;
 
-  inline std::string
-  read_text(const fs::path &file)
-  {
-    std::ifstream      in(file, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  inline void
-  write_text(const fs::path &file, const std::string &text)
-  {
-    std::ofstream out(file, std::ios::binary);
-    out << text;
-  }
-
-  inline std::vector<std::string>
-  lines_of(const std::string &text)
-  {
-    std::vector<std::string> lines;
-    std::istringstream       in(text);
-    for (std::string line; std::getline(in, line);)
-      lines.push_back(line);
-    return lines;
-  }
-
-  inline std::string
-  trim(const std::string &s)
-  {
-    const auto begin = s.find_first_not_of(" \t\r\n");
-    if (begin == std::string::npos)
-      return "";
-    const auto end = s.find_last_not_of(" \t\r\n");
-    return s.substr(begin, end - begin + 1);
-  }
-
-  inline std::vector<std::string>
-  split(const std::string &s, const char separator)
-  {
-    std::vector<std::string> parts;
-    std::istringstream       in(s);
-    for (std::string part; std::getline(in, part, separator);)
-      parts.push_back(trim(part));
-    return parts;
-  }
-
-  /** The rows of a CSV file, split at commas (blank lines skipped). */
-  inline std::vector<std::vector<std::string>>
-  read_csv(const fs::path &file)
-  {
-    std::vector<std::vector<std::string>> rows;
-    for (const auto &line : lines_of(read_text(file)))
-      if (!trim(line).empty())
-        rows.push_back(split(line, ','));
-    return rows;
-  }
+  using test_tools::lines_of;
+  using test_tools::read_csv;
+  using test_tools::read_text;
+  using test_tools::split;
+  using test_tools::trim;
+  using test_tools::write_text;
 
   /** One argument for sh, in single quotes. */
   inline std::string

@@ -13,7 +13,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -37,6 +39,65 @@ namespace test_tools
                "/dev/null";
     }());
     return file;
+  }
+
+  // Text and CSV files (the program's outputs as a user reads them).
+
+  inline std::string
+  read_text(const std::filesystem::path &file)
+  {
+    std::ifstream      in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  inline void
+  write_text(const std::filesystem::path &file, const std::string &text)
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << text;
+  }
+
+  inline std::vector<std::string>
+  lines_of(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::istringstream       in(text);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  }
+
+  inline std::string
+  trim(const std::string &s)
+  {
+    const auto begin = s.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos)
+      return "";
+    const auto end = s.find_last_not_of(" \t\r\n");
+    return s.substr(begin, end - begin + 1);
+  }
+
+  inline std::vector<std::string>
+  split(const std::string &s, const char separator)
+  {
+    std::vector<std::string> parts;
+    std::istringstream       in(s);
+    for (std::string part; std::getline(in, part, separator);)
+      parts.push_back(trim(part));
+    return parts;
+  }
+
+  /** The rows of a CSV file, split at commas (blank lines skipped). */
+  inline std::vector<std::vector<std::string>>
+  read_csv(const std::filesystem::path &file)
+  {
+    std::vector<std::vector<std::string>> rows;
+    for (const auto &line : lines_of(read_text(file)))
+      if (!trim(line).empty())
+        rows.push_back(split(line, ','));
+    return rows;
   }
 
   /** A scene file of the repository's prm/ directory. */

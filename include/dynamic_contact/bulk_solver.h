@@ -61,13 +61,6 @@ namespace DynamicContact
                   const std::vector<dealii::types::global_dof_index> &rows,
                   std::vector<std::vector<double>> &                values);
 
-    /** Solves done (one per right-hand side). */
-    unsigned int
-    n_solves() const
-    {
-      return solves;
-    }
-
   private:
     const Parameters::Solver parameters;
     const Matrix_t *         matrix = nullptr;
@@ -75,7 +68,6 @@ namespace DynamicContact
     std::unique_ptr<Epetra_LinearProblem>                    problem;
     std::unique_ptr<Amesos_BaseSolver>                       direct;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
-    unsigned int                                             solves = 0;
   };
 } // namespace DynamicContact
 

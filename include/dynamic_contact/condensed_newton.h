@@ -48,10 +48,6 @@ namespace DynamicContact
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) override;
 
-    /** Columns of C computed since the last change of K0 (for reports). */
-    unsigned int
-    n_columns() const;
-
   private:
     const ContactProblem<dim> problem;
 

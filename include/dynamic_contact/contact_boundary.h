@@ -122,23 +122,37 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>>
     gather_values(const Vector_t &v) const;
 
+    /**
+     * v += factor sum_i P_i^T f_i over the owned nodes i (the nodal forces
+     * into the body's equations, through each node's constraint map);
+     * @p force_of(i) is the force of owned node i. Collective (compress).
+     */
+    template <typename ForceOf>
+    void
+    add_nodal_forces(const ForceOf &force_of,
+                     const double   factor,
+                     Vector_t &     v) const
+    {
+      std::vector<types::global_dof_index> indices;
+      std::vector<double>                  values;
+      for (unsigned int i = 0; i < owned_nodes.size(); ++i)
+        {
+          const Tensor<1, dim> condensed =
+            transpose(owned_nodes[i].constraint_map) * force_of(i);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              indices.push_back(owned_nodes[i].dofs[c]);
+              values.push_back(factor * condensed[c]);
+            }
+        }
+      v.add(indices, values);
+      v.compress(VectorOperation::add);
+    }
+
     unsigned int
     n_global_nodes() const
     {
-      return n_nodes;
-    }
-
-    /** |Gamma_3| = sum of the weights. */
-    double
-    measure() const
-    {
-      return total_weight;
-    }
-
-    bool
-    empty() const
-    {
-      return n_nodes == 0;
+      return every_node.size();
     }
 
   private:
@@ -146,8 +160,6 @@ namespace DynamicContact
     std::vector<ContactNode<dim>> owned_nodes;
     std::vector<ContactNode<dim>> every_node;
     std::vector<unsigned int>     owned_to_global;
-    unsigned int                  n_nodes      = 0;
-    double                        total_weight = 0;
   };
 } // namespace DynamicContact
 

@@ -7,8 +7,11 @@
 #include <dynamic_contact/bulk_operator.h>
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/foundation.h>
+#include <dynamic_contact/parameters.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,6 +30,26 @@ namespace DynamicContact
       : std::runtime_error(what)
     {}
   };
+
+  /**
+   * The Newton iteration's stopping rule on failure, shared by both
+   * implementations: throw StepFailure once @p iterations reach
+   * Solver/Maximum Newton iterations or the relative @p residual is not
+   * finite.
+   */
+  inline void
+  check_newton_cap(const unsigned int        iterations,
+                   const double              residual,
+                   const Parameters::Solver &parameters)
+  {
+    if (iterations >= parameters.max_newton_iterations ||
+        !std::isfinite(residual))
+      throw StepFailure(
+        "the semismooth Newton iteration did not converge in Solver/Maximum "
+        "Newton iterations = " +
+        std::to_string(parameters.max_newton_iterations) +
+        " iterations (relative residual " + scientific(residual) + ")");
+  }
 
   /** What a Newton solver for one step needs to know. */
   template <int dim>

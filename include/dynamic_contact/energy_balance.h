@@ -63,9 +63,6 @@ namespace DynamicContact
      * nearly rigid du (a sliding block) is computed as a difference of large
      * numbers. A real violation is of the order of the scale.
      */
-    bool
-    dissipation_nonnegative(const double previous_energy) const;
-
     static constexpr double roundoff = 1e-12;
 
     /**

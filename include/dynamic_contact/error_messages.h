@@ -33,6 +33,14 @@ namespace DynamicContact
   /** A muparser error as a user reads it (no "Parsing Error at Column"). */
   std::string
   expression_error_message(const std::exception &e);
+
+  /**
+   * @p x in scientific notation with @p decimals digits after the point
+   * ("%.Ne"): the one format of numbers in messages, progress lines and
+   * CSV files (independent of stream state and locale).
+   */
+  std::string
+  scientific(const double x, const unsigned int decimals = 3);
 } // namespace DynamicContact
 
 #endif

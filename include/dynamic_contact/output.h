@@ -54,7 +54,6 @@ namespace DynamicContact
     write(const TimeSeriesRow &row);
 
   private:
-    std::string   filename;
     bool          root;
     bool          header_written = false;
     std::ofstream out;

@@ -127,11 +127,6 @@ namespace DynamicContact
     {
       return current_time;
     }
-    unsigned int
-    step_number() const
-    {
-      return step;
-    }
 
   private:
     const RunParameters parameters;

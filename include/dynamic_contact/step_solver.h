@@ -28,9 +28,8 @@ namespace DynamicContact
     /** The frozen friction coefficient mu_i of the last iterate. */
     double       mu    = 0;
     ContactState state = ContactState::free;
-    /** Slip velocity w_e,tau (w_e = w_n for backward Euler), its norm. */
-    Tensor<1, dim> slip_velocity;
-    double         slip_rate = 0;
+    /** |w_e,tau| (w_e = w_n for backward Euler). */
+    double slip_rate = 0;
 
     /** Normal nodal force N_i = m_i (p + q). */
     double
