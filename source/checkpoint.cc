@@ -79,14 +79,12 @@ namespace DynamicContact
       }
     MPI_Barrier(d.comm);
 
-    std::vector<Vector_t>         ghosted(fields.size());
+    std::vector<Vector_t>         ghosted;
     std::vector<const Vector_t *> input;
-    for (unsigned int i = 0; i < fields.size(); ++i)
-      {
-        d.reinit_ghosted(ghosted[i]);
-        d.expand(*fields[i], ghosted[i]);
-        input.push_back(&ghosted[i]);
-      }
+    for (const Vector_t *field : fields)
+      ghosted.push_back(d.expanded(*field));
+    for (const auto &g : ghosted)
+      input.push_back(&g);
     parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
       d.dof_handler);
     transfer.prepare_for_serialization(input);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace DynamicContact
 {
@@ -633,10 +634,15 @@ namespace DynamicContact
     double                    previous_residual = 0;
     std::vector<unsigned int> previous_signature;
     Vector_t                  w_start;
+    // The residual of (w, lambda) when the line search already evaluated it
+    // (into trial, swapped into it, and into the vector residual).
+    std::optional<double> evaluated;
     for (unsigned int refinement = 0;; ++refinement)
       {
         TimerOutput::Scope t(problem.timer, "Contact: refinement");
-        result.residual = full_residual(w, lambda, it);
+        result.residual =
+          evaluated ? *evaluated : full_residual(w, lambda, it);
+        evaluated.reset();
         problem.details << "    Newton " << result.iterations
                         << " (whole system): residual " << result.residual
                         << ", active nodes " << it.active.size() << std::endl;
@@ -689,10 +695,14 @@ namespace DynamicContact
                 for (unsigned int i = 0; i < n; ++i)
                   lambda[i] =
                     lambda_start[i] + alpha * (lambda_full[i] - lambda_start[i]);
-                if (full_residual(w, lambda, trial) <=
-                      (1 - 1e-4 * alpha) * result.residual ||
+                const double trial_residual = full_residual(w, lambda, trial);
+                if (trial_residual <= (1 - 1e-4 * alpha) * result.residual ||
                     alpha < 1. / 64)
-                  break;
+                  {
+                    std::swap(it, trial);
+                    evaluated = trial_residual;
+                    break;
+                  }
                 ++result.line_search_steps;
                 w = w_start;
                 w.add(alpha * 0.5, solution);

@@ -182,11 +182,7 @@ namespace DynamicContact
                         const Vector_t &                          w,
                         const bool                                friction)
   {
-    Vector_t u_ghosted, w_ghosted;
-    d.reinit_ghosted(u_ghosted);
-    d.reinit_ghosted(w_ghosted);
-    d.expand(u, u_ghosted);
-    d.expand(w, w_ghosted);
+    const Vector_t u_ghosted = d.expanded(u), w_ghosted = d.expanded(w);
 
     // Nodal fields of Gamma_3: in the vector space (traction) and in the
     // scalar space (pressure, friction data).

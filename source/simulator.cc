@@ -195,6 +195,17 @@ namespace DynamicContact
                             scene.initial_gap());
     for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs, &scratch})
       discretization.reinit_owned(*v);
+    energy_of_state.reset();
+  }
+
+
+  template <int dim>
+  double
+  Simulator<dim>::energy_now()
+  {
+    if (!energy_of_state)
+      energy_of_state = energy_balance.energy(u, w).total();
+    return *energy_of_state;
   }
 
 
@@ -331,11 +342,8 @@ namespace DynamicContact
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
       {
         set_initial_conditions();
-        Vector_t u_ghosted, w_ghosted;
-        discretization.reinit_ghosted(u_ghosted);
-        discretization.reinit_ghosted(w_ghosted);
-        discretization.expand(u, u_ghosted);
-        discretization.expand(w, w_ghosted);
+        const Vector_t u_ghosted = discretization.expanded(u),
+                       w_ghosted = discretization.expanded(w);
         if (!mesh_adaptation.flag_cells(
               0., t1, k, penetrating_nodes(), u_ghosted, w_ghosted))
           break;
@@ -353,15 +361,12 @@ namespace DynamicContact
   Simulator<dim>::adapt_mesh(const double t0, const double t1, const double k)
   {
     TimerOutput::Scope scope(timer, "Mesh adaptation");
-    const double       energy_before = energy_balance.energy(u, w).total();
+    const double       energy_before = energy_now();
     bool               changed       = false;
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
       {
-        Vector_t u_ghosted, w_ghosted;
-        discretization.reinit_ghosted(u_ghosted);
-        discretization.reinit_ghosted(w_ghosted);
-        discretization.expand(u, u_ghosted);
-        discretization.expand(w, w_ghosted);
+        const Vector_t u_ghosted = discretization.expanded(u),
+                       w_ghosted = discretization.expanded(w);
         if (!mesh_adaptation.flag_cells(
               t0, t1, k, penetrating_nodes(), u_ghosted, w_ghosted))
           break;
@@ -384,7 +389,7 @@ namespace DynamicContact
         setup_operators(); // resets the step solver
         set_friction_from_traction(traction);
       }
-    return energy_balance.energy(u, w).total() - energy_before;
+    return energy_now() - energy_before;
   }
 
 
@@ -490,7 +495,7 @@ namespace DynamicContact
     // column: E_{n-1} below is that of the transferred fields.
     record.remesh_energy_change = remesh_energy_change;
     record.cutbacks             = cutbacks;
-    record.previous_energy = energy_balance.energy(u_old, w_old).total();
+    record.previous_energy = energy_now(); // of u_old = u, w_old = w
 
     const double theta = parameters.time.theta();
     {
@@ -557,21 +562,18 @@ namespace DynamicContact
     record.tangential_force =
       Utilities::MPI::sum(record.tangential_force, comm);
     {
-      Vector_t u_ghosted, w_ghosted, w_old_ghosted, u_theta, w_theta;
-      for (auto *v : {&u_ghosted, &w_ghosted, &w_old_ghosted, &u_theta, &w_theta})
-        discretization.reinit_ghosted(*v);
-      discretization.expand(u, u_ghosted);
-      discretization.expand(w, w_ghosted);
-      discretization.expand(w_old, w_old_ghosted);
+      const Vector_t u_ghosted     = discretization.expanded(u),
+                     w_ghosted     = discretization.expanded(w),
+                     w_old_ghosted = discretization.expanded(w_old);
       // The stress of the scheme's equation: at u_theta, w_theta.
       scratch = u;
       scratch *= theta;
       scratch.add(1 - theta, u_old);
-      discretization.expand(scratch, u_theta);
+      const Vector_t u_theta = discretization.expanded(scratch);
       scratch = w;
       scratch *= theta;
       scratch.add(1 - theta, w_old);
-      discretization.expand(scratch, w_theta);
+      const Vector_t w_theta = discretization.expanded(scratch);
       record.forces = force_balance.compute(contact_boundary,
                                             step_solver.node_states(),
                                             t,
@@ -590,6 +592,7 @@ namespace DynamicContact
     }
     record.dofs  = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
+    energy_of_state = record.terms.energy.total(); // the step succeeded
     return record.row();
   }
 
@@ -763,17 +766,15 @@ namespace DynamicContact
     StepRecord<dim> record;
     if (scene.has_exact_solution())
       {
-        Vector_t u_ghosted, w_ghosted;
-        discretization.reinit_ghosted(u_ghosted);
-        discretization.reinit_ghosted(w_ghosted);
-        discretization.expand(u, u_ghosted);
-        discretization.expand(w, w_ghosted);
+        const Vector_t u_ghosted = discretization.expanded(u),
+                       w_ghosted = discretization.expanded(w);
         record.has_errors = true;
         record.errors =
           compute_errors(discretization, material, scene, 0., u_ghosted, w_ghosted);
       }
     record.terms.energy    = energy_balance.energy(u, w);
     record.previous_energy = record.terms.energy.total();
+    energy_of_state        = record.previous_energy;
     record.dofs            = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
     const TimeSeriesRow row = record.row();
@@ -973,9 +974,7 @@ namespace DynamicContact
   Tensor<1, dim>
   Simulator<dim>::point_displacement(const Point<dim> &point) const
   {
-    Vector_t ghosted;
-    discretization.reinit_ghosted(ghosted);
-    discretization.expand(u, ghosted);
+    const Vector_t ghosted = discretization.expanded(u);
     Vector<double> value(dim);
     double         found = 0;
     try

@@ -71,6 +71,17 @@ namespace DynamicContact
       ghosted = tmp;
     }
 
+    /** The same, into a new ghosted vector. */
+    template <typename VectorType>
+    VectorType
+    expanded(const VectorType &master_form) const
+    {
+      VectorType ghosted;
+      reinit_ghosted(ghosted);
+      expand(master_form, ghosted);
+      return ghosted;
+    }
+
     MPI_Comm                                  comm;
     parallel::distributed::Triangulation<dim> triangulation;
     FESystem<dim>                             fe;

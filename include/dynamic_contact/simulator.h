@@ -165,6 +165,13 @@ namespace DynamicContact
     unsigned int                          step = 0;
     std::chrono::steady_clock::time_point wall_start;
     /**
+     * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
+     * the next step is E_n of the last one (reset when the DoFs change).
+     */
+    std::optional<double> energy_of_state;
+    double
+    energy_now();
+    /**
      * Wall clock and simulated time when this process took its first step:
      * the estimate of the time left is the wall time per simulated second
      * since then (cut-backs and a resume included) times the simulated time
