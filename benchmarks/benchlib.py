@@ -83,6 +83,10 @@ def executable():
     return exe
 
 
+# A run that is measured, not watched: no progress lines, no timings.
+QUIET = ["Output/Progress every=0", "Output/Print timings=false"]
+
+
 def output_times_entry(times):
     return ", ".join("%.10g" % (t - OUTPUT_TIME_SHIFT) for t in times)
 
@@ -92,9 +96,7 @@ def comparison_overrides(times):
     the comparison times."""
     return ["Output/Output every=0",
             "Output/VTU every=%d" % NO_PERIODIC_VTU,
-            "Output/Output times=" + output_times_entry(times),
-            "Output/Progress every=0",
-            "Output/Print timings=false"]
+            "Output/Output times=" + output_times_entry(times)] + QUIET
 
 
 def program_command(exe, prm, overrides, ranks=1, extra=()):

@@ -4,6 +4,7 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <dynamic_contact/assembled_newton.h>
+#include <dynamic_contact/bulk_solver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -172,17 +173,16 @@ namespace DynamicContact
             // Algebraic multigrid built once per K0 (mesh and k): the contact
             // rows are a low-rank change that GMRES absorbs.
             TimerOutput::Scope t(problem.timer, "Newton: AMG setup");
-            TrilinosWrappers::PreconditionAMG::AdditionalData data;
-            data.elliptic              = true;
-            data.higher_order_elements = problem.discretization.fe.degree > 1;
-            data.smoother_sweeps       = 2;
-            data.aggregation_threshold = 0.02;
+            std::vector<std::vector<bool>> constant_modes;
             DoFTools::extract_constant_modes(
               problem.discretization.dof_handler,
               ComponentMask(),
-              data.constant_modes);
+              constant_modes);
             amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-            amg->initialize(problem.bulk.newton_matrix(), data);
+            amg->initialize(
+              problem.bulk.newton_matrix(),
+              bulk_amg_data(constant_modes,
+                            problem.discretization.fe.degree > 1));
             amg_k = k;
           }
         TimerOutput::Scope    t(problem.timer, "Newton: iterative solve");

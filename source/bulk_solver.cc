@@ -12,6 +12,20 @@
 
 namespace DynamicContact
 {
+  TrilinosWrappers::PreconditionAMG::AdditionalData
+  bulk_amg_data(const std::vector<std::vector<bool>> &constant_modes,
+                const bool                             higher_order_elements)
+  {
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic              = true;
+    data.higher_order_elements = higher_order_elements;
+    data.smoother_sweeps       = 2;
+    data.aggregation_threshold = 0.02;
+    data.constant_modes        = constant_modes;
+    return data;
+  }
+
+
   using namespace dealii;
 
   BulkSolver::BulkSolver(const Parameters::Solver &parameters)
@@ -49,14 +63,9 @@ namespace DynamicContact
       }
     else
       {
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = higher_order_elements;
-        data.smoother_sweeps       = 2;
-        data.aggregation_threshold = 0.02;
-        data.constant_modes        = constant_modes;
         amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(A, data);
+        amg->initialize(A,
+                        bulk_amg_data(constant_modes, higher_order_elements));
       }
   }
 

@@ -16,6 +16,15 @@ class Epetra_LinearProblem;
 
 namespace DynamicContact
 {
+  /**
+   * The algebraic multigrid settings for the bulk matrix K0 (elliptic, two
+   * smoother sweeps, aggregation threshold 0.02, the rigid-body
+   * @p constant_modes): one place for both Newton implementations.
+   */
+  TrilinosWrappers::PreconditionAMG::AdditionalData
+  bulk_amg_data(const std::vector<std::vector<bool>> &constant_modes,
+                const bool                             higher_order_elements);
+
   using Vector_t = dealii::TrilinosWrappers::MPI::Vector;
   using Matrix_t = dealii::TrilinosWrappers::SparseMatrix;
 
