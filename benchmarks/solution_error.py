@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The error of a run against a reference run of the same 2D rectangular
-scene, at the times both runs wrote VTU for (model.md section 7).
+scene, at the times both runs wrote VTU for (doc/theory.md section 7).
 
     solution_error.py RUN_DIR REFERENCE_DIR [--times 0.125,0.25,...]
                       [--young 1e11] [--poisson 0.3] [--density 1000]
@@ -27,7 +27,8 @@ Everything is evaluated on the reference's structured grid:
     ||eps(e_u)||_L2, ||e_w||_L2,
     energy norm (rho ||e_w||^2 + a_E(e_u, e_u))^(1/2),
   a_E with the plane-strain Lame constants lambda = E nu/((1+nu)(1-2nu)),
-  mu = E/(2(1+nu)) (model.md eq. 87 as written), per unit depth.
+  mu = E/(2(1+nu)) (eq. (87) as written, doc/theory.md section 8), per
+  unit depth.
 
 Summary (maximum over the compared times):
   error_theorem6 = max_t (||eps(e_u)|| + ||e_w||)

@@ -489,7 +489,8 @@ namespace DynamicContact
           "1e-6",
           Patterns::Double(),
           "The loop also stops only when max_i |mu_i - mu(|w_tau,i|)| is "
-          "below this, so that the law holds node-wise (model.md section 4).");
+          "below this, so that the law holds node-wise (doc/theory.md "
+          "section 4).");
         prm.declare_entry("Relaxation",
                           "1",
                           Patterns::Double(),
@@ -729,8 +730,8 @@ namespace DynamicContact
         "the equation of motion at the midpoint, the compliance force the "
         "discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}), damping "
         "and friction on (w_n + w_{n-1})/2: energy-consistent (no numerical "
-        "dissipation; the balance of model.md section 6 still holds exactly, "
-        "with only the physical dissipation).");
+        "dissipation; the balance of doc/theory.md section 6 still holds "
+        "exactly, with only the physical dissipation).");
       prm.leave_subsection();
     }
 
@@ -992,7 +993,8 @@ namespace DynamicContact
                      "",
                      "The exact displacement u(x, t), if known (a "
                      "manufactured solution): empty for none. When given, "
-                     "every step records the errors of model.md section 7.");
+                     "every step records the errors of doc/theory.md "
+                     "section 7.");
     declare_function(prm,
                      "Velocity",
                      dim,

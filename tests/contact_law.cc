@@ -1,4 +1,4 @@
-// The node-wise contact laws of model.md sections 3 and 5 on hand-made
+// The node-wise contact laws of doc/theory.md sections 3 and 5 on hand-made
 // ContactNodes: the normal response p(u_nu) + q(w_nu) and its sets, the
 // friction classification (free, stick, slip, reversed slip velocity), the
 // slip linearization (2D: finite differences; 3D: the linearized slip

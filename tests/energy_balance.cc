@@ -1,4 +1,4 @@
-// The discrete energy balance of model.md section 6,
+// The discrete energy balance of doc/theory.md section 6,
 //   E_n - E_{n-1} + D_n = W_n,
 // holds at every step to solver tolerance, and every dissipation term is
 // >= 0, in a scene where every term is at work: viscosity (C != 0),

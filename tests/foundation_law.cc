@@ -1,4 +1,4 @@
-// The deformable foundation of model.md section 1, eq. (88):
+// The deformable foundation of doc/theory.md section 1, eq. (88):
 //   p(r) = min(c_nu r_+, c3),  q(r) = min(d_nu r_+, c4),  Pi(r) = int_0^r p,
 // and the pressure p(u_nu) + q(w_nu), with and without "damping only in
 // contact". Expected values are written out by hand for
@@ -152,7 +152,7 @@ namespace
                              0.5 * (p.primitive(a) + p.primitive(b)) + 1e-15;
     check(convex, "Pi convex: Pi((a+b)/2) <= (Pi(a) + Pi(b))/2");
 
-    // The step dissipation of model.md section 6,
+    // The step dissipation of doc/theory.md section 6,
     // p(b)(b - a) - (Pi(b) - Pi(a)) >= 0, by hand and from Pi.
     out() << "--- dissipation p(b)(b - a) - (Pi(b) - Pi(a))" << std::endl;
     struct Step

@@ -1,4 +1,4 @@
-// The friction coefficient mu(s) of the slip rate (model.md section 1,
+// The friction coefficient mu(s) of the slip rate (doc/theory.md section 1,
 // eq. (90)): constant, exponential (a - b) exp(-alpha s) + b, and a
 // muparser expression in s; values by hand, derivatives against central
 // differences, is_constant, the one-sided Lipschitz constant

@@ -1,4 +1,4 @@
-// The Kelvin-Voigt material of model.md section 1 (eq. (87)):
+// The Kelvin-Voigt material of doc/theory.md section 1 (eq. (87)):
 // E = 2.6, kappa = 0.3 give mu = 1, lambda = 1.5 (plane strain and 3D) and
 // lambda* = 2 lambda mu/(lambda + 2 mu) = 6/7 in plane stress, so
 //   M = lambda + 2 mu = 3.5 (plane strain, 3D), E/(1 - kappa^2) = 20/7

@@ -112,7 +112,7 @@ def generate(dim):
         "# Gamma_3 (y = 0) the body penetrates, moves into the foundation and slips",
         "# with a nonzero slip rate for x > 1/2, and is out of contact for x < 1/2.",
         "# The body force, the tractions and the Gamma_3 source are those the exact",
-        "# solution implies; the errors of model.md section 7 are recorded in",
+        "# solution implies; the errors of doc/theory.md section 7 are recorded in",
         "# time_series.csv (error_strain, error_velocity, error_theorem6,",
         "# error_energy). benchmarks/convergence refines h and k on this scene.",
         "",

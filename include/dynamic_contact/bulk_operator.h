@@ -16,7 +16,7 @@ namespace DynamicContact
   using Matrix_t = TrilinosWrappers::SparseMatrix;
 
   /**
-   * The linear part of the scheme (model.md section 2; the theta-scheme
+   * The linear part of the scheme (doc/theory.md section 2; the theta-scheme
    * generalizes it, theta = 1 being backward Euler): the mass matrix M
    * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
    * of a_C (and the Gram matrix of (eps(u), eps(v)), for the norm of V that

@@ -10,7 +10,7 @@ namespace DynamicContact
 {
   /**
    * The energy E_n = (rho/2)|w_n|^2 + a_E(u_n, u_n)/2 + sum_i m_i Pi(u_nu,i)
-   * of model.md section 6.
+   * of doc/theory.md section 6.
    */
   struct Energy
   {
@@ -33,8 +33,8 @@ namespace DynamicContact
   struct EnergyBalanceTerms
   {
     Energy energy;
-    // With the theta-scheme (theta = 1: backward Euler, the paper's and
-    // model.md's terms; theta = 1/2 trapezoidal), w_e = theta w_n +
+    // With the theta-scheme (theta = 1: backward Euler, the paper's terms;
+    // theta = 1/2 trapezoidal; doc/theory.md section 6), w_e = theta w_n +
     // (1 - theta) w_{n-1}, and the load f_theta = theta f_n + (1-theta)
     // f_{n-1}:
     double load_work = 0; // W_n = (f_theta, u_n - u_{n-1})

@@ -9,8 +9,8 @@
 namespace DynamicContact
 {
   /**
-   * The errors of model.md section 7 at one time, against the scene's exact
-   * solution (u, u'):
+   * The errors of doc/theory.md section 7 at one time, against the scene's
+   * exact solution (u, u'):
    *   strain   = ||eps(u_h - u)||_L2          (the norm of V, eq. (23)),
    *   velocity = ||w_h - u'||_L2              (the norm of H),
    *   energy   = (rho ||w_h - u'||^2 + a_E(u_h - u, u_h - u))^(1/2).

@@ -14,8 +14,9 @@
 namespace DynamicContact
 {
   /**
-   * Where the mesh should be fine (model.md's paper scene: a Gaussian load
-   * of width ~1/sqrt(psi) travelling along the rail). Each strategy of
+   * Where the mesh should be fine (the paper's scene, doc/theory.md
+   * section 8: a Gaussian load of width ~1/sqrt(psi) travelling along the
+   * rail). Each strategy of
    * Mesh refinement/Strategy asks for a level per cell:
    *   load following:    the maximum level within 'Load window' of a point
    *                      where the traction (or body force) is large at some

@@ -130,7 +130,7 @@ namespace DynamicContact
       std::string expression_constants;
       double      maximum_slip_rate; // range on which mu is checked
 
-      // Convexification loop (model.md section 4).
+      // Convexification loop (doc/theory.md section 4).
       double       convexification_tolerance; // epsilon_conv, eq. (85)
       double       coefficient_tolerance; // max_i |mu_i - mu(|w_tau,i|)|
       double       relaxation;
