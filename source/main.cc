@@ -3,6 +3,7 @@
 
 #include <dynamic_contact/command_line.h>
 #include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/failure.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/simulator.h>
 
@@ -15,6 +16,10 @@ main(int argc, char *argv[])
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm comm = MPI_COMM_WORLD;
   const bool     root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  // No error leaves a process waiting, and a signal stops the run after a
+  // step with a checkpoint (README, "What can go wrong").
+  initialize_error_handling(comm);
+  install_stop_signal_handlers();
 
   const CommandLine command_line = CommandLine::parse(argc, argv);
   if (!command_line.error.empty())
@@ -61,23 +66,36 @@ main(int argc, char *argv[])
           return 0;
         }
 
-      run_simulation(command_line.parameter_file,
-                     command_line.overrides,
-                     comm,
-                     command_line.resume);
+      return run_simulation(command_line.parameter_file,
+                            command_line.overrides,
+                            comm,
+                            command_line.resume);
+    }
+  catch (const AgreedError &e)
+    {
+      // Every process has it (the run is over on all of them).
+      if (root)
+        std::cerr << "dynamic-contact: error: " << e.what() << std::endl;
+      return 1;
     }
   catch (const std::exception &e)
     {
+      const std::string message =
+        dynamic_cast<const std::bad_alloc *>(&e) ?
+          "out of memory (std::bad_alloc)" :
+          error_message(e);
+      if (!every_process_failed())
+        abort_run(message);
       if (root)
-        std::cerr << "dynamic-contact: error: " << error_message(e)
-                  << std::endl;
+        std::cerr << "dynamic-contact: error: " << message << std::endl;
       return 1;
     }
   catch (...)
     {
+      if (!every_process_failed())
+        abort_run("unknown exception");
       if (root)
         std::cerr << "dynamic-contact: error: unknown exception" << std::endl;
       return 1;
     }
-  return 0;
 }

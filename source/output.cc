@@ -5,9 +5,11 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/failure.h>
 #include <dynamic_contact/output.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 
@@ -39,43 +41,58 @@ namespace DynamicContact
 
 
   // ------------------------------------------------------ TimeSeriesWriter
-  TimeSeriesWriter::TimeSeriesWriter(const std::string &filename,
-                                     const MPI_Comm     comm,
-                                     const bool         append)
-    : root(Utilities::MPI::this_mpi_process(comm) == 0)
+  TimeSeriesWriter::TimeSeriesWriter(OutputDirectory &directory,
+                                     const MPI_Comm   comm,
+                                     const bool       append)
+    : comm(comm)
+    , root(Utilities::MPI::this_mpi_process(comm) == 0)
     , header_written(append)
   {
-    if (root)
-      {
-        out.open(filename, append ? std::ios::app : std::ios::out);
-        AssertThrow(static_cast<bool>(out),
-                    ExcMessage("Cannot write '" + filename + "'."));
-      }
+    collectively(comm, [&]() {
+      if (root)
+        {
+          directory.claim("time_series.csv");
+          out.open(directory.file("time_series.csv"), append);
+        }
+    });
   }
 
   void
   TimeSeriesWriter::write(const TimeSeriesRow &row)
   {
-    if (!root)
-      return;
-    if (!header_written)
-      {
-        for (unsigned int i = 0; i < row.columns().size(); ++i)
-          out << (i ? "," : "") << row.columns()[i].first;
-        out << '\n';
-        header_written = true;
-      }
-    for (unsigned int i = 0; i < row.columns().size(); ++i)
-      out << (i ? "," : "") << row.columns()[i].second;
-    out << '\n';
-    out.flush();
+    collectively(comm, [&]() {
+      if (!root)
+        return;
+      std::string text;
+      if (!header_written)
+        {
+          for (unsigned int i = 0; i < row.columns().size(); ++i)
+            text += (i ? "," : "") + row.columns()[i].first;
+          text += '\n';
+        }
+      for (unsigned int i = 0; i < row.columns().size(); ++i)
+        text += (i ? "," : "") + row.columns()[i].second;
+      text += '\n';
+      out.append(text);
+      header_written = true;
+    });
+  }
+
+  void
+  TimeSeriesWriter::close()
+  {
+    collectively(comm, [&]() {
+      if (root)
+        out.close();
+    });
   }
 
 
   // ----------------------------------------------------------- contact csv
   template <int dim>
   void
-  write_contact_csv(const std::string &                       filename,
+  write_contact_csv(OutputDirectory &                         directory,
+                    const std::string &                       name,
                     const ContactBoundary<dim> &              boundary,
                     const std::vector<ContactNodeState<dim>> &states,
                     const Vector_t &                          u,
@@ -117,57 +134,87 @@ namespace DynamicContact
       }
 
     const auto gathered = Utilities::MPI::gather(comm, rows, 0);
-    if (Utilities::MPI::this_mpi_process(comm) != 0)
-      return;
+    collectively(comm, [&]() {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
 
-    std::vector<std::vector<double>> all;
-    for (const auto &part : gathered)
-      all.insert(all.end(), part.begin(), part.end());
-    std::sort(all.begin(),
-              all.end(),
-              [](const std::vector<double> &a, const std::vector<double> &b) {
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (a[d] != b[d])
-                    return a[d] < b[d];
-                return false;
-              });
+      std::vector<std::vector<double>> all;
+      for (const auto &part : gathered)
+        all.insert(all.end(), part.begin(), part.end());
+      std::sort(all.begin(),
+                all.end(),
+                [](const std::vector<double> &a, const std::vector<double> &b) {
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (a[d] != b[d])
+                      return a[d] < b[d];
+                  return false;
+                });
 
-    std::ofstream out(filename);
-    AssertThrow(static_cast<bool>(out),
-                ExcMessage("Cannot write '" + filename + "'."));
-    out << (dim == 2 ? "x,y" : "x,y,z") << ",u_nu,w_nu,normal_pressure";
-    if (friction)
-      out << (dim == 2 ?
-                ",w_tau,tangential_traction" :
-                ",w_tau_1,w_tau_2,tangential_traction_1,tangential_traction_2")
-          << ",mu";
-    out << (dim == 2 ? ",u_x,u_y" : ",u_x,u_y,u_z");
-    if (friction)
-      out << ",state";
-    out << '\n';
-    for (const auto &row : all)
-      {
-        const unsigned int n_numbers = row.size() - (friction ? 1 : 0);
-        for (unsigned int c = 0; c < n_numbers; ++c)
-          out << (c ? "," : "") << scientific(row[c], 10);
-        if (friction)
-          out << ','
-              << to_string(static_cast<ContactState>(
-                   static_cast<unsigned char>(row.back())));
-        out << '\n';
-      }
+      std::string out = (dim == 2 ? "x,y" : "x,y,z");
+      out += ",u_nu,w_nu,normal_pressure";
+      if (friction)
+        out += std::string(dim == 2 ? ",w_tau,tangential_traction" :
+                                      ",w_tau_1,w_tau_2,tangential_traction_1,"
+                                      "tangential_traction_2") +
+               ",mu";
+      out += (dim == 2 ? ",u_x,u_y" : ",u_x,u_y,u_z");
+      if (friction)
+        out += ",state";
+      out += '\n';
+      for (const auto &row : all)
+        {
+          const unsigned int n_numbers = row.size() - (friction ? 1 : 0);
+          for (unsigned int c = 0; c < n_numbers; ++c)
+            out += (c ? "," : "") + scientific(row[c], 10);
+          if (friction)
+            out += std::string(",") + to_string(static_cast<ContactState>(
+                           static_cast<unsigned char>(row.back())));
+          out += '\n';
+        }
+      directory.claim(name);
+      write_file(directory.file(name), out);
+    });
   }
 
 
   // ------------------------------------------------------------- VtuWriter
   template <int dim>
-  VtuWriter<dim>::VtuWriter(const std::string &directory,
+  VtuWriter<dim>::VtuWriter(OutputDirectory &  directory,
                             const MPI_Comm     comm,
                             const unsigned int subdivisions)
     : directory(directory)
     , comm(comm)
     , subdivisions(subdivisions)
   {}
+
+
+  template <int dim>
+  std::vector<std::string>
+  VtuWriter<dim>::file_names(const unsigned int step,
+                             const unsigned int n_processes)
+  {
+    char base[32];
+    std::snprintf(base, sizeof(base), "solution_%05u", step);
+    std::vector<std::string> names = {std::string(base) + ".pvtu"};
+    for (unsigned int p = 0; p < n_processes; ++p)
+      names.push_back(std::string(base) + "." + std::to_string(p) + ".vtu");
+    return names;
+  }
+
+
+  template <int dim>
+  void
+  VtuWriter<dim>::write_index()
+  {
+    collectively(comm, [&]() {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      std::ostringstream pvd;
+      DataOutBase::write_pvd_record(pvd, records);
+      directory.claim("solution.pvd");
+      replace_file(directory.file("solution.pvd"), pvd.str());
+    });
+  }
 
 
   template <int dim>
@@ -321,19 +368,33 @@ namespace DynamicContact
     data_out.build_patches(d.mapping,
                            subdivisions > 0 ? subdivisions : d.fe.degree);
 
-    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-      directory + "/", "solution", step, comm, 5, 0);
-    records.emplace_back(time, pvtu);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::ofstream pvd(directory + "/solution.pvd");
-        DataOutBase::write_pvd_record(pvd, records);
-      }
+    // The piece of each process and the record of rank 0 (the names of
+    // DataOut::write_vtu_with_pvtu_record), each write checked.
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    const auto         names =
+      file_names(step, Utilities::MPI::n_mpi_processes(comm));
+    collectively(comm, [&]() { directory.claim(names); });
+    collectively(comm, [&]() {
+      std::ostringstream piece;
+      data_out.write_vtu(piece);
+      write_file(directory.file(names[1 + rank]), piece.str());
+      if (rank == 0)
+        {
+          std::ostringstream record;
+          data_out.write_pvtu_record(
+            record,
+            std::vector<std::string>(names.begin() + 1, names.end()));
+          write_file(directory.file(names[0]), record.str());
+        }
+    });
+    records.emplace_back(time, names[0]);
+    write_index();
   }
 
 
   template void
-  write_contact_csv<2>(const std::string &,
+  write_contact_csv<2>(OutputDirectory &,
+                       const std::string &,
                        const ContactBoundary<2> &,
                        const std::vector<ContactNodeState<2>> &,
                        const Vector_t &,
@@ -341,7 +402,8 @@ namespace DynamicContact
                        const bool,
                        const MPI_Comm);
   template void
-  write_contact_csv<3>(const std::string &,
+  write_contact_csv<3>(OutputDirectory &,
+                       const std::string &,
                        const ContactBoundary<3> &,
                        const std::vector<ContactNodeState<3>> &,
                        const Vector_t &,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -511,6 +512,18 @@ namespace DynamicContact
           Patterns::Double(),
           "c_t of the complementarity function of friction (Pa s/m^2 ... "
           "scaled like E/h). 0 chooses E/h with h the smallest cell size.");
+        prm.declare_entry(
+          "Velocity strengthening",
+          "refuse",
+          Patterns::Selection("refuse|allow"),
+          "A law whose mu increases with the slip rate somewhere on [0, "
+          "Maximum slip rate] (velocity strengthening, e.g. 1 - 0.5 "
+          "exp(-2000 s)): 'refuse' stops with an error before the run, "
+          "since the convexification loop does not converge for it (a node "
+          "alternates between stick and slip; measured in the README, "
+          "'What can go wrong'); 'allow' runs it, and steps whose loop "
+          "reaches its cap at the minimum time step are kept and reported "
+          "(run_status 'completed with warnings').");
       }
       prm.leave_subsection();
     }
@@ -539,6 +552,8 @@ namespace DynamicContact
         max_convexification_iterations =
           prm.get_integer("Maximum convexification iterations");
         complementarity_constant = prm.get_double("Complementarity constant");
+        allow_velocity_strengthening =
+          prm.get("Velocity strengthening") == "allow";
       }
       prm.leave_subsection();
 
@@ -1043,20 +1058,131 @@ namespace DynamicContact
   // ----------------------------------------------------- reading the file
   namespace
   {
+    /** A UTF-8 byte order mark at the start of a text (tolerated). */
+    std::string
+    without_bom(const std::string &text)
+    {
+      return text.rfind("\xEF\xBB\xBF", 0) == 0 ? text.substr(3) : text;
+    }
+
+    std::string
+    read_file(const std::string &file)
+    {
+      std::ifstream      in(file, std::ios::binary);
+      std::ostringstream s;
+      s << in.rdbuf();
+      return s.str();
+    }
+
+    /**
+     * A parameter file (or a file it includes) must be a regular file: a
+     * directory reads as nothing, and a named pipe blocks the reader and
+     * cannot be read twice (the file is read more than once).
+     */
+    void
+    check_file_kind(const std::string &file, const std::string &included_by)
+    {
+      namespace fs = std::filesystem;
+      const std::string what =
+        included_by.empty() ?
+          "The parameter file '" + file + "'" :
+          "The file '" + file + "' (included by '" + included_by + "')";
+      std::error_code ec;
+      const auto      status = fs::status(file, ec);
+      AssertThrow(!ec && fs::exists(status),
+                  ExcMessage(included_by.empty() ?
+                               "Cannot open the parameter file '" + file +
+                                 "'." :
+                               "Cannot open " + what + "."));
+      AssertThrow(!fs::is_directory(status),
+                  ExcMessage(what + " is a directory, not a parameter file."));
+      const std::string kind =
+        fs::is_fifo(status)            ? "a named pipe" :
+        fs::is_socket(status)          ? "a socket" :
+        fs::is_character_file(status)  ? "a character device" :
+        fs::is_block_file(status)      ? "a block device" :
+                                         "not a regular file";
+      AssertThrow(fs::is_regular_file(status),
+                  ExcMessage(what + " is " + kind +
+                             ", not a regular file: the program reads its "
+                             "parameter file more than once; save it to a "
+                             "file first."));
+      std::ifstream in(file);
+      AssertThrow(static_cast<bool>(in),
+                  ExcMessage(included_by.empty() ?
+                               "Cannot open the parameter file '" + file +
+                                 "'." :
+                               "Cannot open " + what + "."));
+    }
+
+    /**
+     * Follow the include statements (resolved as deal.II does, against the
+     * working directory): every included file must be a regular file, and
+     * none may include itself, directly or through others (the parser
+     * would recurse without end).
+     */
+    void
+    check_includes(const std::string &       file,
+                   std::vector<std::string> &chain,
+                   std::vector<std::string> &shown)
+    {
+      namespace fs = std::filesystem;
+      std::istringstream lines(without_bom(read_file(file)));
+      unsigned int       number = 0;
+      for (std::string line; std::getline(lines, line);)
+        {
+          ++number;
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (line.rfind("include", 0) != 0 || line.size() < 8 ||
+              (line[7] != ' ' && line[7] != '\t'))
+            continue;
+          const std::string included = Utilities::trim(line.substr(7));
+          check_file_kind(included, file);
+          std::error_code   ec;
+          const std::string canonical =
+            fs::weakly_canonical(included, ec).string();
+          shown.push_back(included);
+          if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
+            {
+              std::string path;
+              for (const auto &s : shown)
+                path += (path.empty() ? "" : " -> ") + s;
+              AssertThrow(false,
+                          ExcMessage("The parameter file '" + shown[0] +
+                                     "' includes itself (" + path +
+                                     ", line " + std::to_string(number) +
+                                     " of '" + file + "')."));
+            }
+          AssertThrow(chain.size() < 32,
+                      ExcMessage("The parameter file '" + shown[0] +
+                                 "' includes files more than 32 levels "
+                                 "deep."));
+          chain.push_back(canonical);
+          check_includes(included, chain, shown);
+          chain.pop_back();
+          shown.pop_back();
+        }
+    }
+
     void
     check_readable(const std::string &parameter_file)
     {
-      std::ifstream in(parameter_file);
-      AssertThrow(static_cast<bool>(in),
-                  ExcMessage("Cannot open the parameter file '" +
-                             parameter_file + "'."));
+      check_file_kind(parameter_file, "");
+      {
+        std::error_code          ec;
+        std::vector<std::string> chain = {
+          std::filesystem::weakly_canonical(parameter_file, ec).string()};
+        std::vector<std::string> shown = {parameter_file};
+        check_includes(parameter_file, chain, shown);
+      }
+      const std::string text = without_bom(read_file(parameter_file));
       // A parameter file is text: refuse binary content with a clear message
       // rather than a confusing parse error about an unprintable line.
       // And a scene that sets nothing is a mistake, not the default scene.
       bool sets_something = false;
       {
-        std::ifstream lines(parameter_file);
-        std::string   line;
+        std::istringstream lines(text);
+        std::string        line;
         while (std::getline(lines, line))
           {
             line = Utilities::trim(line.substr(0, line.find('#')));
@@ -1064,9 +1190,8 @@ namespace DynamicContact
               sets_something = true;
           }
       }
-      char c;
       unsigned int line = 1;
-      while (in.get(c))
+      for (const char c : text)
         {
           if (c == '\n')
             ++line;
@@ -1088,7 +1213,7 @@ namespace DynamicContact
     std::string
     subsection_path(const std::string &file, const unsigned int line)
     {
-      std::ifstream            in(file);
+      std::istringstream       in(without_bom(read_file(file)));
       std::vector<std::string> path;
       std::string              text;
       for (unsigned int n = 1; n < line && std::getline(in, text); ++n)
@@ -1178,7 +1303,10 @@ namespace DynamicContact
     {
       try
         {
-          prm.parse_input(parameter_file, "", skip_undefined);
+          // Parsed from its text, so that a UTF-8 byte order mark (which
+          // some editors write) is tolerated.
+          std::istringstream in(without_bom(read_file(parameter_file)));
+          prm.parse_input(in, parameter_file, "", skip_undefined);
         }
       catch (const std::exception &e)
         {

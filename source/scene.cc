@@ -5,8 +5,11 @@
 #include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/scene.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
+#include <sstream>
 
 namespace DynamicContact
 {
@@ -18,10 +21,13 @@ namespace DynamicContact
      */
     template <int dim>
     std::unique_ptr<Functions::ParsedFunction<dim>>
-    parse_function(ParameterHandler &              prm,
-                   const std::vector<std::string> &path,
-                   const unsigned int              n_components,
-                   bool &                          nonzero)
+    parse_function(
+      ParameterHandler &                                               prm,
+      const std::vector<std::string> &                                 path,
+      const unsigned int                                               n_components,
+      bool &                                                           nonzero,
+      std::map<const Function<dim> *, std::pair<std::string, std::string>>
+        &expressions)
     {
       std::string name;
       for (const auto &s : path)
@@ -59,6 +65,8 @@ namespace DynamicContact
       for (const auto &c : Utilities::split_string_list(expression, ';'))
         if (c != "0" && c != "0.0" && c != "0." && c != "0e0")
           nonzero = true;
+      expressions[function.get()] = {name.substr(0, name.size() - 1),
+                                     expression};
       return function;
     }
   } // namespace
@@ -73,20 +81,20 @@ namespace DynamicContact
     traction_function   = parse_function<dim>(prm,
                                             {"Boundary conditions", "Traction function"},
                                             dim,
-                                            traction_nonzero);
+                                            traction_nonzero, expressions);
     body_force_function =
-      parse_function<dim>(prm, {"Body force"}, dim, body_force_nonzero);
+      parse_function<dim>(prm, {"Body force"}, dim, body_force_nonzero, expressions);
     initial_displacement_function = parse_function<dim>(
-      prm, {"Initial conditions", "Displacement"}, dim, unused);
+      prm, {"Initial conditions", "Displacement"}, dim, unused, expressions);
     initial_velocity_function = parse_function<dim>(
-      prm, {"Initial conditions", "Velocity"}, dim, unused);
+      prm, {"Initial conditions", "Velocity"}, dim, unused, expressions);
     initial_gap_function =
-      parse_function<dim>(prm, {"Foundation", "Initial gap"}, 1, unused);
+      parse_function<dim>(prm, {"Foundation", "Initial gap"}, 1, unused, expressions);
     contact_source_function =
       parse_function<dim>(prm,
                           {"Boundary conditions", "Contact source"},
                           dim,
-                          contact_source_nonzero);
+                          contact_source_nonzero, expressions);
 
     // The exact solution is optional: an empty expression means none.
     prm.enter_subsection("Exact solution");
@@ -97,10 +105,109 @@ namespace DynamicContact
     if (exact)
       {
         exact_displacement_function = parse_function<dim>(
-          prm, {"Exact solution", "Displacement"}, dim, unused);
+          prm, {"Exact solution", "Displacement"}, dim, unused, expressions);
         exact_velocity_function =
-          parse_function<dim>(prm, {"Exact solution", "Velocity"}, dim, unused);
+          parse_function<dim>(prm, {"Exact solution", "Velocity"}, dim, unused, expressions);
       }
+  }
+
+
+  template <int dim>
+  std::string
+  Scene<dim>::non_finite_value(const Triangulation<dim> & tria,
+                               const std::vector<double> &times,
+                               const bool                 initial) const
+  {
+    const std::set<types::boundary_id> traction_ids(boundaries.traction.begin(),
+                                                    boundaries.traction.end());
+    const std::set<types::boundary_id> contact_ids(boundaries.contact.begin(),
+                                                   boundaries.contact.end());
+    std::set<unsigned int>  body_seen, traction_seen, contact_seen;
+    std::vector<Point<dim>> body, on_traction, on_contact;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          for (const unsigned int v : cell->vertex_indices())
+            if (body_seen.insert(cell->vertex_index(v)).second)
+              body.push_back(cell->vertex(v));
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                const bool traction = traction_ids.count(face->boundary_id());
+                const bool contact  = contact_ids.count(face->boundary_id());
+                for (const unsigned int v : face->vertex_indices())
+                  {
+                    if (traction &&
+                        traction_seen.insert(face->vertex_index(v)).second)
+                      on_traction.push_back(face->vertex(v));
+                    if (contact &&
+                        contact_seen.insert(face->vertex_index(v)).second)
+                      on_contact.push_back(face->vertex(v));
+                  }
+              }
+        }
+
+    const auto check = [&](Function<dim> &                f,
+                           const std::vector<Point<dim>> &points,
+                           const std::vector<double> &    at,
+                           const bool                     time_dependent) {
+      Vector<double> values(f.n_components);
+      for (const double t : at)
+        {
+          f.set_time(t);
+          for (const auto &p : points)
+            {
+              f.vector_value(p, values);
+              for (unsigned int c = 0; c < f.n_components; ++c)
+                if (!std::isfinite(values[c]))
+                  {
+                    const auto &[name, expression] = expressions.at(&f);
+                    std::ostringstream m;
+                    m << name << "/Function expression '" << expression
+                      << "' is not finite";
+                    if (f.n_components > 1)
+                      m << " (component " << c + 1 << ")";
+                    m << ": " << values[c] << " at x = (";
+                    for (unsigned int d = 0; d < dim; ++d)
+                      m << (d ? ", " : "") << p[d];
+                    m << ")";
+                    if (time_dependent)
+                      m << ", t = " << t;
+                    m << ".";
+                    f.set_time(0);
+                    return m.str();
+                  }
+            }
+        }
+      f.set_time(0);
+      return std::string();
+    };
+
+    std::string problem;
+    const std::vector<double> zero = {0.};
+    const auto                run  = [&](Function<dim> &                f,
+                          const std::vector<Point<dim>> &points,
+                          const std::vector<double> &    at,
+                          const bool                     time_dependent) {
+      if (problem.empty())
+        problem = check(f, points, at, time_dependent);
+    };
+    run(*traction_function, on_traction, times, true);
+    run(*contact_source_function, on_contact, times, true);
+    run(*initial_gap_function, on_contact, zero, false);
+    if (body_force_nonzero)
+      run(*body_force_function, body, times, true);
+    if (initial)
+      {
+        run(*initial_displacement_function, body, zero, false);
+        run(*initial_velocity_function, body, zero, false);
+      }
+    if (exact_displacement_function)
+      {
+        run(*exact_displacement_function, body, times, true);
+        run(*exact_velocity_function, body, times, true);
+      }
+    return problem;
   }
 
 

@@ -4,14 +4,20 @@
 
 #include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/error_norms.h>
+#include <dynamic_contact/failure.h>
 #include <dynamic_contact/simulator.h>
+
+#include <unistd.h>
 
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <map>
+#include <regex>
 #include <sstream>
 
 namespace DynamicContact
@@ -32,6 +38,13 @@ namespace DynamicContact
       out << std::fixed << std::setprecision(s < 100 ? 1 : 0) << s << " s";
       return out.str();
     }
+
+    /** A value that is not finite where a step needs it (collective). */
+    class NonFiniteValue : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
+    };
 
     /** Columns name_x, name_y (, name_z) of a vector. */
     template <int dim>
@@ -164,18 +177,57 @@ namespace DynamicContact
     , mesh_adaptation(parameters.mesh_refinement, scene, discretization)
     , k_current(parameters.time.time_step)
   {
+    output_directory = std::make_unique<OutputDirectory>(
+      parameters.output.directory, comm);
+    parameters_of_run = parameters_text(
+      prm,
+      parameters.geometry.type == Parameters::Geometry::Type::gmsh ?
+        parameters.geometry.mesh_file :
+        std::string());
+
+    // Fault injection (tests): see the members.
     if (const char *kill = std::getenv("DYNAMIC_CONTACT_KILL"))
       {
         std::istringstream in(kill);
-        std::string        where;
+        std::string        where, word;
         unsigned int       at = 0;
-        in >> where >> at;
-        AssertThrow(in && (where == "after-step" || where == "in-checkpoint"),
+        in >> where;
+        bool ok = false;
+        if (where == "signal")
+          {
+            in >> injected_signal >> word >> signal_after_step;
+            ok = in && word == "after-step" && injected_signal > 0;
+            if (ok && in >> word)
+              ok = word == "rank" && static_cast<bool>(in >> signal_rank);
+          }
+        else
+          {
+            in >> at;
+            ok = in && (where == "after-step" || where == "in-checkpoint");
+            if (ok)
+              (where == "after-step" ? kill_after_step : kill_in_checkpoint) =
+                at;
+          }
+        AssertThrow(ok,
                     ExcMessage("The environment variable DYNAMIC_CONTACT_KILL "
                                "(fault injection for tests) must read "
-                               "'after-step N' or 'in-checkpoint N', not '" +
+                               "'after-step N', 'in-checkpoint N' or 'signal "
+                               "S after-step N [rank R]', not '" +
                                std::string(kill) + "'."));
-        (where == "after-step" ? kill_after_step : kill_in_checkpoint) = at;
+      }
+    if (const char *fail = std::getenv("DYNAMIC_CONTACT_FAIL"))
+      {
+        std::istringstream in(fail);
+        std::string        word;
+        in >> word >> fail_after_step;
+        bool ok = in && word == "after-step";
+        if (ok && in >> word)
+          ok = word == "rank" && static_cast<bool>(in >> fail_rank);
+        AssertThrow(ok,
+                    ExcMessage("The environment variable DYNAMIC_CONTACT_FAIL "
+                               "(fault injection for tests) must read "
+                               "'after-step N [rank R]', not '" +
+                               std::string(fail) + "'."));
       }
   }
 
@@ -314,19 +366,23 @@ namespace DynamicContact
     state.max_relative_defect      = max_relative_defect;
     state.min_dissipation          = min_dissipation;
     state.total_newton             = total_newton;
+    state.unconverged_steps        = unconverged_steps;
+    state.worst_unconverged        = worst_unconverged;
     state.vtu_records              = vtu_writer->get_records();
     for (const auto &lambda : step_solver.friction_forces())
       for (unsigned int c = 0; c < dim; ++c)
         state.friction_forces.push_back(lambda[c]);
-    write_checkpoint(parameters.output.directory,
+    write_checkpoint(*output_directory,
                      discretization,
                      {&u, &w},
                      state,
+                     parameters_of_run,
                      parameters.checkpoint.keep,
                      [this]() {
                        if (kill_in_checkpoint == step)
                          std::raise(SIGKILL);
                      });
+    last_checkpoint_step = step;
   }
 
 
@@ -396,51 +452,10 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::prepare_output_directory(const bool resume)
+  Simulator<dim>::write_status(const std::string &status)
   {
-    const std::string &directory = parameters.output.directory;
-    bool               ok        = true;
-    std::string        reason;
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::error_code error;
-        std::filesystem::create_directories(directory, error);
-        if (error || !std::filesystem::is_directory(directory))
-          {
-            ok     = false;
-            reason = error ? error.message() : "not a directory";
-          }
-      }
-    ok = Utilities::MPI::broadcast(comm, ok, 0);
-    AssertThrow(ok,
-                ExcMessage("Output/Directory: cannot create '" + directory +
-                           "'" + (reason.empty() ? "" : " (" + reason + ")") +
-                           "."));
-    // Results of an earlier run in the same directory must not pass for
-    // ours: remove what this program writes (unless continuing it).
-    if (!resume && Utilities::MPI::this_mpi_process(comm) == 0)
-      for (const auto &entry : std::filesystem::directory_iterator(directory))
-        {
-          const std::string name = entry.path().filename().string();
-          if (name == "time_series.csv" || name == "solution.pvd" ||
-              name == "run_status" || name.rfind("contact_", 0) == 0 ||
-              name.rfind("solution_", 0) == 0 ||
-              name.rfind("checkpoint_", 0) == 0)
-            std::filesystem::remove_all(entry.path());
-        }
-    MPI_Barrier(comm);
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::write_status(const std::string &status) const
-  {
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::ofstream out(parameters.output.directory + "/run_status");
-        out << status << '\n';
-      }
+    collectively(comm, [&]() { output_directory->write_status(status); });
+    took_over = true;
   }
 
 
@@ -524,6 +539,24 @@ namespace DynamicContact
         }
       rhs += load;
     }
+    // A load that is not finite (an expression that blows up at this time)
+    // is not a failure of the solver: no cut-back, the run stops with the
+    // last good state, naming the function.
+    if (!std::isfinite(load.l2_norm()))
+      {
+        std::vector<double> times = {t};
+        if (theta < 1)
+          times.push_back(t - k);
+        std::string where = collective_message(
+          comm,
+          scene.non_finite_value(discretization.triangulation,
+                                 times,
+                                 false));
+        throw NonFiniteValue(
+          where.empty() ? "the load vector at t = " + sig6(t) +
+                            " s is not finite (the loads overflow)" :
+                          where);
+      }
 
     w = w_old; // initial guess
     // At the smallest time step a convexification loop that reaches its
@@ -599,18 +632,23 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::output_results(const unsigned int n,
-                                 const double       t,
-                                 const bool         contact_csv,
-                                 const bool         vtu)
+  Simulator<dim>::output_results(
+    const unsigned int                        n,
+    const double                              t,
+    const bool                                contact_csv,
+    const bool                                vtu,
+    const std::vector<ContactNodeState<dim>> *states)
   {
+    const auto &node_states =
+      states != nullptr ? *states : step_solver.node_states();
     TimerOutput::Scope scope(timer, "Output");
     char               name[64];
-    std::snprintf(name, sizeof(name), "/contact_%05u.csv", n);
+    std::snprintf(name, sizeof(name), "contact_%05u.csv", n);
     if (contact_csv)
-      write_contact_csv(parameters.output.directory + name,
+      write_contact_csv(*output_directory,
+                        name,
                         contact_boundary,
-                        step_solver.node_states(),
+                        node_states,
                         u,
                         w,
                         step_solver.has_friction(),
@@ -621,7 +659,7 @@ namespace DynamicContact
                         discretization,
                         material,
                         contact_boundary,
-                        step_solver.node_states(),
+                        node_states,
                         u,
                         w,
                         step_solver.has_friction());
@@ -681,87 +719,217 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Simulator<dim>::check_resources(const double n_coarse_cells) const
+  {
+    // Estimates for the mesh after Geometry/Global refinements (an
+    // adaptive mesh may grow beyond it; Mesh refinement/Cell budget bounds
+    // it). DoFs as on a box; memory: the four sparse matrices (M, B, A, K0)
+    // and at least as much for the factorization of K0, 12 bytes per entry
+    // (value and column index): a lower bound, so that no scene that fits
+    // is refused.
+    const double refinements = parameters.geometry.global_refinements;
+    const double cells =
+      n_coarse_cells * std::pow(2., dim * refinements);
+    const double p = parameters.finite_element.degree;
+    const double dofs =
+      dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
+    const double entries_per_row = dim * std::pow(2 * p + 1, dim);
+    const double bytes           = 5 * 12 * entries_per_row * dofs;
+
+    // The memory available: MemAvailable of every host of the run, once.
+    double available = 0;
+    {
+      std::ifstream meminfo("/proc/meminfo");
+      std::string   key;
+      double        kb = 0;
+      std::string   unit;
+      while (meminfo >> key >> kb >> unit)
+        if (key == "MemAvailable:")
+          {
+            available = kb * 1024;
+            break;
+          }
+      if (available == 0)
+        available = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) *
+                    static_cast<double>(sysconf(_SC_PAGESIZE));
+    }
+    char host[MPI_MAX_PROCESSOR_NAME] = {};
+    int  length                       = 0;
+    MPI_Get_processor_name(host, &length);
+    std::map<std::string, double> hosts;
+    for (const auto &[name, a] : Utilities::MPI::all_gather(
+           comm, std::make_pair(std::string(host, length), available)))
+      hosts[name] = std::max(hosts[name], a);
+    double total = 0;
+    for (const auto &h : hosts)
+      total += h.second;
+
+    const auto giga = [](const double b) {
+      std::ostringstream s;
+      s << std::setprecision(3) << b / 1e9 << " GB";
+      return s.str();
+    };
+    const std::string estimate =
+      "about " + scientific(cells, 1) + " cells and " + scientific(dofs, 1) +
+      " DoFs (Geometry: " + scientific(n_coarse_cells, 1) +
+      " coarse cells, " + std::to_string(parameters.geometry.global_refinements) +
+      " global refinements; Q" + std::to_string(parameters.finite_element.degree) +
+      ")";
+    const std::string fix =
+      " Reduce Geometry/Repetitions, Geometry/Global refinements or Finite "
+      "element/Polynomial degree.";
+    // deal.II (this build: 32-bit indices) counts cells and DoFs in 32 bits.
+    const double index_limit = 4294967295.;
+    if (cells >= index_limit || dofs >= index_limit)
+      throw CollectiveError("The scene is too large: " + estimate +
+                            ", more than this build of deal.II can count "
+                            "(4.3e+09)." +
+                            fix);
+    if (bytes > total)
+      throw CollectiveError(
+        "The scene does not fit into memory: " + estimate +
+        " need at least " + giga(bytes) + " for the matrices alone, and " +
+        giga(total) + " are available on the " + std::to_string(hosts.size()) +
+        " host" + (hosts.size() > 1 ? "s" : "") + " of this run." + fix);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::check_input(const bool resume)
+  {
+    // The friction law: finite and >= 0 on [0, s_max], and not increasing
+    // unless asked for (the convexification loop does not converge for an
+    // increasing mu: README, "What can go wrong").
+    if (friction_law)
+      {
+        const double s_max = parameters.friction.maximum_slip_rate;
+        const bool   expression =
+          parameters.friction.law == Parameters::Friction::Law::expression;
+        const std::string name =
+          expression ? "Friction/Expression: mu(s) = '" +
+                         parameters.friction.expression + "'" :
+                       std::string("Friction/Law");
+        std::vector<double> s = {0.};
+        for (double x = 1e-9; x < s_max; x *= 1.02)
+          s.push_back(x);
+        for (unsigned int i = 1; i <= 1000; ++i)
+          s.push_back(s_max * i / 1000.);
+        std::sort(s.begin(), s.end());
+        std::vector<double> mu(s.size());
+        for (unsigned int i = 0; i < s.size(); ++i)
+          {
+            mu[i] = friction_law->value(s[i]);
+            if (!std::isfinite(mu[i]))
+              throw CollectiveError(name + " is not finite at s = " +
+                                    sig6(s[i]) + " m/s (" +
+                                    scientific(mu[i]) + ").");
+          }
+        friction_law->check_nonnegative(s_max);
+        if (!parameters.friction.allow_velocity_strengthening)
+          for (unsigned int i = 1; i < s.size(); ++i)
+            {
+              double mu_max = 0;
+              for (unsigned int j = 0; j < i; ++j)
+                mu_max = std::max(mu_max, std::abs(mu[j]));
+              if (mu[i] - mu[i - 1] > 1e-9 * std::max(1., mu_max))
+                throw CollectiveError(
+                  name + " increases with the slip rate (mu(" +
+                  sig6(s[i - 1]) + ") = " + sig6(mu[i - 1]) + ", mu(" +
+                  sig6(s[i]) + ") = " + sig6(mu[i]) +
+                  "): a velocity-strengthening law. The convexification "
+                  "loop (doc/theory.md section 4) freezes mu at the last "
+                  "slip rate; with an increasing mu a node then alternates "
+                  "between stick and slip and the loop does not converge, "
+                  "not even with the smallest time step. Set "
+                  "Friction/Velocity strengthening = allow to run it "
+                  "anyway (such steps are kept and reported: run_status "
+                  "'completed with warnings').");
+            }
+      }
+
+    // The functions of the scene, sampled where and when the run uses them.
+    const double        T = parameters.time.end_time;
+    const double        k = parameters.time.time_step;
+    std::vector<double> times = {0., std::min(k, T), T};
+    for (unsigned int i = 1; i < 16; ++i)
+      times.push_back(T * i / 16.);
+    check_collectively(comm,
+                       scene.non_finite_value(discretization.triangulation,
+                                              times,
+                                              !resume));
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::stop_with_last_good_state(const std::string &message)
+  {
+    u = u_old;
+    w = w_old;
+    output_results(
+      step, current_time, true, vtu_writer != nullptr, &last_good_states);
+    checkpoint();
+    throw CollectiveError(message + ". The last good state (step " +
+                          std::to_string(step) + ") is written to '" +
+                          parameters.output.directory + "'.");
+  }
+
+
+  template <int dim>
+  void
   Simulator<dim>::initialize(const bool resume)
   {
     wall_start = std::chrono::steady_clock::now();
     // Everything that can be wrong with the input is checked before any
     // result is written (the scene's functions and boundary ids when the
-    // mesh is made).
-    if (friction_law)
-      friction_law->check_nonnegative(parameters.friction.maximum_slip_rate);
+    // mesh is made), and the size of the scene before it is allocated.
+    const bool rectangle =
+      parameters.geometry.type == Parameters::Geometry::Type::rectangle;
+    if (rectangle)
+      {
+        double n = 1;
+        for (const unsigned int r : parameters.geometry.repetitions)
+          n *= r;
+        check_resources(n);
+      }
+    {
+      TimerOutput::Scope t(timer, "Setup: mesh");
+      scene.create_mesh(discretization.triangulation, false);
+      if (!rectangle)
+        check_resources(discretization.triangulation.n_cells(0));
+    }
     if (resume)
       {
-        // The newest complete checkpoint: mesh, fields, state; the time
-        // series continues after its step (later rows are dropped).
-        const std::string latest =
-          find_latest_checkpoint(parameters.output.directory, comm);
-        AssertThrow(!latest.empty(),
-                    ExcMessage("--resume: there is no complete checkpoint in "
-                               "Output/Directory '" +
-                               parameters.output.directory +
-                               "' (the interrupted run needs Checkpoint/Every "
-                               "> 0)."));
-        {
-          TimerOutput::Scope t(timer, "Setup: mesh");
-          scene.create_mesh(discretization.triangulation, false);
-        }
-        const RunState state = read_checkpoint(latest,
-                                               discretization,
-                                               {&u, &w},
-                                               [this]() { setup_dofs(); });
-        setup_operators();
-        const unsigned int n_nodes = contact_boundary.all_nodes().size();
-        AssertThrow(state.friction_forces.size() == dim * n_nodes,
-                    ExcMessage("The checkpoint '" + latest +
-                               "' is damaged (state.txt: friction forces)."));
-        std::vector<Tensor<1, dim>> lambda(n_nodes);
-        for (unsigned int i = 0; i < n_nodes; ++i)
-          for (unsigned int c = 0; c < dim; ++c)
-            lambda[i][c] = state.friction_forces[dim * i + c];
-        step_solver.set_friction_forces(lambda);
-        step                     = state.step;
-        current_time             = state.time;
-        k_current                = state.time_step;
-        good_steps_since_cutback = state.good_steps_since_cutback;
-        max_relative_defect      = state.max_relative_defect;
-        min_dissipation          = state.min_dissipation;
-        total_newton             = state.total_newton;
-
-        prepare_output_directory(true);
-        write_status("running");
-        truncate_time_series(parameters.output.directory + "/time_series.csv",
-                             step,
-                             comm);
-        time_series_writer = std::make_unique<TimeSeriesWriter>(
-          parameters.output.directory + "/time_series.csv", comm, true);
-        vtu_writer = std::make_unique<VtuWriter<dim>>(
-          parameters.output.directory,
-          comm,
-          parameters.output.vtu_subdivisions);
-        vtu_writer->set_records(state.vtu_records);
-        print_header();
-        pcout << "  resumed from " << latest << " (step " << step
-              << ", t = " << sig6(current_time) << " s)" << std::endl;
+        resume_from_checkpoint();
         return;
       }
 
-    {
-      TimerOutput::Scope t(timer, "Setup: mesh");
-      scene.create_mesh(discretization.triangulation);
-    }
+    discretization.triangulation.refine_global(
+      parameters.geometry.global_refinements);
+    check_input(false);
     setup_dofs();
     if (mesh_adaptation.enabled())
       refine_initial_mesh();
     setup_operators();
-    prepare_output_directory(false);
+    set_initial_conditions();
+    {
+      const double norm = u.l2_norm() + w.l2_norm();
+      if (!std::isfinite(norm))
+        throw CollectiveError("Initial conditions: the interpolated initial "
+                              "state is not finite.");
+    }
+
+    // The directory is ours (locked, no foreign results), the results of
+    // an earlier run in it are gone.
+    output_directory->open(false);
     write_status("running");
-    time_series_writer = std::make_unique<TimeSeriesWriter>(
-      parameters.output.directory + "/time_series.csv", comm);
+    time_series_writer =
+      std::make_unique<TimeSeriesWriter>(*output_directory, comm);
     vtu_writer = std::make_unique<VtuWriter<dim>>(
-      parameters.output.directory, comm, parameters.output.vtu_subdivisions);
+      *output_directory, comm, parameters.output.vtu_subdivisions);
 
     print_header();
-    set_initial_conditions();
 
     StepRecord<dim> record;
     if (scene.has_exact_solution())
@@ -781,6 +949,163 @@ namespace DynamicContact
     time_series_writer->write(row);
     rows.push_back(row);
     output_results(0, 0., true, parameters.output.vtu_every > 0);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::resume_from_checkpoint()
+  {
+    const std::string &directory = parameters.output.directory;
+    check_input(true);
+    // The directory: ours, and no other run in it.
+    output_directory->open(true);
+
+    // The newest checkpoint whose files match its manifest; damaged ones
+    // are named and passed over.
+    const auto  checkpoints = list_checkpoints(directory, comm);
+    std::string latest;
+    std::string damaged;
+    for (const auto &name : checkpoints)
+      {
+        const std::string problem =
+          verify_checkpoint(directory + "/" + name, comm);
+        if (problem.empty())
+          {
+            latest = directory + "/" + name;
+            break;
+          }
+        damaged += (damaged.empty() ? "" : "; ") + name + ": " + problem;
+        pcout << "Warning: the checkpoint " << directory << "/" << name
+              << " is damaged (" << problem << "): not used." << std::endl;
+      }
+    if (checkpoints.empty())
+      throw CollectiveError("--resume: there is no complete checkpoint in "
+                            "Output/Directory '" +
+                            directory +
+                            "' (the interrupted run needs Checkpoint/Every "
+                            "> 0).");
+    if (latest.empty())
+      throw CollectiveError("--resume: no checkpoint in Output/Directory '" +
+                            directory + "' can be used, every one is "
+                            "damaged (" + damaged +
+                            "). Nothing was changed; start a new run.");
+
+    // The same problem, or a refusal that says what differs.
+    const auto differences = scene_differences(
+      read_checkpoint_parameters(latest, comm), parameters_of_run);
+    if (!differences.empty())
+      {
+        std::string list;
+        for (const auto &d : differences)
+          list += (list.empty() ? "" : "; ") + d;
+        throw CollectiveError(
+          "--resume: the scene differs from that of the checkpoint '" +
+          latest + "' in " + std::to_string(differences.size()) +
+          (differences.size() == 1 ? " entry: " : " entries: ") + list +
+          ". A resumed run continues the same problem; only Time/End time "
+          "(later), Time/Time step, Time/Minimum time step, Solver, Output, "
+          "Checkpoint and the convexification loop's settings may change "
+          "(README, 'What can go wrong'). Nothing was changed.");
+      }
+    const std::string old_parameters =
+      read_checkpoint_parameters(latest, comm);
+    const RunState state = read_run_state(latest, comm);
+    const double   T     = parameters.time.end_time;
+    const double   k0    = parameters.time.time_step;
+    if (T < state.time - 1e-9 * k0)
+      throw CollectiveError(
+        "--resume: Time/End time = " + sig6(T) +
+        " s is before the time of the checkpoint '" + latest +
+        "' (t = " + sig6(state.time) + " s). Nothing was changed.");
+    const std::string series = directory + "/time_series.csv";
+    const TimeSeriesOnDisk on_disk =
+      read_time_series(series, state.step, comm);
+    if (T < on_disk.last_time - 1e-9 * k0)
+      throw CollectiveError(
+        "--resume: Time/End time = " + sig6(T) +
+        " s is before the last row already written to " + series +
+        " (step " + std::to_string(on_disk.last_step) + ", t = " +
+        sig6(on_disk.last_time) +
+        " s): a resumed run does not delete results. Give an end time of at "
+        "least " +
+        sig6(on_disk.last_time) + " s, or start a new run. Nothing was "
+                                  "changed.");
+
+    // Load the mesh and the fields.
+    load_checkpoint<dim>(latest,
+                         discretization,
+                         {&u, &w},
+                         [this]() { setup_dofs(); });
+    setup_operators();
+    const unsigned int n_nodes = contact_boundary.all_nodes().size();
+    AssertThrow(state.friction_forces.size() == dim * n_nodes,
+                ExcMessage("The checkpoint '" + latest +
+                           "' is damaged (state.txt: friction forces)."));
+    std::vector<Tensor<1, dim>> lambda(n_nodes);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        lambda[i][c] = state.friction_forces[dim * i + c];
+    step_solver.set_friction_forces(lambda);
+    step                     = state.step;
+    current_time             = state.time;
+    k_current                = state.time_step;
+    good_steps_since_cutback = state.good_steps_since_cutback;
+    max_relative_defect      = state.max_relative_defect;
+    min_dissipation          = state.min_dissipation;
+    total_newton             = state.total_newton;
+    unconverged_steps        = state.unconverged_steps;
+    worst_unconverged        = state.worst_unconverged;
+    last_checkpoint_step     = step;
+
+    // A new Time/Time step is honoured from the checkpoint on; otherwise
+    // the cut-back state goes on (within the new minimum).
+    const std::string old_step = parameter_value(old_parameters, "Time/Time step");
+    const bool step_changed =
+      !old_step.empty() && std::strtod(old_step.c_str(), nullptr) != k0;
+    if (step_changed)
+      {
+        k_current                = k0;
+        good_steps_since_cutback = 0;
+      }
+    else
+      k_current = std::max(std::min(k_current, k0),
+                           parameters.time.minimum_time_step);
+
+    // Take over: the rows and the files of the interrupted continuation
+    // after the checkpoint are replaced by this run's.
+    write_status("running");
+    collectively(comm, [&]() {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      output_directory->claim("time_series.csv");
+      replace_file(series, on_disk.kept, true);
+      static const std::regex result(
+        R"((contact|solution)_([0-9]{5,})\.(csv|pvtu|[0-9]+\.vtu))");
+      std::vector<std::string> superseded;
+      for (const auto &name : output_directory->owned())
+        {
+          std::smatch m;
+          if (std::regex_match(name, m, result) &&
+              std::stoul(m[2].str()) > step)
+            superseded.push_back(name);
+        }
+      output_directory->remove(superseded);
+    });
+    time_series_writer =
+      std::make_unique<TimeSeriesWriter>(*output_directory, comm, true);
+    vtu_writer = std::make_unique<VtuWriter<dim>>(
+      *output_directory, comm, parameters.output.vtu_subdivisions);
+    vtu_writer->set_records(state.vtu_records);
+    if (!state.vtu_records.empty())
+      vtu_writer->write_index();
+    print_header();
+    pcout << "  resumed from " << latest << " (step " << step
+          << ", t = " << sig6(current_time) << " s)" << std::endl;
+    if (step_changed)
+      pcout << "  Time/Time step changed from " << old_step << " to "
+            << sig6(k0) << " s: the run goes on with the new time step"
+            << std::endl;
   }
 
 
@@ -812,6 +1137,10 @@ namespace DynamicContact
     const double k0 = parameters.time.time_step;
     if (current_time >= T - 1e-9 * k0)
       return false;
+    // A stop signal on any process stops every one, before the next step.
+    stopping_signal = signal_to_stop(comm);
+    if (stopping_signal != 0)
+      return false;
 
     double remesh_energy_change = 0;
     if (mesh_adaptation.due(step + 1))
@@ -826,6 +1155,7 @@ namespace DynamicContact
     // statements; it throws only after them); the friction forces are kept
     // here.
     const auto          lambda_good = step_solver.friction_forces();
+    last_good_states                = step_solver.node_states();
     unsigned int        cutbacks    = 0;
     double              k           = 0;
     TimeSeriesRow       row;
@@ -838,7 +1168,25 @@ namespace DynamicContact
           {
             row = do_time_step(
               step + 1, current_time + k, k, remesh_energy_change, cutbacks);
+            // Nothing that is not finite reaches a file.
+            std::string bad;
+            for (const auto &[name, value] : row.columns())
+              if (value.find("nan") != std::string::npos ||
+                  value.find("inf") != std::string::npos)
+                bad += (bad.empty() ? "" : ", ") + name;
+            bad = collective_message(comm, bad);
+            if (!bad.empty())
+              throw NonFiniteValue("step " + std::to_string(step + 1) +
+                                   " (t = " + sig6(current_time + k) +
+                                   " s) produced values that are not "
+                                   "finite: " +
+                                   bad);
             break;
+          }
+        catch (const NonFiniteValue &e)
+          {
+            step_solver.set_friction_forces(lambda_good);
+            stop_with_last_good_state(e.what());
           }
         catch (const StepFailure &failure)
           {
@@ -846,23 +1194,15 @@ namespace DynamicContact
             w = w_old;
             step_solver.set_friction_forces(lambda_good);
             if (!can_cut_back(k))
-              {
-                // Stop, with the last good state written out (fields and a
-                // checkpoint to continue from with other settings).
-                output_results(step, current_time, true, vtu_writer != nullptr);
-                checkpoint();
-                AssertThrow(false,
-                            ExcMessage(
-                              "step " + std::to_string(step + 1) +
-                              " (from t = " + sig6(current_time) +
-                              " s) could not be solved even with the "
-                              "minimum time step (Time/Minimum time step = " +
-                              sig6(parameters.time.minimum_time_step) +
-                              " s): " + failure.what() +
-                              ". The last good state (step " +
-                              std::to_string(step) + ") is written to '" +
-                              parameters.output.directory + "'."));
-              }
+              // Stop, with the last good state written out (fields and a
+              // checkpoint to continue from with other settings).
+              stop_with_last_good_state(
+                "step " + std::to_string(step + 1) + " (from t = " +
+                sig6(current_time) +
+                " s) could not be solved even with the minimum time step "
+                "(Time/Minimum time step = " +
+                sig6(parameters.time.minimum_time_step) +
+                " s): " + failure.what());
             k_current = k / 2;
             ++cutbacks;
             good_steps_since_cutback = 0;
@@ -896,6 +1236,12 @@ namespace DynamicContact
       std::min(min_dissipation, row.get("relative_min_dissipation"));
     total_newton += row.get("newton_iterations");
 
+    if (row.get("convexification_converged") == 0)
+      {
+        ++unconverged_steps;
+        worst_unconverged =
+          std::max(worst_unconverged, row.get("coefficient_residual"));
+      }
     if (row.get("convexification_converged") == 0)
       pcout << "Warning: step " << step << " (t = " << sig6(t)
             << "): the convexification loop reached Friction/Maximum "
@@ -931,6 +1277,13 @@ namespace DynamicContact
       checkpoint();
     if (kill_after_step == step)
       std::raise(SIGKILL);
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    if (signal_after_step == step && signal_rank == rank)
+      std::raise(injected_signal);
+    if (fail_after_step == step && fail_rank == rank)
+      throw std::runtime_error("injected failure after step " +
+                               std::to_string(step) +
+                               " (DYNAMIC_CONTACT_FAIL)");
     return true;
   }
 
@@ -939,34 +1292,95 @@ namespace DynamicContact
   void
   Simulator<dim>::finish()
   {
+    time_series_writer->close();
     pcout << "Completed " << step << " steps";
     if (parameters.output.print_timings)
       pcout << ", " << total_newton << " Newton iterations (mean "
             << std::fixed << std::setprecision(2)
             << static_cast<double>(total_newton) / std::max(step, 1u)
             << std::defaultfloat << " per step)";
+    const bool balance = max_relative_defect < 1e-8;
+    const bool dissipation =
+      min_dissipation >= -EnergyBalanceTerms::roundoff;
     pcout << ".\n"
           << "  energy balance: max relative defect "
-          << (max_relative_defect < 1e-8 ?
-                "below 1e-8" :
-                "ABOVE 1e-8 (" + sig6(max_relative_defect) + ")")
+          << (balance ? "below 1e-8" :
+                        "ABOVE 1e-8 (" + sig6(max_relative_defect) + ")")
           << ", every dissipation term >= 0: "
-          << (min_dissipation >= -EnergyBalanceTerms::roundoff ?
-                "yes" :
-                "NO (" + sig6(min_dissipation) + " of the energy)")
+          << (dissipation ? "yes" :
+                            "NO (" + sig6(min_dissipation) + " of the energy)")
           << std::endl;
-    write_status("completed");
+
+    // An honest ending: completed, or completed with what did not hold.
+    std::vector<std::string> warnings;
+    if (unconverged_steps > 0)
+      warnings.push_back(
+        std::to_string(unconverged_steps) + " step" +
+        (unconverged_steps > 1 ? "s" : "") +
+        " kept with an unconverged convexification loop (max |mu_i - "
+        "mu(|w_tau,i|)| = " +
+        sig6(worst_unconverged) + " > Friction/Coefficient tolerance)");
+    if (!balance)
+      warnings.push_back("energy balance defect " + sig6(max_relative_defect) +
+                         " > 1e-8");
+    if (!dissipation)
+      warnings.push_back("a dissipation term below zero (" +
+                         sig6(min_dissipation) + " of the energy)");
+    std::string status = "completed";
+    if (!warnings.empty())
+      {
+        status += " with warnings: ";
+        for (unsigned int i = 0; i < warnings.size(); ++i)
+          status += (i ? "; " : "") + warnings[i];
+        pcout << "Warning: the run " << status.substr(10)
+              << ". The results do not meet the tolerances there."
+              << std::endl;
+      }
+    write_status(status);
   }
 
 
   template <int dim>
   void
+  Simulator<dim>::stop()
+  {
+    const int  signal = stopping_signal;
+    const bool with_checkpoint =
+      parameters.checkpoint.every > 0 && last_checkpoint_step != step;
+    if (with_checkpoint)
+      checkpoint();
+    time_series_writer->close();
+    const std::string status = "stopped: signal " + std::to_string(signal) +
+                               " at step " + std::to_string(step);
+    write_status(status);
+    char name[32];
+    std::snprintf(name, sizeof(name), "checkpoint_%05u", step);
+    pcout << "Stopped by " << signal_name(signal) << " after step " << step
+          << " (t = " << sig6(current_time) << " s): run_status '" << status
+          << "'";
+    if (parameters.checkpoint.every > 0)
+      pcout << "; --resume continues from " << parameters.output.directory
+            << "/" << name;
+    else
+      pcout << "; no checkpoint (Checkpoint/Every = 0)";
+    pcout << "." << std::endl;
+  }
+
+
+  template <int dim>
+  int
   Simulator<dim>::run(const bool resume)
   {
     initialize(resume);
     while (advance())
       ;
+    if (stopping_signal != 0)
+      {
+        stop();
+        return 128 + stopping_signal;
+      }
     finish();
+    return 0;
   }
 
 
@@ -1007,13 +1421,47 @@ namespace DynamicContact
   Simulator<dim>::abandon(const std::string &reason)
   {
     timer.disable_output();
-    if (time_series_writer) // the output directory exists
-      write_status("failed: " + reason);
+    // Only a run that has taken the results over marks them failed (a
+    // refused --resume leaves them as they are).
+    if (took_over && Utilities::MPI::this_mpi_process(comm) == 0)
+      try
+        {
+          output_directory->write_status("failed: " + reason);
+        }
+      catch (const std::exception &e)
+        {
+          std::cerr << "dynamic-contact: " << e.what() << std::endl;
+        }
   }
 
 
   template <int dim>
   void
+  Simulator<dim>::abandon_alone(const std::string &reason)
+  {
+    timer.disable_output();
+    if (!took_over)
+      return;
+    try
+      {
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          output_directory->write_status("failed: " + reason);
+        else
+          {
+            StatusFile status;
+            status.open(output_directory->file("run_status"));
+            status.write("failed: " + reason);
+          }
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "dynamic-contact: " << e.what() << std::endl;
+      }
+  }
+
+
+  template <int dim>
+  int
   run_dimension(const RunParameters &parameters,
                 ParameterHandler &   prm,
                 const MPI_Comm       comm,
@@ -1021,25 +1469,38 @@ namespace DynamicContact
   {
     // Catch inside the simulator's lifetime, so that it is destroyed with no
     // exception in flight (its timer would otherwise warn about it).
-    std::exception_ptr error;
+    std::string error;
+    int         exit_code = 0;
     {
       Simulator<dim> simulator(parameters, prm, comm);
       try
         {
-          simulator.run(resume);
+          exit_code = simulator.run(resume);
         }
       catch (const std::exception &e)
         {
-          error = std::current_exception();
-          simulator.abandon(error_message(e));
+          error = dynamic_cast<const std::bad_alloc *>(&e) ?
+                    "out of memory (std::bad_alloc)" :
+                    error_message(e);
+          if (error.empty())
+            error = "unknown error";
+          // Known to this process alone: the others may be waiting in a
+          // collective operation; end them all from here.
+          if (!every_process_failed())
+            {
+              simulator.abandon_alone(error);
+              abort_run(error);
+            }
+          simulator.abandon(error);
         }
     }
-    if (error)
-      std::rethrow_exception(error);
+    if (!error.empty())
+      throw AgreedError(error);
+    return exit_code;
   }
 
 
-  void
+  int
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
@@ -1049,9 +1510,9 @@ namespace DynamicContact
     const RunParameters parameters =
       read_parameters(parameter_file, overrides, prm);
     if (parameters.dimension == 2)
-      run_dimension<2>(parameters, prm, comm, resume);
+      return run_dimension<2>(parameters, prm, comm, resume);
     else
-      run_dimension<3>(parameters, prm, comm, resume);
+      return run_dimension<3>(parameters, prm, comm, resume);
   }
 
 

@@ -109,7 +109,11 @@ namespace
     return list.empty() ? "none" : list;
   }
 
-  /** The result files of a run (no checkpoints), sorted. */
+  /**
+   * The result files of a run (no checkpoints), sorted; not the program's
+   * bookkeeping (.dynamic-contact, the manifest of what it wrote, and the
+   * lock .dynamic-contact.lock: they name the process and its history).
+   */
   std::vector<std::string>
   result_files(const std::string &directory)
   {
@@ -117,7 +121,7 @@ namespace
     for (const auto &e : fs::directory_iterator(directory))
       {
         const std::string n = e.path().filename().string();
-        if (e.is_regular_file() && n != "run_status")
+        if (e.is_regular_file() && n != "run_status" && n[0] != '.')
           names.push_back(n);
       }
     std::sort(names.begin(), names.end());

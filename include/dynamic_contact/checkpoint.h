@@ -1,10 +1,14 @@
 #ifndef dynamic_contact_checkpoint_h
 #define dynamic_contact_checkpoint_h
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <dynamic_contact/bulk_solver.h>
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/output_directory.h>
 
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +25,10 @@ namespace DynamicContact
     double       max_relative_defect      = 0;
     double       min_dissipation          = 0;
     unsigned int total_newton             = 0;
+    /** Steps kept with an unconverged convexification loop, and the worst
+     *  coefficient residual among them (the run's honest ending). */
+    unsigned int unconverged_steps  = 0;
+    double       worst_unconverged  = 0;
     /** The time index of the VTU files (solution.pvd). */
     std::vector<std::pair<double, std::string>> vtu_records;
     /**
@@ -37,49 +45,115 @@ namespace DynamicContact
   /**
    * Checkpoints in the output directory, checkpoint_NNNNN/ (NNNNN the
    * step): the distributed mesh (p4est), the fields (serialized with
-   * parallel::distributed::SolutionTransfer) and the RunState. Written into
-   * checkpoint_NNNNN.tmp/ and renamed when complete: a run killed while
-   * writing leaves no incomplete checkpoint under a final name.
+   * parallel::distributed::SolutionTransfer), the RunState (state.txt), the
+   * parameters of the run (parameters.prm), and manifest.txt: the size and
+   * CRC-32 of each of these files, written last.
+   *
+   * Written into checkpoint_NNNNN.tmp/ (after making sure the disk has
+   * room for it: p4est aborts the process on a failed write), every file
+   * flushed to disk (fsync), then renamed: a run killed while writing
+   * leaves no incomplete checkpoint under a final name, and only a
+   * checkpoint whose files match its manifest is ever loaded.
    * @p before_commit is called with everything written but not yet renamed
-   * (the restart test kills the run there).
+   * (the restart test kills the run there). Collective; a failure throws a
+   * CollectiveError "cannot write ...: REASON" on every process.
    */
   template <int dim>
   void
-  write_checkpoint(const std::string &            output_directory,
+  write_checkpoint(OutputDirectory &              directory,
                    Discretization<dim> &          discretization,
                    const std::vector<Vector_t *> &fields,
                    const RunState &               state,
+                   const std::string &            parameters,
                    const unsigned int             keep,
                    const std::function<void()> &  before_commit = {});
 
   /**
-   * The newest complete checkpoint in @p output_directory ("" if none),
-   * the same on every process.
+   * Collective: the checkpoints of @p output_directory that are complete
+   * (they have a manifest), newest first, as names checkpoint_NNNNN.
    */
-  std::string
-  find_latest_checkpoint(const std::string &output_directory,
-                         const MPI_Comm     comm);
+  std::vector<std::string>
+  list_checkpoints(const std::string &output_directory, const MPI_Comm comm);
 
   /**
-   * Load a checkpoint: the mesh of @p discretization must be the coarse mesh
-   * of the scene (the refinement is loaded); @p after_load sets up the DoFs;
-   * the fields are then filled in (master form) and the RunState returned.
+   * Collective: "" if every file of the checkpoint's manifest is there with
+   * its size and checksum, else what is wrong (e.g. "mesh_fixed.data has
+   * 1000 bytes, its manifest says 33800").
+   */
+  std::string
+  verify_checkpoint(const std::string &checkpoint, const MPI_Comm comm);
+
+  /**
+   * Collective: the RunState (state.txt) and the parameters
+   * (parameters.prm) of a verified checkpoint; nothing is loaded into the
+   * mesh. A file that does not read as written is a CollectiveError.
+   */
+  RunState
+  read_run_state(const std::string &checkpoint, const MPI_Comm comm);
+  std::string
+  read_checkpoint_parameters(const std::string &checkpoint,
+                             const MPI_Comm     comm);
+
+  /**
+   * Load a verified checkpoint: the mesh of @p discretization must be the
+   * coarse mesh of the scene (the refinement is loaded); @p after_load sets
+   * up the DoFs; the fields are then filled in (master form).
    */
   template <int dim>
-  RunState
-  read_checkpoint(const std::string &            checkpoint,
+  void
+  load_checkpoint(const std::string &            checkpoint,
                   Discretization<dim> &          discretization,
                   const std::vector<Vector_t *> &fields,
                   const std::function<void()> &  after_load);
 
   /**
-   * Keep the header and the rows of steps up to @p step of a CSV file whose
-   * first column is the step (rank 0).
+   * The parameters of a run as text (every entry, as the ParameterHandler
+   * prints them), with the checksum of a Gmsh mesh file appended as the
+   * entry "Geometry/Mesh file content" (the file could change under its
+   * name).
    */
-  void
-  truncate_time_series(const std::string &file,
-                       const unsigned int step,
-                       const MPI_Comm     comm);
+  std::string
+  parameters_text(const ParameterHandler &prm, const std::string &mesh_file);
+
+  /**
+   * The entries of @p text (parameters_text) that define the solution and
+   * differ from those of @p current, as "Section/Entry = 'now' (checkpoint:
+   * 'then')". Everything defines the solution except what may change on
+   * --resume: Time/End time, Time/Time step, Time/Minimum time step, the
+   * subsections Solver, Output and Checkpoint, and the convexification
+   * loop's settings (Friction/Convexification tolerance, Coefficient
+   * tolerance, Relaxation, Maximum convexification iterations, Maximum slip
+   * rate, Complementarity constant, Velocity strengthening). Numbers compare
+   * by value ("1e10" = "1e+10").
+   */
+  std::vector<std::string>
+  scene_differences(const std::string &checkpoint_text,
+                    const std::string &current_text);
+
+  /** The value of one entry ("Time/Time step") of parameters_text. */
+  std::string
+  parameter_value(const std::string &text, const std::string &entry);
+
+  /** What a resumed run finds of time_series.csv. */
+  struct TimeSeriesOnDisk
+  {
+    /** The header and the rows up to the checkpoint's step. */
+    std::string  kept;
+    /** The last whole row of the file (possibly after the checkpoint). */
+    unsigned int last_step = 0;
+    double       last_time = 0;
+  };
+
+  /**
+   * Collective: read time_series.csv for a resume from the checkpoint of
+   * @p step: it must hold the rows of steps 0 to @p step in order, each
+   * whole; rows after them (the interrupted continuation) may end in a cut
+   * row. Anything else is a CollectiveError naming the file and the line.
+   */
+  TimeSeriesOnDisk
+  read_time_series(const std::string &file,
+                   const unsigned int step,
+                   const MPI_Comm     comm);
 } // namespace DynamicContact
 
 #endif

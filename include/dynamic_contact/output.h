@@ -5,9 +5,9 @@
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/material.h>
+#include <dynamic_contact/output_directory.h>
 #include <dynamic_contact/step_solver.h>
 
-#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,23 +40,31 @@ namespace DynamicContact
 
   /**
    * time_series.csv: a header row, then one row per step, written by rank 0
-   * and flushed after every row so that a long run can be watched.
+   * as it comes, so that a long run can be watched. Every row is checked:
+   * a row that cannot be written whole is taken back (the file ends with
+   * the last whole row) and the run stops. All members are collective and
+   * throw a CollectiveError "cannot write ...: REASON" on every process.
    */
   class TimeSeriesWriter
   {
   public:
     /** @p append: continue an existing file (no header; after --resume). */
-    TimeSeriesWriter(const std::string &filename,
-                     const MPI_Comm     comm,
-                     const bool         append = false);
+    TimeSeriesWriter(OutputDirectory &directory,
+                     const MPI_Comm   comm,
+                     const bool       append = false);
 
     void
     write(const TimeSeriesRow &row);
 
+    /** Flush to disk and close (checked). */
+    void
+    close();
+
   private:
-    bool          root;
-    bool          header_written = false;
-    std::ofstream out;
+    MPI_Comm   comm;
+    bool       root;
+    bool       header_written = false;
+    AppendFile out;
   };
 
 
@@ -65,11 +73,13 @@ namespace DynamicContact
    * processes on rank 0 and sorted by coordinates. Columns: x, y (, z),
    * u_nu, w_nu, normal_pressure (= p + q), then the friction columns when
    * the scene has friction, then the displacement u_x, u_y (, u_z) (for
-   * drawing the deformed boundary).
+   * drawing the deformed boundary). Collective; the name is entered in
+   * @p directory's manifest first, the write checked (CollectiveError).
    */
   template <int dim>
   void
-  write_contact_csv(const std::string &                        filename,
+  write_contact_csv(OutputDirectory &                          directory,
+                    const std::string &                        name,
                     const ContactBoundary<dim> &               boundary,
                     const std::vector<ContactNodeState<dim>> &states,
                     const Vector_t &                           u,
@@ -82,13 +92,16 @@ namespace DynamicContact
    * solution_NNNNN.pvtu (+ one .vtu per process) and the time index
    * solution.pvd: displacement, velocity, stress (tensor components and von
    * Mises, cell averages), the contact pressure and traction on Gamma_3,
-   * friction fields when present, and the MPI subdomain.
+   * friction fields when present, and the MPI subdomain. Each process
+   * writes its piece solution_NNNNN.R.vtu, rank 0 the record .pvtu and the
+   * index (replaced atomically); every write is checked, and write() is
+   * collective (CollectiveError on every process if a write fails).
    */
   template <int dim>
   class VtuWriter
   {
   public:
-    VtuWriter(const std::string &directory,
+    VtuWriter(OutputDirectory &  directory,
               const MPI_Comm     comm,
               const unsigned int subdivisions = 0);
 
@@ -115,8 +128,16 @@ namespace DynamicContact
       records = r;
     }
 
+    /** Collective: write the index solution.pvd of the records. */
+    void
+    write_index();
+
+    /** The files of the VTU output of @p step on @p n_processes. */
+    static std::vector<std::string>
+    file_names(const unsigned int step, const unsigned int n_processes);
+
   private:
-    std::string                               directory;
+    OutputDirectory &                         directory;
     MPI_Comm                                  comm;
     unsigned int                              subdivisions;
     std::vector<std::pair<double, std::string>> records;

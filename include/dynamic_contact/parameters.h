@@ -139,6 +139,9 @@ namespace DynamicContact
       // Complementarity constant c_t; 0 means "E/h".
       double complementarity_constant;
 
+      // Run a law whose mu increases with s (README, "What can go wrong").
+      bool allow_velocity_strengthening;
+
       static void
       declare_parameters(ParameterHandler &prm);
       void

@@ -7,6 +7,7 @@
 
 #include <dynamic_contact/parameters.h>
 
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -120,6 +121,20 @@ namespace DynamicContact
       return body_force_nonzero;
     }
 
+    /**
+     * The first value of a function of the scene that is not finite, as a
+     * message naming the function, the point and the time ("" if none):
+     * the traction on the Traction faces, the contact source and the
+     * initial gap on the Contact faces, the body force and the exact
+     * solution in the body, at the vertices of the locally owned cells and
+     * at @p times; with @p initial also the initial conditions (at t = 0).
+     * Local: each process samples its own cells.
+     */
+    std::string
+    non_finite_value(const Triangulation<dim> & tria,
+                     const std::vector<double> &times,
+                     const bool                 initial) const;
+
     /** Set the time of the time-dependent functions (loads, source). */
     void
     set_time(const double t) const;
@@ -142,6 +157,9 @@ namespace DynamicContact
     std::unique_ptr<Functions::ParsedFunction<dim>> contact_source_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> exact_displacement_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> exact_velocity_function;
+    /** The expressions, for messages. */
+    std::map<const Function<dim> *, std::pair<std::string, std::string>>
+         expressions;
     bool traction_nonzero;
     bool body_force_nonzero;
     bool contact_source_nonzero;

@@ -16,6 +16,7 @@
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/mesh_adaptation.h>
 #include <dynamic_contact/output.h>
+#include <dynamic_contact/output_directory.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/scene.h>
 #include <dynamic_contact/step_solver.h>
@@ -34,7 +35,15 @@ namespace DynamicContact
    * energy balance, write the outputs.
    *
    * run() = initialize(), then advance() until it returns false, then
-   * finish(); tests drive the three themselves to look between steps.
+   * finish() (or stop() after a signal); tests drive them themselves to
+   * look between steps.
+   *
+   * What can go wrong around the solver is handled here (README, "What can
+   * go wrong"): the output directory is the run's own (OutputDirectory),
+   * every write is checked, the input is checked for non-finite values and
+   * for the resources it needs before anything is allocated or written, a
+   * resumed run continues exactly the problem of its checkpoint or refuses,
+   * and a signal stops the run after the current step with a checkpoint.
    */
   template <int dim>
   class Simulator
@@ -46,10 +55,11 @@ namespace DynamicContact
     ~Simulator();
 
     /**
-     * Run the whole simulation; with @p resume from the newest complete
-     * checkpoint in the output directory.
+     * Run the whole simulation; with @p resume from the newest good
+     * checkpoint in the output directory. Returns the exit code: 0, or
+     * 128 + N after a stop by signal N (stop()).
      */
-    void
+    int
     run(const bool resume = false);
 
     /**
@@ -61,20 +71,49 @@ namespace DynamicContact
     void
     initialize(const bool resume = false);
 
-    /** One time step; false (and nothing done) once the end time is reached. */
+    /**
+     * One time step; false (and nothing done) once the end time is reached
+     * or a process received a stop signal (stop_signal()).
+     */
     bool
     advance();
 
-    /** Print the summary and mark the output as complete. */
+    /**
+     * Print the summary and mark the output as complete: run_status
+     * "completed", or "completed with warnings: ..." if steps were kept
+     * with an unconverged convexification loop (or the energy balance did
+     * not hold).
+     */
     void
     finish();
 
     /**
-     * After a failure: mark the output as failed and silence the timer
-     * summary (the processes may no longer be in step).
+     * After a stop signal: write a checkpoint (with Checkpoint/Every > 0)
+     * and run_status "stopped: signal N at step S".
+     */
+    void
+    stop();
+
+    /** The signal that stopped the run (0: none). */
+    int
+    stop_signal() const
+    {
+      return stopping_signal;
+    }
+
+    /**
+     * After a failure that every process knows: mark the output as failed
+     * (if this run had taken it over) and silence the timer summary.
      */
     void
     abandon(const std::string &reason);
+
+    /**
+     * After a failure of this process alone (the others may wait in a
+     * collective operation): write run_status from this process.
+     */
+    void
+    abandon_alone(const std::string &reason);
 
     /** The rows written to time_series.csv so far. */
     const std::vector<TimeSeriesRow> &
@@ -153,6 +192,12 @@ namespace DynamicContact
     // Fields in master form (constrained entries zero).
     Vector_t u, w, u_old, w_old, load, rhs, scratch;
 
+    /** Created in the constructor, opened (locked, checked) by initialize. */
+    std::unique_ptr<OutputDirectory>  output_directory;
+    /** Whether this run has written run_status (taken over the results). */
+    bool                              took_over = false;
+    /** The parameters of the run as text (checkpoints, --resume). */
+    std::string                       parameters_of_run;
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
     std::vector<TimeSeriesRow>        rows;
@@ -187,6 +232,24 @@ namespace DynamicContact
      */
     unsigned int kill_after_step    = numbers::invalid_unsigned_int;
     unsigned int kill_in_checkpoint = numbers::invalid_unsigned_int;
+    /**
+     * More fault injection: DYNAMIC_CONTACT_KILL = "signal S after-step N
+     * [rank R]" raises signal S on rank R (default 0) after step N;
+     * DYNAMIC_CONTACT_FAIL = "after-step N [rank R]" throws an error on
+     * rank R (default 0) alone after step N.
+     */
+    int          injected_signal       = 0;
+    unsigned int signal_after_step     = numbers::invalid_unsigned_int;
+    unsigned int signal_rank           = 0;
+    unsigned int fail_after_step       = numbers::invalid_unsigned_int;
+    unsigned int fail_rank             = 0;
+    /** A stop signal received (on any process), and the step of the last
+     *  checkpoint written. */
+    int          stopping_signal       = 0;
+    unsigned int last_checkpoint_step  = numbers::invalid_unsigned_int;
+    /** Steps kept with an unconverged convexification loop. */
+    unsigned int unconverged_steps     = 0;
+    double       worst_unconverged     = 0;
     double                                max_relative_defect = 0;
     double                                min_dissipation     = 0;
     unsigned int                          total_newton        = 0;
@@ -222,13 +285,39 @@ namespace DynamicContact
     void
     checkpoint();
 
+    /**
+     * Before anything is allocated: the cells, DoFs and memory the scene
+     * needs for a coarse mesh of @p n_coarse_cells; refuse (collective
+     * error) a scene that cannot fit, with the estimate.
+     */
+    void
+    check_resources(const double n_coarse_cells) const;
+
+    /**
+     * Before anything is written: the friction law (finite, >= 0, not
+     * increasing unless allowed) and the functions of the scene sampled on
+     * the mesh (loads over the time interval; initial conditions unless
+     * @p resume): a NaN or infinity is an error that names the function.
+     */
+    void
+    check_input(const bool resume);
+
+    /** --resume: load the newest good checkpoint, or refuse and say why. */
+    void
+    resume_from_checkpoint();
+
+    /**
+     * A step produced no good state: u, w and the friction forces are
+     * those of the last good step; write it out (contact CSV, VTU, a
+     * checkpoint) and throw @p message (collective).
+     */
+    [[noreturn]] void
+    stop_with_last_good_state(const std::string &message);
+
     /** Positions of the nodes that penetrate the foundation (all processes). */
     std::vector<Point<dim>>
     penetrating_nodes() const;
 
-    /** Create it; on a new run remove what an earlier run left there. */
-    void
-    prepare_output_directory(const bool resume);
     void
     print_header() const;
     /**
@@ -249,25 +338,34 @@ namespace DynamicContact
      *  (Time/Minimum time step). */
     bool
     can_cut_back(const double k) const;
-    /** Write the contact CSV and/or the VTU fields of the current step. */
+    /**
+     * Write the contact CSV and/or the VTU fields of the current step, with
+     * the node states @p states (default: those of the last solve).
+     */
     void
-    output_results(const unsigned int step,
-                   const double       t,
-                   const bool         contact_csv,
-                   const bool         vtu);
+    output_results(const unsigned int                        step,
+                   const double                              t,
+                   const bool                                contact_csv,
+                   const bool                                vtu,
+                   const std::vector<ContactNodeState<dim>> *states = nullptr);
+    /** The node states of the last good step (before a step is tried). */
+    std::vector<ContactNodeState<dim>> last_good_states;
     void
     print_progress(const TimeSeriesRow &row) const;
+    /** Collective: write run_status (a failure is a CollectiveError). */
     void
-    write_status(const std::string &status) const;
+    write_status(const std::string &status);
   };
 
 
   /**
-   * Read the parameters and run the simulation in the dimension they name.
-   * Errors propagate as exceptions (main turns them into a message and a
-   * non-zero exit).
+   * Read the parameters and run the simulation in the dimension they name;
+   * returns the exit code (0, or 128 + N after a stop by signal N). An
+   * error every process knows propagates as an AgreedError (main prints it
+   * and returns 1); an error of some processes only ends the job from
+   * there (abort_run).
    */
-  void
+  int
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
