@@ -281,24 +281,24 @@ namespace DynamicContact
   }
 
 
-  // ----------------------------------------------------------- writing
-  template <int dim>
-  void
-  write_checkpoint(OutputDirectory &              directory,
-                   Discretization<dim> &          d,
-                   const std::vector<Vector_t *> &fields,
-                   const RunState &               state,
-                   const std::string &            parameters,
-                   const unsigned int             keep,
-                   const std::function<void()> &  before_commit)
+  namespace
   {
-    const MPI_Comm    comm     = d.comm;
-    const bool        root     = Utilities::MPI::this_mpi_process(comm) == 0;
-    const std::string name     = checkpoint_name(state.step);
-    const std::string tmp_name = name + ".tmp";
-    const std::string tmp      = directory.file(tmp_name);
-    const std::string state_text = format_state(state, signature(d));
-
+    /**
+     * Everything of a checkpoint into the directory @p tmp_name: room
+     * reserved, mesh and fields, state, parameters, manifest (collective).
+     */
+    template <int dim>
+    void
+    write_checkpoint_files(OutputDirectory &              directory,
+                           Discretization<dim> &          d,
+                           const std::vector<Vector_t *> &fields,
+                           const std::string &            state_text,
+                           const std::string &            parameters,
+                           const std::string &            tmp_name)
+    {
+      const MPI_Comm    comm = d.comm;
+      const bool        root = Utilities::MPI::this_mpi_process(comm) == 0;
+      const std::string tmp  = directory.file(tmp_name);
     collectively(comm, [&]() {
       if (!root)
         return;
@@ -365,9 +365,43 @@ namespace DynamicContact
       sync_path(tmp);
     });
 
+    }
+  } // namespace
+
+
+  // ----------------------------------------------------------- writing
+  template <int dim>
+  void
+  write_checkpoint(OutputDirectory &              directory,
+                   Discretization<dim> &          d,
+                   const std::vector<Vector_t *> &fields,
+                   const RunState &               state,
+                   const std::string &            parameters,
+                   const unsigned int             keep,
+                   const std::function<void()> &  before_commit)
+  {
+    const MPI_Comm    comm     = d.comm;
+    const bool        root     = Utilities::MPI::this_mpi_process(comm) == 0;
+    const std::string name     = checkpoint_name(state.step);
+    const std::string tmp_name = name + ".tmp";
+    const std::string tmp      = directory.file(tmp_name);
+    const std::string state_text = format_state(state, signature(d));
+    try
+      {
+        write_checkpoint_files(directory, d, fields, state_text, parameters, tmp_name);
+      }
+    catch (const CollectiveError &)
+      {
+        // A checkpoint cut short is never used: free its room.
+        if (root)
+          {
+            std::error_code ec;
+            fs::remove_all(tmp, ec);
+          }
+        throw;
+      }
     if (before_commit)
       before_commit();
-
     // Complete: give it its final name (atomic), then drop the oldest.
     collectively(comm, [&]() {
       if (!root)

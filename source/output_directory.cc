@@ -631,7 +631,10 @@ namespace DynamicContact
                 }
               names.clear();
             }
-          rewrite_manifest();
+          if (resume && marked)
+            manifest.open(file(manifest_name), true); // as it is
+          else
+            rewrite_manifest();
         }
       catch (const std::exception &e)
         {

@@ -870,7 +870,10 @@ namespace DynamicContact
     output_results(
       step, current_time, true, vtu_writer != nullptr, &last_good_states);
     checkpoint();
-    throw CollectiveError(message + ". The last good state (step " +
+    std::string m = message;
+    while (!m.empty() && m.back() == '.')
+      m.pop_back();
+    throw CollectiveError(m + ". The last good state (step " +
                           std::to_string(step) + ") is written to '" +
                           parameters.output.directory + "'.");
   }
@@ -977,7 +980,8 @@ namespace DynamicContact
           }
         damaged += (damaged.empty() ? "" : "; ") + name + ": " + problem;
         pcout << "Warning: the checkpoint " << directory << "/" << name
-              << " is damaged (" << problem << "): not used." << std::endl;
+              << " is damaged: " << problem << "; it is not used."
+              << std::endl;
       }
     if (checkpoints.empty())
       throw CollectiveError("--resume: there is no complete checkpoint in "

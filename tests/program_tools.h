@@ -80,6 +80,10 @@ namespace program_tools
     /** What to run: this build's dynamic-contact unless told otherwise (a
      *  script that runs it in turn). */
     std::string program = DYNAMIC_CONTACT_EXECUTABLE;
+    /** If > 0: end the run (SIGTERM, SIGKILL 10 s later) after this many
+     *  seconds, so that a hang fails the test instead of stalling it (exit
+     *  code 124 of timeout(1)). */
+    unsigned int timeout = 0;
   };
 
   /**
@@ -100,8 +104,11 @@ namespace program_tools
     // The program is a process of its own: OpenMPI refuses root there
     // unless told (containers and CI run as root). Set for the child only
     // (runs may be started from several threads).
+    command += "exec ";
+    if (launch.timeout > 0)
+      command += "timeout -k 10 " + std::to_string(launch.timeout) + " ";
     command +=
-      "exec env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+      "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
     for (const auto &e : launch.environment)
       command += " " + quote(e);
 #ifdef DYNAMIC_CONTACT_MPIEXEC

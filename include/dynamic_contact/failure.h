@@ -102,7 +102,7 @@ namespace DynamicContact
    * Without initialize_error_handling, or on one process: true.
    */
   bool
-  every_process_failed(const double timeout = 10);
+  every_process_failed(const double timeout = 5);
 
   /**
    * End the whole job from this process: print "dynamic-contact: error:
