@@ -1087,13 +1087,14 @@ namespace DynamicContact
         included_by.empty() ?
           "The parameter file '" + file + "'" :
           "The file '" + file + "' (included by '" + included_by + "')";
+      const std::string cannot_open =
+        included_by.empty() ?
+          "Cannot open the parameter file '" + file + "'." :
+          "Cannot open the file '" + file + "' (included by '" +
+            included_by + "').";
       std::error_code ec;
       const auto      status = fs::status(file, ec);
-      AssertThrow(!ec && fs::exists(status),
-                  ExcMessage(included_by.empty() ?
-                               "Cannot open the parameter file '" + file +
-                                 "'." :
-                               "Cannot open " + what + "."));
+      AssertThrow(!ec && fs::exists(status), ExcMessage(cannot_open));
       AssertThrow(!fs::is_directory(status),
                   ExcMessage(what + " is a directory, not a parameter file."));
       const std::string kind =
@@ -1108,11 +1109,7 @@ namespace DynamicContact
                              "parameter file more than once; save it to a "
                              "file first."));
       std::ifstream in(file);
-      AssertThrow(static_cast<bool>(in),
-                  ExcMessage(included_by.empty() ?
-                               "Cannot open the parameter file '" + file +
-                                 "'." :
-                               "Cannot open " + what + "."));
+      AssertThrow(static_cast<bool>(in), ExcMessage(cannot_open));
     }
 
     /**

@@ -167,7 +167,11 @@ namespace DynamicContact
                       << "' is not finite";
                     if (f.n_components > 1)
                       m << " (component " << c + 1 << ")";
-                    m << ": " << values[c] << " at x = (";
+                    m << ": "
+                      << (std::isnan(values[c]) ? "nan" :
+                          values[c] > 0         ? "inf" :
+                                                  "-inf")
+                      << " at x = (";
                     for (unsigned int d = 0; d < dim; ++d)
                       m << (d ? ", " : "") << p[d];
                     m << ")";

@@ -12,11 +12,20 @@
 //     running (Newton iterations exhausted) leaves run_status "failed: ...".
 // Two control cases (the unchanged scene, an empty file with all defaults)
 // must run to completion, so that the checks can tell success from failure.
+// Issue 11 added: non-finite loads, initial conditions and friction laws
+// (each named before anything is written; a load that becomes NaN at a time
+// between the sampled ones stops the run with the last good state), a
+// velocity-strengthening law, scenes too large for the machine, parameter
+// files that include themselves, a directory and a named pipe as parameter
+// file, and a UTF-8 byte order mark (a control: tolerated). No case may
+// leave "nan" or "inf" in a CSV file.
 //
 // Every case runs first and prints one line; the checks follow, so that a
 // failing test still shows what every case did.
 
 #include "program_tools.h"
+
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <atomic>
@@ -49,8 +58,14 @@ namespace
   {
     static const std::regex path(R"((^|[\s'"<(])/(?:[^\s'"<>()]*/)?)");
     static const std::regex residual(R"(relative residual [-+.0-9eE]+)");
+    // The memory of the machine that runs the test.
+    static const std::regex memory(
+      R"(and [0-9.e+]+ GB are available on the [0-9]+ hosts?)");
     std::string result = std::regex_replace(text, path, "$1");
     result = std::regex_replace(result, residual, "relative residual ...");
+    result = std::regex_replace(result,
+                                memory,
+                                "and ... GB are available on the hosts");
     if (changed_line > 0)
       {
         const std::string line = "line " + std::to_string(changed_line) + ":";
@@ -92,6 +107,8 @@ namespace
     bool runtime = false;
     /** Further files to write into the case's directory. */
     std::vector<std::pair<std::string, std::string>> extra_files = {};
+    /** A named pipe (FIFO) to make in the case's directory. */
+    std::string fifo = "";
 
     /** The number of the first line of prm containing line_of, or 0. */
     unsigned int
@@ -114,6 +131,7 @@ namespace
     std::vector<std::string> new_directories;
     std::vector<std::string> completed_status_files;
     std::vector<std::string> failed_status_files;
+    std::vector<std::string> non_finite_files;
   };
 
   Result
@@ -125,10 +143,17 @@ namespace
       write_text(directory / "scene.prm", *c.prm);
     for (const auto &[name, text] : c.extra_files)
       write_text(directory / name, text);
+    if (!c.fifo.empty() && ::mkfifo((directory / c.fifo).c_str(), 0644) != 0)
+      {
+        std::cerr << "FAILED: cannot make the named pipe " << c.fifo
+                  << std::endl;
+        std::exit(1);
+      }
 
     Launch launch;
     launch.directory = directory;
     launch.name      = "program";
+    launch.timeout   = 120; // a pipe must not block the program
     Result o;
     static_cast<Outcome &>(o) = execute(c.arguments, launch);
 
@@ -155,6 +180,14 @@ namespace
           fs::relative(entry.path(), directory).string();
         if (entry.is_directory() && relative.find('/') == std::string::npos)
           o.new_directories.push_back(relative);
+        if (entry.path().extension() == ".csv")
+          {
+            std::string text = read_text(entry.path());
+            std::transform(text.begin(), text.end(), text.begin(), ::tolower);
+            if (text.find("nan") != std::string::npos ||
+                text.find("inf") != std::string::npos)
+              o.non_finite_files.push_back(relative);
+          }
         if (entry.path().filename() == "run_status")
           {
             const std::string status = read_text(entry.path());
@@ -339,6 +372,70 @@ main(int argc, char **argv)
       file, 1, {"Solver/Maximum Newton iterations"})
     .runtime = true;
 
+  // Values that are not finite: named before anything is written.
+  add("traction_not_finite",
+      change(traction_expression, "set Function expression = 0; -P/0"), file,
+      1, {"Boundary conditions/Traction function", "-P/0", "-inf"});
+  add("initial_velocity_not_finite",
+      scene + "\nsubsection Initial conditions\n  subsection Velocity\n"
+              "    set Function expression = 1/0; 0\n  end\nend\n",
+      file, 1, {"Initial conditions/Velocity", "1/0"});
+  add("body_force_not_finite",
+      scene + "\nsubsection Body force\n  set Function expression = 0; "
+              "sqrt(-1)\nend\n",
+      file, 1, {"Body force", "sqrt(-1)"});
+  add("initial_gap_not_finite",
+      change("subsection Foundation",
+             "subsection Foundation\n  subsection Initial gap\n    set "
+             "Function expression = log(x-2)\n  end"),
+      file, 1, {"Foundation/Initial gap", "log(x-2)"});
+  add("friction_not_finite",
+      scene + "\nsubsection Friction\n  set Law = expression\n  set "
+              "Expression = 0.5/(s-1)\nend\n",
+      file, 1, {"Friction/Expression", "0.5/(s-1)", "not finite"});
+  // NaN only near t = 2.1, between the sampled times (0, 1, 8 and every
+  // 0.5 s), reached by the steps of k = 0.3: the run stops after step 6.
+  add("traction_not_finite_at_step_7",
+      changed(change(step, "set Time step = 0.3"),
+              traction_expression,
+              "set Function expression = 0; -P*(1+0*sqrt(abs(t-2.1)-0.05))"),
+      file, 1,
+      {"Boundary conditions/Traction function", "t = 2.1",
+       "last good state (step 6)"})
+    .runtime = true;
+  add("velocity_strengthening",
+      scene + "\nsubsection Friction\n  set Law = expression\n  set "
+              "Expression = 1 - 0.5*exp(-2000*s)\nend\n",
+      file, 1, {"Friction/Expression", "increases with the slip rate",
+                "Friction/Velocity strengthening"});
+
+  // Scenes that cannot fit: refused with the estimate, before allocating.
+  const std::string repetitions = "set Repetitions = 4, 2";
+  add("repetitions_huge",
+      change(repetitions, "set Repetitions = 100000, 100000"),
+      file, 1, {"too large", "1.0e+10 cells", "Geometry/Repetitions"});
+  add("refinements_20",
+      change(repetitions, repetitions + "\n  set Global refinements = 20"),
+      file, 1, {"too large", "Geometry/Global refinements"});
+  add("memory_too_small",
+      change(repetitions, repetitions + "\n  set Global refinements = 13"),
+      file, 1, {"does not fit into memory", "5.4e+08 cells", "GB"});
+
+  // The parameter file itself.
+  add("includes_itself", "include scene.prm\n" + scene, file, 1,
+      {"scene.prm", "includes itself"});
+  add("includes_itself_indirectly", "include other.prm\n" + scene, file, 1,
+      {"scene.prm -> other.prm -> scene.prm", "includes itself"})
+    .extra_files = {{"other.prm", "include scene.prm\n"}};
+  add("includes_missing_file", "include missing.prm\n" + scene, file, 1,
+      {"missing.prm", "scene.prm"});
+  add("directory_as_parameter_file", scene, {"."}, 1,
+      {"'.'", "is a directory"});
+  add("named_pipe_as_parameter_file", std::nullopt, {"pipe.prm"}, 1,
+      {"pipe.prm", "named pipe"})
+    .fifo = "pipe.prm";
+  add("control_byte_order_mark", "\xEF\xBB\xBF" + scene, file, 0, {});
+
   // --set.
   add("set_unknown_entry", scene, with({"--set", "Material/Foo=1"}), 1,
       {"--set", "Material/Foo"});
@@ -417,6 +514,8 @@ main(int argc, char **argv)
                      name + "nothing on stderr");
           checks.add(o.completed_status_files.size() == 1,
                      name + "run_status reads 'completed'");
+          checks.add(o.non_finite_files.empty(),
+                     name + "no 'nan' or 'inf' in a CSV file");
           continue;
         }
 
@@ -443,6 +542,8 @@ main(int argc, char **argv)
                    name + "no output directory created");
       checks.add(o.completed_status_files.empty(),
                  name + "no run_status 'completed' left");
+      checks.add(o.non_finite_files.empty(),
+                 name + "no 'nan' or 'inf' in a CSV file");
     }
 
   test_tools::out() << std::endl;

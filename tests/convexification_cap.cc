@@ -7,9 +7,17 @@
 //     Coefficient tolerance);
 //   - with Time/Minimum time step = Time step (no cut-back) such steps are
 //     kept and reported: convexification_converged = 0, and their
-//     coefficient_residual shows by how much the law is missed.
+//     coefficient_residual shows by how much the law is missed; the run
+//     ends with run_status "completed with warnings: N steps kept with an
+//     unconverged convexification loop ..." (issue 11: an honest ending).
+// A velocity-strengthening law, mu(s) = 1 - 0.5 exp(-2000 s), is refused
+// before the run (its loop does not converge: a node alternates between
+// stick and slip); with Friction/Velocity strengthening = allow and no
+// cut-back it runs, its unconverged steps kept and the ending honest.
 
 #include "test_tools.h"
+
+#include <fstream>
 
 using namespace DynamicContact;
 
@@ -74,4 +82,57 @@ main(int argc, char *argv[])
                     "no cut-back: their coefficient_residual shows the miss");
   test_tools::check(b.worst_converged <= tolerance,
                     "no cut-back: the other steps converged");
+
+  const auto status = [](const std::string &directory) {
+    std::ifstream in(directory + "/run_status");
+    std::string   line;
+    std::getline(in, line);
+    return line;
+  };
+  test_tools::check(status("output-cut-back") == "completed",
+                    "cut-back: run_status 'completed'");
+  const std::string kept = "completed with warnings: " +
+                           std::to_string(b.unconverged) +
+                           " steps kept with an unconverged "
+                           "convexification loop";
+  test_tools::check(status("output-kept").rfind(kept, 0) == 0,
+                    "no cut-back: run_status 'completed with warnings: N "
+                    "steps kept with an unconverged convexification loop "
+                    "...', N the steps reported");
+
+  // Velocity strengthening: refused, unless allowed.
+  const std::vector<std::string> strengthening = {
+    "Friction/Law=expression",
+    "Friction/Expression=1 - 0.5*exp(-2000*s)",
+    "Time/End time=0.0625",
+    "Time/Minimum time step=0.0078125",
+    "Output/Output every=0"};
+  std::string refusal;
+  try
+    {
+      auto o = strengthening;
+      o.push_back("Output/Directory=output-strengthening-refused");
+      test_tools::run<2>(scene, o);
+    }
+  catch (const std::exception &e)
+    {
+      refusal = e.what();
+    }
+  test_tools::check(refusal.find("increases with the slip rate") !=
+                        std::string::npos &&
+                      refusal.find("Friction/Velocity strengthening") !=
+                        std::string::npos,
+                    "velocity strengthening: refused before the run, "
+                    "naming Friction/Velocity strengthening");
+  auto allowed = strengthening;
+  allowed.push_back("Friction/Velocity strengthening=allow");
+  allowed.push_back("Output/Directory=output-strengthening");
+  const Counts c = count(test_tools::run<2>(scene, allowed));
+  test_tools::check(c.unconverged > 0 && c.worst_unconverged > tolerance,
+                    "velocity strengthening allowed: steps kept with an "
+                    "unconverged loop, reported");
+  test_tools::check(status("output-strengthening")
+                        .rfind("completed with warnings: ", 0) == 0,
+                    "velocity strengthening allowed: run_status 'completed "
+                    "with warnings: ...'");
 }
