@@ -1101,8 +1101,14 @@ namespace DynamicContact
     vtu_writer = std::make_unique<VtuWriter<dim>>(
       *output_directory, comm, parameters.output.vtu_subdivisions);
     vtu_writer->set_records(state.vtu_records);
+    // The index lists the VTU files up to the checkpoint only.
     if (!state.vtu_records.empty())
       vtu_writer->write_index();
+    else
+      collectively(comm, [&]() {
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          output_directory->remove({"solution.pvd"});
+      });
     print_header();
     pcout << "  resumed from " << latest << " (step " << step
           << ", t = " << sig6(current_time) << " s)" << std::endl;
