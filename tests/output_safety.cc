@@ -313,8 +313,10 @@ main()
         << yes_no(clean) << std::endl;
     checks.add(o.exited && o.code != 0 && o.code != 124 && o.code != 134,
                name + ": a non-zero exit (no signal, abort or hang)");
-    checks.add(says_why, name + ": run_status says which file could not be "
-                                "written and why [" + status + "]");
+    checks.add(says_why,
+               name + ": run_status says which file could not be written "
+                      "and why" +
+                 (says_why ? std::string() : " [" + status + "]"));
     checks.add(o.err.find("dynamic-contact: error: cannot write ") !=
                  std::string::npos,
                name + ": the message is on screen");

@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -220,10 +221,21 @@ main()
         std::string::npos;
       const auto differ =
         differing_columns("full", d.name, 16, d.processes > 1 ? 1e-8 : 0);
+      // The warning, without sizes and checksums (they follow the round-off
+      // of the run and the versions of p4est and deal.II).
       std::string warning;
       for (const auto &l : lines_of(o.out))
         if (l.rfind("Warning: the checkpoint", 0) == 0)
-          warning = l;
+          {
+            warning = std::regex_replace(
+              l, std::regex(R"((checksum|says) [0-9a-f]{8}\b)"), "$1 X");
+            warning = std::regex_replace(warning,
+                                         std::regex(R"(\b[0-9]+ bytes)"),
+                                         "N bytes");
+            warning = std::regex_replace(warning,
+                                         std::regex(R"(says [0-9]+\b)"),
+                                         "says M");
+          }
       out << "  " << d.name << " (" << std::max(d.processes, 1u)
           << " process" << (d.processes > 1 ? "es" : "")
           << "): exit code " << o.code << ", " << status_of(d.name)

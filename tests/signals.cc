@@ -225,9 +225,12 @@ main()
         << yes_no(stopped_there) << ", a checkpoint of step S: "
         << yes_no(verified_checkpoint(name, last)) << std::endl;
     checks.add(exited && code == 143, "external SIGTERM: exit code 143");
-    checks.add(stopped_there && last >= rows_before && last < 128,
-               "external SIGTERM: stopped after the step it was in [" +
-                 status_of(name) + "]");
+    const bool stopped_in_time =
+      stopped_there && last >= rows_before && last < 128;
+    checks.add(stopped_in_time,
+               "external SIGTERM: stopped after the step it was in" +
+                 (stopped_in_time ? std::string() :
+                                    " [" + status_of(name) + "]"));
     checks.add(verified_checkpoint(name, last),
                "external SIGTERM: a checkpoint of the last step");
   }
