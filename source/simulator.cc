@@ -1342,7 +1342,7 @@ namespace DynamicContact
         status += " with warnings: ";
         for (unsigned int i = 0; i < warnings.size(); ++i)
           status += (i ? "; " : "") + warnings[i];
-        pcout << "Warning: the run " << status.substr(10)
+        pcout << "Warning: the run " << status
               << ". The results do not meet the tolerances there."
               << std::endl;
       }
