@@ -106,9 +106,6 @@ namespace DynamicContact
             << "vtu_records " << state.vtu_records.size() << '\n';
         for (const auto &[t, file] : state.vtu_records)
           out << t << ' ' << file << '\n';
-        out << "friction_forces " << state.friction_forces.size() << '\n';
-        for (const double f : state.friction_forces)
-          out << f << '\n';
         out.close();
         AssertThrow(static_cast<bool>(out),
                     ExcMessage("Cannot write the checkpoint '" + tmp + "'."));
@@ -195,11 +192,6 @@ namespace DynamicContact
         in >> t >> file;
         state.vtu_records.emplace_back(t, file);
       }
-    unsigned int n_forces = 0;
-    in >> key >> n_forces;
-    state.friction_forces.resize(n_forces);
-    for (double &f : state.friction_forces)
-      in >> f;
     AssertThrow(static_cast<bool>(in),
                 ExcMessage("The checkpoint '" + checkpoint +
                            "' is damaged (state.txt)."));

@@ -105,6 +105,7 @@ namespace DynamicContact
         r.add_integer("factorizations", statistics.factorizations);
         r.add_integer("active_set_cycles", statistics.cycles);
         r.add_integer("line_search_steps", statistics.line_search_steps);
+        r.add_integer("linear_iterations", statistics.linear_iterations);
         r.add_integer("n_contact", statistics.n_contact);
         r.add_integer("n_stick", statistics.n_stick);
         r.add_integer("n_slip", statistics.n_slip);
@@ -112,7 +113,7 @@ namespace DynamicContact
         r.add_integer("cells", cells);
         if (has_errors)
           {
-            // model.md section 7; Theorem 6's error is the maximum over the
+            // doc/theory.md section 7; Theorem 6's error is the maximum over the
             // steps of error_theorem6.
             r.add("error_strain", errors.strain);
             r.add("error_velocity", errors.velocity);
@@ -265,12 +266,11 @@ namespace DynamicContact
 
   template <int dim>
   Vector_t
-  Simulator<dim>::friction_traction() const
+  Simulator<dim>::friction_field(const bool per_weight) const
   {
-    Vector_t traction;
-    discretization.reinit_owned(traction);
+    Vector_t field;
+    discretization.reinit_owned(field);
     const auto &                         nodes  = contact_boundary.nodes();
-    const auto &                         global = contact_boundary.global_indices();
     const auto &                         lambda = step_solver.friction_forces();
     std::vector<types::global_dof_index> indices;
     std::vector<double>                  values;
@@ -278,25 +278,34 @@ namespace DynamicContact
       for (unsigned int c = 0; c < dim; ++c)
         {
           indices.push_back(nodes[i].dofs[c]);
-          values.push_back(
-            global[i] < lambda.size() ? lambda[global[i]][c] / nodes[i].weight :
-                                        0.);
+          values.push_back(i < lambda.size() ?
+                             lambda[i][c] /
+                               (per_weight ? nodes[i].weight : 1.) :
+                             0.);
         }
-    traction.set(indices, values);
-    traction.compress(VectorOperation::insert);
-    return traction;
+    field.set(indices, values);
+    field.compress(VectorOperation::insert);
+    return field;
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::set_friction_from_traction(const Vector_t &traction)
+  Simulator<dim>::set_friction_from_field(const Vector_t &field,
+                                          const bool      per_weight)
   {
-    const auto                  nodal = contact_boundary.gather_values(traction);
-    const auto &                all   = contact_boundary.all_nodes();
-    std::vector<Tensor<1, dim>> lambda(all.size());
-    for (unsigned int i = 0; i < all.size(); ++i)
-      lambda[i] = all[i].weight * all[i].tangential(nodal[i]);
+    const auto &                nodes = contact_boundary.nodes();
+    std::vector<Tensor<1, dim>> lambda(nodes.size());
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        Tensor<1, dim> raw;
+        for (unsigned int c = 0; c < dim; ++c)
+          raw[c] = field[nodes[i].dofs[c]];
+        // A traction interpolated onto a new mesh: its tangential part,
+        // times the new weight; a nodal force of the same mesh: as it was.
+        lambda[i] =
+          per_weight ? nodes[i].weight * nodes[i].tangential(raw) : raw;
+      }
     step_solver.set_friction_forces(lambda);
   }
 
@@ -315,12 +324,12 @@ namespace DynamicContact
     state.min_dissipation          = min_dissipation;
     state.total_newton             = total_newton;
     state.vtu_records              = vtu_writer->get_records();
-    for (const auto &lambda : step_solver.friction_forces())
-      for (unsigned int c = 0; c < dim; ++c)
-        state.friction_forces.push_back(lambda[c]);
+    // The friction forces exactly, as a field of nodal forces saved with the
+    // mesh (any number of processes can load it).
+    Vector_t friction = friction_field(false);
     write_checkpoint(parameters.output.directory,
                      discretization,
-                     {&u, &w},
+                     {&u, &w, &friction},
                      state,
                      parameters.checkpoint.keep,
                      [this]() {
@@ -373,21 +382,22 @@ namespace DynamicContact
 
         // What the next step needs, as finite element fields: u, w, and the
         // friction forces as a traction at the nodes of Gamma_3.
-        Vector_t   traction = friction_traction();
+        Vector_t   traction = friction_field(true);
         const auto before   = mesh_adaptation.fingerprint();
         refine_and_transfer(discretization, {&u, &w, &traction}, [this]() {
           setup_dofs();
         });
-        set_friction_from_traction(traction); // on the new nodes
+        set_friction_from_field(traction, true); // on the new nodes
         changed = true;
         if (mesh_adaptation.fingerprint() == before)
           break;
       }
     if (changed)
       {
-        const Vector_t traction = friction_traction();
-        setup_operators(); // resets the step solver
-        set_friction_from_traction(traction);
+        // setup_operators() resets the step solver; the nodes stay.
+        const auto lambda = step_solver.friction_forces();
+        setup_operators();
+        step_solver.set_friction_forces(lambda);
       }
     return energy_now() - energy_before;
   }
@@ -705,20 +715,13 @@ namespace DynamicContact
           TimerOutput::Scope t(timer, "Setup: mesh");
           scene.create_mesh(discretization.triangulation, false);
         }
+        Vector_t       friction;
         const RunState state = read_checkpoint(latest,
                                                discretization,
-                                               {&u, &w},
+                                               {&u, &w, &friction},
                                                [this]() { setup_dofs(); });
         setup_operators();
-        const unsigned int n_nodes = contact_boundary.all_nodes().size();
-        AssertThrow(state.friction_forces.size() == dim * n_nodes,
-                    ExcMessage("The checkpoint '" + latest +
-                               "' is damaged (state.txt: friction forces)."));
-        std::vector<Tensor<1, dim>> lambda(n_nodes);
-        for (unsigned int i = 0; i < n_nodes; ++i)
-          for (unsigned int c = 0; c < dim; ++c)
-            lambda[i][c] = state.friction_forces[dim * i + c];
-        step_solver.set_friction_forces(lambda);
+        set_friction_from_field(friction, false);
         step                     = state.step;
         current_time             = state.time;
         k_current                = state.time_step;

@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
-#include <dynamic_contact/assembled_newton.h>
 #include <dynamic_contact/condensed_newton.h>
+#include <dynamic_contact/sparse_newton.h>
 #include <dynamic_contact/step_solver.h>
 
 #include <cmath>
@@ -71,10 +71,10 @@ namespace DynamicContact
         Parameters::Solver::ContactSolver::condensed)
       newton = std::make_unique<CondensedNewton<dim>>(problem);
     else
-      newton = std::make_unique<AssembledNewton<dim>>(problem);
+      newton = std::make_unique<SparseNewton<dim>>(problem);
     newton->reinit();
 
-    const unsigned int n = contact_boundary.all_nodes().size();
+    const unsigned int n = contact_boundary.nodes().size();
     mu.assign(n, friction ? friction_law->value(0) : 0.);
     lambda.assign(n, Tensor<1, dim>());
     states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
@@ -90,12 +90,11 @@ namespace DynamicContact
     Statistics &                       statistics)
   {
     const auto & nodes  = contact_boundary.nodes();
-    const auto & global = contact_boundary.global_indices();
     const double k      = bulk.time_step();
     unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        const unsigned int   g   = global[i];
+        const unsigned int   g   = i;
         const Tensor<1, dim> wi  = nodes[i].value(w);
         const Tensor<1, dim> w_e = theta * wi + (1 - theta) * w_old_nodes[g];
         auto &               s   = states[i];
@@ -149,22 +148,23 @@ namespace DynamicContact
   {
     Statistics   statistics;
     const double k           = bulk.time_step();
-    const auto   u_old_nodes = contact_boundary.gather_values(u_old);
-    const auto   w_old_nodes = contact_boundary.gather_values(w_old);
-    const auto & all         = contact_boundary.all_nodes();
+    const auto   u_old_nodes = contact_boundary.values(u_old);
+    const auto   w_old_nodes = contact_boundary.values(w_old);
+    const auto & all         = contact_boundary.nodes();
+    const MPI_Comm comm      = discretization.comm;
 
-    // Convexification loop (model.md section 4): mu frozen from the
+    // Convexification loop (doc/theory.md section 4): mu frozen from the
     // previous iterate, starting from w^(0) = w_{n-1}.
     const bool loop = friction && !friction_law->is_constant();
-    // What the loop needs of an iterate w, at every node of Gamma_3, from one
-    // gather: the slip rate of the effective velocity w_e = theta w +
+    // What the loop needs of an iterate w, at the owned nodes of Gamma_3:
+    // the slip rate of the effective velocity w_e = theta w +
     // (1-theta) w_old and the normal pressure S = p + q.
     struct NodalIterate
     {
       std::vector<double> slip_rate, pressure;
     };
     auto nodal_iterate = [&](const Vector_t &v) {
-      const auto   values = contact_boundary.gather_values(v);
+      const auto   values = contact_boundary.values(v);
       NodalIterate n{std::vector<double>(all.size()),
                      std::vector<double>(all.size())};
       for (unsigned int i = 0; i < all.size(); ++i)
@@ -198,7 +198,7 @@ namespace DynamicContact
       double sum = 0;
       for (unsigned int i = 0; i < all.size(); ++i)
         sum += all[i].weight * xi[i].norm_square();
-      return std::sqrt(sum);
+      return std::sqrt(Utilities::MPI::sum(sum, comm));
     };
 
     Vector_t u_previous, difference;
@@ -230,6 +230,7 @@ namespace DynamicContact
         statistics.bulk_solves += result.bulk_solves;
         statistics.cycles += result.cycles;
         statistics.line_search_steps += result.line_search_steps;
+        statistics.linear_iterations += result.linear_iterations;
         statistics.residual = result.residual;
         ++statistics.convexification_iterations;
         if (!loop)
@@ -265,6 +266,7 @@ namespace DynamicContact
               coefficient_residual =
                 std::max(coefficient_residual, std::abs(mu[i] - mu_new[i]));
             }
+        coefficient_residual = Utilities::MPI::max(coefficient_residual, comm);
         statistics.coefficient_residual = coefficient_residual;
         details << "  convexification pass " << pass + 1 << ": |du|_V/|u|_V "
                 << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "

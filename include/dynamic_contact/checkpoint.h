@@ -23,21 +23,15 @@ namespace DynamicContact
     unsigned int total_newton             = 0;
     /** The time index of the VTU files (solution.pvd). */
     std::vector<std::pair<double, std::string>> vtu_records;
-    /**
-     * The friction forces lambda_i of every node of Gamma_3 (the warm start
-     * of the next step), components in a row, in the order of
-     * ContactBoundary::all_nodes() (by position: the same on any number of
-     * processes). Stored exactly, so that a continued run repeats the
-     * uninterrupted one.
-     */
-    std::vector<double> friction_forces;
   };
 
 
   /**
    * Checkpoints in the output directory, checkpoint_NNNNN/ (NNNNN the
    * step): the distributed mesh (p4est), the fields (serialized with
-   * parallel::distributed::SolutionTransfer) and the RunState. Written into
+   * parallel::distributed::SolutionTransfer: u, w and the friction forces,
+   * stored exactly so that a continued run repeats the uninterrupted one)
+   * and the RunState. Written into
    * checkpoint_NNNNN.tmp/ and renamed when complete: a run killed while
    * writing leaves no incomplete checkpoint under a final name.
    * @p before_commit is called with everything written but not yet renamed

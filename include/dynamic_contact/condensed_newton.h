@@ -3,7 +3,9 @@
 
 #include <dynamic_contact/bulk_solver.h>
 #include <dynamic_contact/contact_newton.h>
+#include <dynamic_contact/system_newton.h>
 
+#include <cstdint>
 #include <memory>
 
 namespace DynamicContact
@@ -28,12 +30,23 @@ namespace DynamicContact
    * condensation to reach a tight tolerance. The springs are removed again
    * exactly: their nodes enter the dense system with the force f - S w and
    * the block B - S, so the Newton iterates are those of K0.
+   *
+   * Two phases, each a globalized_newton() iteration: on Gamma_3 alone
+   * (w_Gamma = w_free - C f, no solve with K0 but for new columns of C),
+   * which finds the active sets, then on the whole system, whose Newton
+   * steps this class solves by the same condensation (the LinearBackend
+   * role: two solves with K0' and a dense solve each), which polishes the
+   * solution where the cancellation in w_free - C f limits phase 1.
+   *
+   * The dense tables couple every pair of nodes, so Gamma_3 is replicated on
+   * every process (GatheredBoundary): the right choice while the contact
+   * boundary is small (Solver/Contact solver = auto decides).
    */
   template <int dim>
-  class CondensedNewton : public ContactNewton<dim>
+  class CondensedNewton : public ContactNewton<dim>, public LinearBackend<dim>
   {
   public:
-    using Result = typename ContactNewton<dim>::Result;
+    using Result = ContactNewtonResult;
 
     explicit CondensedNewton(const ContactProblem<dim> &problem);
 
@@ -48,8 +61,17 @@ namespace DynamicContact
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) override;
 
+    /** The whole-system Newton step by condensation (phase 2). */
+    void
+    newton_step(const SystemNewton<dim> & system,
+                const SystemIterate<dim> &x,
+                SystemIterate<dim> &      full,
+                Result &                  result) override;
+
   private:
     const ContactProblem<dim> problem;
+    /** Gamma_3 on every process, in one order. */
+    GatheredBoundary<dim> gathered;
 
     /** K0' = K0 + S (see above), factorized. */
     Matrix_t regularized;
@@ -66,6 +88,10 @@ namespace DynamicContact
     /** For each node of all_nodes(): its index among the owned nodes, or -1. */
     std::vector<int> owned_index;
 
+    /** The data of the current solve at every node. */
+    std::vector<Tensor<1, dim>> u_old_all, w_old_all;
+    std::vector<double>         mu_all;
+
     Vector_t solution, right_hand_side, residual, increment, scratch;
 
     /** K0'^{-1} b for the last b (the passes of a step share it). */
@@ -77,6 +103,7 @@ namespace DynamicContact
     struct Iterate
     {
       std::vector<Tensor<1, dim>>         w; // nodal velocities w_n
+      std::vector<Tensor<1, dim>>         lambda; // friction forces
       std::vector<Tensor<1, dim>>         w_old; // w_{n-1}
       std::vector<NodeLinearization<dim>> lin;
       std::vector<Tensor<1, dim>>         forces; // f_i at the iterate
@@ -85,20 +112,21 @@ namespace DynamicContact
       // lin[i].block is likewise B_i - s I at spring nodes.
       std::vector<Tensor<1, dim>>         g;
       std::vector<Tensor<1, dim>>         base;
-      std::vector<unsigned int>           signature; // sets, per node
+      std::uint64_t                       signature = 0; // of the sets
       std::vector<unsigned int>           active;
+      double equilibrium_squares = 0; // sum |w_i - (w_free - C g)_i|^2
+      double equilibrium         = 0; // largest
       double                              f_scale      = 0;
       double                              law_residual = 0; // largest
       double                              law_squares  = 0; // sum of squares
     };
 
+    /** Linearize every node at it.w, it.lambda (the current solve's data). */
     void
-    linearize(const std::vector<Tensor<1, dim>> &u_old,
-              const std::vector<Tensor<1, dim>> &w_old,
-              const std::vector<double> &         mu,
-              const std::vector<Tensor<1, dim>> &lambda,
-              const std::vector<Tensor<1, dim>> &w_nodes,
-              Iterate &                           it) const;
+    linearize(Iterate &it) const;
+
+    /** Phase 1 as globalized_newton() sees it (defined in the .cc). */
+    class BoundaryProblem;
 
     /**
      * One Newton step on the active nodes for the right-hand side @p r (one
@@ -112,11 +140,18 @@ namespace DynamicContact
                std::vector<Tensor<1, dim>> &       lambda,
                std::vector<Tensor<1, dim>> &       new_forces) const;
 
-    /** v += factor sum_i P_i^T f_i over the owned nodes. */
+    /** v += factor sum_i P_i^T f_i over the owned nodes (f at every node). */
     void
     add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
                      const double                       factor,
                      Vector_t &                         v) const;
+
+    /** The nodal values of a vector at every node (collective). */
+    std::vector<Tensor<1, dim>>
+    gather_values(const Vector_t &v) const
+    {
+      return gathered.gather(problem.boundary.values(v));
+    }
 
     /** Choose the spring nodes (once per mesh). */
     void

@@ -41,7 +41,7 @@ namespace DynamicContact
 
 
   /**
-   * One time step of the scheme (model.md sections 2, 4 and 5): given K0
+   * One time step of the scheme (doc/theory.md sections 2, 4 and 5): given K0
    * for the current k, the right-hand side b = (rho/k) M w_{n-1} - B u_{n-1}
    * + f_n and u_{n-1}, find w_n. With a slip-rate dependent friction law,
    * the convexification loop freezes mu_i = mu(|w_tau,i|) of the previous
@@ -63,6 +63,8 @@ namespace DynamicContact
       unsigned int bulk_solves                = 0;
       unsigned int cycles                     = 0;
       unsigned int line_search_steps          = 0;
+      /** Krylov iterations (Solver/Linear solver = iterative). */
+      unsigned int linear_iterations          = 0;
       double       residual                   = 0;
       /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
       double       coefficient_residual       = 0;
@@ -111,9 +113,9 @@ namespace DynamicContact
     }
 
     /**
-     * The friction forces lambda_i of every node of Gamma_3 (all processes;
-     * the warm start of the next step), and their replacement after a
-     * change of the mesh.
+     * The friction forces lambda_i of the owned nodes of Gamma_3 (aligned
+     * with contact_boundary.nodes(); the warm start of the next step), and
+     * their replacement after a change of the mesh or a restart.
      */
     const std::vector<Tensor<1, dim>> &
     friction_forces() const
@@ -149,7 +151,7 @@ namespace DynamicContact
 
     std::unique_ptr<ContactNewton<dim>> newton;
 
-    /** Every node of Gamma_3: frozen coefficients and friction forces. */
+    /** The owned nodes of Gamma_3: frozen coefficients, friction forces. */
     std::vector<double>         mu;
     std::vector<Tensor<1, dim>> lambda;
 
