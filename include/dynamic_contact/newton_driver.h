@@ -44,9 +44,10 @@ namespace DynamicContact
     unsigned int free_iterations  = 4;
     unsigned int window           = 5;
     /**
-     * Stagnation: an iterate whose active sets are those of the last one,
-     * whose residual fell by less than this factor, and which is below
-     * sqrt(tolerance) is accepted (round-off, not a wrong set).
+     * Stagnation: an iterate reached by a full step, whose active sets are
+     * those of the last one, whose residual fell by less than this factor,
+     * and which is below sqrt(tolerance) is accepted (round-off, not a wrong
+     * set; a damped step that gains little is no sign of round-off).
      */
     double stagnation_factor = 0.1;
     /** Name of the phase in the per-iteration diagnostics. */
@@ -92,13 +93,15 @@ namespace DynamicContact
     std::vector<double>        merits;
     bool                       monotone = policy.monotone;
     double                     previous_residual = 0;
+    bool                       last_step_full    = false;
 
     for (unsigned int iteration = 0;; ++iteration)
       {
         details << "    Newton " << result.iterations << " (" << policy.name
                 << "): residual " << current.residual << std::endl;
         const bool stagnated =
-          iteration > 0 && current.signature == history.back() &&
+          iteration > 0 && last_step_full &&
+          current.signature == history.back() &&
           current.residual > policy.stagnation_factor * previous_residual &&
           current.residual < std::sqrt(tol);
         result.residual = current.residual;
@@ -147,6 +150,7 @@ namespace DynamicContact
           }
         else
           std::swap(x, full);
+        last_step_full = !backtrack;
         current = accepted;
         ++result.iterations;
       }
