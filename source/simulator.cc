@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -468,7 +469,8 @@ namespace DynamicContact
     pcout << '\n';
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
-            << ", parameter file: " << parameters.parameter_file << '\n';
+            << ", parameter file: " << parameters.parameter_file
+            << ", contact solver: " << step_solver.solver_name() << '\n';
     pcout << "  material: rho = " << material.density()
           << ", lambda = " << sig6(material.lambda())
           << ", mu = " << sig6(material.mu())
@@ -958,6 +960,22 @@ namespace DynamicContact
                 "yes" :
                 "NO (" + sig6(min_dissipation) + " of the energy)")
           << std::endl;
+    if (parameters.output.print_timings)
+      {
+        // Peak resident memory, summed over the processes.
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        const double peak_mb =
+          Utilities::MPI::sum(static_cast<double>(memory.VmHWM), comm) / 1024.;
+        pcout << "  contact solver: " << step_solver.solver_name()
+              << ", peak memory: " << std::fixed << std::setprecision(0)
+              << peak_mb << " MB (all processes), wall time: "
+              << std::setprecision(1)
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                               wall_start)
+                   .count()
+              << " s" << std::defaultfloat << std::endl;
+      }
     write_status("completed");
   }
 

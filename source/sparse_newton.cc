@@ -5,7 +5,9 @@
 #include <dynamic_contact/sparse_newton.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 
 namespace DynamicContact
 {
@@ -179,15 +181,25 @@ namespace DynamicContact
                                     const Vector_t &   x,
                                     Vector_t &         y) const
   {
-    const auto &nodes = problem.boundary.nodes();
+    const auto &    nodes = problem.boundary.nodes();
+    const IndexSet &owned = problem.discretization.locally_owned;
     problem.bulk.newton_matrix().vmult(y, x);
+    double *      yy = y.trilinos_vector()[0];
+    const double *xx = x.trilinos_vector()[0];
     for (unsigned int i = 0; i < nodes.size(); ++i)
       if (system.blocks[i].norm_square() > 0)
-        set_raw_values(nodes[i],
-                       raw_values(nodes[i], y) +
-                         system.blocks[i] * raw_values(nodes[i], x),
-                       y);
-    y.compress(VectorOperation::insert);
+        {
+          std::array<unsigned int, dim> local;
+          Tensor<1, dim>                xi;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              local[c] = owned.index_within_set(nodes[i].dofs[c]);
+              xi[c]    = xx[local[c]];
+            }
+          const Tensor<1, dim> add = system.blocks[i] * xi;
+          for (unsigned int c = 0; c < dim; ++c)
+            yy[local[c]] += add[c];
+        }
   }
 
 
@@ -240,28 +252,62 @@ namespace DynamicContact
     f.compress(VectorOperation::insert);
 
     // The projected operator and preconditioner: on a stick node's
-    // tangential components, the identity scaled by K0's diagonal.
+    // tangential components, the identity scaled by K0's diagonal. They act
+    // on the owned entries directly (the stick nodes' DoFs are owned).
+    struct StickNode
+    {
+      std::array<unsigned int, dim> local; // indices into the owned entries
+      Tensor<1, dim>                normal;
+      double                        diagonal;
+    };
+    std::vector<StickNode> sticks;
+    for (const unsigned int i : stick_nodes)
+      {
+        StickNode n;
+        for (unsigned int c = 0; c < dim; ++c)
+          n.local[c] =
+            problem.discretization.locally_owned.index_within_set(
+              nodes[i].dofs[c]);
+        n.normal   = nodes[i].normal;
+        n.diagonal = system.diagonal[i];
+        sticks.push_back(n);
+      }
+    auto nodal = [](const double *v, const StickNode &n) {
+      Tensor<1, dim> t;
+      for (unsigned int c = 0; c < dim; ++c)
+        t[c] = v[n.local[c]];
+      return t;
+    };
+    auto set_nodal = [](double *v, const StickNode &n, const Tensor<1, dim> &t) {
+      for (unsigned int c = 0; c < dim; ++c)
+        v[n.local[c]] = t[c];
+    };
     Vector_t projected;
     problem.discretization.reinit_owned(projected);
+    // projected = v without the stick nodes' tangential components.
     auto project = [&](const Vector_t &v) {
-      projected = v;
-      for (const unsigned int i : stick_nodes)
-        set_raw_values(nodes[i],
-                       normal_part(nodes[i], raw_values(nodes[i], v)),
-                       projected);
-      projected.compress(VectorOperation::insert);
-    };
-    auto add_tangential = [&](const Vector_t &v, const double power, Vector_t &y) {
-      for (const unsigned int i : stick_nodes)
+      projected        = v;
+      double *      p  = projected.trilinos_vector()[0];
+      const double *vv = v.trilinos_vector()[0];
+      for (const auto &n : sticks)
         {
-          const Tensor<1, dim> vi = raw_values(nodes[i], v);
-          set_raw_values(nodes[i],
-                         normal_part(nodes[i], raw_values(nodes[i], y)) +
-                           std::pow(system.diagonal[i], power) *
-                             (vi - normal_part(nodes[i], vi)),
-                         y);
+          const Tensor<1, dim> t = nodal(vv, n);
+          set_nodal(p, n, (t * n.normal) * n.normal);
         }
-      y.compress(VectorOperation::insert);
+    };
+    // y = projection of y, plus diagonal^power times v's tangential part.
+    auto add_tangential = [&](const Vector_t &v, const double power, Vector_t &y) {
+      double *      yy = y.trilinos_vector()[0];
+      const double *vv = v.trilinos_vector()[0];
+      for (const auto &n : sticks)
+        {
+          const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
+          set_nodal(yy,
+                    n,
+                    (yi * n.normal) * n.normal +
+                      std::pow(n.diagonal, power) *
+                        (vi - (vi * n.normal) * n.normal));
+        }
     };
     struct Operator
     {
@@ -283,11 +329,16 @@ namespace DynamicContact
       add_tangential(v, -1., y);
     }};
 
-    // Inexact Newton: the Krylov tolerance follows the Newton residual.
-    const double forcing =
-      std::min(1e-2,
-               std::max(problem.parameters.linear_tolerance,
-                        0.1 * x.relative_residual));
+    // Inexact Newton: the Krylov tolerance follows the Newton residual r:
+    // 1e-2 far from the solution, 0.1 r near it (superlinear convergence),
+    // but no tighter than what takes r below the Newton tolerance in one
+    // step (tol/(2 r)), nor than Solver/Linear tolerance.
+    const double r       = std::max(x.relative_residual, 1e-300);
+    const double forcing = std::min(
+      1e-2,
+      std::max({problem.parameters.linear_tolerance,
+                0.1 * r,
+                0.5 * problem.parameters.newton_tolerance / r}));
     SolverControl control(problem.parameters.max_linear_iterations,
                           forcing * f.l2_norm());
     SolverGMRES<Vector_t> gmres(

@@ -67,17 +67,52 @@ namespace DynamicContact
                                       friction,
                                       c_t,
                                       theta};
-    if (parameters.contact_solver ==
-        Parameters::Solver::ContactSolver::condensed)
+    using CS   = Parameters::Solver::ContactSolver;
+    condensed  = (parameters.contact_solver == CS::condensed ||
+                 (parameters.contact_solver == CS::automatic &&
+                  dim * contact_boundary.n_global_nodes() <=
+                    parameters.condensed_limit));
+    if (condensed)
       newton = std::make_unique<CondensedNewton<dim>>(problem);
     else
-      newton = std::make_unique<SparseNewton<dim>>(problem);
+      {
+        // auto: the scalable solver is the iterative one.
+        Parameters::Solver sparse_parameters = parameters;
+        if (parameters.contact_solver == CS::automatic)
+          sparse_parameters.linear_solver =
+            Parameters::Solver::LinearSolver::iterative;
+        problem_parameters = sparse_parameters;
+        newton             = std::make_unique<SparseNewton<dim>>(
+          ContactProblem<dim>{discretization,
+                              bulk,
+                              contact_boundary,
+                              foundation,
+                              problem_parameters,
+                              timer,
+                              details,
+                              friction,
+                              c_t,
+                              theta});
+      }
     newton->reinit();
 
     const unsigned int n = contact_boundary.nodes().size();
     mu.assign(n, friction ? friction_law->value(0) : 0.);
     lambda.assign(n, Tensor<1, dim>());
     states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
+  }
+
+
+  template <int dim>
+  std::string
+  StepSolver<dim>::solver_name() const
+  {
+    if (condensed)
+      return "condensed";
+    return problem_parameters.linear_solver ==
+               Parameters::Solver::LinearSolver::iterative ?
+             "assembled (iterative)" :
+             "assembled (direct)";
   }
 
 

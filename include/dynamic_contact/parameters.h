@@ -218,10 +218,12 @@ namespace DynamicContact
       };
       enum class ContactSolver
       {
+        automatic,
         condensed,
         assembled
       };
       ContactSolver contact_solver;
+      unsigned int  condensed_limit;
       bool         line_search;
       double       newton_tolerance;
       unsigned int max_newton_iterations;

@@ -12,6 +12,7 @@
 #include <dynamic_contact/friction_law.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace DynamicContact
@@ -128,6 +129,10 @@ namespace DynamicContact
       lambda = forces;
     }
 
+    /** The contact solver in use (Solver/Contact solver, auto resolved). */
+    std::string
+    solver_name() const;
+
     /** True if the scene has friction (a law with a nonzero coefficient). */
     bool
     has_friction() const
@@ -150,6 +155,9 @@ namespace DynamicContact
     double                       theta = 1;
 
     std::unique_ptr<ContactNewton<dim>> newton;
+    /** The condensed solver is in use; else the sparse one with: */
+    bool               condensed = true;
+    Parameters::Solver problem_parameters;
 
     /** The owned nodes of Gamma_3: frozen coefficients, friction forces. */
     std::vector<double>         mu;
