@@ -151,9 +151,11 @@ namespace DynamicContact
 
 
   void
-  BulkSolver::solve_columns(const std::vector<SparseColumn> &           columns,
-                            const std::vector<types::global_dof_index> &rows,
-                            std::vector<std::vector<double>> &          values)
+  BulkSolver::solve_columns(
+    const std::vector<SparseColumn> &                        columns,
+    const std::vector<types::global_dof_index> &             rows,
+    std::vector<std::vector<double>> &                       values,
+    const std::function<void(unsigned int, const double *)> &store)
   {
     Assert(matrix != nullptr, ExcNotInitialized());
     values.assign(columns.size(), std::vector<double>(rows.size()));
@@ -178,8 +180,13 @@ namespace DynamicContact
             AssertThrow(direct->Solve() == 0,
                         ExcMessage("A solve with the bulk matrix failed."));
             for (unsigned int c = 0; c < n; ++c)
-              for (unsigned int i = 0; i < rows.size(); ++i)
-                values[first + c][i] = X[c][map.LID(static_cast<int>(rows[i]))];
+              {
+                for (unsigned int i = 0; i < rows.size(); ++i)
+                  values[first + c][i] =
+                    X[c][map.LID(static_cast<int>(rows[i]))];
+                if (store)
+                  store(first + c, X[c]);
+              }
           }
       }
     else
@@ -198,6 +205,8 @@ namespace DynamicContact
             solve(rhs, x);
             for (unsigned int i = 0; i < rows.size(); ++i)
               values[c][i] = x[rows[i]];
+            if (store)
+              store(c, x.trilinos_vector()[0]);
           }
       }
   }

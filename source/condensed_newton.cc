@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace DynamicContact
 {
@@ -27,6 +28,12 @@ namespace DynamicContact
     gathered.reinit(problem.boundary);
     const auto &all = gathered.all_nodes();
     columns.assign(all.size(), {});
+    full_columns.assign(dim * all.size(), {});
+    stored_full_columns = 0;
+    pending.reset();
+    max_owned_dofs = Utilities::MPI::max(
+      problem.discretization.locally_owned.n_elements(),
+      problem.discretization.comm);
     owned_index.assign(all.size(), -1);
     const auto &global = gathered.global_indices();
     for (unsigned int i = 0; i < global.size(); ++i)
@@ -144,6 +151,9 @@ namespace DynamicContact
     // C depends on K0: forget it.
     for (auto &c : columns)
       c.clear();
+    for (auto &c : full_columns)
+      std::vector<double>().swap(c);
+    stored_full_columns = 0;
   }
 
 
@@ -194,7 +204,21 @@ namespace DynamicContact
       for (unsigned int r = 0; r < dim; ++r)
         rows.push_back(node.dofs[r]);
     std::vector<std::vector<double>> values;
-    bulk_solver.solve_columns(rhs, rows, values);
+    // Keep the whole columns while they fit (the same decision everywhere).
+    const bool store = (stored_full_columns + rhs.size()) * max_owned_dofs *
+                         sizeof(double) <=
+                       full_column_budget;
+    const std::size_t n_owned =
+      problem.discretization.locally_owned.n_elements();
+    std::function<void(unsigned int, const double *)> keep;
+    if (store)
+      keep = [&](const unsigned int column, const double *entries) {
+        full_columns[dim * missing[column / dim] + column % dim].assign(
+          entries, entries + n_owned);
+      };
+    bulk_solver.solve_columns(rhs, rows, values, keep);
+    if (store)
+      stored_full_columns += rhs.size();
     result.bulk_solves += rhs.size();
 
     std::vector<double> packed;
@@ -224,6 +248,34 @@ namespace DynamicContact
           for (unsigned int r = 0; r < dim; ++r)
             columns[j][i][r][c] = part[p + 3 + r];
         }
+  }
+
+
+  template <int dim>
+  bool
+  CondensedNewton<dim>::apply_full_columns(
+    const std::vector<Tensor<1, dim>> &f,
+    const std::vector<unsigned int> &  nodes,
+    Vector_t &                         x) const
+  {
+    for (const unsigned int j : nodes)
+      if (full_columns[dim * j].empty())
+        return false;
+    TimerOutput::Scope t(problem.timer, "Bulk: sums of compliance columns");
+    x            = 0;
+    double *   y = x.trilinos_vector()[0];
+    const auto n = problem.discretization.locally_owned.n_elements();
+    for (const unsigned int j : nodes)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (f[j][c] != 0)
+          {
+            const double  a      = f[j][c];
+            const double *column = full_columns[dim * j + c].data();
+            for (std::size_t i = 0; i < n; ++i)
+              y[i] += a * column[i];
+          }
+    problem.discretization.constraints.set_zero(x);
+    return true;
   }
 
 
@@ -540,7 +592,54 @@ namespace DynamicContact
                               std::vector<Tensor<1, dim>> &       lambda,
                               Vector_t &                          w)
   {
+    return solve(rhs, u_old, w_old, mu, lambda, w, false);
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::solve_provisional(
+    const Vector_t &                    rhs,
+    const std::vector<Tensor<1, dim>> &u_old,
+    const std::vector<Tensor<1, dim>> &w_old,
+    const std::vector<double> &         mu,
+    std::vector<Tensor<1, dim>> &       lambda,
+    Vector_t &                          w)
+  {
+    return solve(rhs, u_old, w_old, mu, lambda, w, true);
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::finalize(Vector_t &                   w,
+                                 std::vector<Tensor<1, dim>> &lambda)
+  {
     Result result;
+    if (!pending)
+      return result;
+    const Pending p = std::move(*pending);
+    pending.reset();
+    u_old_all = gathered.gather(p.u_old);
+    w_old_all = gathered.gather(p.w_old);
+    mu_all    = gathered.gather(p.mu);
+    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result);
+    return result;
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::solve(const Vector_t &                    rhs,
+                              const std::vector<Tensor<1, dim>> &u_old,
+                              const std::vector<Tensor<1, dim>> &w_old,
+                              const std::vector<double> &         mu,
+                              std::vector<Tensor<1, dim>> &       lambda,
+                              Vector_t &                          w,
+                              const bool                          provisional)
+  {
+    Result result;
+    pending.reset();
     prepare(result);
     const unsigned int n = gathered.all_nodes().size();
 
@@ -598,6 +697,33 @@ namespace DynamicContact
                         result);
     }
 
+    // A provisional velocity: the columns' sum instead of a solve, and no
+    // phase 2 (the loop's next pass, or finalize(), follows).
+    if (provisional && apply_full_columns(it.g, it.active, scratch))
+      {
+        w = free_response;
+        w -= scratch;
+        lambda = gathered.owned_part(it.lambda);
+        pending.emplace(Pending{u_old, w_old, mu, std::move(it)});
+        result.provisional = true;
+        return result;
+      }
+    polish(it, u_old, w_old, mu, lambda, w, result);
+    return result;
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::polish(const Iterate &                     it,
+                               const std::vector<Tensor<1, dim>> &u_old,
+                               const std::vector<Tensor<1, dim>> &w_old,
+                               const std::vector<double> &         mu,
+                               std::vector<Tensor<1, dim>> &       lambda,
+                               Vector_t &                          w,
+                               Result &                            result)
+  {
+    const Vector_t &rhs = cached_rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
     // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1.
     right_hand_side = rhs;
@@ -608,22 +734,19 @@ namespace DynamicContact
     //   R = K0 w - b + sum_i P_i^T f_i(w),
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
-    {
-      TimerOutput::Scope t(problem.timer, "Contact: refinement");
-      SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
-      SystemIterate<dim> x;
-      x.w      = w;
-      x.lambda = gathered.owned_part(it.lambda);
-      NewtonPolicy policy;
-      policy.monotone          = true;
-      policy.stagnation_factor = 0.5;
-      policy.name              = "whole system";
-      globalized_newton(
-        system, x, policy, problem.parameters, problem.details, result);
-      w      = x.w;
-      lambda = x.lambda;
-    }
-    return result;
+    TimerOutput::Scope t(problem.timer, "Contact: refinement");
+    SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
+    SystemIterate<dim> x;
+    x.w      = w;
+    x.lambda = gathered.owned_part(it.lambda);
+    NewtonPolicy policy;
+    policy.monotone          = true;
+    policy.stagnation_factor = 0.5;
+    policy.name              = "whole system";
+    globalized_newton(
+      system, x, policy, problem.parameters, problem.details, result);
+    w      = x.w;
+    lambda = x.lambda;
   }
 
 

@@ -251,6 +251,20 @@ namespace DynamicContact
         xi_previous = friction_density(lambda, start);
       }
 
+    auto add_statistics = [&](const typename ContactNewton<dim>::Result &r) {
+      statistics.newton_iterations += r.iterations;
+      statistics.factorizations += r.factorizations;
+      statistics.bulk_solves += r.bulk_solves;
+      statistics.cycles += r.cycles;
+      statistics.line_search_steps += r.line_search_steps;
+      statistics.linear_iterations += r.linear_iterations;
+      statistics.residual = r.residual;
+    };
+    // In the loop, a pass may end with a provisional w (the condensed
+    // solver's boundary iteration, the velocity from the stored compliance
+    // columns, no solve with K0): enough to decide whether the loop goes
+    // on. The pass that ends it is then finished (finalize()).
+    bool provisional = false;
     for (unsigned int pass = 0; pass < max_passes; ++pass)
       {
         if (loop)
@@ -259,14 +273,11 @@ namespace DynamicContact
             u_previous.add(k, w);
           }
         const auto result =
-          newton->solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
-        statistics.newton_iterations += result.iterations;
-        statistics.factorizations += result.factorizations;
-        statistics.bulk_solves += result.bulk_solves;
-        statistics.cycles += result.cycles;
-        statistics.line_search_steps += result.line_search_steps;
-        statistics.linear_iterations += result.linear_iterations;
-        statistics.residual = result.residual;
+          loop ? newton->solve_provisional(
+                   rhs, u_old_nodes, w_old_nodes, mu, lambda, w) :
+                 newton->solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
+        add_statistics(result);
+        provisional = result.provisional;
         ++statistics.convexification_iterations;
         if (!loop)
           break;
@@ -338,6 +349,8 @@ namespace DynamicContact
           }
         xi_previous = xi;
       }
+    if (provisional)
+      add_statistics(newton->finalize(w, lambda));
 
     update_states(u_old_nodes, w_old_nodes, w, statistics);
     return statistics;

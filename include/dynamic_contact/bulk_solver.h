@@ -8,6 +8,7 @@
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/parameters.h>
 
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -83,13 +84,17 @@ namespace DynamicContact
     /**
      * Solve A X = B for the columns of B and return, for each column c,
      * the entries of X at @p rows (rows owned by this process):
-     * values[c][i] = X(rows[i], c). Collective; every process passes the
-     * same columns (each sets the entries it owns).
+     * values[c][i] = X(rows[i], c). If @p store is given, it is called with
+     * each column's index and its owned entries (in the order of the owned
+     * rows). Collective; every process passes the same columns (each sets
+     * the entries it owns).
      */
     void
-    solve_columns(const std::vector<SparseColumn> &                columns,
-                  const std::vector<dealii::types::global_dof_index> &rows,
-                  std::vector<std::vector<double>> &                values);
+    solve_columns(
+      const std::vector<SparseColumn> &                    columns,
+      const std::vector<dealii::types::global_dof_index> &rows,
+      std::vector<std::vector<double>> &                   values,
+      const std::function<void(unsigned int, const double *)> &store = {});
 
   private:
     const Parameters::Solver parameters;

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace DynamicContact
 {
@@ -61,6 +62,23 @@ namespace DynamicContact
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) override;
 
+    /**
+     * Phase 1 only, and w = w_free - sum_j K0'^{-1} P_j^T g_j from the
+     * stored whole columns (no solve with K0'), if they are stored; else as
+     * solve().
+     */
+    Result
+    solve_provisional(const Vector_t &                    rhs,
+                      const std::vector<Tensor<1, dim>> &u_old,
+                      const std::vector<Tensor<1, dim>> &w_old,
+                      const std::vector<double> &         mu,
+                      std::vector<Tensor<1, dim>> &       lambda,
+                      Vector_t &                          w) override;
+
+    /** Phase 2 of the last provisional solve: the solution itself. */
+    Result
+    finalize(Vector_t &w, std::vector<Tensor<1, dim>> &lambda) override;
+
     /** The whole-system Newton step by condensation (phase 2). */
     void
     newton_step(const SystemNewton<dim> & system,
@@ -91,6 +109,29 @@ namespace DynamicContact
     /** The data of the current solve at every node. */
     std::vector<Tensor<1, dim>> u_old_all, w_old_all;
     std::vector<double>         mu_all;
+
+    /**
+     * The whole responses K0'^{-1} P_j^T e_c (owned entries, index
+     * dim j + c), kept beside C while they fit in full_column_budget bytes
+     * on every process: with them a provisional velocity is a sum of
+     * columns instead of a solve with K0'.
+     */
+    std::vector<std::vector<double>> full_columns;
+    std::size_t                      stored_full_columns = 0;
+    /** The largest number of owned DoFs of a process. */
+    types::global_dof_index max_owned_dofs = 0;
+    static constexpr std::size_t full_column_budget = std::size_t(512) << 20;
+
+    /**
+     * x = K0'^{-1} sum_{j in nodes} P_j^T f_j from the stored whole columns;
+     * false (and x untouched) if some column is not stored. The same answer
+     * on every process.
+     */
+    bool
+    apply_full_columns(const std::vector<Tensor<1, dim>> &f,
+                       const std::vector<unsigned int> &  nodes,
+                       Vector_t &                         x) const;
+
 
     Vector_t solution, right_hand_side, residual, increment, scratch;
 
@@ -127,6 +168,41 @@ namespace DynamicContact
 
     /** Phase 1 as globalized_newton() sees it (defined in the .cc). */
     class BoundaryProblem;
+
+    /**
+     * What a provisional solve leaves for finalize(): its data (owned
+     * nodes) and the phase-1 iterate (every node).
+     */
+    struct Pending
+    {
+      std::vector<Tensor<1, dim>> u_old, w_old;
+      std::vector<double>         mu;
+      Iterate                     it;
+    };
+    std::optional<Pending> pending;
+
+    /** solve() and solve_provisional(). */
+    Result
+    solve(const Vector_t &                    rhs,
+          const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<Tensor<1, dim>> &w_old,
+          const std::vector<double> &         mu,
+          std::vector<Tensor<1, dim>> &       lambda,
+          Vector_t &                          w,
+          const bool                          provisional);
+
+    /**
+     * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then
+     * phase 2 (the whole-system Newton iteration) on the data given.
+     */
+    void
+    polish(const Iterate &                     it,
+           const std::vector<Tensor<1, dim>> &u_old,
+           const std::vector<Tensor<1, dim>> &w_old,
+           const std::vector<double> &         mu,
+           std::vector<Tensor<1, dim>> &       lambda,
+           Vector_t &                          w,
+           Result &                            result);
 
     /**
      * One Newton step on the active nodes for the right-hand side @p r (one

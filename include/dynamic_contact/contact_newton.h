@@ -92,6 +92,12 @@ namespace DynamicContact
     unsigned int cycles = 0;
     /** Damped trial steps of the line search. */
     unsigned int line_search_steps = 0;
+    /**
+     * The w returned is an estimate (the condensed solver's boundary
+     * iteration without its whole-system polish): finalize() must follow
+     * before w is used as the step's solution.
+     */
+    bool provisional = false;
   };
 
 
@@ -136,6 +142,33 @@ namespace DynamicContact
           const std::vector<double> &         mu,
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) = 0;
+
+    /**
+     * The same, where the caller may accept a provisional w (a pass of the
+     * convexification loop that is probably not the last): a solver that can
+     * estimate w more cheaply than it solves for it does so and sets
+     * Result::provisional. The default solves.
+     */
+    virtual Result
+    solve_provisional(const Vector_t &                    rhs,
+                      const std::vector<Tensor<1, dim>> &u_old,
+                      const std::vector<Tensor<1, dim>> &w_old,
+                      const std::vector<double> &         mu,
+                      std::vector<Tensor<1, dim>> &       lambda,
+                      Vector_t &                          w)
+    {
+      return solve(rhs, u_old, w_old, mu, lambda, w);
+    }
+
+    /**
+     * After a provisional solve: the solution itself, from the same data
+     * (the last solve's). The default has nothing to do.
+     */
+    virtual Result
+    finalize(Vector_t & /*w*/, std::vector<Tensor<1, dim>> & /*lambda*/)
+    {
+      return Result();
+    }
   };
 } // namespace DynamicContact
 
