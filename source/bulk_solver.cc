@@ -1,3 +1,5 @@
+#include <deal.II/base/quadrature.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 
@@ -7,26 +9,76 @@
 #include <Amesos_BaseSolver.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
 
 namespace DynamicContact
 {
-  TrilinosWrappers::PreconditionAMG::AdditionalData
-  bulk_amg_data(const std::vector<std::vector<bool>> &constant_modes,
-                const bool                             higher_order_elements)
+  using namespace dealii;
+
+  template <int dim>
+  void
+  BulkAMG::initialize(const Matrix_t &           matrix,
+                      const Discretization<dim> &discretization)
   {
+    // The rigid-body modes at the owned DoFs, from each DoF's component and
+    // support point (every owned DoF lies on an owned cell).
+    const IndexSet &   owned   = discretization.locally_owned;
+    const unsigned int n       = owned.n_elements();
+    const unsigned int n_modes = (dim == 2 ? 3 : 6);
+    modes.assign(n_modes * n, 0.);
+    const auto &                         fe = discretization.fe;
+    FEValues<dim>                        fe_values(discretization.mapping,
+                                fe,
+                                Quadrature<dim>(fe.get_unit_support_points()),
+                                update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell :
+         discretization.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (owned.is_element(dofs[i]))
+              {
+                const unsigned int r = owned.index_within_set(dofs[i]);
+                const unsigned int c = fe.system_to_component_index(i).first;
+                const Point<dim> & x = fe_values.quadrature_point(i);
+                modes[c * n + r]     = 1;
+                if constexpr (dim == 2)
+                  modes[2 * n + r] = (c == 0 ? -x[1] : x[0]);
+                else
+                  {
+                    // Rotations about the x, y and z axes.
+                    modes[3 * n + r] = (c == 1 ? -x[2] : c == 2 ? x[1] : 0);
+                    modes[4 * n + r] = (c == 0 ? x[2] : c == 2 ? -x[0] : 0);
+                    modes[5 * n + r] = (c == 0 ? -x[1] : c == 1 ? x[0] : 0);
+                  }
+              }
+        }
+
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true;
-    data.higher_order_elements = higher_order_elements;
+    data.higher_order_elements = fe.degree > 1;
     data.smoother_sweeps       = 2;
     data.aggregation_threshold = 0.02;
-    data.constant_modes        = constant_modes;
-    return data;
+    Teuchos::ParameterList              list;
+    std::unique_ptr<Epetra_MultiVector> unused;
+    data.set_parameters(list, unused, matrix);
+    list.set("null space: type", "pre-computed");
+    list.set("null space: dimension", static_cast<int>(n_modes));
+    list.set("null space: vectors", modes.data());
+    amg.initialize(matrix, list);
   }
 
 
-  using namespace dealii;
+  template void
+  BulkAMG::initialize(const Matrix_t &, const Discretization<2> &);
+  template void
+  BulkAMG::initialize(const Matrix_t &, const Discretization<3> &);
+
 
   BulkSolver::BulkSolver(const Parameters::Solver &parameters)
     : parameters(parameters)
@@ -36,10 +88,10 @@ namespace DynamicContact
   BulkSolver::~BulkSolver() = default;
 
 
+  template <int dim>
   void
-  BulkSolver::initialize(const Matrix_t &                        A,
-                         const std::vector<std::vector<bool>> &constant_modes,
-                         const bool higher_order_elements)
+  BulkSolver::initialize(const Matrix_t &           A,
+                         const Discretization<dim> &discretization)
   {
     matrix = &A;
     direct.reset();
@@ -63,11 +115,16 @@ namespace DynamicContact
       }
     else
       {
-        amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(A,
-                        bulk_amg_data(constant_modes, higher_order_elements));
+        amg = std::make_unique<BulkAMG>();
+        amg->initialize(A, discretization);
       }
   }
+
+
+  template void
+  BulkSolver::initialize(const Matrix_t &, const Discretization<2> &);
+  template void
+  BulkSolver::initialize(const Matrix_t &, const Discretization<3> &);
 
 
   void
@@ -94,9 +151,11 @@ namespace DynamicContact
 
 
   void
-  BulkSolver::solve_columns(const std::vector<SparseColumn> &           columns,
-                            const std::vector<types::global_dof_index> &rows,
-                            std::vector<std::vector<double>> &          values)
+  BulkSolver::solve_columns(
+    const std::vector<SparseColumn> &                        columns,
+    const std::vector<types::global_dof_index> &             rows,
+    std::vector<std::vector<double>> &                       values,
+    const std::function<void(unsigned int, const double *)> &store)
   {
     Assert(matrix != nullptr, ExcNotInitialized());
     values.assign(columns.size(), std::vector<double>(rows.size()));
@@ -121,8 +180,13 @@ namespace DynamicContact
             AssertThrow(direct->Solve() == 0,
                         ExcMessage("A solve with the bulk matrix failed."));
             for (unsigned int c = 0; c < n; ++c)
-              for (unsigned int i = 0; i < rows.size(); ++i)
-                values[first + c][i] = X[c][map.LID(static_cast<int>(rows[i]))];
+              {
+                for (unsigned int i = 0; i < rows.size(); ++i)
+                  values[first + c][i] =
+                    X[c][map.LID(static_cast<int>(rows[i]))];
+                if (store)
+                  store(first + c, X[c]);
+              }
           }
       }
     else
@@ -141,6 +205,8 @@ namespace DynamicContact
             solve(rhs, x);
             for (unsigned int i = 0; i < rows.size(); ++i)
               values[c][i] = x[rows[i]];
+            if (store)
+              store(c, x.trilinos_vector()[0]);
           }
       }
   }

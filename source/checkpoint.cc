@@ -107,9 +107,6 @@ namespace DynamicContact
           << "vtu_records " << state.vtu_records.size() << '\n';
       for (const auto &[t, file] : state.vtu_records)
         out << t << ' ' << file << '\n';
-      out << "friction_forces " << state.friction_forces.size() << '\n';
-      for (const double f : state.friction_forces)
-        out << f << '\n';
       out << "end\n";
       return out.str();
     }
@@ -537,7 +534,7 @@ namespace DynamicContact
                               "' expected).");
     };
     std::getline(in, line); // the signature, checked by load_checkpoint
-    unsigned int n_records = 0, n_forces = 0;
+    unsigned int n_records = 0;
     expect("step");
     in >> state.step;
     expect("time");
@@ -565,11 +562,6 @@ namespace DynamicContact
         in >> t >> file;
         state.vtu_records.emplace_back(t, file);
       }
-    expect("friction_forces");
-    in >> n_forces;
-    state.friction_forces.resize(in ? n_forces : 0);
-    for (double &f : state.friction_forces)
-      in >> f;
     expect("end");
     if (!(state.time >= 0) || !(state.time_step > 0))
       throw CollectiveError("The checkpoint '" + checkpoint +

@@ -6,10 +6,11 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/condensed_newton.h>
+#include <dynamic_contact/newton_driver.h>
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
+#include <functional>
 
 namespace DynamicContact
 {
@@ -24,10 +25,17 @@ namespace DynamicContact
   void
   CondensedNewton<dim>::reinit()
   {
-    const auto &all = problem.boundary.all_nodes();
+    gathered.reinit(problem.boundary);
+    const auto &all = gathered.all_nodes();
     columns.assign(all.size(), {});
+    full_columns.assign(dim * all.size(), {});
+    stored_full_columns = 0;
+    pending.reset();
+    max_owned_dofs = Utilities::MPI::max(
+      problem.discretization.locally_owned.n_elements(),
+      problem.discretization.comm);
     owned_index.assign(all.size(), -1);
-    const auto &global = problem.boundary.global_indices();
+    const auto &global = gathered.global_indices();
     for (unsigned int i = 0; i < global.size(); ++i)
       owned_index[global[i]] = i;
     prepared_k          = 0;
@@ -52,7 +60,7 @@ namespace DynamicContact
     // farthest from the line through them; among the unconstrained nodes,
     // or, if there are fewer than two, among the nodes with a free component
     // and axis-parallel constraints (the springs act on the free components).
-    const auto &all = problem.boundary.all_nodes();
+    const auto &all = gathered.all_nodes();
     spring_nodes.clear();
     spring_stiffness.assign(all.size(), 0.);
     std::vector<unsigned int> free_nodes;
@@ -116,7 +124,7 @@ namespace DynamicContact
     const Matrix_t &K0 = problem.bulk.newton_matrix();
     regularized.copy_from(K0);
     {
-      const auto &        all = problem.boundary.all_nodes();
+      const auto &        all = gathered.all_nodes();
       std::vector<double> local(all.size(), 0.);
       for (const unsigned int j : spring_nodes)
         if (owned_index[j] >= 0)
@@ -135,15 +143,7 @@ namespace DynamicContact
     }
     {
       TimerOutput::Scope t(problem.timer, "Bulk: factorization of K0");
-      std::vector<std::vector<bool>> constant_modes;
-      if (problem.parameters.linear_solver ==
-          Parameters::Solver::LinearSolver::iterative)
-        DoFTools::extract_constant_modes(problem.discretization.dof_handler,
-                                         ComponentMask(),
-                                         constant_modes);
-      bulk_solver.initialize(regularized,
-                             constant_modes,
-                             problem.discretization.fe.degree > 1);
+      bulk_solver.initialize(regularized, problem.discretization);
     }
     ++result.factorizations;
     prepared_k          = k;
@@ -151,6 +151,9 @@ namespace DynamicContact
     // C depends on K0: forget it.
     for (auto &c : columns)
       c.clear();
+    for (auto &c : full_columns)
+      std::vector<double>().swap(c);
+    stored_full_columns = 0;
   }
 
 
@@ -182,7 +185,7 @@ namespace DynamicContact
 
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
-    const auto &                           all = problem.boundary.all_nodes();
+    const auto &                           all = gathered.all_nodes();
     std::vector<BulkSolver::SparseColumn> rhs;
     for (const unsigned int j : missing)
       for (unsigned int c = 0; c < dim; ++c)
@@ -195,13 +198,27 @@ namespace DynamicContact
         }
     // The responses at the owned nodes, then at every node.
     const auto &                         owned  = problem.boundary.nodes();
-    const auto &                         global = problem.boundary.global_indices();
+    const auto &                         global = gathered.global_indices();
     std::vector<types::global_dof_index> rows;
     for (const auto &node : owned)
       for (unsigned int r = 0; r < dim; ++r)
         rows.push_back(node.dofs[r]);
     std::vector<std::vector<double>> values;
-    bulk_solver.solve_columns(rhs, rows, values);
+    // Keep the whole columns while they fit (the same decision everywhere).
+    const bool store = (stored_full_columns + rhs.size()) * max_owned_dofs *
+                         sizeof(double) <=
+                       full_column_budget;
+    const std::size_t n_owned =
+      problem.discretization.locally_owned.n_elements();
+    std::function<void(unsigned int, const double *)> keep;
+    if (store)
+      keep = [&](const unsigned int column, const double *entries) {
+        full_columns[dim * missing[column / dim] + column % dim].assign(
+          entries, entries + n_owned);
+      };
+    bulk_solver.solve_columns(rhs, rows, values, keep);
+    if (store)
+      stored_full_columns += rhs.size();
     result.bulk_solves += rhs.size();
 
     std::vector<double> packed;
@@ -235,6 +252,34 @@ namespace DynamicContact
 
 
   template <int dim>
+  bool
+  CondensedNewton<dim>::apply_full_columns(
+    const std::vector<Tensor<1, dim>> &f,
+    const std::vector<unsigned int> &  nodes,
+    Vector_t &                         x) const
+  {
+    for (const unsigned int j : nodes)
+      if (full_columns[dim * j].empty())
+        return false;
+    TimerOutput::Scope t(problem.timer, "Bulk: sums of compliance columns");
+    x            = 0;
+    double *   y = x.trilinos_vector()[0];
+    const auto n = problem.discretization.locally_owned.n_elements();
+    for (const unsigned int j : nodes)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (f[j][c] != 0)
+          {
+            const double  a      = f[j][c];
+            const double *column = full_columns[dim * j + c].data();
+            for (std::size_t i = 0; i < n; ++i)
+              y[i] += a * column[i];
+          }
+    problem.discretization.constraints.set_zero(x);
+    return true;
+  }
+
+
+  template <int dim>
   void
   CondensedNewton<dim>::compliance_response(
     const std::vector<Tensor<1, dim>> &w_free,
@@ -251,14 +296,14 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::linearize(const std::vector<Tensor<1, dim>> &u_old,
-                                  const std::vector<Tensor<1, dim>> &w_old,
-                                  const std::vector<double> &         mu,
-                                  const std::vector<Tensor<1, dim>> &lambda,
-                                  const std::vector<Tensor<1, dim>> &w_nodes,
-                                  Iterate &                           it) const
+  CondensedNewton<dim>::linearize(Iterate &it) const
   {
-    const auto &       nodes = problem.boundary.all_nodes();
+    const auto &u_old  = u_old_all;
+    const auto &w_old  = w_old_all;
+    const auto &mu     = mu_all;
+    const auto &lambda = it.lambda;
+    const auto &w_nodes = it.w;
+    const auto &       nodes = gathered.all_nodes();
     const unsigned int n     = nodes.size();
     const double       k     = problem.bulk.time_step();
     const double       theta = problem.theta;
@@ -268,7 +313,7 @@ namespace DynamicContact
     it.base_true.resize(n);
     it.g.resize(n);
     it.base.resize(n);
-    it.signature.resize(n);
+    it.signature = 0;
     it.active.clear();
     it.f_scale      = 1e-300;
     it.law_residual = 0;
@@ -303,8 +348,10 @@ namespace DynamicContact
         it.base[i]      = it.base_true[i] - s * w_nodes[i];
         if (s > 0)
           it.lin[i].block -= s * nodes[i].constraint_map;
-        it.signature[i] = l.normal.set_signature() +
-                          16 * static_cast<unsigned int>(l.friction.state);
+        it.signature += node_set_hash(nodes[i].dofs[0],
+                                      l.normal.set_signature() +
+                                        16 * static_cast<unsigned int>(
+                                               l.friction.state));
         it.f_scale = std::max(it.f_scale, it.forces[i].norm());
         if (problem.friction)
           {
@@ -339,7 +386,7 @@ namespace DynamicContact
     // compliance), for
     //   dw_i + sum_j C_ij (block_j dw_j + T_j l_j) = r_i,
     //   t_s . (w_i + dw_i) = 0 at stick nodes.
-    const auto &              nodes    = problem.boundary.all_nodes();
+    const auto &              nodes    = gathered.all_nodes();
     const auto &              active   = it.active;
     const unsigned int        n_active = active.size();
     std::vector<unsigned int> stick_offset(n_active, 0);
@@ -433,10 +480,107 @@ namespace DynamicContact
                                          const double      factor,
                                          Vector_t &        v) const
   {
-    const auto &global = problem.boundary.global_indices();
+    const auto &global = gathered.global_indices();
     problem.boundary.add_nodal_forces(
       [&](const unsigned int i) { return f[global[i]]; }, factor, v);
   }
+
+
+  /**
+   * Phase 1 of CondensedNewton::solve() as globalized_newton() sees it: the
+   * iterates are the velocities and friction forces at every node of
+   * Gamma_3, the equilibrium is w_i = w_free,i - sum_j C_ij g_j, the merit
+   * half the sum of the squared equilibrium and law residuals (each relative
+   * to its scale).
+   */
+  template <int dim>
+  class CondensedNewton<dim>::BoundaryProblem
+  {
+  public:
+    using Iterate = typename CondensedNewton<dim>::Iterate;
+
+    BoundaryProblem(CondensedNewton<dim> &solver,
+                    const double          w_scale,
+                    Result &              result)
+      : solver(solver)
+      , w_scale(w_scale)
+      , result(result)
+    {}
+
+    NewtonMeasure
+    evaluate(Iterate &x)
+    {
+      solver.linearize(x);
+      solver.compute_columns(x.active, result);
+      solver.compliance_response(solver.w_free_nodes,
+                                 x.g,
+                                 x.active,
+                                 response);
+      x.equilibrium         = 0;
+      x.equilibrium_squares = 0;
+      for (unsigned int i = 0; i < x.w.size(); ++i)
+        {
+          const double e = (x.w[i] - response[i]).norm();
+          x.equilibrium  = std::max(x.equilibrium, e);
+          x.equilibrium_squares += e * e;
+        }
+      NewtonMeasure m;
+      m.residual  = std::max(x.equilibrium / w_scale,
+                            x.law_residual / x.f_scale);
+      m.merit     = merit(x, x);
+      m.signature = x.signature;
+      return m;
+    }
+
+    /** With the force scale of the current iterate. */
+    double
+    merit(const Iterate &trial, const Iterate &current) const
+    {
+      const double f = current.f_scale;
+      return 0.5 * (trial.equilibrium_squares / (w_scale * w_scale) +
+                    law_merit(trial.law_squares, f));
+    }
+
+    void
+    newton_step(Iterate &x, Iterate &full)
+    {
+      solver.compliance_response(solver.w_free_nodes,
+                                 x.base,
+                                 x.active,
+                                 response);
+      r.resize(x.active.size());
+      for (unsigned int a = 0; a < x.active.size(); ++a)
+        r[a] = response[x.active[a]] - x.w[x.active[a]];
+      full.lambda = x.lambda;
+      solver.dense_step(x, r, dw, full.lambda, new_forces);
+      solver.compliance_response(solver.w_free_nodes,
+                                 new_forces,
+                                 x.active,
+                                 full.w);
+    }
+
+    void
+    combine(const Iterate &x,
+            const Iterate &full,
+            const double   alpha,
+            Iterate &      trial) const
+    {
+      const unsigned int n = x.w.size();
+      trial.w.resize(n);
+      trial.lambda.resize(n);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          trial.w[i]      = x.w[i] + alpha * (full.w[i] - x.w[i]);
+          trial.lambda[i] = x.lambda[i] + alpha * (full.lambda[i] - x.lambda[i]);
+        }
+    }
+
+  private:
+    CondensedNewton<dim> &      solver;
+    const double                w_scale;
+    Result &                    result;
+    std::vector<Tensor<1, dim>> response, r, dw, new_forces;
+  };
 
 
   template <int dim>
@@ -448,10 +592,56 @@ namespace DynamicContact
                               std::vector<Tensor<1, dim>> &       lambda,
                               Vector_t &                          w)
   {
+    return solve(rhs, u_old, w_old, mu, lambda, w, false);
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::solve_provisional(
+    const Vector_t &                    rhs,
+    const std::vector<Tensor<1, dim>> &u_old,
+    const std::vector<Tensor<1, dim>> &w_old,
+    const std::vector<double> &         mu,
+    std::vector<Tensor<1, dim>> &       lambda,
+    Vector_t &                          w)
+  {
+    return solve(rhs, u_old, w_old, mu, lambda, w, true);
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::finalize(Vector_t &                   w,
+                                 std::vector<Tensor<1, dim>> &lambda)
+  {
     Result result;
+    if (!pending)
+      return result;
+    const Pending p = std::move(*pending);
+    pending.reset();
+    u_old_all = gathered.gather(p.u_old);
+    w_old_all = gathered.gather(p.w_old);
+    mu_all    = gathered.gather(p.mu);
+    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result);
+    return result;
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::solve(const Vector_t &                    rhs,
+                              const std::vector<Tensor<1, dim>> &u_old,
+                              const std::vector<Tensor<1, dim>> &w_old,
+                              const std::vector<double> &         mu,
+                              std::vector<Tensor<1, dim>> &       lambda,
+                              Vector_t &                          w,
+                              const bool                          provisional)
+  {
+    Result result;
+    pending.reset();
     prepare(result);
-    const unsigned int n   = problem.boundary.all_nodes().size();
-    const double       tol = problem.parameters.newton_tolerance;
+    const unsigned int n = gathered.all_nodes().size();
 
     // The free response: the body without the foundation. The passes of a
     // convexification loop share it (same b, same K0').
@@ -466,7 +656,7 @@ namespace DynamicContact
       {
         solve_bulk(rhs, free_response, result);
         cached_rhs          = rhs;
-        w_free_nodes        = problem.boundary.gather_values(free_response);
+        w_free_nodes        = gather_values(free_response);
         free_response_valid = true;
       }
     if (n == 0)
@@ -474,140 +664,66 @@ namespace DynamicContact
         w = free_response;
         return result;
       }
-    const std::vector<Tensor<1, dim>> &w_free = w_free_nodes;
+    u_old_all = gathered.gather(u_old);
+    w_old_all = gathered.gather(w_old);
+    mu_all    = gathered.gather(mu);
 
     // Phase 1, on Gamma_3 only: w_i = w_free,i - sum_j C_ij f_j, from the
     // initial guess given (w_{n-1}, or the last convexification pass). No
     // solve with K0 but for new columns of C. It finds the active sets; where
     // K0 is nearly singular (a body held only by the foundation) the
     // cancellation in w_free - C f limits its accuracy, and phase 2 polishes.
-    Iterate it, trial;
-    it.w = problem.boundary.gather_values(w);
+    Iterate it;
+    it.w      = gather_values(w);
+    it.lambda = gathered.gather(lambda);
     double w_scale = 1e-300;
     for (unsigned int i = 0; i < n; ++i)
-      w_scale = std::max({w_scale, w_free[i].norm(), it.w[i].norm()});
-    std::vector<Tensor<1, dim>> dw, new_forces, response, r, w_full,
-      lambda_full;
-
-    // The residual of an iterate: its largest entries (relative, for the
-    // stopping test) and the merit function (1/2 the sum of squares, with
-    // the scales of the current iterate) that the line search decreases.
-    struct Measure
-    {
-      double residual = 0, equilibrium = 0, equilibrium_squares = 0;
-    };
-    auto evaluate = [&](const std::vector<Tensor<1, dim>> &w_nodes,
-                        const std::vector<Tensor<1, dim>> &lam,
-                        Iterate &                          state) {
-      linearize(u_old, w_old, mu, lam, w_nodes, state);
-      state.w = w_nodes;
-      compute_columns(state.active, result);
-      compliance_response(w_free, state.g, state.active, response);
-      Measure m;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          const double e = (w_nodes[i] - response[i]).norm();
-          m.equilibrium  = std::max(m.equilibrium, e);
-          m.equilibrium_squares += e * e;
-        }
-      m.residual =
-        std::max(m.equilibrium / w_scale, state.law_residual / state.f_scale);
-      return m;
-    };
-    auto merit = [&](const Measure &m, const Iterate &state, const double f) {
-      return 0.5 * (m.equilibrium_squares / (w_scale * w_scale) +
-                    state.law_squares / (f * f));
-    };
-
+      w_scale = std::max({w_scale, w_free_nodes[i].norm(), it.w[i].norm()});
     {
       TimerOutput::Scope t(problem.timer, "Contact: boundary Newton");
-      Measure                                current = evaluate(it.w, lambda, it);
-      std::vector<std::vector<unsigned int>> history; // active sets seen
-      std::vector<double>                    merits;
-      bool                                   monotone = false;
-      for (unsigned int iteration = 0;; ++iteration)
-        {
-          problem.details << "    Newton " << result.iterations
-                          << " (on Gamma_3): residual " << current.residual
-                          << " (equilibrium " << current.equilibrium / w_scale
-                          << ", law " << it.law_residual / it.f_scale
-                          << "), active nodes " << it.active.size()
-                          << std::endl;
-          // Stagnation near round-off (the cancellation in w_free - C f of
-          // an ill-conditioned K0): phase 2 polishes.
-          const bool stagnated = iteration > 0 && !history.empty() &&
-                                 it.signature == history.back() &&
-                                 current.residual > 0.1 * result.residual &&
-                                 current.residual < std::sqrt(tol);
-          if (current.residual <= tol || stagnated)
-            break;
-          result.residual = current.residual;
-          check_newton_cap(result.iterations, result.residual, problem.parameters);
-
-          // Active-set cycling: a return to sets seen before, with other
-          // sets in between (keeping the last sets, as a damped step does,
-          // is no cycle). The line search then damps the step (the remedy).
-          const bool cycling =
-            history.size() >= 2 && it.signature != history.back() &&
-            std::find(history.begin(), history.end() - 1, it.signature) !=
-              history.end() - 1;
-          result.cycles += cycling;
-          monotone = monotone || cycling;
-          history.push_back(it.signature);
-          const double f_scale     = it.f_scale;
-          const double merit_now   = merit(current, it, f_scale);
-          merits.push_back(merit_now);
-
-          // The full semismooth Newton step.
-          compliance_response(w_free, it.base, it.active, response);
-          r.resize(it.active.size());
-          for (unsigned int a = 0; a < it.active.size(); ++a)
-            r[a] = response[it.active[a]] - it.w[it.active[a]];
-          lambda_full = lambda;
-          dense_step(it, r, dw, lambda_full, new_forces);
-          compliance_response(w_free, new_forces, it.active, w_full);
-
-          // Accept it unless the sets cycle, or, after the first iterations
-          // (where set changes may raise the merit while Newton converges),
-          // the merit rises above that of the last five iterates
-          // (non-monotone), or, once a cycle was seen, above the current one
-          // (monotone from then on); otherwise backtrack along it (Armijo). Measured on
-          // the stress scenes: it costs a few iterations where plain Newton
-          // converges and completes the scenes where the sets cycle.
-          Measure      trial_measure = evaluate(w_full, lambda_full, trial);
-          const double reference     = *std::max_element(
-            merits.end() - std::min<std::size_t>(merits.size(), 5),
-            merits.end());
-          const double merit_full = merit(trial_measure, trial, f_scale);
-          if (problem.parameters.line_search &&
-              (cycling || (monotone && merit_full > merit_now) ||
-               (iteration >= 4 && merit_full > reference)))
-            {
-              std::vector<Tensor<1, dim>> w_trial(n), lambda_trial(n);
-              for (double alpha = 0.5;; alpha *= 0.5)
-                {
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      w_trial[i] = it.w[i] + alpha * (w_full[i] - it.w[i]);
-                      lambda_trial[i] =
-                        lambda[i] + alpha * (lambda_full[i] - lambda[i]);
-                    }
-                  trial_measure = evaluate(w_trial, lambda_trial, trial);
-                  ++result.line_search_steps;
-                  if (merit(trial_measure, trial, f_scale) <=
-                        (1 - 1e-4 * alpha) * merit_now ||
-                      alpha < 1. / 64)
-                    break;
-                }
-              lambda_full = lambda_trial;
-            }
-          std::swap(it, trial);
-          lambda  = lambda_full;
-          current = trial_measure;
-          ++result.iterations;
-        }
+      BoundaryProblem boundary_problem(*this, w_scale, result);
+      NewtonPolicy    policy;
+      policy.monotone          = false;
+      policy.free_iterations   = 4;
+      policy.window            = 5;
+      policy.stagnation_factor = 0.1;
+      policy.name              = "on Gamma_3";
+      // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
+      globalized_newton(boundary_problem,
+                        it,
+                        policy,
+                        problem.parameters,
+                        problem.details,
+                        result);
     }
 
+    // A provisional velocity: the columns' sum instead of a solve, and no
+    // phase 2 (the loop's next pass, or finalize(), follows).
+    if (provisional && apply_full_columns(it.g, it.active, scratch))
+      {
+        w = free_response;
+        w -= scratch;
+        lambda = gathered.owned_part(it.lambda);
+        pending.emplace(Pending{u_old, w_old, mu, std::move(it)});
+        result.provisional = true;
+        return result;
+      }
+    polish(it, u_old, w_old, mu, lambda, w, result);
+    return result;
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::polish(const Iterate &                     it,
+                               const std::vector<Tensor<1, dim>> &u_old,
+                               const std::vector<Tensor<1, dim>> &w_old,
+                               const std::vector<double> &         mu,
+                               std::vector<Tensor<1, dim>> &       lambda,
+                               Vector_t &                          w,
+                               Result &                            result)
+  {
+    const Vector_t &rhs = cached_rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
     // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1.
     right_hand_side = rhs;
@@ -616,103 +732,62 @@ namespace DynamicContact
 
     // Phase 2: Newton on the residual of the whole system,
     //   R = K0 w - b + sum_i P_i^T f_i(w),
-    // each step solved by the same condensation (two solves with K0). Where
+    // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
-    auto full_residual = [&](const Vector_t &                   v,
-                             const std::vector<Tensor<1, dim>> &lam,
-                             Iterate &                          state) {
-      state.w = problem.boundary.gather_values(v);
-      linearize(u_old, w_old, mu, lam, state.w, state);
-      problem.bulk.newton_matrix().vmult(residual, v);
-      const double scale =
-        std::max({rhs.l2_norm(), residual.l2_norm(), 1e-300});
-      residual -= rhs;
-      add_nodal_forces(state.forces, 1., residual);
-      return std::max(residual.l2_norm() / scale,
-                      state.law_residual / state.f_scale);
-    };
-    double                    previous_residual = 0;
-    std::vector<unsigned int> previous_signature;
-    Vector_t                  w_start;
-    // The residual of (w, lambda) when the line search already evaluated it
-    // (into trial, swapped into it, and into the vector residual).
-    std::optional<double> evaluated;
-    for (unsigned int refinement = 0;; ++refinement)
-      {
-        TimerOutput::Scope t(problem.timer, "Contact: refinement");
-        result.residual =
-          evaluated ? *evaluated : full_residual(w, lambda, it);
-        evaluated.reset();
-        problem.details << "    Newton " << result.iterations
-                        << " (whole system): residual " << result.residual
-                        << ", active nodes " << it.active.size() << std::endl;
-        // Stagnation at the attainable accuracy: with a very stiff
-        // foundation (c_nu m_i >> the bulk stiffness) round-off in u_nu,
-        // amplified by c_nu, bounds the relative residual above tol. Accepted
-        // when the sets no longer change, a full step gained less than a
-        // factor 2, and the residual is below sqrt(tol).
-        const bool stagnated = refinement > 0 &&
-                               it.signature == previous_signature &&
-                               result.residual > 0.5 * previous_residual &&
-                               result.residual < std::sqrt(tol);
-        if (result.residual <= tol || stagnated)
-          break;
-        check_newton_cap(result.iterations, result.residual, problem.parameters);
-        previous_residual  = result.residual;
-        previous_signature = it.signature;
+    TimerOutput::Scope t(problem.timer, "Contact: refinement");
+    SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
+    SystemIterate<dim> x;
+    x.w      = w;
+    x.lambda = gathered.owned_part(it.lambda);
+    NewtonPolicy policy;
+    policy.monotone          = true;
+    policy.stagnation_factor = 0.5;
+    policy.name              = "whole system";
+    globalized_newton(
+      system, x, policy, problem.parameters, problem.details, result);
+    w      = x.w;
+    lambda = x.lambda;
+  }
 
-        // z = -K0'^{-1} (K0 w - b + sum_i P_i^T base_i); the step is
-        // dw = z - K0'^{-1} sum_i P_i^T (g_i^new - base_i) (g form).
-        add_nodal_forces(it.forces, -1., residual);
-        add_nodal_forces(it.base_true, 1., residual);
-        residual *= -1.;
-        solve_bulk(residual, solution, result);
-        const auto z = problem.boundary.gather_values(solution);
-        compute_columns(it.active, result);
-        r.resize(it.active.size());
-        for (unsigned int a = 0; a < it.active.size(); ++a)
-          r[a] = z[it.active[a]];
-        lambda_full = lambda;
-        dense_step(it, r, dw, lambda_full, new_forces);
-        for (const unsigned int j : it.active)
-          new_forces[j] -= it.base[j];
-        right_hand_side = 0;
-        add_nodal_forces(new_forces, 1., right_hand_side);
-        solve_bulk(right_hand_side, increment, result);
-        solution -= increment; // the full step
 
-        // Backtrack (Armijo on the residual) if the full step does not
-        // reduce it: a stiff foundation makes the linearization at a node
-        // out of contact blind to the force it meets once the step pushes
-        // it in, and full steps then overshoot back and forth.
-        w_start = w;
-        w += solution;
-        if (problem.parameters.line_search)
-          {
-            const std::vector<Tensor<1, dim>> lambda_start = lambda;
-            for (double alpha = 1;; alpha *= 0.5)
-              {
-                for (unsigned int i = 0; i < n; ++i)
-                  lambda[i] =
-                    lambda_start[i] + alpha * (lambda_full[i] - lambda_start[i]);
-                const double trial_residual = full_residual(w, lambda, trial);
-                if (trial_residual <= (1 - 1e-4 * alpha) * result.residual ||
-                    alpha < 1. / 64)
-                  {
-                    std::swap(it, trial);
-                    evaluated = trial_residual;
-                    break;
-                  }
-                ++result.line_search_steps;
-                w = w_start;
-                w.add(alpha * 0.5, solution);
-              }
-          }
-        else
-          lambda = lambda_full;
-        ++result.iterations;
-      }
-    return result;
+  template <int dim>
+  void
+  CondensedNewton<dim>::newton_step(const SystemNewton<dim> & /*system*/,
+                                    const SystemIterate<dim> &x,
+                                    SystemIterate<dim> &      full,
+                                    Result &                  result)
+  {
+    // The linearization at every node (the dense system couples them).
+    Iterate it;
+    it.w      = gather_values(x.w);
+    it.lambda = gathered.gather(x.lambda);
+    linearize(it);
+
+    // z = -K0'^{-1} (K0 w - b + sum_i P_i^T base_i); the step is
+    // dw = z - K0'^{-1} sum_i P_i^T (g_i^new - base_i) (g form).
+    residual = x.residual;
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return x.forces[i]; }, -1., residual);
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return x.base[i]; }, 1., residual);
+    residual *= -1.;
+    solve_bulk(residual, solution, result);
+    const auto z = gather_values(solution);
+    compute_columns(it.active, result);
+    std::vector<Tensor<1, dim>> r(it.active.size()), dw, new_forces;
+    for (unsigned int a = 0; a < it.active.size(); ++a)
+      r[a] = z[it.active[a]];
+    std::vector<Tensor<1, dim>> lambda_full = it.lambda;
+    dense_step(it, r, dw, lambda_full, new_forces);
+    for (const unsigned int j : it.active)
+      new_forces[j] -= it.base[j];
+    right_hand_side = 0;
+    add_nodal_forces(new_forces, 1., right_hand_side);
+    solve_bulk(right_hand_side, increment, result);
+    solution -= increment; // the full step
+    full.w = x.w;
+    full.w += solution;
+    full.lambda = gathered.owned_part(lambda_full);
   }
 
 

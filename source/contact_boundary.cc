@@ -91,25 +91,97 @@ namespace DynamicContact
   } // namespace
 
 
+  namespace
+  {
+    /**
+     * Gather per-node values of width @p width (the owned nodes' entries,
+     * packed after their index in the every-node list) to every process.
+     */
+    template <typename Pack, typename Unpack>
+    void
+    gather_nodal(const MPI_Comm                   comm,
+                 const std::vector<unsigned int> &owned_to_global,
+                 const unsigned int               width,
+                 const Pack &                     pack,
+                 const Unpack &                   unpack)
+    {
+      std::vector<double> local;
+      local.reserve(owned_to_global.size() * (width + 1));
+      for (unsigned int i = 0; i < owned_to_global.size(); ++i)
+        {
+          local.push_back(owned_to_global[i]);
+          pack(i, local);
+        }
+      for (const auto &part : Utilities::MPI::all_gather(comm, local))
+        for (std::size_t pos = 0; pos < part.size(); pos += width + 1)
+          unpack(static_cast<unsigned int>(part[pos]), &part[pos + 1]);
+    }
+  } // namespace
+
+
   template <int dim>
   std::vector<Tensor<1, dim>>
-  ContactBoundary<dim>::gather_values(const Vector_t &v) const
+  GatheredBoundary<dim>::gather(
+    const std::vector<Tensor<1, dim>> &owned_values) const
   {
-    std::vector<double> local;
-    local.reserve(owned_nodes.size() * (dim + 1));
-    for (unsigned int i = 0; i < owned_nodes.size(); ++i)
-      {
-        local.push_back(owned_to_global[i]);
-        const Tensor<1, dim> value = owned_nodes[i].value(v);
-        for (unsigned int d = 0; d < dim; ++d)
-          local.push_back(value[d]);
-      }
     std::vector<Tensor<1, dim>> values(every_node.size());
-    for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      for (std::size_t pos = 0; pos < part.size(); pos += dim + 1)
+    gather_nodal(
+      comm,
+      owned_to_global,
+      dim,
+      [&](const unsigned int i, std::vector<double> &out) {
         for (unsigned int d = 0; d < dim; ++d)
-          values[static_cast<unsigned int>(part[pos])][d] = part[pos + 1 + d];
+          out.push_back(owned_values[i][d]);
+      },
+      [&](const unsigned int g, const double *in) {
+        for (unsigned int d = 0; d < dim; ++d)
+          values[g][d] = in[d];
+      });
     return values;
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  GatheredBoundary<dim>::gather(const std::vector<double> &owned_values) const
+  {
+    std::vector<double> values(every_node.size());
+    gather_nodal(
+      comm,
+      owned_to_global,
+      1,
+      [&](const unsigned int i, std::vector<double> &out) {
+        out.push_back(owned_values[i]);
+      },
+      [&](const unsigned int g, const double *in) { values[g] = in[0]; });
+    return values;
+  }
+
+
+  template <int dim>
+  void
+  GatheredBoundary<dim>::reinit(const ContactBoundary<dim> &boundary)
+  {
+    comm = boundary.get_mpi_communicator();
+    std::vector<double> packed;
+    for (const auto &node : boundary.nodes())
+      pack(node, packed);
+    every_node.clear();
+    for (const auto &part : Utilities::MPI::all_gather(comm, packed))
+      for (std::size_t pos = 0; pos < part.size();)
+        every_node.push_back(unpack<dim>(part, pos));
+    std::sort(every_node.begin(), every_node.end(), by_position<dim>);
+    owned_to_global.clear();
+    for (const auto &node : boundary.nodes())
+      {
+        const auto it = std::lower_bound(every_node.begin(),
+                                         every_node.end(),
+                                         node,
+                                         by_position<dim>);
+        Assert(it != every_node.end() && it->dofs == node.dofs,
+               ExcInternalError());
+        owned_to_global.push_back(it - every_node.begin());
+      }
   }
 
 
@@ -275,31 +347,14 @@ namespace DynamicContact
     // A reproducible order: by position.
     std::sort(owned_nodes.begin(), owned_nodes.end(), by_position<dim>);
 
-    // The replicated list: every node's data, packed into doubles.
-    comm = discretization.comm;
-    std::vector<double> packed;
-    for (const auto &node : owned_nodes)
-      pack(node, packed);
-    const auto parts = Utilities::MPI::all_gather(comm, packed);
-    every_node.clear();
-    for (const auto &part : parts)
-      for (std::size_t pos = 0; pos < part.size();)
-        every_node.push_back(unpack<dim>(part, pos));
-    std::sort(every_node.begin(), every_node.end(), by_position<dim>);
-    owned_to_global.clear();
-    for (const auto &node : owned_nodes)
-      {
-        const auto it = std::lower_bound(every_node.begin(),
-                                         every_node.end(),
-                                         node,
-                                         by_position<dim>);
-        Assert(it != every_node.end() && it->dofs == node.dofs,
-               ExcInternalError());
-        owned_to_global.push_back(it - every_node.begin());
-      }
+    comm     = discretization.comm;
+    n_global = Utilities::MPI::sum<types::global_dof_index>(
+      owned_nodes.size(), comm);
   }
 
 
   template class ContactBoundary<2>;
   template class ContactBoundary<3>;
+  template class GatheredBoundary<2>;
+  template class GatheredBoundary<3>;
 } // namespace DynamicContact

@@ -498,6 +498,14 @@ namespace DynamicContact
                           "Relaxation factor theta in (0, 1] of the frozen "
                           "coefficients: mu_i <- (1-theta) mu_i + theta "
                           "mu(|w_tau,i|).");
+        prm.declare_entry(
+          "Acceleration depth",
+          "0",
+          Patterns::Integer(0, 20),
+          "Anderson acceleration of the convexification loop's fixed point "
+          "mu = mu(|w_tau(mu)|): the next frozen coefficients combine the "
+          "last this many passes (with the relaxation above as mixing "
+          "factor); 0: the relaxed fixed-point iteration alone.");
         prm.declare_entry("Maximum convexification iterations",
                           "50",
                           Patterns::Integer(1),
@@ -549,6 +557,7 @@ namespace DynamicContact
           prm.get_double("Convexification tolerance");
         coefficient_tolerance = prm.get_double("Coefficient tolerance");
         relaxation            = prm.get_double("Relaxation");
+        acceleration_depth    = prm.get_integer("Acceleration depth");
         max_convexification_iterations =
           prm.get_integer("Maximum convexification iterations");
         complementarity_constant = prm.get_double("Complementarity constant");
@@ -781,17 +790,29 @@ namespace DynamicContact
       {
         prm.declare_entry(
           "Contact solver",
-          "condensed",
-          Patterns::Selection("condensed|assembled"),
-          "How each semismooth Newton system is solved (both give the same "
-          "iterates). 'condensed': static condensation onto Gamma_3 - the "
-          "bulk matrix K0 is factorized once per mesh and time step, the "
-          "compliance of the contact nodes computed from it, and each "
-          "iteration is a dense solve on the active contact nodes (fast "
-          "while the contact zone has up to a few thousand nodes). "
-          "'assembled': the sparse Newton matrix (K0 plus the contact "
-          "blocks, stick constraints imposed on its rows) is factorized "
-          "whenever it changes, as in deal.II's step-42.");
+          "auto",
+          Patterns::Selection("auto|condensed|assembled"),
+          "How each semismooth Newton system is solved (all give the same "
+          "iterates, to the Newton tolerance). 'condensed': static "
+          "condensation onto Gamma_3 - the bulk matrix K0 is factorized once "
+          "per mesh and time step, the compliance of the contact nodes "
+          "computed from it (dim solves per node), and each iteration is a "
+          "dense solve on the active contact nodes; Gamma_3 is replicated on "
+          "every process. 'assembled': the sparse Newton system of the whole "
+          "body, per process only its own part (with Linear solver = "
+          "iterative: GMRES preconditioned by algebraic multigrid of K0, "
+          "built once per mesh and time step; with direct: the Newton matrix "
+          "factorized when it changes, as in deal.II's step-42). 'auto': "
+          "condensed while dim times the number of contact nodes is at most "
+          "Condensed limit, else assembled with the iterative linear solver "
+          "(decided per mesh).");
+        prm.declare_entry(
+          "Condensed limit",
+          "3000",
+          Patterns::Integer(0),
+          "Contact solver = auto: the largest dim times the number of "
+          "contact nodes for which the condensed solver is chosen (the "
+          "measured crossover, README 'Choosing the contact solver').");
         prm.declare_entry(
           "Line search",
           "true",
@@ -840,9 +861,12 @@ namespace DynamicContact
     Solver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Solver");
-      contact_solver        = (prm.get("Contact solver") == "assembled" ?
-                                 ContactSolver::assembled :
-                                 ContactSolver::condensed);
+      contact_solver =
+        (prm.get("Contact solver") == "assembled" ?
+           ContactSolver::assembled :
+           prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
+                                                      ContactSolver::automatic);
+      condensed_limit       = prm.get_integer("Condensed limit");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");

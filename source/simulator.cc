@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -118,6 +119,7 @@ namespace DynamicContact
         r.add_integer("factorizations", statistics.factorizations);
         r.add_integer("active_set_cycles", statistics.cycles);
         r.add_integer("line_search_steps", statistics.line_search_steps);
+        r.add_integer("linear_iterations", statistics.linear_iterations);
         r.add_integer("n_contact", statistics.n_contact);
         r.add_integer("n_stick", statistics.n_stick);
         r.add_integer("n_slip", statistics.n_slip);
@@ -125,7 +127,7 @@ namespace DynamicContact
         r.add_integer("cells", cells);
         if (has_errors)
           {
-            // model.md section 7; Theorem 6's error is the maximum over the
+            // doc/theory.md section 7; Theorem 6's error is the maximum over the
             // steps of error_theorem6.
             r.add("error_strain", errors.strain);
             r.add("error_velocity", errors.velocity);
@@ -317,12 +319,11 @@ namespace DynamicContact
 
   template <int dim>
   Vector_t
-  Simulator<dim>::friction_traction() const
+  Simulator<dim>::friction_field(const bool per_weight) const
   {
-    Vector_t traction;
-    discretization.reinit_owned(traction);
+    Vector_t field;
+    discretization.reinit_owned(field);
     const auto &                         nodes  = contact_boundary.nodes();
-    const auto &                         global = contact_boundary.global_indices();
     const auto &                         lambda = step_solver.friction_forces();
     std::vector<types::global_dof_index> indices;
     std::vector<double>                  values;
@@ -330,25 +331,34 @@ namespace DynamicContact
       for (unsigned int c = 0; c < dim; ++c)
         {
           indices.push_back(nodes[i].dofs[c]);
-          values.push_back(
-            global[i] < lambda.size() ? lambda[global[i]][c] / nodes[i].weight :
-                                        0.);
+          values.push_back(i < lambda.size() ?
+                             lambda[i][c] /
+                               (per_weight ? nodes[i].weight : 1.) :
+                             0.);
         }
-    traction.set(indices, values);
-    traction.compress(VectorOperation::insert);
-    return traction;
+    field.set(indices, values);
+    field.compress(VectorOperation::insert);
+    return field;
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::set_friction_from_traction(const Vector_t &traction)
+  Simulator<dim>::set_friction_from_field(const Vector_t &field,
+                                          const bool      per_weight)
   {
-    const auto                  nodal = contact_boundary.gather_values(traction);
-    const auto &                all   = contact_boundary.all_nodes();
-    std::vector<Tensor<1, dim>> lambda(all.size());
-    for (unsigned int i = 0; i < all.size(); ++i)
-      lambda[i] = all[i].weight * all[i].tangential(nodal[i]);
+    const auto &                nodes = contact_boundary.nodes();
+    std::vector<Tensor<1, dim>> lambda(nodes.size());
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        Tensor<1, dim> raw;
+        for (unsigned int c = 0; c < dim; ++c)
+          raw[c] = field[nodes[i].dofs[c]];
+        // A traction interpolated onto a new mesh: its tangential part,
+        // times the new weight; a nodal force of the same mesh: as it was.
+        lambda[i] =
+          per_weight ? nodes[i].weight * nodes[i].tangential(raw) : raw;
+      }
     step_solver.set_friction_forces(lambda);
   }
 
@@ -369,12 +379,12 @@ namespace DynamicContact
     state.unconverged_steps        = unconverged_steps;
     state.worst_unconverged        = worst_unconverged;
     state.vtu_records              = vtu_writer->get_records();
-    for (const auto &lambda : step_solver.friction_forces())
-      for (unsigned int c = 0; c < dim; ++c)
-        state.friction_forces.push_back(lambda[c]);
+    // The friction forces exactly, as a field of nodal forces saved with the
+    // mesh (any number of processes can load it).
+    Vector_t friction = friction_field(false);
     write_checkpoint(*output_directory,
                      discretization,
-                     {&u, &w},
+                     {&u, &w, &friction},
                      state,
                      parameters_of_run,
                      parameters.checkpoint.keep,
@@ -429,21 +439,22 @@ namespace DynamicContact
 
         // What the next step needs, as finite element fields: u, w, and the
         // friction forces as a traction at the nodes of Gamma_3.
-        Vector_t   traction = friction_traction();
+        Vector_t   traction = friction_field(true);
         const auto before   = mesh_adaptation.fingerprint();
         refine_and_transfer(discretization, {&u, &w, &traction}, [this]() {
           setup_dofs();
         });
-        set_friction_from_traction(traction); // on the new nodes
+        set_friction_from_field(traction, true); // on the new nodes
         changed = true;
         if (mesh_adaptation.fingerprint() == before)
           break;
       }
     if (changed)
       {
-        const Vector_t traction = friction_traction();
-        setup_operators(); // resets the step solver
-        set_friction_from_traction(traction);
+        // setup_operators() resets the step solver; the nodes stay.
+        const auto lambda = step_solver.friction_forces();
+        setup_operators();
+        step_solver.set_friction_forces(lambda);
       }
     return energy_now() - energy_before;
   }
@@ -473,7 +484,8 @@ namespace DynamicContact
     pcout << '\n';
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
-            << ", parameter file: " << parameters.parameter_file << '\n';
+            << ", parameter file: " << parameters.parameter_file
+            << ", contact solver: " << step_solver.solver_name() << '\n';
     pcout << "  material: rho = " << material.density()
           << ", lambda = " << sig6(material.lambda())
           << ", mu = " << sig6(material.mu())
@@ -1037,20 +1049,13 @@ namespace DynamicContact
                                   "changed.");
 
     // Load the mesh and the fields.
+    Vector_t friction;
     load_checkpoint<dim>(latest,
                          discretization,
-                         {&u, &w},
+                         {&u, &w, &friction},
                          [this]() { setup_dofs(); });
     setup_operators();
-    const unsigned int n_nodes = contact_boundary.all_nodes().size();
-    AssertThrow(state.friction_forces.size() == dim * n_nodes,
-                ExcMessage("The checkpoint '" + latest +
-                           "' is damaged (state.txt: friction forces)."));
-    std::vector<Tensor<1, dim>> lambda(n_nodes);
-    for (unsigned int i = 0; i < n_nodes; ++i)
-      for (unsigned int c = 0; c < dim; ++c)
-        lambda[i][c] = state.friction_forces[dim * i + c];
-    step_solver.set_friction_forces(lambda);
+    set_friction_from_field(friction, false);
     step                     = state.step;
     current_time             = state.time;
     k_current                = state.time_step;
@@ -1345,6 +1350,22 @@ namespace DynamicContact
         pcout << "Warning: the run " << status
               << ". The results do not meet the tolerances there."
               << std::endl;
+      }
+    if (parameters.output.print_timings)
+      {
+        // Peak resident memory, summed over the processes.
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        const double peak_mb =
+          Utilities::MPI::sum(static_cast<double>(memory.VmHWM), comm) / 1024.;
+        pcout << "  contact solver: " << step_solver.solver_name()
+              << ", peak memory: " << std::fixed << std::setprecision(0)
+              << peak_mb << " MB (all processes), wall time: "
+              << std::setprecision(1)
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                               wall_start)
+                   .count()
+              << " s" << std::defaultfloat << std::endl;
       }
     write_status(status);
   }

@@ -1,10 +1,13 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 
-#include <dynamic_contact/assembled_newton.h>
 #include <dynamic_contact/condensed_newton.h>
+#include <dynamic_contact/sparse_newton.h>
 #include <dynamic_contact/step_solver.h>
 
 #include <cmath>
+#include <limits>
 
 namespace DynamicContact
 {
@@ -67,17 +70,52 @@ namespace DynamicContact
                                       friction,
                                       c_t,
                                       theta};
-    if (parameters.contact_solver ==
-        Parameters::Solver::ContactSolver::condensed)
+    using CS   = Parameters::Solver::ContactSolver;
+    condensed  = (parameters.contact_solver == CS::condensed ||
+                 (parameters.contact_solver == CS::automatic &&
+                  dim * contact_boundary.n_global_nodes() <=
+                    parameters.condensed_limit));
+    if (condensed)
       newton = std::make_unique<CondensedNewton<dim>>(problem);
     else
-      newton = std::make_unique<AssembledNewton<dim>>(problem);
+      {
+        // auto: the scalable solver is the iterative one.
+        Parameters::Solver sparse_parameters = parameters;
+        if (parameters.contact_solver == CS::automatic)
+          sparse_parameters.linear_solver =
+            Parameters::Solver::LinearSolver::iterative;
+        problem_parameters = sparse_parameters;
+        newton             = std::make_unique<SparseNewton<dim>>(
+          ContactProblem<dim>{discretization,
+                              bulk,
+                              contact_boundary,
+                              foundation,
+                              problem_parameters,
+                              timer,
+                              details,
+                              friction,
+                              c_t,
+                              theta});
+      }
     newton->reinit();
 
-    const unsigned int n = contact_boundary.all_nodes().size();
+    const unsigned int n = contact_boundary.nodes().size();
     mu.assign(n, friction ? friction_law->value(0) : 0.);
     lambda.assign(n, Tensor<1, dim>());
     states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
+  }
+
+
+  template <int dim>
+  std::string
+  StepSolver<dim>::solver_name() const
+  {
+    if (condensed)
+      return "condensed";
+    return problem_parameters.linear_solver ==
+               Parameters::Solver::LinearSolver::iterative ?
+             "assembled (iterative)" :
+             "assembled (direct)";
   }
 
 
@@ -90,12 +128,11 @@ namespace DynamicContact
     Statistics &                       statistics)
   {
     const auto & nodes  = contact_boundary.nodes();
-    const auto & global = contact_boundary.global_indices();
     const double k      = bulk.time_step();
     unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        const unsigned int   g   = global[i];
+        const unsigned int   g   = i;
         const Tensor<1, dim> wi  = nodes[i].value(w);
         const Tensor<1, dim> w_e = theta * wi + (1 - theta) * w_old_nodes[g];
         auto &               s   = states[i];
@@ -139,6 +176,128 @@ namespace DynamicContact
   } // namespace
 
 
+  namespace
+  {
+    /**
+     * Anderson acceleration (type II) of a fixed point x = G(x) of vectors
+     * distributed over the processes (each holds its part): the next
+     * iterate combines the last @p depth iterates so as to minimize the
+     * linearized residual G(x) - x, mixed with the factor @p beta (the
+     * relaxation); with no history, or a singular or non-finite
+     * combination, it is the relaxed step x + beta (G(x) - x). Iterates are
+     * kept >= 0 (friction coefficients).
+     */
+    class AndersonMixing
+    {
+    public:
+      AndersonMixing(const unsigned int depth,
+                     const double       beta,
+                     const MPI_Comm     comm)
+        : depth(depth)
+        , beta(beta)
+        , comm(comm)
+      {}
+
+      /** @p x: the current iterate, replaced by the next; @p g = G(x). */
+      void
+      update(std::vector<double> &x, const std::vector<double> &g)
+      {
+        const std::size_t   n = x.size();
+        std::vector<double> f(n);
+        for (std::size_t i = 0; i < n; ++i)
+          f[i] = g[i] - x[i];
+        if (!previous_x.empty())
+          {
+            dX.emplace_back(n);
+            dF.emplace_back(n);
+            for (std::size_t i = 0; i < n; ++i)
+              {
+                dX.back()[i] = x[i] - previous_x[i];
+                dF.back()[i] = f[i] - previous_f[i];
+              }
+            if (dX.size() > depth)
+              {
+                dX.erase(dX.begin());
+                dF.erase(dF.begin());
+              }
+          }
+        previous_x = x;
+        previous_f = f;
+
+        std::vector<double> next(n);
+        for (std::size_t i = 0; i < n; ++i)
+          next[i] = x[i] + beta * f[i];
+        const unsigned int m = dF.size();
+        if (m > 0)
+          {
+            // Normal equations of min |f - dF gamma|, summed over the
+            // processes in one reduction.
+            std::vector<double> local(m * m + m, 0.);
+            for (unsigned int a = 0; a < m; ++a)
+              {
+                for (unsigned int b = 0; b < m; ++b)
+                  for (std::size_t i = 0; i < n; ++i)
+                    local[a * m + b] += dF[a][i] * dF[b][i];
+                for (std::size_t i = 0; i < n; ++i)
+                  local[m * m + a] += dF[a][i] * f[i];
+              }
+            std::vector<double> sums(local.size());
+            MPI_Allreduce(local.data(),
+                          sums.data(),
+                          static_cast<int>(local.size()),
+                          MPI_DOUBLE,
+                          MPI_SUM,
+                          comm);
+            FullMatrix<double>        A(m, m);
+            Vector<double>            rhs(m), gamma(m);
+            double                    trace = 0;
+            for (unsigned int a = 0; a < m; ++a)
+              {
+                for (unsigned int b = 0; b < m; ++b)
+                  A(a, b) = sums[a * m + b];
+                rhs(a) = sums[m * m + a];
+                trace += A(a, a);
+              }
+            for (unsigned int a = 0; a < m; ++a)
+              A(a, a) += 1e-12 * trace;
+            bool ok = trace > 0;
+            if (ok)
+              {
+                try
+                  {
+                    FullMatrix<double> inverse(m, m);
+                    inverse.invert(A);
+                    inverse.vmult(gamma, rhs);
+                  }
+                catch (...)
+                  {
+                    ok = false;
+                  }
+              }
+            for (unsigned int a = 0; a < m && ok; ++a)
+              ok = std::isfinite(gamma(a));
+            if (ok)
+              for (std::size_t i = 0; i < n; ++i)
+                {
+                  double correction = 0;
+                  for (unsigned int a = 0; a < m; ++a)
+                    correction += gamma(a) * (dX[a][i] + beta * dF[a][i]);
+                  next[i] = std::max(0., next[i] - correction);
+                }
+          }
+        x = next;
+      }
+
+    private:
+      const unsigned int               depth;
+      const double                     beta;
+      const MPI_Comm                   comm;
+      std::vector<double>              previous_x, previous_f;
+      std::vector<std::vector<double>> dX, dF;
+    };
+  } // namespace
+
+
   template <int dim>
   typename StepSolver<dim>::Statistics
   StepSolver<dim>::solve(const Vector_t &rhs,
@@ -149,22 +308,23 @@ namespace DynamicContact
   {
     Statistics   statistics;
     const double k           = bulk.time_step();
-    const auto   u_old_nodes = contact_boundary.gather_values(u_old);
-    const auto   w_old_nodes = contact_boundary.gather_values(w_old);
-    const auto & all         = contact_boundary.all_nodes();
+    const auto   u_old_nodes = contact_boundary.values(u_old);
+    const auto   w_old_nodes = contact_boundary.values(w_old);
+    const auto & all         = contact_boundary.nodes();
+    const MPI_Comm comm      = discretization.comm;
 
-    // Convexification loop (model.md section 4): mu frozen from the
+    // Convexification loop (doc/theory.md section 4): mu frozen from the
     // previous iterate, starting from w^(0) = w_{n-1}.
     const bool loop = friction && !friction_law->is_constant();
-    // What the loop needs of an iterate w, at every node of Gamma_3, from one
-    // gather: the slip rate of the effective velocity w_e = theta w +
+    // What the loop needs of an iterate w, at the owned nodes of Gamma_3:
+    // the slip rate of the effective velocity w_e = theta w +
     // (1-theta) w_old and the normal pressure S = p + q.
     struct NodalIterate
     {
       std::vector<double> slip_rate, pressure;
     };
     auto nodal_iterate = [&](const Vector_t &v) {
-      const auto   values = contact_boundary.gather_values(v);
+      const auto   values = contact_boundary.values(v);
       NodalIterate n{std::vector<double>(all.size()),
                      std::vector<double>(all.size())};
       for (unsigned int i = 0; i < all.size(); ++i)
@@ -198,7 +358,7 @@ namespace DynamicContact
       double sum = 0;
       for (unsigned int i = 0; i < all.size(); ++i)
         sum += all[i].weight * xi[i].norm_square();
-      return std::sqrt(sum);
+      return std::sqrt(Utilities::MPI::sum(sum, comm));
     };
 
     Vector_t u_previous, difference;
@@ -216,6 +376,81 @@ namespace DynamicContact
         xi_previous = friction_density(lambda, start);
       }
 
+    auto add_statistics = [&](const typename ContactNewton<dim>::Result &r) {
+      statistics.newton_iterations += r.iterations;
+      statistics.factorizations += r.factorizations;
+      statistics.bulk_solves += r.bulk_solves;
+      statistics.cycles += r.cycles;
+      statistics.line_search_steps += r.line_search_steps;
+      statistics.linear_iterations += r.linear_iterations;
+      statistics.residual = r.residual;
+    };
+    AndersonMixing mixing(friction_parameters.acceleration_depth,
+                          friction_parameters.relaxation,
+                          comm);
+    // In the loop, a pass may end with a provisional w (the condensed
+    // solver's boundary iteration, the velocity from the stored compliance
+    // columns, no solve with K0): enough to decide whether the loop goes
+    // on, while the loop is far from its tolerances. A provisional w is only
+    // as accurate as the boundary iteration's stopping point, so a pass that
+    // would end the loop, or whose coefficient residual no longer falls
+    // (the provisional accuracy reached), is finished (finalize()) and
+    // measured again; the passes after it are exact.
+    bool   allow_provisional = loop;
+    bool   provisional       = false;
+    double best_residual     = std::numeric_limits<double>::max();
+    // The loop's measures of the current pass against the last one.
+    struct Measures
+    {
+      bool                        converged;
+      double                      coefficient_residual;
+      NodalIterate                iterate;
+      std::vector<Tensor<1, dim>> xi;
+      std::vector<double>         mu_new;
+    };
+    auto measure = [&](const unsigned int pass) {
+      TimerOutput::Scope t(timer, "Friction: convexification update");
+      // Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
+      // ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law.
+      difference = u_old;
+      difference.add(k, w);
+      difference -= u_previous;
+      const double du = std::sqrt(bulk.strain_product(difference, difference));
+      const double u_norm =
+        std::sqrt(bulk.strain_product(u_previous, u_previous));
+      Measures m;
+      m.iterate = nodal_iterate(w);
+      m.xi      = friction_density(lambda, m.iterate);
+      std::vector<Tensor<1, dim>> dxi(all.size());
+      for (unsigned int i = 0; i < all.size(); ++i)
+        dxi[i] = m.xi[i] - xi_previous[i];
+      const double eps = friction_parameters.convexification_tolerance;
+      const bool   rule_85 =
+        du <= eps * u_norm && l2_gamma(dxi) <= eps * l2_gamma(xi_previous);
+
+      // mu(|w_tau,i|), at the nodes in contact first (the others only if
+      // the loop goes on: a node out of contact does not decide it).
+      m.mu_new.resize(all.size());
+      m.coefficient_residual = 0;
+      for (unsigned int i = 0; i < all.size(); ++i)
+        if (m.iterate.pressure[i] > 0)
+          {
+            m.mu_new[i] =
+              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+            m.coefficient_residual =
+              std::max(m.coefficient_residual, std::abs(mu[i] - m.mu_new[i]));
+          }
+      m.coefficient_residual = Utilities::MPI::max(m.coefficient_residual, comm);
+      m.converged            = rule_85 && m.coefficient_residual <=
+                                 friction_parameters.coefficient_tolerance;
+      details << "  convexification pass " << pass + 1
+              << (provisional ? " (provisional)" : "") << ": |du|_V/|u|_V "
+              << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
+              << l2_gamma(dxi) / std::max(l2_gamma(xi_previous), 1e-300)
+              << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
+              << std::endl;
+      return m;
+    };
     for (unsigned int pass = 0; pass < max_passes; ++pass)
       {
         if (loop)
@@ -224,55 +459,29 @@ namespace DynamicContact
             u_previous.add(k, w);
           }
         const auto result =
-          newton->solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
-        statistics.newton_iterations += result.iterations;
-        statistics.factorizations += result.factorizations;
-        statistics.bulk_solves += result.bulk_solves;
-        statistics.cycles += result.cycles;
-        statistics.line_search_steps += result.line_search_steps;
-        statistics.residual = result.residual;
+          allow_provisional ?
+            newton->solve_provisional(
+              rhs, u_old_nodes, w_old_nodes, mu, lambda, w) :
+            newton->solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
+        add_statistics(result);
+        provisional = result.provisional;
         ++statistics.convexification_iterations;
         if (!loop)
           break;
 
-        TimerOutput::Scope t(timer, "Friction: convexification update");
-        // Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
-        // ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law.
-        difference = u_old;
-        difference.add(k, w);
-        difference -= u_previous;
-        const double du = std::sqrt(bulk.strain_product(difference, difference));
-        const double u_norm =
-          std::sqrt(bulk.strain_product(u_previous, u_previous));
-        const NodalIterate iterate = nodal_iterate(w);
-        const auto         xi      = friction_density(lambda, iterate);
-        std::vector<Tensor<1, dim>> dxi(all.size());
-        for (unsigned int i = 0; i < all.size(); ++i)
-          dxi[i] = xi[i] - xi_previous[i];
-        const double eps = friction_parameters.convexification_tolerance;
-        const bool   rule_85 =
-          du <= eps * u_norm && l2_gamma(dxi) <= eps * l2_gamma(xi_previous);
-
-        // mu(|w_tau,i|), at the nodes in contact first (the others only if
-        // the loop goes on: a node out of contact does not decide it).
-        std::vector<double> mu_new(all.size());
-        double              coefficient_residual = 0;
-        for (unsigned int i = 0; i < all.size(); ++i)
-          if (iterate.pressure[i] > 0)
-            {
-              mu_new[i] =
-                checked_coefficient(*friction_law, iterate.slip_rate[i]);
-              coefficient_residual =
-                std::max(coefficient_residual, std::abs(mu[i] - mu_new[i]));
-            }
-        statistics.coefficient_residual = coefficient_residual;
-        details << "  convexification pass " << pass + 1 << ": |du|_V/|u|_V "
-                << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
-                << l2_gamma(dxi) / std::max(l2_gamma(xi_previous), 1e-300)
-                << ", max |mu_i - mu(|w_tau,i|)| " << coefficient_residual
-                << std::endl;
-        if (rule_85 &&
-            coefficient_residual <= friction_parameters.coefficient_tolerance)
+        Measures m = measure(pass);
+        if (provisional &&
+            (m.converged || pass + 1 == max_passes ||
+             m.coefficient_residual > 0.5 * best_residual))
+          {
+            add_statistics(newton->finalize(w, lambda));
+            provisional       = false;
+            allow_provisional = false;
+            m                 = measure(pass);
+          }
+        best_residual = std::min(best_residual, m.coefficient_residual);
+        statistics.coefficient_residual = m.coefficient_residual;
+        if (m.converged)
           break;
         // A loop that does not converge leaves mu_i != mu(|w_tau,i|): the
         // friction law would not hold. The step is retried with a smaller
@@ -289,18 +498,18 @@ namespace DynamicContact
             "Friction/Maximum convexification iterations = " +
             std::to_string(max_passes) +
             " passes (max |mu_i - mu(|w_tau,i|)| = " +
-            scientific(coefficient_residual) + ")");
-        // Relaxed update of the frozen coefficients.
-        const double relaxation = friction_parameters.relaxation;
+            scientific(m.coefficient_residual) + ")");
+        // The next frozen coefficients: the relaxed update, accelerated.
+        TimerOutput::Scope t(timer, "Friction: convexification update");
         for (unsigned int i = 0; i < all.size(); ++i)
-          {
-            if (!(iterate.pressure[i] > 0))
-              mu_new[i] =
-                checked_coefficient(*friction_law, iterate.slip_rate[i]);
-            mu[i] = (1 - relaxation) * mu[i] + relaxation * mu_new[i];
-          }
-        xi_previous = xi;
+          if (!(m.iterate.pressure[i] > 0))
+            m.mu_new[i] =
+              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+        mixing.update(mu, m.mu_new);
+        xi_previous = std::move(m.xi);
       }
+    if (provisional)
+      add_statistics(newton->finalize(w, lambda));
 
     update_states(u_old_nodes, w_old_nodes, w, statistics);
     return statistics;

@@ -31,23 +31,17 @@ namespace DynamicContact
     double       worst_unconverged  = 0;
     /** The time index of the VTU files (solution.pvd). */
     std::vector<std::pair<double, std::string>> vtu_records;
-    /**
-     * The friction forces lambda_i of every node of Gamma_3 (the warm start
-     * of the next step), components in a row, in the order of
-     * ContactBoundary::all_nodes() (by position: the same on any number of
-     * processes). Stored exactly, so that a continued run repeats the
-     * uninterrupted one.
-     */
-    std::vector<double> friction_forces;
   };
 
 
   /**
    * Checkpoints in the output directory, checkpoint_NNNNN/ (NNNNN the
    * step): the distributed mesh (p4est), the fields (serialized with
-   * parallel::distributed::SolutionTransfer), the RunState (state.txt), the
-   * parameters of the run (parameters.prm), and manifest.txt: the size and
-   * CRC-32 of each of these files, written last.
+   * parallel::distributed::SolutionTransfer: u, w and the friction forces,
+   * stored exactly so that a continued run repeats the uninterrupted one),
+   * the RunState (state.txt), the parameters of the run (parameters.prm),
+   * and manifest.txt: the size and CRC-32 of each of these files, written
+   * last.
    *
    * Written into checkpoint_NNNNN.tmp/ (after making sure the disk has
    * room for it: p4est aborts the process on a failed write), every file

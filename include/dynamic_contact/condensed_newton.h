@@ -3,8 +3,11 @@
 
 #include <dynamic_contact/bulk_solver.h>
 #include <dynamic_contact/contact_newton.h>
+#include <dynamic_contact/system_newton.h>
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace DynamicContact
 {
@@ -28,12 +31,23 @@ namespace DynamicContact
    * condensation to reach a tight tolerance. The springs are removed again
    * exactly: their nodes enter the dense system with the force f - S w and
    * the block B - S, so the Newton iterates are those of K0.
+   *
+   * Two phases, each a globalized_newton() iteration: on Gamma_3 alone
+   * (w_Gamma = w_free - C f, no solve with K0 but for new columns of C),
+   * which finds the active sets, then on the whole system, whose Newton
+   * steps this class solves by the same condensation (the LinearBackend
+   * role: two solves with K0' and a dense solve each), which polishes the
+   * solution where the cancellation in w_free - C f limits phase 1.
+   *
+   * The dense tables couple every pair of nodes, so Gamma_3 is replicated on
+   * every process (GatheredBoundary): the right choice while the contact
+   * boundary is small (Solver/Contact solver = auto decides).
    */
   template <int dim>
-  class CondensedNewton : public ContactNewton<dim>
+  class CondensedNewton : public ContactNewton<dim>, public LinearBackend<dim>
   {
   public:
-    using Result = typename ContactNewton<dim>::Result;
+    using Result = ContactNewtonResult;
 
     explicit CondensedNewton(const ContactProblem<dim> &problem);
 
@@ -48,8 +62,34 @@ namespace DynamicContact
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) override;
 
+    /**
+     * Phase 1 only, and w = w_free - sum_j K0'^{-1} P_j^T g_j from the
+     * stored whole columns (no solve with K0'), if they are stored; else as
+     * solve().
+     */
+    Result
+    solve_provisional(const Vector_t &                    rhs,
+                      const std::vector<Tensor<1, dim>> &u_old,
+                      const std::vector<Tensor<1, dim>> &w_old,
+                      const std::vector<double> &         mu,
+                      std::vector<Tensor<1, dim>> &       lambda,
+                      Vector_t &                          w) override;
+
+    /** Phase 2 of the last provisional solve: the solution itself. */
+    Result
+    finalize(Vector_t &w, std::vector<Tensor<1, dim>> &lambda) override;
+
+    /** The whole-system Newton step by condensation (phase 2). */
+    void
+    newton_step(const SystemNewton<dim> & system,
+                const SystemIterate<dim> &x,
+                SystemIterate<dim> &      full,
+                Result &                  result) override;
+
   private:
     const ContactProblem<dim> problem;
+    /** Gamma_3 on every process, in one order. */
+    GatheredBoundary<dim> gathered;
 
     /** K0' = K0 + S (see above), factorized. */
     Matrix_t regularized;
@@ -66,6 +106,33 @@ namespace DynamicContact
     /** For each node of all_nodes(): its index among the owned nodes, or -1. */
     std::vector<int> owned_index;
 
+    /** The data of the current solve at every node. */
+    std::vector<Tensor<1, dim>> u_old_all, w_old_all;
+    std::vector<double>         mu_all;
+
+    /**
+     * The whole responses K0'^{-1} P_j^T e_c (owned entries, index
+     * dim j + c), kept beside C while they fit in full_column_budget bytes
+     * on every process: with them a provisional velocity is a sum of
+     * columns instead of a solve with K0'.
+     */
+    std::vector<std::vector<double>> full_columns;
+    std::size_t                      stored_full_columns = 0;
+    /** The largest number of owned DoFs of a process. */
+    types::global_dof_index max_owned_dofs = 0;
+    static constexpr std::size_t full_column_budget = std::size_t(512) << 20;
+
+    /**
+     * x = K0'^{-1} sum_{j in nodes} P_j^T f_j from the stored whole columns;
+     * false (and x untouched) if some column is not stored. The same answer
+     * on every process.
+     */
+    bool
+    apply_full_columns(const std::vector<Tensor<1, dim>> &f,
+                       const std::vector<unsigned int> &  nodes,
+                       Vector_t &                         x) const;
+
+
     Vector_t solution, right_hand_side, residual, increment, scratch;
 
     /** K0'^{-1} b for the last b (the passes of a step share it). */
@@ -77,6 +144,7 @@ namespace DynamicContact
     struct Iterate
     {
       std::vector<Tensor<1, dim>>         w; // nodal velocities w_n
+      std::vector<Tensor<1, dim>>         lambda; // friction forces
       std::vector<Tensor<1, dim>>         w_old; // w_{n-1}
       std::vector<NodeLinearization<dim>> lin;
       std::vector<Tensor<1, dim>>         forces; // f_i at the iterate
@@ -85,20 +153,56 @@ namespace DynamicContact
       // lin[i].block is likewise B_i - s I at spring nodes.
       std::vector<Tensor<1, dim>>         g;
       std::vector<Tensor<1, dim>>         base;
-      std::vector<unsigned int>           signature; // sets, per node
+      std::uint64_t                       signature = 0; // of the sets
       std::vector<unsigned int>           active;
+      double equilibrium_squares = 0; // sum |w_i - (w_free - C g)_i|^2
+      double equilibrium         = 0; // largest
       double                              f_scale      = 0;
       double                              law_residual = 0; // largest
       double                              law_squares  = 0; // sum of squares
     };
 
+    /** Linearize every node at it.w, it.lambda (the current solve's data). */
     void
-    linearize(const std::vector<Tensor<1, dim>> &u_old,
-              const std::vector<Tensor<1, dim>> &w_old,
-              const std::vector<double> &         mu,
-              const std::vector<Tensor<1, dim>> &lambda,
-              const std::vector<Tensor<1, dim>> &w_nodes,
-              Iterate &                           it) const;
+    linearize(Iterate &it) const;
+
+    /** Phase 1 as globalized_newton() sees it (defined in the .cc). */
+    class BoundaryProblem;
+
+    /**
+     * What a provisional solve leaves for finalize(): its data (owned
+     * nodes) and the phase-1 iterate (every node).
+     */
+    struct Pending
+    {
+      std::vector<Tensor<1, dim>> u_old, w_old;
+      std::vector<double>         mu;
+      Iterate                     it;
+    };
+    std::optional<Pending> pending;
+
+    /** solve() and solve_provisional(). */
+    Result
+    solve(const Vector_t &                    rhs,
+          const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<Tensor<1, dim>> &w_old,
+          const std::vector<double> &         mu,
+          std::vector<Tensor<1, dim>> &       lambda,
+          Vector_t &                          w,
+          const bool                          provisional);
+
+    /**
+     * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then
+     * phase 2 (the whole-system Newton iteration) on the data given.
+     */
+    void
+    polish(const Iterate &                     it,
+           const std::vector<Tensor<1, dim>> &u_old,
+           const std::vector<Tensor<1, dim>> &w_old,
+           const std::vector<double> &         mu,
+           std::vector<Tensor<1, dim>> &       lambda,
+           Vector_t &                          w,
+           Result &                            result);
 
     /**
      * One Newton step on the active nodes for the right-hand side @p r (one
@@ -112,11 +216,18 @@ namespace DynamicContact
                std::vector<Tensor<1, dim>> &       lambda,
                std::vector<Tensor<1, dim>> &       new_forces) const;
 
-    /** v += factor sum_i P_i^T f_i over the owned nodes. */
+    /** v += factor sum_i P_i^T f_i over the owned nodes (f at every node). */
     void
     add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
                      const double                       factor,
                      Vector_t &                         v) const;
+
+    /** The nodal values of a vector at every node (collective). */
+    std::vector<Tensor<1, dim>>
+    gather_values(const Vector_t &v) const
+    {
+      return gathered.gather(problem.boundary.values(v));
+    }
 
     /** Choose the spring nodes (once per mesh). */
     void

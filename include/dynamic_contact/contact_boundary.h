@@ -17,7 +17,7 @@ namespace DynamicContact
   using Vector_t = TrilinosWrappers::MPI::Vector;
 
   /**
-   * One node of the contact boundary Gamma_3 (model.md section 3): a support
+   * One node of the contact boundary Gamma_3 (doc/theory.md section 3): a support
    * point of the finite element on Gamma_3 that is not a hanging node, with
    * its lumped weight m_i = int_Gamma3 phi_i (Gauss-Lobatto quadrature,
    * condensed through the hanging-node constraints), its averaged outward
@@ -75,8 +75,10 @@ namespace DynamicContact
 
 
   /**
-   * The data of Gamma_3 in one object, computed once per mesh: the nodes
-   * owned by this process, and the global count.
+XX, computed once per mesh: the nodes
+   * whose DoFs this process owns. Nothing here is replicated: every law is
+   * node-wise (doc/theory.md section 3), so a process needs only its own
+   * nodes, whose DoFs it owns.
    */
   template <int dim>
   class ContactBoundary
@@ -98,29 +100,16 @@ namespace DynamicContact
       return owned_nodes;
     }
 
-    /**
-     * Every node of Gamma_3, on every process, sorted by position: the same
-     * list (and order) whatever the number of processes.
-     */
-    const std::vector<ContactNode<dim>> &
-    all_nodes() const
-    {
-      return every_node;
-    }
-
-    /** For each owned node, its index in all_nodes(). */
-    const std::vector<unsigned int> &
-    global_indices() const
-    {
-      return owned_to_global;
-    }
-
-    /**
-     * The nodal vectors of a (master form) distributed vector at every node,
-     * on every process (collective).
-     */
+    /** The nodal vectors of a (master form) vector at the owned nodes. */
+    template <typename VectorType>
     std::vector<Tensor<1, dim>>
-    gather_values(const Vector_t &v) const;
+    values(const VectorType &v) const
+    {
+      std::vector<Tensor<1, dim>> result(owned_nodes.size());
+      for (unsigned int i = 0; i < owned_nodes.size(); ++i)
+        result[i] = owned_nodes[i].value(v);
+      return result;
+    }
 
     /**
      * v += factor sum_i P_i^T f_i over the owned nodes i (the nodal forces
@@ -149,15 +138,73 @@ namespace DynamicContact
       v.compress(VectorOperation::add);
     }
 
-    unsigned int
+    /** The number of nodes on all processes. */
+    types::global_dof_index
     n_global_nodes() const
     {
-      return every_node.size();
+      return n_global;
+    }
+
+    MPI_Comm
+    get_mpi_communicator() const
+    {
+      return comm;
     }
 
   private:
-    MPI_Comm                      comm;
+    MPI_Comm                      comm = MPI_COMM_SELF;
     std::vector<ContactNode<dim>> owned_nodes;
+    types::global_dof_index       n_global = 0;
+  };
+
+
+  /**
+   * Every node of Gamma_3 on every process, in one order (by position)
+   * whatever the number of processes, and the gathers that fill per-node
+   * vectors on it. Only the condensed solver, whose dense tables couple
+   * every pair of nodes, builds one: its memory and the communication of
+   * its gathers grow with the whole contact boundary on every process.
+   */
+  template <int dim>
+  class GatheredBoundary
+  {
+  public:
+    /** Collective. */
+    void
+    reinit(const ContactBoundary<dim> &boundary);
+
+    const std::vector<ContactNode<dim>> &
+    all_nodes() const
+    {
+      return every_node;
+    }
+
+    /** For each owned node of the ContactBoundary, its index here. */
+    const std::vector<unsigned int> &
+    global_indices() const
+    {
+      return owned_to_global;
+    }
+
+    /** Per-node values of the owned nodes, at every node (collective). */
+    std::vector<Tensor<1, dim>>
+    gather(const std::vector<Tensor<1, dim>> &owned_values) const;
+    std::vector<double>
+    gather(const std::vector<double> &owned_values) const;
+
+    /** The owned nodes' entries of an every-node vector. */
+    template <typename T>
+    std::vector<T>
+    owned_part(const std::vector<T> &every) const
+    {
+      std::vector<T> result(owned_to_global.size());
+      for (unsigned int i = 0; i < owned_to_global.size(); ++i)
+        result[i] = every[owned_to_global[i]];
+      return result;
+    }
+
+  private:
+    MPI_Comm                      comm = MPI_COMM_SELF;
     std::vector<ContactNode<dim>> every_node;
     std::vector<unsigned int>     owned_to_global;
   };

@@ -23,7 +23,7 @@ namespace DynamicContact
 
 
   /**
-   * The normal law at one node for the scheme's unknown w (model.md
+   * The normal law at one node for the scheme's unknown w (doc/theory.md
    * sections 2, 3): u = u_{n-1} + k w, u_nu = u . nu - g0, w_nu = w . nu,
    * pressure p(u_nu) + q(w_nu), and its derivative with respect to w_nu,
    * k p'(u_nu) + q'(w_nu), as semismooth Newton uses it.
@@ -109,7 +109,7 @@ namespace DynamicContact
 
 
   /**
-   * Friction at one node for a frozen coefficient mu_i (model.md section 5),
+   * Friction at one node for a frozen coefficient mu_i (doc/theory.md section 5),
    * from the complementarity form
    *   lambda = P_B(0, g)(lambda + c m_i w_tau),  g = mu_i N_i(u_nu, w_nu),
    * lambda the nodal friction force and c = c_t k, c_t ~ E/h, so that

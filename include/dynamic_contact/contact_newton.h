@@ -79,33 +79,47 @@ namespace DynamicContact
   };
 
 
+  /** What one Newton solve did (summed into the step's statistics). */
+  struct ContactNewtonResult
+  {
+    unsigned int iterations     = 0;
+    unsigned int factorizations = 0;
+    unsigned int bulk_solves    = 0;
+    /** Krylov iterations of the iterative linear solver. */
+    unsigned int linear_iterations = 0;
+    double       residual          = 0;
+    /** Iterations whose active sets had been seen before (cycling). */
+    unsigned int cycles = 0;
+    /** Damped trial steps of the line search. */
+    unsigned int line_search_steps = 0;
+    /**
+     * The w returned is an estimate (the condensed solver's boundary
+     * iteration without its whole-system polish): finalize() must follow
+     * before w is used as the step's solution.
+     */
+    bool provisional = false;
+  };
+
+
   /**
-   * The primal-dual active set / semismooth Newton iteration of model.md
-   * section 5 for frozen friction coefficients: find w and the friction
+   * The primal-dual active set / semismooth Newton iteration of
+   * doc/theory.md section 5 for frozen friction coefficients: find w and the friction
    * forces lambda with
    *   K0 w + sum_i P_i^T (N_i(w) nu_i + lambda_i) = b,
    *   lambda_i = P_B(0, mu_i N_i)(lambda_i + c_t w_tau,i)  at every node.
-   * Two implementations solve the same Newton systems:
-   * CondensedNewton (static condensation onto Gamma_3: K0 factorized once,
-   * a dense system on the active nodes) and AssembledNewton (the sparse
-   * Newton matrix K0 + nodal blocks with stick constraints, factorized when
-   * it changes).
+   * Two implementations share one globalized Newton driver
+   * (globalized_newton(), newton_driver.h) and differ in the linear
+   * algebra: CondensedNewton (static condensation onto Gamma_3: K0
+   * factorized once, dense systems on the active nodes; replicates Gamma_3
+   * on every process) and SparseNewton (the sparse Newton system of the
+   * whole body, by a direct factorization or by GMRES preconditioned with
+   * algebraic multigrid of K0; O(N) per iteration, nothing replicated).
    */
   template <int dim>
   class ContactNewton
   {
   public:
-    struct Result
-    {
-      unsigned int iterations     = 0;
-      unsigned int factorizations = 0;
-      unsigned int bulk_solves    = 0;
-      double       residual       = 0;
-      /** Iterations whose active sets had been seen before (cycling). */
-      unsigned int cycles = 0;
-      /** Damped trial steps of the line search. */
-      unsigned int line_search_steps = 0;
-    };
+    using Result = ContactNewtonResult;
 
     virtual ~ContactNewton() = default;
 
@@ -114,12 +128,12 @@ namespace DynamicContact
     reinit() = 0;
 
     /**
-     * Solve one frozen-coefficient problem. @p u_old and @p w_old hold u_{n-1}
-     * and w_{n-1} at every node, @p mu the frozen coefficients, @p lambda the
-     * friction forces
-     * (in: initial guess, out: result; every node, on every process); @p w
-     * the initial guess and the result (master form). Throws if the
-     * iteration does not converge.
+     * Solve one frozen-coefficient problem. Every per-node vector is
+     * aligned with ContactBoundary::nodes() (the nodes this process owns):
+     * @p u_old and @p w_old hold u_{n-1} and w_{n-1}, @p mu the frozen
+     * coefficients, @p lambda the friction forces (in: initial guess, out:
+     * result); @p w the initial guess and the result (master form). Throws
+     * StepFailure if the iteration does not converge.
      */
     virtual Result
     solve(const Vector_t &                    rhs,
@@ -128,6 +142,33 @@ namespace DynamicContact
           const std::vector<double> &         mu,
           std::vector<Tensor<1, dim>> &       lambda,
           Vector_t &                          w) = 0;
+
+    /**
+     * The same, where the caller may accept a provisional w (a pass of the
+     * convexification loop that is probably not the last): a solver that can
+     * estimate w more cheaply than it solves for it does so and sets
+     * Result::provisional. The default solves.
+     */
+    virtual Result
+    solve_provisional(const Vector_t &                    rhs,
+                      const std::vector<Tensor<1, dim>> &u_old,
+                      const std::vector<Tensor<1, dim>> &w_old,
+                      const std::vector<double> &         mu,
+                      std::vector<Tensor<1, dim>> &       lambda,
+                      Vector_t &                          w)
+    {
+      return solve(rhs, u_old, w_old, mu, lambda, w);
+    }
+
+    /**
+     * After a provisional solve: the solution itself, from the same data
+     * (the last solve's). The default has nothing to do.
+     */
+    virtual Result
+    finalize(Vector_t & /*w*/, std::vector<Tensor<1, dim>> & /*lambda*/)
+    {
+      return Result();
+    }
   };
 } // namespace DynamicContact
 

@@ -134,6 +134,7 @@ namespace DynamicContact
       double       convexification_tolerance; // epsilon_conv, eq. (85)
       double       coefficient_tolerance; // max_i |mu_i - mu(|w_tau,i|)|
       double       relaxation;
+      unsigned int acceleration_depth;
       unsigned int max_convexification_iterations;
 
       // Complementarity constant c_t; 0 means "E/h".
@@ -221,10 +222,12 @@ namespace DynamicContact
       };
       enum class ContactSolver
       {
+        automatic,
         condensed,
         assembled
       };
       ContactSolver contact_solver;
+      unsigned int  condensed_limit;
       bool         line_search;
       double       newton_tolerance;
       unsigned int max_newton_iterations;

@@ -272,14 +272,16 @@ namespace DynamicContact
     double
     adapt_mesh(const double t0, const double t1, const double k);
     /**
-     * The friction forces as a finite element field: the traction
-     * lambda_i/m_i at the nodes of Gamma_3 (zero elsewhere), and back: the
-     * form in which they survive a change of the mesh or a restart.
+     * The friction forces as a finite element field at the nodes of Gamma_3
+     * (zero elsewhere), and back: with @p per_weight the traction
+     * lambda_i/m_i, the form in which they survive a change of the mesh
+     * (interpolated); without, the nodal forces lambda_i themselves, which a
+     * checkpoint stores exactly with the mesh.
      */
     Vector_t
-    friction_traction() const;
+    friction_field(const bool per_weight) const;
     void
-    set_friction_from_traction(const Vector_t &traction);
+    set_friction_from_field(const Vector_t &field, const bool per_weight);
 
     /** Write a checkpoint of the current state (Checkpoint/Every). */
     void

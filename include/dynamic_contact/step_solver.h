@@ -12,6 +12,7 @@
 #include <dynamic_contact/friction_law.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace DynamicContact
@@ -41,7 +42,7 @@ namespace DynamicContact
 
 
   /**
-   * One time step of the scheme (model.md sections 2, 4 and 5): given K0
+   * One time step of the scheme (doc/theory.md sections 2, 4 and 5): given K0
    * for the current k, the right-hand side b = (rho/k) M w_{n-1} - B u_{n-1}
    * + f_n and u_{n-1}, find w_n. With a slip-rate dependent friction law,
    * the convexification loop freezes mu_i = mu(|w_tau,i|) of the previous
@@ -63,6 +64,8 @@ namespace DynamicContact
       unsigned int bulk_solves                = 0;
       unsigned int cycles                     = 0;
       unsigned int line_search_steps          = 0;
+      /** Krylov iterations (Solver/Linear solver = iterative). */
+      unsigned int linear_iterations          = 0;
       double       residual                   = 0;
       /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
       double       coefficient_residual       = 0;
@@ -111,9 +114,9 @@ namespace DynamicContact
     }
 
     /**
-     * The friction forces lambda_i of every node of Gamma_3 (all processes;
-     * the warm start of the next step), and their replacement after a
-     * change of the mesh.
+     * The friction forces lambda_i of the owned nodes of Gamma_3 (aligned
+     * with contact_boundary.nodes(); the warm start of the next step), and
+     * their replacement after a change of the mesh or a restart.
      */
     const std::vector<Tensor<1, dim>> &
     friction_forces() const
@@ -125,6 +128,10 @@ namespace DynamicContact
     {
       lambda = forces;
     }
+
+    /** The contact solver in use (Solver/Contact solver, auto resolved). */
+    std::string
+    solver_name() const;
 
     /** True if the scene has friction (a law with a nonzero coefficient). */
     bool
@@ -148,8 +155,11 @@ namespace DynamicContact
     double                       theta = 1;
 
     std::unique_ptr<ContactNewton<dim>> newton;
+    /** The condensed solver is in use; else the sparse one with: */
+    bool               condensed = true;
+    Parameters::Solver problem_parameters;
 
-    /** Every node of Gamma_3: frozen coefficients and friction forces. */
+    /** The owned nodes of Gamma_3: frozen coefficients, friction forces. */
     std::vector<double>         mu;
     std::vector<Tensor<1, dim>> lambda;
 

@@ -1,0 +1,189 @@
+#ifndef dynamic_contact_newton_driver_h
+#define dynamic_contact_newton_driver_h
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <dynamic_contact/contact_newton.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * What an iterate of a semismooth Newton iteration measures of itself:
+   * the relative residual (the stopping test), the merit function that the
+   * line search decreases, and a fingerprint of its active sets (cycling,
+   * stagnation).
+   */
+  struct NewtonMeasure
+  {
+    double        residual  = 0;
+    double        merit     = 0;
+    std::uint64_t signature = 0;
+  };
+
+
+  /**
+   * How the globalization of one Newton iteration behaves (doc/algorithms.md,
+   * "Globalization").
+   */
+  struct NewtonPolicy
+  {
+    /**
+     * Armijo from the first iteration on (a step must lower the merit of the
+     * current iterate); otherwise the first @p free_iterations steps are
+     * taken in full (active-set changes may raise the merit while Newton
+     * converges) and later ones must stay below the largest merit of the
+     * last @p window iterates (non-monotone). A detected cycle makes the
+     * rule monotone for the rest of the iteration either way.
+     */
+    bool         monotone         = false;
+    unsigned int free_iterations  = 4;
+    unsigned int window           = 5;
+    /**
+     * Stagnation: an iterate reached by a full step, whose active sets are
+     * those of the last one, whose residual fell by less than this factor,
+     * and which is below sqrt(tolerance) is accepted (round-off, not a wrong
+     * set; a damped step that gains little is no sign of round-off).
+     */
+    double stagnation_factor = 0.1;
+    /** Name of the phase in the per-iteration diagnostics. */
+    const char *name = "";
+  };
+
+
+  /**
+   * One globalized semismooth Newton iteration, shared by every solver of
+   * the step (the condensed solver's boundary phase, the whole-system
+   * iteration with either linear back-end): stopping test, stagnation
+   * acceptance, the cap (StepFailure, which the time loop answers with a
+   * cut-back), active-set cycling detection, and the (non-)monotone Armijo
+   * backtracking line search along the Newton step. What an iterate is, and
+   * how the Newton step is computed, is the @p Problem's:
+   *
+   *   typename Problem::Iterate;
+   *   NewtonMeasure evaluate(Iterate &x);     // linearize x, measure it
+   *   double merit(const Iterate &trial, const Iterate &current);
+   *   void newton_step(Iterate &x, Iterate &full); // x evaluated; full step
+   *   void combine(const Iterate &x, const Iterate &full, double alpha,
+   *                Iterate &trial);           // x + alpha (full - x)
+   *
+   * @p x is the starting iterate on entry and the solution on exit; @p
+   * result counts iterations, cycles and line-search steps and holds the
+   * last residual.
+   */
+  template <typename Problem, typename Result>
+  void
+  globalized_newton(Problem &                   problem,
+                    typename Problem::Iterate & x,
+                    const NewtonPolicy &        policy,
+                    const Parameters::Solver &  parameters,
+                    const ConditionalOStream &  details,
+                    Result &                    result)
+  {
+    using Iterate = typename Problem::Iterate;
+    const double tol = parameters.newton_tolerance;
+
+    Iterate                    full, trial;
+    NewtonMeasure              current = problem.evaluate(x);
+    std::vector<std::uint64_t> history; // active sets of the past iterates
+    std::vector<double>        merits;
+    bool                       monotone = policy.monotone;
+    double                     previous_residual = 0;
+    bool                       last_step_full    = false;
+
+    for (unsigned int iteration = 0;; ++iteration)
+      {
+        details << "    Newton " << result.iterations << " (" << policy.name
+                << "): residual " << current.residual << std::endl;
+        const bool stagnated =
+          iteration > 0 && last_step_full &&
+          current.signature == history.back() &&
+          current.residual > policy.stagnation_factor * previous_residual &&
+          current.residual < std::sqrt(tol);
+        result.residual = current.residual;
+        if (current.residual <= tol || stagnated)
+          break;
+        check_newton_cap(result.iterations, current.residual, parameters);
+        previous_residual = current.residual;
+
+        // Active-set cycling: a return to sets seen before, with other sets
+        // in between (keeping the last sets, as a damped step does, is no
+        // cycle). The line search then damps the step (the remedy).
+        const bool cycling =
+          history.size() >= 2 && current.signature != history.back() &&
+          std::find(history.begin(), history.end() - 1, current.signature) !=
+            history.end() - 1;
+        result.cycles += cycling;
+        monotone = monotone || cycling;
+        history.push_back(current.signature);
+        const double merit_now = current.merit;
+        merits.push_back(merit_now);
+
+        // The full semismooth Newton step, and the merit where it lands.
+        problem.newton_step(x, full);
+        NewtonMeasure accepted   = problem.evaluate(full);
+        const double  merit_full = problem.merit(full, x);
+        const double  reference  = *std::max_element(
+          merits.end() - std::min<std::size_t>(merits.size(), policy.window),
+          merits.end());
+        const bool backtrack =
+          parameters.line_search &&
+          (cycling || (monotone && merit_full > (1 - 1e-4) * merit_now) ||
+           (iteration >= policy.free_iterations && merit_full > reference));
+        if (backtrack)
+          {
+            // Armijo backtracking along the step, down to 1/128 of it.
+            for (double alpha = 0.5;; alpha *= 0.5)
+              {
+                problem.combine(x, full, alpha, trial);
+                accepted = problem.evaluate(trial);
+                ++result.line_search_steps;
+                if (problem.merit(trial, x) <= (1 - 1e-4 * alpha) * merit_now ||
+                    alpha < 1. / 64)
+                  break;
+              }
+            std::swap(x, trial);
+          }
+        else
+          std::swap(x, full);
+        last_step_full = !backtrack;
+        current = accepted;
+        ++result.iterations;
+      }
+  }
+
+
+  /**
+   * The friction law's part of a merit function: the sum of the squared law
+   * residuals relative to the force scale @p f_scale (0 where there is no
+   * law residual, even if no force acts yet).
+   */
+  inline double
+  law_merit(const double law_squares, const double f_scale)
+  {
+    return law_squares == 0 ? 0. : law_squares / (f_scale * f_scale);
+  }
+
+
+  /**
+   * A fingerprint of the active sets: the sum over the nodes of a hash of
+   * (the node's first DoF, its set signature), so that it is the same
+   * whatever the order of the nodes and the number of processes (the sum
+   * over the processes is taken by the caller).
+   */
+  inline std::uint64_t
+  node_set_hash(const std::uint64_t key, const unsigned int signature)
+  {
+    // SplitMix64 of the combined value.
+    std::uint64_t z = key * 0x9E3779B97F4A7C15ull + signature + 1;
+    z               = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z               = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,141 @@
+#include <deal.II/base/mpi.h>
+
+#include <dynamic_contact/system_newton.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace DynamicContact
+{
+  template <int dim>
+  SystemNewton<dim>::SystemNewton(const ContactProblem<dim> &         problem,
+                                  const Vector_t &                    rhs,
+                                  const std::vector<Tensor<1, dim>> &u_old,
+                                  const std::vector<Tensor<1, dim>> &w_old,
+                                  const std::vector<double> &         mu,
+                                  LinearBackend<dim> &                backend,
+                                  ContactNewtonResult &               result)
+    : problem(problem)
+    , rhs(rhs)
+    , u_old(u_old)
+    , w_old(w_old)
+    , mu(mu)
+    , backend(backend)
+    , result(result)
+  {}
+
+
+  template <int dim>
+  double
+  SystemNewton<dim>::residual_of(const Vector_t &                    w,
+                                 const std::vector<Tensor<1, dim>> &forces,
+                                 Vector_t &residual) const
+  {
+    if (residual.size() != w.size())
+      problem.discretization.reinit_owned(residual);
+    problem.bulk.newton_matrix().vmult(residual, w);
+    residual -= rhs;
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return forces[i]; }, 1., residual);
+    return residual.l2_norm();
+  }
+
+
+  template <int dim>
+  NewtonMeasure
+  SystemNewton<dim>::evaluate(Iterate &x) const
+  {
+    const auto &       nodes = problem.boundary.nodes();
+    const unsigned int n     = nodes.size();
+    const double       k     = problem.bulk.time_step();
+    const double       c     = problem.c_t * k;
+    x.lin.resize(n);
+    x.forces.resize(n);
+    x.base.resize(n);
+    double        law_residual = 0, law_squares = 0, f_scale = 1e-300;
+    std::uint64_t signature = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Tensor<1, dim> wi = nodes[i].value(x.w);
+        const auto &         l  = x.lin[i] =
+          linearize_node(problem.foundation,
+                         nodes[i],
+                         u_old[i],
+                         w_old[i],
+                         wi,
+                         k,
+                         problem.theta,
+                         problem.friction,
+                         x.lambda[i],
+                         problem.friction ? mu[i] : 0.,
+                         c);
+        const Tensor<1, dim> normal_force =
+          l.normal.pressure * nodes[i].weight * nodes[i].normal;
+        x.forces[i] = normal_force + x.lambda[i];
+        x.base[i]   = normal_force;
+        if (l.friction.state == ContactState::slip)
+          x.base[i] += l.friction.value;
+        f_scale = std::max(f_scale, x.forces[i].norm());
+        if (problem.friction)
+          {
+            const double law =
+              (x.lambda[i] - projected_friction_force(nodes[i],
+                                                      l.friction.threshold,
+                                                      effective_velocity(i, wi),
+                                                      x.lambda[i],
+                                                      c))
+                .norm();
+            law_residual = std::max(law_residual, law);
+            law_squares += law * law;
+          }
+        signature += node_set_hash(nodes[i].dofs[0],
+                                   l.normal.set_signature() +
+                                     16 * static_cast<unsigned int>(
+                                            l.friction.state));
+      }
+
+    if (x.residual.size() != x.w.size())
+      problem.discretization.reinit_owned(x.residual);
+    problem.bulk.newton_matrix().vmult(x.residual, x.w);
+    const MPI_Comm comm = problem.discretization.comm;
+    x.scale =
+      std::max({rhs.l2_norm(), x.residual.l2_norm(), 1e-300});
+    x.residual -= rhs;
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return x.forces[i]; }, 1., x.residual);
+    x.law_residual = Utilities::MPI::max(law_residual, comm);
+    x.law_squares  = Utilities::MPI::sum(law_squares, comm);
+    x.f_scale      = Utilities::MPI::max(f_scale, comm);
+
+    NewtonMeasure m;
+    x.residual_norm     = x.residual.l2_norm();
+    x.relative_residual = std::max(x.residual_norm / x.scale,
+                                   x.law_residual / x.f_scale);
+    m.residual          = x.relative_residual;
+    m.merit             = merit(x, x);
+    std::uint64_t global_signature = 0;
+    MPI_Allreduce(
+      &signature, &global_signature, 1, MPI_UINT64_T, MPI_SUM, comm);
+    m.signature = global_signature;
+    return m;
+  }
+
+
+  template <int dim>
+  void
+  SystemNewton<dim>::combine(const Iterate &x,
+                             const Iterate &full,
+                             const double   alpha,
+                             Iterate &      trial) const
+  {
+    trial.w = full.w;
+    trial.w.sadd(alpha, 1 - alpha, x.w);
+    trial.lambda.resize(x.lambda.size());
+    for (unsigned int i = 0; i < x.lambda.size(); ++i)
+      trial.lambda[i] = x.lambda[i] + alpha * (full.lambda[i] - x.lambda[i]);
+  }
+
+
+  template class SystemNewton<2>;
+  template class SystemNewton<3>;
+} // namespace DynamicContact
