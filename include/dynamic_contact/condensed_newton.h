@@ -193,7 +193,8 @@ namespace DynamicContact
 
     /**
      * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then
-     * phase 2 (the whole-system Newton iteration) on the data given.
+     * phase 2 (the whole-system Newton iteration) on the data given, to
+     * @p tolerance_factor times Solver/Newton tolerance.
      */
     void
     polish(const Iterate &                     it,
@@ -202,7 +203,8 @@ namespace DynamicContact
            const std::vector<double> &         mu,
            std::vector<Tensor<1, dim>> &       lambda,
            Vector_t &                          w,
-           Result &                            result);
+           Result &                            result,
+           const double                        tolerance_factor = 1);
 
     /**
      * One Newton step on the active nodes for the right-hand side @p r (one
