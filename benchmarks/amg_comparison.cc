@@ -146,7 +146,8 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   // modes want them node by node: Q1 numbers a node's DoFs consecutively).
   std::vector<double> node_coordinates(n);
   {
-    FEValues<dim> fe_values(MappingQ1<dim>(),
+    const MappingQ1<dim> mapping; // FEValues keeps a pointer to it
+    FEValues<dim>        fe_values(mapping,
                             fe,
                             Quadrature<dim>(fe.get_unit_support_points()),
                             update_quadrature_points);

@@ -623,7 +623,7 @@ namespace DynamicContact
     u_old_all = gathered.gather(p.u_old);
     w_old_all = gathered.gather(p.w_old);
     mu_all    = gathered.gather(p.mu);
-    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, 1e-2);
+    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, 1e-1);
     return result;
   }
 

@@ -814,6 +814,14 @@ namespace DynamicContact
           "contact nodes for which the condensed solver is chosen (the "
           "measured crossover, README 'Choosing the contact solver').");
         prm.declare_entry(
+          "Provisional passes",
+          "true",
+          Patterns::Bool(),
+          "Condensed solver with a convexification loop: a pass that does "
+          "not end the loop takes its velocity from the stored compliance "
+          "responses, without a solve with K0 (doc/algorithms.md, "
+          "'Convexification loop'); false: every pass is solved in full.");
+        prm.declare_entry(
           "Line search",
           "true",
           Patterns::Bool(),
@@ -867,6 +875,7 @@ namespace DynamicContact
            prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
                                                       ContactSolver::automatic);
       condensed_limit       = prm.get_integer("Condensed limit");
+      provisional_passes    = prm.get_bool("Provisional passes");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");

@@ -393,10 +393,10 @@ namespace DynamicContact
     // columns, no solve with K0): enough to decide whether the loop goes
     // on, while the loop is far from its tolerances. A provisional w is only
     // as accurate as the boundary iteration's stopping point, so a pass that
-    // would end the loop, or whose coefficient residual no longer falls
-    // (the provisional accuracy reached), is finished (finalize()) and
-    // measured again; the passes after it are exact.
-    bool   allow_provisional = loop;
+    // would end the loop, reaches the cap, or whose coefficient residual no
+    // longer falls (the provisional accuracy reached) is finished
+    // (finalize()) and measured again; the passes after it are exact.
+    bool   allow_provisional = loop && parameters.provisional_passes;
     bool   provisional       = false;
     double best_residual     = std::numeric_limits<double>::max();
     // The loop's measures of the current pass against the last one.
@@ -472,7 +472,7 @@ namespace DynamicContact
         Measures m = measure(pass);
         if (provisional &&
             (m.converged || pass + 1 == max_passes ||
-             m.coefficient_residual > 0.5 * best_residual))
+             m.coefficient_residual >= best_residual))
           {
             add_statistics(newton->finalize(w, lambda));
             provisional       = false;

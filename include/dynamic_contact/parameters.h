@@ -228,6 +228,7 @@ namespace DynamicContact
       };
       ContactSolver contact_solver;
       unsigned int  condensed_limit;
+      bool          provisional_passes;
       bool         line_search;
       double       newton_tolerance;
       unsigned int max_newton_iterations;
