@@ -1,3 +1,6 @@
+#include <deal.II/base/revision.h>
+#include <deal.II/base/config.h>
+
 #include <dynamic_contact/command_line.h>
 
 namespace DynamicContact
@@ -15,6 +18,15 @@ namespace DynamicContact
           c.print_parameters = true;
         else if (arg == "--resume")
           c.resume = true;
+        else if (arg == "--resume=auto")
+          c.resume_auto = true;
+        else if (arg.rfind("--resume=", 0) == 0)
+          {
+            c.error = "--resume takes no value but 'auto' ('" + arg + "').";
+            return c;
+          }
+        else if (arg == "--version")
+          c.version = true;
         else if (arg == "--set" || arg == "-s")
           {
             if (i + 1 >= argc)
@@ -46,7 +58,13 @@ namespace DynamicContact
           c.error = "--set '" + o + "': expected 'Section/Entry=value'.";
           return c;
         }
-    if (!c.help && !c.print_parameters && c.parameter_file.empty())
+    if (c.resume && c.resume_auto)
+      {
+        c.error = "--resume and --resume=auto exclude each other.";
+        return c;
+      }
+    if (!c.help && !c.version && !c.print_parameters &&
+        c.parameter_file.empty())
       c.error = "no parameter file given.";
     return c;
   }
@@ -70,9 +88,23 @@ namespace DynamicContact
            "  --resume                continue from the newest complete\n"
            "                          checkpoint in Output/Directory\n"
            "                          (see Checkpoint/Every)\n"
+           "  --resume=auto           the same if Output/Directory holds a\n"
+           "                          checkpoint, else start a new run\n"
+           "                          (for a chain of batch jobs)\n"
+           "  --version               print the version of dynamic-contact\n"
+           "                          and of deal.II, and exit\n"
            "  --set 'Section/Entry=value'\n"
            "                          override one entry of the parameter\n"
            "                          file (repeatable), e.g.\n"
            "                          --set 'Time/Time step=0.001'\n";
+  }
+
+
+  std::string
+  CommandLine::version_text()
+  {
+    return std::string("dynamic-contact ") + DYNAMIC_CONTACT_VERSION +
+           " (git " + DYNAMIC_CONTACT_GIT_REVISION + "), deal.II " +
+           DEAL_II_PACKAGE_VERSION;
   }
 } // namespace DynamicContact

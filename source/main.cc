@@ -36,6 +36,12 @@ main(int argc, char *argv[])
         std::cout << CommandLine::usage();
       return 0;
     }
+  if (command_line.version)
+    {
+      if (root)
+        std::cout << CommandLine::version_text() << std::endl;
+      return 0;
+    }
 
   try
     {
@@ -69,7 +75,8 @@ main(int argc, char *argv[])
       return run_simulation(command_line.parameter_file,
                             command_line.overrides,
                             comm,
-                            command_line.resume);
+                            command_line.resume,
+                            command_line.resume_auto);
     }
   catch (const AgreedError &e)
     {

@@ -1535,11 +1535,21 @@ namespace DynamicContact
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
-                 const bool                      resume)
+                 bool                            resume,
+                 const bool                      resume_auto)
   {
     ParameterHandler    prm;
     const RunParameters parameters =
       read_parameters(parameter_file, overrides, prm);
+    if (resume_auto)
+      {
+        resume =
+          !list_checkpoints(parameters.output.directory, comm).empty();
+        if (!resume && Utilities::MPI::this_mpi_process(comm) == 0)
+          std::cout << "--resume=auto: no checkpoint in Output/Directory '"
+                    << parameters.output.directory << "': a new run."
+                    << std::endl;
+      }
     if (parameters.dimension == 2)
       return run_dimension<2>(parameters, prm, comm, resume);
     else

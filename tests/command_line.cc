@@ -9,7 +9,10 @@
 //                                    without running anything;
 //   scene.prm --set ... (a short run) exit 0, time_series.csv with steps
 //                                    0, 1, 2, contact_00002.csv, run_status
-//                                    "completed".
+//                                    "completed";
+//   --version                        names dynamic-contact and deal.II;
+//   --resume=auto                    a new run where there is no checkpoint,
+//                                    a resumed one where there is.
 //
 // Every program run happens first and prints what it found; the checks
 // follow, so that a failing test still shows the whole picture.
@@ -129,6 +132,7 @@ main(int argc, char **argv)
   const std::string scene = test_tools::scene("pressed_block.prm");
   fs::remove_all("run");
   fs::remove_all("output-pressed-block");
+  fs::remove_all("auto");
 
   std::vector<Run> runs = {
     {{"--help"}, "help"},
@@ -139,6 +143,7 @@ main(int argc, char **argv)
      "print_scene"},
     {{scene, "--set", "Output/Directory=run", "--set", "Time/End time=2"},
      "run"},
+    {{"--version"}, "version"},
   };
   // Most of a run is MPI's start-up, spent waiting: run them side by side.
   {
@@ -148,8 +153,26 @@ main(int argc, char **argv)
     for (auto &t : threads)
       t.join();
   }
+  // --resume=auto twice in one directory with checkpoints: a new run to
+  // t = 2, then (a later end time) a resumed one to t = 4.
+  const std::vector<std::string> auto_run = {scene,
+                                             "--resume=auto",
+                                             "--set",
+                                             "Output/Directory=auto",
+                                             "--set",
+                                             "Checkpoint/Every=1"};
+  Run auto_new(auto_run, "resume_auto_new");
+  auto_new.arguments.insert(auto_new.arguments.end(),
+                            {"--set", "Time/End time=2"});
+  execute(auto_new);
+  Run auto_resumed(auto_run, "resume_auto_resumed");
+  auto_resumed.arguments.insert(auto_resumed.arguments.end(),
+                                {"--set", "Time/End time=4"});
+  execute(auto_resumed);
+  runs.push_back(auto_new);
+  runs.push_back(auto_resumed);
   const Run &help = runs[0], &h = runs[1], &print_defaults = runs[2],
-            &print_3d = runs[3], &print_scene = runs[4];
+            &print_3d = runs[3], &print_scene = runs[4], &version = runs[6];
 
   Checks checks;
   for (const auto &r : runs)
@@ -371,6 +394,38 @@ main(int argc, char **argv)
                "x,y,u_nu,w_nu,normal_pressure first");
     checks.add(contact.size() == 6,
                "run: contact_00002.csv has a row per contact node (5)");
+  }
+
+  // ------------------------------------------------------------ --version
+  {
+    const bool names =
+      version.out.rfind("dynamic-contact ", 0) == 0 &&
+      version.out.find("(git ") != std::string::npos &&
+      version.out.find("deal.II 9.") != std::string::npos;
+    out << "--version: names dynamic-contact, its git revision and deal.II: "
+        << yes_no(names) << std::endl;
+    checks.add(names,
+               "--version: 'dynamic-contact X (git R), deal.II 9.x'" +
+                 (names ? std::string() : " [" + trim(version.out) + "]"));
+  }
+
+  // ------------------------------------------------------- --resume=auto
+  {
+    const bool new_run =
+      auto_new.out.find("--resume=auto: no checkpoint") != std::string::npos;
+    const bool resumed =
+      auto_resumed.out.find("resumed from") != std::string::npos;
+    const auto   series = read_csv("auto/time_series.csv");
+    const std::string status = trim(read_text("auto/run_status"));
+    out << "--resume=auto: first a new run: " << yes_no(new_run)
+        << ", then a resumed one: " << yes_no(resumed)
+        << "; time_series.csv rows: " << series.size()
+        << ", run_status: " << status << std::endl;
+    checks.add(new_run, "--resume=auto without a checkpoint: a new run");
+    checks.add(resumed, "--resume=auto with a checkpoint: resumed");
+    checks.add(series.size() == 6 && status == "completed",
+               "--resume=auto: the resumed run ends at t = 4 (header and "
+               "steps 0 to 4), completed");
   }
 
   out << std::endl;

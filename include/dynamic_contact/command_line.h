@@ -12,6 +12,10 @@ namespace DynamicContact
     bool                     help             = false;
     bool                     print_parameters = false;
     bool                     resume           = false;
+    /** --resume=auto: resume if Output/Directory has a checkpoint, else
+     *  start a new run (a chain of batch jobs). */
+    bool                     resume_auto      = false;
+    bool                     version          = false;
     std::string              parameter_file;
     std::vector<std::string> overrides; // "Section/Entry=value"
     std::string              error;     // non-empty: a usage error
@@ -21,6 +25,10 @@ namespace DynamicContact
 
     static std::string
     usage();
+
+    /** "dynamic-contact X.Y.Z (git H), deal.II A.B.C" */
+    static std::string
+    version_text();
   };
 } // namespace DynamicContact
 

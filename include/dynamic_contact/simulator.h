@@ -365,13 +365,16 @@ namespace DynamicContact
    * returns the exit code (0, or 128 + N after a stop by signal N). An
    * error every process knows propagates as an AgreedError (main prints it
    * and returns 1); an error of some processes only ends the job from
-   * there (abort_run).
+   * there (abort_run). @p resume_auto: resume if Output/Directory holds a
+   * checkpoint (damaged or not: a damaged one is then named), else a new
+   * run.
    */
   int
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
-                 const bool                      resume = false);
+                 const bool                      resume      = false,
+                 const bool                      resume_auto = false);
 } // namespace DynamicContact
 
 #endif
