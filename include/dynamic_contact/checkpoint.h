@@ -39,7 +39,7 @@ namespace DynamicContact
    * step): the distributed mesh (p4est), the fields (serialized with
    * parallel::distributed::SolutionTransfer: u, w and the friction forces,
    * stored exactly so that a continued run repeats the uninterrupted one),
-   * the RunState (state.txt), the parameters of the run (parameters.prm),
+   * the RunState (state.txt), the parameters of the run (parameters.txt),
    * and manifest.txt: the size and CRC-32 of each of these files, written
    * last.
    *
@@ -79,7 +79,7 @@ namespace DynamicContact
 
   /**
    * Collective: the RunState (state.txt) and the parameters
-   * (parameters.prm) of a verified checkpoint; nothing is loaded into the
+   * (parameters.txt) of a verified checkpoint; nothing is loaded into the
    * mesh. A file that does not read as written is a CollectiveError.
    */
   RunState
