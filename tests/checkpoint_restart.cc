@@ -205,15 +205,6 @@ namespace
     return differ;
   }
 
-  std::string
-  join(const std::set<std::string> &s)
-  {
-    std::string list;
-    for (const auto &x : s)
-      list += (list.empty() ? "" : ", ") + x;
-    return list.empty() ? "none" : list;
-  }
-
   bool
   ends_with(const std::string &s, const std::string &end)
   {

@@ -64,33 +64,6 @@ namespace
     return trim(read_text(directory / "run_status"));
   }
 
-  /** The regular files under @p directory (relative), with their content. */
-  std::map<std::string, std::string>
-  snapshot(const fs::path &directory)
-  {
-    std::map<std::string, std::string> files;
-    if (!fs::exists(directory))
-      return files;
-    for (const auto &e : fs::recursive_directory_iterator(directory))
-      // Not the lock, which every run takes (and writes its process into).
-      if (e.is_regular_file() &&
-          e.path().filename() != ".dynamic-contact.lock")
-        files[fs::relative(e.path(), directory).string()] =
-          read_text(e.path());
-    return files;
-  }
-
-  /** The error lines of a run's stderr. */
-  std::vector<std::string>
-  error_lines(const Outcome &o)
-  {
-    std::vector<std::string> lines;
-    for (const auto &l : lines_of(o.err))
-      if (l.rfind("dynamic-contact: error:", 0) == 0)
-        lines.push_back(l);
-    return lines;
-  }
-
   std::string
   first_error(const Outcome &o)
   {

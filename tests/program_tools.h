@@ -14,6 +14,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -138,6 +140,46 @@ namespace program_tools
     o.out = read_text(launch.directory / (launch.name + ".stdout"));
     o.err = read_text(launch.directory / (launch.name + ".stderr"));
     return o;
+  }
+
+  /**
+   * Every regular file under @p directory with its content, by relative
+   * path, without the lock (every run takes it and writes its process
+   * into it); empty if the directory does not exist.
+   */
+  inline std::map<std::string, std::string>
+  snapshot(const fs::path &directory)
+  {
+    std::map<std::string, std::string> files;
+    if (!fs::exists(directory))
+      return files;
+    for (const auto &e : fs::recursive_directory_iterator(directory))
+      if (e.is_regular_file() &&
+          e.path().filename() != ".dynamic-contact.lock")
+        files[fs::relative(e.path(), directory).string()] =
+          read_text(e.path());
+    return files;
+  }
+
+  /** The error lines of a run's stderr. */
+  inline std::vector<std::string>
+  error_lines(const Outcome &o)
+  {
+    std::vector<std::string> lines;
+    for (const auto &l : lines_of(o.err))
+      if (l.rfind("dynamic-contact: error:", 0) == 0)
+        lines.push_back(l);
+    return lines;
+  }
+
+  /** "a, b, c", or "none". */
+  inline std::string
+  join(const std::set<std::string> &s)
+  {
+    std::string list;
+    for (const auto &x : s)
+      list += (list.empty() ? "" : ", ") + x;
+    return list.empty() ? "none" : list;
   }
 
   /**

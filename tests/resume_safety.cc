@@ -70,29 +70,6 @@ namespace
     return trim(read_text(directory / "run_status"));
   }
 
-  std::map<std::string, std::string>
-  snapshot(const fs::path &directory)
-  {
-    std::map<std::string, std::string> files;
-    for (const auto &e : fs::recursive_directory_iterator(directory))
-      // Not the lock, which every run takes (and writes its process into).
-      if (e.is_regular_file() &&
-          e.path().filename() != ".dynamic-contact.lock")
-        files[fs::relative(e.path(), directory).string()] =
-          read_text(e.path());
-    return files;
-  }
-
-  std::vector<std::string>
-  error_lines(const Outcome &o)
-  {
-    std::vector<std::string> lines;
-    for (const auto &l : lines_of(o.err))
-      if (l.rfind("dynamic-contact: error:", 0) == 0)
-        lines.push_back(l);
-    return lines;
-  }
-
   /**
    * The columns of time_series.csv in which @p b differs from @p a in the
    * rows of steps up to @p last_step ("shape" if the steps differ); with
@@ -135,15 +112,6 @@ namespace
             differ.insert(name);
       }
     return differ;
-  }
-
-  std::string
-  join(const std::set<std::string> &s)
-  {
-    std::string list;
-    for (const auto &x : s)
-      list += (list.empty() ? "" : ", ") + x;
-    return list.empty() ? "none" : list;
   }
 
   void
