@@ -18,16 +18,18 @@ namespace DynamicContact
   using namespace dealii;
 
   template <int dim>
-  void
-  BulkAMG::initialize(const Matrix_t &           matrix,
-                      const Discretization<dim> &discretization)
+  std::vector<double>
+  rigid_body_modes(const Discretization<dim> &discretization,
+                   std::vector<double> *      coordinates)
   {
-    // The rigid-body modes at the owned DoFs, from each DoF's component and
-    // support point (every owned DoF lies on an owned cell).
-    const IndexSet &   owned   = discretization.locally_owned;
-    const unsigned int n       = owned.n_elements();
-    const unsigned int n_modes = (dim == 2 ? 3 : 6);
-    modes.assign(n_modes * n, 0.);
+    // From each owned DoF's component and support point (every owned DoF
+    // lies on an owned cell).
+    const IndexSet &    owned   = discretization.locally_owned;
+    const unsigned int  n       = owned.n_elements();
+    const unsigned int  n_modes = (dim == 2 ? 3 : 6);
+    std::vector<double> modes(n_modes * n, 0.);
+    if (coordinates != nullptr)
+      coordinates->assign(n, 0.);
     const auto &                         fe = discretization.fe;
     FEValues<dim>                        fe_values(discretization.mapping,
                                 fe,
@@ -47,6 +49,8 @@ namespace DynamicContact
                 const unsigned int c = fe.system_to_component_index(i).first;
                 const Point<dim> & x = fe_values.quadrature_point(i);
                 modes[c * n + r]     = 1;
+                if (coordinates != nullptr)
+                  (*coordinates)[r] = x[c];
                 if constexpr (dim == 2)
                   modes[2 * n + r] = (c == 0 ? -x[1] : x[0]);
                 else
@@ -58,6 +62,21 @@ namespace DynamicContact
                   }
               }
         }
+    return modes;
+  }
+
+
+  template <int dim>
+  void
+  BulkAMG::initialize(const Matrix_t &           matrix,
+                      const Discretization<dim> &discretization,
+                      const bool                 with_rotations)
+  {
+    modes = rigid_body_modes(discretization);
+    // The translations are the first dim columns.
+    const unsigned int n_modes =
+      (with_rotations ? (dim == 2 ? 3 : 6) : dim);
+    const auto &fe = discretization.fe;
 
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true;
@@ -74,10 +93,14 @@ namespace DynamicContact
   }
 
 
+  template std::vector<double>
+  rigid_body_modes(const Discretization<2> &, std::vector<double> *);
+  template std::vector<double>
+  rigid_body_modes(const Discretization<3> &, std::vector<double> *);
   template void
-  BulkAMG::initialize(const Matrix_t &, const Discretization<2> &);
+  BulkAMG::initialize(const Matrix_t &, const Discretization<2> &, bool);
   template void
-  BulkAMG::initialize(const Matrix_t &, const Discretization<3> &);
+  BulkAMG::initialize(const Matrix_t &, const Discretization<3> &, bool);
 
 
   BulkSolver::BulkSolver(const Parameters::Solver &parameters)

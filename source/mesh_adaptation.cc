@@ -217,9 +217,9 @@ namespace DynamicContact
       if (cell->is_locally_owned())
         {
           const unsigned int level = desired[cell->active_cell_index()];
-          if (level > cell->level())
+          if (level > static_cast<unsigned int>(cell->level()))
             cell->set_refine_flag();
-          else if (level < cell->level())
+          else if (level < static_cast<unsigned int>(cell->level()))
             cell->set_coarsen_flag();
         }
     tria.prepare_coarsening_and_refinement();

@@ -35,9 +35,17 @@ namespace DynamicContact
   class BulkAMG
   {
   public:
+    /**
+     * Build the preconditioner for @p matrix on the mesh of @p discretization
+     * with the rigid-body modes as near null space, or with the dim
+     * translations only if @p with_rotations is false (for the comparison
+     * in benchmarks/amg-comparison).
+     */
     template <int dim>
     void
-    initialize(const Matrix_t &matrix, const Discretization<dim> &discretization);
+    initialize(const Matrix_t &           matrix,
+               const Discretization<dim> &discretization,
+               const bool                 with_rotations = true);
 
     void
     vmult(Vector_t &dst, const Vector_t &src) const
@@ -50,6 +58,20 @@ namespace DynamicContact
     std::vector<double>                       modes;
     dealii::TrilinosWrappers::PreconditionAMG amg;
   };
+
+  /**
+   * The rigid-body modes of the mesh at the locally owned DoFs of the vector
+   * field: dim translations, then the rotations (1 in 2D; about the x, y and
+   * z axes in 3D), column-major, one column of locally_owned.n_elements()
+   * entries per mode. If @p coordinates is given, it receives the coordinate
+   * of each owned DoF's node in that DoF's own direction (what PETSc's
+   * MatNullSpaceCreateRigidBody wants for a Q1 field, whose DoFs are
+   * numbered node by node).
+   */
+  template <int dim>
+  std::vector<double>
+  rigid_body_modes(const Discretization<dim> &discretization,
+                   std::vector<double> *      coordinates = nullptr);
 
   /**
    * Solves with one (symmetric positive definite) matrix, many times: a
