@@ -4,27 +4,25 @@
 #include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/friction_law.h>
 
+#include <cctype>
+
 #include <cmath>
 #include <map>
 #include <sstream>
 
 namespace DynamicContact
 {
-  namespace
+  std::vector<double>
+  FrictionLaw::sample_points(const double s_max)
   {
-    /** Sample points on [0, s_max]: dense near 0, where laws change fastest. */
-    std::vector<double>
-    sample_points(const double s_max)
-    {
-      std::vector<double> s = {0.};
-      for (double x = 1e-9; x < s_max; x *= 1.02)
-        s.push_back(x);
-      for (unsigned int i = 1; i <= 1000; ++i)
-        s.push_back(s_max * i / 1000.);
-      std::sort(s.begin(), s.end());
-      return s;
-    }
-  } // namespace
+    std::vector<double> s = {0.};
+    for (double x = 1e-9; x < s_max; x *= 1.02)
+      s.push_back(x);
+    for (unsigned int i = 1; i <= 1000; ++i)
+      s.push_back(s_max * i / 1000.);
+    std::sort(s.begin(), s.end());
+    return s;
+  }
 
 
   double
@@ -161,9 +159,15 @@ namespace DynamicContact
   bool
   ExpressionFriction::is_constant() const
   {
-    const double mu0 = value(0);
-    for (const double s : {1e-6, 1e-3, 0.1, 1., 10., 100.})
-      if (value(s) != mu0)
+    // Constant exactly when the slip rate s does not occur in the
+    // expression as a name of its own (sampling mu at a few rates would
+    // take 0.6 + 0.1*(s > 200) for a constant and run one pass only).
+    const auto name_char = [](const char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    };
+    for (std::size_t i = 0; i < expression.size(); ++i)
+      if (expression[i] == 's' && (i == 0 || !name_char(expression[i - 1])) &&
+          (i + 1 == expression.size() || !name_char(expression[i + 1])))
         return false;
     return true;
   }

@@ -545,7 +545,10 @@ namespace DynamicContact
         law                 = (l == "none"        ? Law::none :
                                l == "constant"    ? Law::constant :
                                l == "exponential" ? Law::exponential :
-                                                    Law::expression);
+                               l == "expression"  ? Law::expression :
+                                                    throw ExcMessage(
+                                                      "Friction/Law: unknown "
+                                                      "law '" + l + "'."));
         coefficient         = prm.get_double("Coefficient");
         static_coefficient  = prm.get_double("Static coefficient");
         dynamic_coefficient = prm.get_double("Dynamic coefficient");

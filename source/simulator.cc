@@ -822,13 +822,8 @@ namespace DynamicContact
           expression ? "Friction/Expression: mu(s) = '" +
                          parameters.friction.expression + "'" :
                        std::string("Friction/Law");
-        std::vector<double> s = {0.};
-        for (double x = 1e-9; x < s_max; x *= 1.02)
-          s.push_back(x);
-        for (unsigned int i = 1; i <= 1000; ++i)
-          s.push_back(s_max * i / 1000.);
-        std::sort(s.begin(), s.end());
-        std::vector<double> mu(s.size());
+        const std::vector<double> s = FrictionLaw::sample_points(s_max);
+        std::vector<double>       mu(s.size());
         for (unsigned int i = 0; i < s.size(); ++i)
           {
             mu[i] = friction_law->value(s[i]);
@@ -838,12 +833,11 @@ namespace DynamicContact
                                     scientific(mu[i]) + ").");
           }
         friction_law->check_nonnegative(s_max);
+        double mu_max = 0; // the largest |mu| so far
         if (!parameters.friction.allow_velocity_strengthening)
           for (unsigned int i = 1; i < s.size(); ++i)
             {
-              double mu_max = 0;
-              for (unsigned int j = 0; j < i; ++j)
-                mu_max = std::max(mu_max, std::abs(mu[j]));
+              mu_max = std::max(mu_max, std::abs(mu[i - 1]));
               if (mu[i] - mu[i - 1] > 1e-9 * std::max(1., mu_max))
                 throw CollectiveError(
                   name + " increases with the slip rate (mu(" +

@@ -204,6 +204,14 @@ namespace
             constant.one_sided_lipschitz_constant(1.) == 0 &&
             constant.derivative(0.5) == 0,
           "expression 0.3: is_constant, mu' = 0, Lipschitz constant 0");
+    const ExpressionFriction step("0.6 + 0.1*(s > 200)", "");
+    check(!step.is_constant() && step.value(300.) == 0.7,
+          "expression 0.6 + 0.1*(s > 200): not constant (it changes only "
+          "beyond s = 200)");
+    const ExpressionFriction names("sin(0.5) + slope*0", "slope=2");
+    check(names.is_constant(),
+          "expression sin(0.5) + slope*0: constant (s only inside other "
+          "names)");
     const ExpressionFriction increasing("0.3 + 0.1*s", "");
     check(!increasing.is_constant() &&
             increasing.one_sided_lipschitz_constant(1.) == 0,

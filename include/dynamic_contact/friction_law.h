@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -52,6 +53,14 @@ namespace DynamicContact
      */
     void
     check_nonnegative(const double s_max) const;
+
+    /**
+     * Where the laws are checked on [0, s_max]: 0, a geometric sequence from
+     * 1e-9 (dense near 0, where laws change fastest) and 1000 equal steps,
+     * sorted.
+     */
+    static std::vector<double>
+    sample_points(const double s_max);
 
     /** nullptr for Law = none. */
     static std::unique_ptr<FrictionLaw>
