@@ -1,6 +1,5 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
-#include <deal.II/distributed/solution_transfer.h>
 
 #include <dynamic_contact/checkpoint.h>
 #include <dynamic_contact/failure.h>
@@ -325,15 +324,8 @@ namespace DynamicContact
     });
 
     collectively(comm, [&]() {
-      std::vector<Vector_t>         ghosted;
-      std::vector<const Vector_t *> input;
-      for (const Vector_t *field : fields)
-        ghosted.push_back(d.expanded(*field));
-      for (const auto &g : ghosted)
-        input.push_back(&g);
-      parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
-        d.dof_handler);
-      transfer.prepare_for_serialization(input);
+      FieldTransfer<dim, Vector_t> transfer(d, fields);
+      transfer.prepare(true);
       d.triangulation.save(tmp + "/mesh");
     });
 
@@ -601,14 +593,8 @@ namespace DynamicContact
     collectively(d.comm, [&]() { d.triangulation.load(checkpoint + "/mesh"); });
     after_load();
     collectively(d.comm, [&]() {
-      parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
-        d.dof_handler);
-      std::vector<Vector_t *> output(fields);
-      for (auto *f : output)
-        d.reinit_owned(*f);
-      transfer.deserialize(output);
-      for (auto *f : output)
-        d.constraints.set_zero(*f);
+      FieldTransfer<dim, Vector_t> transfer(d, fields);
+      transfer.finish(true);
     });
   }
 

@@ -1,7 +1,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/grid_refinement.h>
-#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/error_estimator.h>
@@ -252,23 +251,11 @@ namespace DynamicContact
                       const std::vector<Vector_t *> &fields,
                       const std::function<void()> &  after_refinement)
   {
-    std::vector<Vector_t>         ghosted;
-    std::vector<const Vector_t *> input;
-    for (const Vector_t *field : fields)
-      ghosted.push_back(d.expanded(*field));
-    for (const auto &g : ghosted)
-      input.push_back(&g);
-    parallel::distributed::SolutionTransfer<dim, Vector_t> transfer(
-      d.dof_handler);
-    transfer.prepare_for_coarsening_and_refinement(input);
+    FieldTransfer<dim, Vector_t> transfer(d, fields);
+    transfer.prepare();
     d.triangulation.execute_coarsening_and_refinement();
     after_refinement();
-    std::vector<Vector_t *> output(fields);
-    for (auto *f : output)
-      d.reinit_owned(*f);
-    transfer.interpolate(output);
-    for (auto *f : fields)
-      d.constraints.set_zero(*f);
+    transfer.finish();
   }
 
 

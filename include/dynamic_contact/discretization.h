@@ -2,6 +2,7 @@
 #define dynamic_contact_discretization_h
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -10,6 +11,8 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <dynamic_contact/parameters.h>
+
+#include <vector>
 
 namespace DynamicContact
 {
@@ -99,6 +102,69 @@ namespace DynamicContact
     AffineConstraints<double> hanging_node_constraints;
     /** Hanging nodes, clamped and roller conditions. */
     AffineConstraints<double> constraints;
+  };
+
+
+  /**
+   * Carries vectors in master form across a change of the mesh of a
+   * Discretization, by refinement and coarsening or through a checkpoint
+   * (p4est serialization): prepare() expands the fields (hanging nodes
+   * filled in) and hands them to parallel::distributed::SolutionTransfer;
+   * after the new mesh's setup_dofs, finish() resizes the fields to it,
+   * interpolates (or deserializes) and brings them back to master form.
+   */
+  template <int dim, typename VectorType>
+  class FieldTransfer
+  {
+  public:
+    FieldTransfer(const Discretization<dim> &     discretization,
+                  const std::vector<VectorType *> &fields)
+      : discretization(discretization)
+      , fields(fields)
+      , transfer(discretization.dof_handler)
+    {}
+
+    /** Before refinement, or (@p serialization) before Triangulation::save. */
+    void
+    prepare(const bool serialization = false)
+    {
+      std::vector<const VectorType *> input;
+      ghosted.clear();
+      ghosted.reserve(fields.size());
+      for (const VectorType *field : fields)
+        {
+          ghosted.push_back(discretization.expanded(*field));
+          input.push_back(&ghosted.back());
+        }
+      if (serialization)
+        transfer.prepare_for_serialization(input);
+      else
+        transfer.prepare_for_coarsening_and_refinement(input);
+    }
+
+    /**
+     * After refinement, or (@p serialization) after Triangulation::load,
+     * and after the DoFs and constraints of the new mesh are set up.
+     */
+    void
+    finish(const bool serialization = false)
+    {
+      for (VectorType *field : fields)
+        discretization.reinit_owned(*field);
+      std::vector<VectorType *> output(fields);
+      if (serialization)
+        transfer.deserialize(output);
+      else
+        transfer.interpolate(output);
+      for (VectorType *field : fields)
+        discretization.constraints.set_zero(*field);
+    }
+
+  private:
+    const Discretization<dim> &                                 discretization;
+    const std::vector<VectorType *>                             fields;
+    std::vector<VectorType>                                     ghosted;
+    parallel::distributed::SolutionTransfer<dim, VectorType> transfer;
   };
 } // namespace DynamicContact
 
