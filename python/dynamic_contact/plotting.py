@@ -355,8 +355,11 @@ def plot_profiles(run, out_dir, notes, dpi, max_profiles=8):
             time = run.time_of(step)
             label = "step %d" % step if time is None else \
                 "t = %.6g s (step %d)" % (time, step)
-            position = table[coord]
-            if three_d:
+            order = np.argsort(table[coord], kind="stable")
+            position, values = table[coord][order], values[order]
+            if three_d or np.any(np.diff(position) <= 0):
+                # A surface, or a curve with several nodes at one position:
+                # the nodes only.
                 ax.plot(position, values, ".", markersize=2.5, color=color,
                         label=label)
             else:

@@ -25,8 +25,10 @@ def _logical_lines(path):
         pending = ""
         for line in f:
             line = line.rstrip("\n")
+            if pending:
+                line = line.lstrip()
             if line.rstrip().endswith("\\"):
-                pending += line.rstrip()[:-1] + " "
+                pending += line.rstrip()[:-1].rstrip() + " "
                 continue
             yield pending + line
             pending = ""
