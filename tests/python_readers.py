@@ -114,6 +114,10 @@ def main():
     except ValueError as error:
         check("bad.csv" in str(error) and "line 3" in str(error),
               "a short line is an error naming the file and the line")
+    partial = os.path.join(args.work_dir, "partial.csv")
+    write(partial, "step,time\n0,0\n1,0.5\n2,1.")
+    check(read_table(partial)["time"].tolist() == [0.0, 0.5],
+          "a last row without its line end (being written) is left out")
     empty = os.path.join(args.work_dir, "empty.csv")
     write(empty, "# only a comment\n")
     try:

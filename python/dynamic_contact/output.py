@@ -10,7 +10,9 @@ tolerate the format as it changes:
 - the contact CSV may or may not have a leading `time` column (without it,
   the time of the file is the time of its step in time_series.csv);
 - a column that is not numeric (the contact CSV's `state`) is kept as an
-  array of strings.
+  array of strings;
+- a last line without its line end (the row a running program is
+  appending to time_series.csv) is left out.
 
 Only numpy and the standard library.
 
@@ -82,9 +84,13 @@ class Table:
 
 def _data_lines(path):
     """The lines of a CSV file without the leading '#' comment lines and
-    blank lines."""
+    blank lines, and without a last line that has no line end yet (a row
+    that a running program is writing)."""
     with open(path, newline="") as f:
-        lines = f.read().splitlines()
+        text = f.read()
+    lines = text.splitlines()
+    if lines and not text.endswith("\n"):
+        lines.pop()
     start = 0
     while start < len(lines) and (not lines[start].strip() or
                                   lines[start].lstrip().startswith("#")):
