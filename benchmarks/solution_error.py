@@ -51,7 +51,7 @@ import sys
 import numpy as np
 
 # The package python/dynamic_contact (benchmarks/dynamic_contact links to it).
-from dynamic_contact.vtu import read_pvd, read_vtu  # noqa: E402
+from dynamic_contact.vtu import read_pvd, read_vtu
 
 TIME_TOLERANCE = 1e-6
 VTK_QUAD = 9
