@@ -93,8 +93,15 @@ def _plot_columns(ax, ts, names, notes, panel, labels=None, scale=1.0,
     return drawn
 
 
+def _no_offset(ax):
+    """Tick labels as values (no '+1e7' offset above the axis)."""
+    if ax.get_yscale() == "linear":
+        ax.ticklabel_format(axis="y", useOffset=False)
+
+
 def _finish(ax, drawn, ylabel):
     if drawn:
+        _no_offset(ax)
         ax.set_ylabel(ylabel)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
@@ -141,7 +148,7 @@ def plot_forces(run, out_dir, notes, dpi):
 def plot_energies(run, out_dir, notes, dpi):
     plt = _pyplot()
     ts = run.time_series
-    fig, axes = plt.subplots(3, 1, figsize=(8, 9.5), sharex=True,
+    fig, axes = plt.subplots(4, 1, figsize=(8, 12), sharex=True,
                              constrained_layout=True)
     drawn = _plot_columns(axes[0], ts, ["kinetic_energy", "elastic_energy",
                                         "foundation_energy", "total_energy"],
@@ -171,52 +178,30 @@ def plot_energies(run, out_dir, notes, dpi):
         _note_panel(ax, "cumulated balance: total_energy, load_work or "
                     "dissipation not in time_series.csv")
 
-    ax = axes[2]
-    drawn = []
     after = _steps_after_zero(ts)
-    axis_of = {"relative_energy_defect": ax}
-    for name, label, color in (
-            ("relative_energy_defect",
-             "relative: |defect| / scale (relative_energy_defect, left)",
-             "tab:blue"),
-            ("energy_balance_defect",
-             "absolute: |E_n - E_n-1 + D_n - W_n| (energy_balance_defect, "
-             "right, J)", "tab:orange")):
-        if not ts.is_numeric(name):
+    for ax, name, ylabel, title in (
+            (axes[2], "relative_energy_defect", "relative defect",
+             "relative energy balance defect |E_n - E_n-1 + D_n - W_n| / "
+             "scale per step"),
+            (axes[3], "energy_balance_defect", "|defect| (J, 2D: J/m)",
+             "energy balance defect |E_n - E_n-1 + D_n - W_n| per step")):
+        values = np.abs(ts[name][after]) if ts.is_numeric(name) else None
+        positive = values > 0 if values is not None else None
+        if values is None or not np.any(positive):
+            why = ("not in time_series.csv" if values is None else
+                   "no step after the initial state" if not values.size
+                   else "0 at every step")
+            notes("energies: %s: %s, panel left empty" % (name, why))
+            _note_panel(ax, "%s: %s" % (name, why))
             continue
-        values = np.abs(ts[name][after])
-        times = ts["time"][after]
-        positive = values > 0
-        if not np.any(positive):
-            if values.size:
-                notes("energies: %s is 0 at every step" % name)
-            continue
-        if name not in axis_of:
-            axis_of[name] = ax.twinx() if drawn else ax
-        axis_of[name].semilogy(times[positive], values[positive], ".-",
-                               markersize=3, color=color, label=label)
-        drawn.append(name)
-    if drawn:
-        if "relative_energy_defect" in drawn:
+        ax.semilogy(ts["time"][after][positive], values[positive], ".-",
+                    markersize=3, label=name + " (zeros left out)")
+        if name == "relative_energy_defect":
             ax.axhline(1e-8, color="tab:red", linewidth=0.8, linestyle="--",
-                       label="1e-8 (the run's bound)")
-        handles, labels = [], []
-        for a in dict.fromkeys(axis_of[n] for n in drawn):
-            h, l = a.get_legend_handles_labels()
-            handles += h
-            labels += l
-        ax.legend(handles, labels, fontsize=8)
-        ax.grid(True, alpha=0.3)
-        ax.set_ylabel("relative defect" if "relative_energy_defect" in drawn
-                      else "defect (J, 2D: J/m)")
-        ax.set_title("energy balance defect per step (logarithmic; zeros "
-                     "left out)", fontsize=10)
-    else:
-        notes("energies: no nonzero energy_balance_defect or "
-              "relative_energy_defect after step 0: panel left empty")
-        _note_panel(ax, "energy balance defect: no column, or no step "
-                    "after the initial state, or 0 everywhere")
-    axes[2].set_xlabel("time (s)")
+                       label="1e-8 (the bound the run checks)")
+        _finish(ax, True, ylabel)
+        ax.set_title(title + " (logarithmic)", fontsize=10)
+    axes[3].set_xlabel("time (s)")
     fig.suptitle("energies: " + _title(run), fontsize=11)
     return _save(fig, out_dir, "energies.png", dpi)
 
@@ -370,6 +355,9 @@ def plot_profiles(run, out_dir, notes, dpi, max_profiles=8):
             ax.set_title(title + suffix, fontsize=10)
             ax.set_ylabel(ylabel)
             ax.grid(True, alpha=0.3)
+            _no_offset(ax)
+            if base == "normal_pressure":
+                ax.set_ylim(bottom=min(0.0, ax.get_ylim()[0]))
         else:
             why = ("no friction columns (a run without friction)"
                    if base != "normal_pressure" else "no column")
