@@ -26,7 +26,9 @@ is missing altogether (no time_series.csv, no contact CSV) is not written,
 and the note says why. Nothing is written anywhere but in out_dir.
 """
 
+import argparse
 import os
+import sys
 
 import numpy as np
 
@@ -412,3 +414,36 @@ def plot_run(directory, out_dir, max_profiles=8, dpi=100, log=print):
     else:
         notes("no contact_NNNNN.csv: gamma3_profiles.png not written")
     return written, notes.items
+
+
+def main(argv=None, doc=None):
+    """The command line of scripts/plot-run (and of
+    `python3 -m dynamic_contact.plotting`)."""
+    doc = doc or __doc__
+    parser = argparse.ArgumentParser(
+        prog="plot-run", description=doc.strip().split("\n")[0],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=doc.strip().split("\n", 1)[1] if "\n" in doc.strip() else None)
+    parser.add_argument("outdir", help="the run's Output/Directory")
+    parser.add_argument("--out", help="where the PNG files go "
+                        "(default: OUTDIR/plots)")
+    parser.add_argument("--profiles", type=int, default=8,
+                        help="most contact CSV times in the profiles "
+                        "(default 8)")
+    parser.add_argument("--dpi", type=int, default=100)
+    args = parser.parse_args(argv)
+    if args.profiles < 1:
+        parser.error("--profiles must be at least 1")
+    out = args.out or os.path.join(args.outdir, "plots")
+    try:
+        written, _ = plot_run(args.outdir, out, max_profiles=args.profiles,
+                              dpi=args.dpi,
+                              log=lambda text: print(text, file=sys.stderr))
+    except (OSError, ValueError) as error:
+        sys.exit("plot-run: %s" % error)
+    for path in written:
+        print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()
