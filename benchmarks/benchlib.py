@@ -20,7 +20,6 @@ BENCH = os.path.join(ROOT, "benchmarks")
 RESULTS = os.path.join(BENCH, "results")
 FIGURES = os.path.join(ROOT, "doc", "figures")
 SCRATCH = os.path.join(ROOT, "build", "benchmarks")
-VENV = os.path.join(ROOT, "build", "figures-venv")
 
 PAPER_PRM = os.path.join(ROOT, "prm", "barboteu_danan_2016.prm")
 ADAPTIVE_PRM = os.path.join(ROOT, "prm", "barboteu_danan_2016_adaptive.prm")
@@ -45,27 +44,32 @@ NO_PERIODIC_VTU = 1000000
 OUTPUT_TIME_SHIFT = 1e-7
 
 
+# A Python that may have numpy and matplotlib when the one running does not
+# (e.g. a pyenv or virtualenv python3 first on the PATH): Debian's.
+SYSTEM_PYTHON = "/usr/bin/python3"
+
+
 def ensure_python():
-    """Re-execute the calling script with a Python that has numpy and
-    matplotlib: this one, else build/figures-venv (created as
-    scripts/make-figures does if missing)."""
+    """Make sure numpy and matplotlib can be imported: with this Python, or
+    by re-executing the calling script with /usr/bin/python3 if that one
+    has them; else stop with what to install. (No virtual environment is
+    created.)"""
     try:
         import matplotlib  # noqa: F401
         import numpy  # noqa: F401
         return
     except ImportError:
         pass
-    python = os.path.join(VENV, "bin", "python")
-    if os.environ.get("BENCHLIB_REEXECUTED"):
-        sys.exit("%s lacks numpy or matplotlib: %s/bin/python -m pip install numpy matplotlib"
-                 % (VENV, VENV))
-    if not os.path.exists(python):
-        print("== creating %s with matplotlib and numpy" % VENV, flush=True)
-        subprocess.run([sys.executable, "-m", "venv", VENV], check=True)
-        subprocess.run([python, "-m", "pip", "install", "--quiet", "--upgrade", "pip"], check=True)
-        subprocess.run([python, "-m", "pip", "install", "--quiet", "matplotlib", "numpy"], check=True)
-    os.environ["BENCHLIB_REEXECUTED"] = "1"
-    os.execv(python, [python] + sys.argv)
+    check = [SYSTEM_PYTHON, "-c", "import matplotlib, numpy"]
+    if (not os.environ.get("BENCHLIB_REEXECUTED") and os.path.exists(SYSTEM_PYTHON)
+            and os.path.realpath(SYSTEM_PYTHON) != os.path.realpath(sys.executable)
+            and subprocess.run(check, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL).returncode == 0):
+        os.environ["BENCHLIB_REEXECUTED"] = "1"
+        os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON] + sys.argv)
+    sys.exit("%s needs numpy and matplotlib (%s lacks them): apt-get install python3-numpy "
+             "python3-matplotlib, or pip install -r requirements.txt"
+             % (os.path.basename(sys.argv[0]), sys.executable))
 
 
 def executable():

@@ -40,7 +40,7 @@ norm adds a strain and a velocity and has other units than the energy norm.)
 
 Times: by default every time > 0 both solution.pvd files list (matched to
 within 1e-6 s, the precision of the .pvd), or the given --times.
-Needs numpy; imports scripts/vtu_reader.py.
+Needs numpy; reads the VTU files with dynamic_contact.vtu (python/).
 """
 import argparse
 import csv
@@ -50,9 +50,8 @@ import sys
 
 import numpy as np
 
-_HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(_HERE), "scripts"))
-from vtu_reader import read_pvd, read_vtu  # noqa: E402
+# The package python/dynamic_contact (benchmarks/dynamic_contact links to it).
+from dynamic_contact.vtu import read_pvd, read_vtu
 
 TIME_TOLERANCE = 1e-6
 VTK_QUAD = 9

@@ -26,8 +26,6 @@ repository's prm/). Geometry is drawn at true scale (displacement factor 1).
 """
 
 import argparse
-import csv
-import glob
 import os
 import re
 import sys
@@ -40,8 +38,8 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from vtu_reader import read_vtu  # noqa: E402
+# The package python/dynamic_contact (scripts/dynamic_contact links to it).
+from dynamic_contact import Run as OutputRun  # noqa: E402
 
 FIG2_SCENE = "barboteu_danan_2016"
 FIG3_SCENES = [("figure3_psi5", 5.0), ("figure3_psi20", 20.0)]
@@ -67,30 +65,26 @@ TIME_COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:red"]
 # --------------------------------------------------------------------------
 
 class Run:
-    """One output directory: step times, VTU steps, contact files."""
+    """One output directory (dynamic_contact.Run): step times, VTU steps,
+    contact files."""
 
     def __init__(self, directory, prm_file=None):
         self.directory = directory
         self.name = os.path.basename(os.path.normpath(directory))
-        status_file = os.path.join(directory, "run_status")
-        self.status = (open(status_file).read().strip()
-                       if os.path.exists(status_file) else "no run_status")
-        if self.status != "completed":
+        self.output = OutputRun(directory)
+        self.status = self.output.status or "no run_status"
+        if not self.output.completed:
             print("plot_figures: warning: %s: run_status is '%s'; plotting "
                   "what is there" % (directory, self.status), file=sys.stderr)
-        self.step_time = {}
-        with open(os.path.join(directory, "time_series.csv")) as f:
-            for row in csv.DictReader(f):
-                self.step_time[int(row["step"])] = float(row["time"])
-        self.vtu_steps = sorted(
-            int(re.search(r"solution_(\d+)\.pvtu$", p).group(1))
-            for p in glob.glob(os.path.join(directory, "solution_*.pvtu")))
+        ts = self.output.time_series
+        self.step_time = {int(s): float(t)
+                          for s, t in zip(ts["step"], ts["time"])}
+        self.vtu_steps = sorted(self.output.solution_paths)
         if not self.vtu_steps:
             raise SystemExit("plot_figures: no solution_*.pvtu in %s"
                              % directory)
         self.load = read_load(prm_file) if prm_file else None
         self._meshes = {}
-        self._contacts = {}
 
     def step_near(self, t):
         """The VTU step whose time is closest to t, and that time."""
@@ -100,8 +94,7 @@ class Run:
 
     def mesh(self, step):
         if step not in self._meshes:
-            self._meshes[step] = read_vtu(os.path.join(
-                self.directory, "solution_%05d.pvtu" % step))
+            self._meshes[step] = self.output.solution(step)
         return self._meshes[step]
 
     def contact_length(self, step):
@@ -111,24 +104,9 @@ class Run:
         return float(np.sum(dx[c["u_nu"] > 0]))
 
     def contact(self, step):
-        """Columns of contact_NNNNN.csv as float arrays (state as strings),
-        read once per step."""
-        if step not in self._contacts:
-            self._contacts[step] = self._read_contact(step)
-        return self._contacts[step]
-
-    def _read_contact(self, step):
-        path = os.path.join(self.directory, "contact_%05d.csv" % step)
-        with open(path) as f:
-            rows = list(csv.DictReader(f))
-        out = {}
-        for key in rows[0]:
-            try:
-                out[key] = np.array([float(r[key]) for r in rows])
-            except ValueError:
-                out[key] = np.array([r[key] for r in rows])
-        order = np.argsort(out["x"], kind="stable")
-        return {k: v[order] for k, v in out.items()}
+        """contact_NNNNN.csv as a dynamic_contact.Table (columns by name,
+        rows sorted by x), read once per step."""
+        return self.output.contact(step)
 
 
 def read_load(prm_file):
