@@ -179,7 +179,7 @@ def _read_piece_file(path):
         n_cells = int(piece.get("NumberOfCells"))
         points = _read_data_array(piece.find("Points/DataArray"),
                                   header_dtype, compressed)
-        points = points.reshape(n_points, -1).astype(np.float64)
+        points = points.reshape(n_points, -1 if n_points else 3).astype(np.float64)
         cells = {}
         for da in piece.find("Cells").findall("DataArray"):
             cells[da.get("Name")] = _read_data_array(da, header_dtype,

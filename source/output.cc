@@ -203,6 +203,77 @@ namespace DynamicContact
 
   namespace
   {
+    /** DataOut with the names of its fields and its patches in reach. */
+    template <int dim>
+    class FieldsOut : public DataOut<dim>
+    {
+    public:
+      using DataOut<dim>::get_dataset_names;
+      using DataOut<dim>::get_nonscalar_data_ranges;
+      using DataOut<dim>::get_patches;
+    };
+
+
+    /**
+     * The piece of a process that has no patch (no cell, or no face of
+     * Gamma_3): a valid empty VTU with the time and step and the arrays of
+     * the fields. (deal.II writes such a piece without points, cell arrays
+     * and time, which readers such as meshio refuse.)
+     */
+    template <class Out>
+    std::string
+    empty_piece(const Out &out, const DataOutBase::VtkFlags &flags)
+    {
+      const auto          names = out.get_dataset_names();
+      std::vector<bool>   in_range(names.size(), false);
+      std::ostringstream  s;
+      s << std::setprecision(9)
+        << "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+           "byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<FieldData>\n"
+           "<DataArray type=\"Float32\" Name=\"TIME\" NumberOfTuples=\"1\" "
+           "format=\"ascii\">"
+        << flags.time << "</DataArray>\n";
+      if (flags.cycle != 0)
+        s << "<DataArray type=\"Float32\" Name=\"CYCLE\" "
+             "NumberOfTuples=\"1\" format=\"ascii\">"
+          << flags.cycle << "</DataArray>\n";
+      s << "</FieldData>\n<Piece NumberOfPoints=\"0\" NumberOfCells=\"0\">\n"
+           "<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" "
+           "format=\"ascii\"> </DataArray>\n</Points>\n<Cells>\n";
+      for (const char *cells : {"Int32\" Name=\"connectivity",
+                                "Int32\" Name=\"offsets",
+                                "UInt8\" Name=\"types"})
+        s << "<DataArray type=\"" << cells
+          << "\" format=\"ascii\"> </DataArray>\n";
+      s << "</Cells>\n<PointData>\n";
+      const auto array = [&](const std::string &name, const unsigned int n) {
+        s << "<DataArray type=\"Float32\" Name=\"" << name << '"';
+        if (n > 1)
+          s << " NumberOfComponents=\"" << n << '"';
+        s << " format=\"ascii\"> </DataArray>\n";
+      };
+      // Vectors with 3 components, tensors with 9, as deal.II writes them.
+      for (const auto &range : out.get_nonscalar_data_ranges())
+        {
+          const unsigned int first = std::get<0>(range),
+                             last  = std::get<1>(range);
+          for (unsigned int i = first; i <= last; ++i)
+            in_range[i] = true;
+          const bool tensor =
+            std::get<3>(range) ==
+            DataComponentInterpretation::component_is_part_of_tensor;
+          array(std::get<2>(range).empty() ? names[first] : std::get<2>(range),
+                tensor ? 9 : 3);
+        }
+      for (unsigned int i = 0; i < names.size(); ++i)
+        if (!in_range[i])
+          array(names[i], 1);
+      s << "</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+      return s.str();
+    }
+
+
     /**
      * DataOutFaces restricted to the faces of Gamma_3 (the boundary faces
      * with one of the contact boundary ids) of the locally owned cells.
@@ -212,6 +283,9 @@ namespace DynamicContact
     {
     public:
       using FaceDescriptor = typename DataOutFaces<dim>::FaceDescriptor;
+      using DataOutFaces<dim>::get_dataset_names;
+      using DataOutFaces<dim>::get_nonscalar_data_ranges;
+      using DataOutFaces<dim>::get_patches;
 
       explicit ContactFaces(const std::vector<types::boundary_id> &ids)
         : DataOutFaces<dim>(true)
@@ -511,7 +585,7 @@ namespace DynamicContact
                                 false,
                                 field_units());
 
-    DataOut<dim> data_out;
+    FieldsOut<dim> data_out;
     data_out.set_flags(flags);
     data_out.attach_triangulation(d.triangulation);
     data_out.add_data_vector(d.dof_handler,
@@ -605,14 +679,16 @@ namespace DynamicContact
     collectively(comm, [&]() {
       // TIME is written as text (in the precision of the stream): enough
       // digits that it reads back as the float it is declared to be.
-      std::ostringstream piece;
-      piece << std::setprecision(9);
-      data_out.write_vtu(piece);
-      write_file(directory.file(solution_names[1 + rank]), piece.str());
-      std::ostringstream surface_piece;
-      surface_piece << std::setprecision(9);
-      faces.write_vtu(surface_piece);
-      write_file(directory.file(surface_names[1 + rank]), surface_piece.str());
+      const auto piece = [&](const auto &out) {
+        if (out.get_patches().empty())
+          return empty_piece(out, flags);
+        std::ostringstream s;
+        s << std::setprecision(9);
+        out.write_vtu(s);
+        return s.str();
+      };
+      write_file(directory.file(solution_names[1 + rank]), piece(data_out));
+      write_file(directory.file(surface_names[1 + rank]), piece(faces));
       if (rank == 0)
         {
           std::ostringstream record;

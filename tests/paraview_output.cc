@@ -7,6 +7,9 @@
 //   parallel  2 processes, VTU every = 0: the steps 0, 13, 26, 32 (the
 //             Output times are honoured without a cadence), two pieces per
 //             record;
+//   block_3d  prm/pressed_block_3d.prm (2 x 2 x 1 cells, no friction) on 2
+//             processes, 2 steps of 1 s: the second process has no face of Gamma_3
+//             and writes an empty surface piece (with its time);
 //   none      Write VTU = false: no VTU file and no index, the contact CSVs
 //             as before.
 // For each VTU step the reader checks the time in every piece, the stress
@@ -40,6 +43,19 @@ namespace
     return a;
   }
 
+  const std::vector<std::string> block_3d = {
+    test_tools::scene("pressed_block_3d.prm"),
+    "--set",
+    "Output/Directory=block_3d",
+    "--set",
+    "Time/End time=2",
+    "--set",
+    "Output/Write VTU=true",
+    "--set",
+    "Output/Progress every=0",
+    "--set",
+    "Output/Print timings=false"};
+
   /** The files of @p directory (not the manifest and the lock). */
   std::set<std::string>
   files_of(const fs::path &directory)
@@ -72,26 +88,29 @@ main()
   auto & out = test_tools::out();
   Checks checks;
 
-  for (const auto &[name, processes, more] :
+  for (const auto &[name, processes, args] :
        {std::make_tuple(std::string("serial"),
                         0u,
-                        std::vector<std::string>{"--set",
-                                                 "Output/Write VTU=true",
-                                                 "--set",
-                                                 "Output/VTU every=16"}),
+                        arguments("serial",
+                                  {"--set",
+                                   "Output/Write VTU=true",
+                                   "--set",
+                                   "Output/VTU every=16"})),
         std::make_tuple(std::string("parallel"),
                         2u,
-                        std::vector<std::string>{"--set",
-                                                 "Output/Write VTU=true",
-                                                 "--set",
-                                                 "Output/VTU every=0"})})
+                        arguments("parallel",
+                                  {"--set",
+                                   "Output/Write VTU=true",
+                                   "--set",
+                                   "Output/VTU every=0"})),
+        std::make_tuple(std::string("block_3d"), 2u, block_3d)})
     {
       fs::remove_all(name);
       Launch launch;
       launch.name      = name;
       launch.processes = processes;
       launch.timeout   = 300;
-      const Outcome run = execute(arguments(name, more), launch);
+      const Outcome run = execute(args, launch);
       checks.add(run.succeeded(), name + ": the run completes");
       if (!run.succeeded())
         out << run.err;
