@@ -150,7 +150,7 @@ def node_of(row):
                            float(row["z"]) if "z" in row else 0.0], 6))
 
 
-def check_surface(directory, pvtu, time, step, n_nodes, facts):
+def check_surface(directory, pvtu, time, step, facts):
     names = pieces_of(directory, pvtu)
     facts.setdefault("surface pieces", set()).add(len(names))
     points, values = [], {}
@@ -257,7 +257,7 @@ def main():
               "%s beside %s" % (surface_pvtu, pvtu))
         steps.append("%d (t = %.10g)" % (step, time))
         check_solution(directory, pvtu, time, step, facts)
-        check_surface(directory, surface_pvtu, time, step, n_nodes, facts)
+        check_surface(directory, surface_pvtu, time, step, facts)
     # Nothing written that the indexes do not list.
     listed = {f for _, f in solution} | {f for _, f in surface}
     on_disk = {os.path.basename(p) for p in glob.glob(os.path.join(directory, "*.pvtu"))}
