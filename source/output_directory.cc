@@ -496,6 +496,8 @@ namespace DynamicContact
     static const std::regex pattern(
       R"((time_series\.csv|run_status|solution\.pvd|contact_[0-9]{5,}\.csv|)"
       R"(solution_[0-9]{5,}\.pvtu|solution_[0-9]{5,}\.[0-9]+\.vtu|)"
+      R"(contact_surface\.pvd|contact_surface_[0-9]{5,}\.pvtu|)"
+      R"(contact_surface_[0-9]{5,}\.[0-9]+\.vtu|)"
       R"(checkpoint_[0-9]{5,}(\.tmp)?)(\.tmp)?)");
     return std::regex_match(name, pattern);
   }

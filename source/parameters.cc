@@ -946,13 +946,23 @@ namespace DynamicContact
                           "Write contact_NNNNN.csv every N steps (0: only "
                           "the initial and the final state). "
                           "time_series.csv has every step.");
+        prm.declare_entry("Write VTU",
+                          "true",
+                          Patterns::Bool(),
+                          "Write the VTU files for ParaView: the fields "
+                          "(solution_NNNNN.pvtu, indexed by solution.pvd) "
+                          "and the contact surface (contact_surface_NNNNN"
+                          ".pvtu, indexed by contact_surface.pvd), at the "
+                          "initial state, every 'VTU every' steps, at the "
+                          "Output times and at the final state. false: no "
+                          "VTU files at all.");
         prm.declare_entry("VTU every",
                           "1",
                           Patterns::Integer(0),
-                          "Write solution_NNNNN.pvtu/.vtu (indexed by "
-                          "solution.pvd) every N steps, and at the initial "
-                          "and final state; 0: no VTU output at all (not even at Output "
-                          "times).");
+                          "Write the VTU files every N steps (0: not "
+                          "periodically; the initial state, the Output "
+                          "times and the final state are written all the "
+                          "same unless Write VTU = false).");
         prm.declare_entry("VTU subdivisions",
                           "0",
                           Patterns::Integer(0, 16),
@@ -963,9 +973,9 @@ namespace DynamicContact
           "Output times",
           "",
           Patterns::List(Patterns::Double()),
-          "Times (s) at which contact_NNNNN.csv and (unless VTU every = 0) "
-          "the VTU fields are written in addition: at the first step that "
-          "reaches each time. "
+          "Times (s) at which contact_NNNNN.csv and (unless Write VTU = "
+          "false) the VTU files are written in addition: at the first step "
+          "that reaches each time. "
           "E.g. '0.2, 0.4, 0.6, 0.8' for the paper's Figure 2.");
         prm.declare_entry("Progress every",
                           "1",
@@ -996,6 +1006,7 @@ namespace DynamicContact
       prm.enter_subsection("Output");
       directory      = prm.get("Directory");
       output_every   = prm.get_integer("Output every");
+      write_vtu      = prm.get_bool("Write VTU");
       vtu_every      = prm.get_integer("VTU every");
       vtu_subdivisions = prm.get_integer("VTU subdivisions");
       output_times   = Utilities::string_to_double(

@@ -659,6 +659,7 @@ namespace DynamicContact
     if (contact_csv)
       write_contact_csv(*output_directory,
                         name,
+                        t,
                         contact_boundary,
                         node_states,
                         u,
@@ -873,8 +874,11 @@ namespace DynamicContact
   {
     u = u_old;
     w = w_old;
-    output_results(
-      step, current_time, true, vtu_writer != nullptr, &last_good_states);
+    output_results(step,
+                   current_time,
+                   true,
+                   vtu_writer != nullptr && parameters.output.write_vtu,
+                   &last_good_states);
     checkpoint();
     std::string m = message;
     while (!m.empty() && m.back() == '.')
@@ -936,7 +940,10 @@ namespace DynamicContact
     time_series_writer =
       std::make_unique<TimeSeriesWriter>(*output_directory, comm);
     vtu_writer = std::make_unique<VtuWriter<dim>>(
-      *output_directory, comm, parameters.output.vtu_subdivisions);
+      *output_directory,
+      comm,
+      parameters.boundary_conditions.contact,
+      parameters.output.vtu_subdivisions);
 
     print_header();
 
@@ -957,7 +964,7 @@ namespace DynamicContact
     const TimeSeriesRow row = record.row();
     time_series_writer->write(row);
     rows.push_back(row);
-    output_results(0, 0., true, parameters.output.vtu_every > 0);
+    output_results(0, 0., true, parameters.output.write_vtu);
   }
 
 
@@ -1084,7 +1091,7 @@ namespace DynamicContact
       output_directory->claim("time_series.csv");
       replace_file(series, on_disk.kept, true);
       static const std::regex result(
-        R"((contact|solution)_([0-9]{5,})\.(csv|pvtu|[0-9]+\.vtu))");
+        R"((contact|solution|contact_surface)_([0-9]{5,})\.(csv|pvtu|[0-9]+\.vtu))");
       std::vector<std::string> superseded;
       for (const auto &name : output_directory->owned())
         {
@@ -1098,16 +1105,14 @@ namespace DynamicContact
     time_series_writer =
       std::make_unique<TimeSeriesWriter>(*output_directory, comm, true);
     vtu_writer = std::make_unique<VtuWriter<dim>>(
-      *output_directory, comm, parameters.output.vtu_subdivisions);
+      *output_directory,
+      comm,
+      parameters.boundary_conditions.contact,
+      parameters.output.vtu_subdivisions);
     vtu_writer->set_records(state.vtu_records);
-    // The index lists the VTU files up to the checkpoint only.
-    if (!state.vtu_records.empty())
-      vtu_writer->write_index();
-    else
-      collectively(comm, [&]() {
-        if (Utilities::MPI::this_mpi_process(comm) == 0)
-          output_directory->remove({"solution.pvd"});
-      });
+    // The indexes list the VTU files up to the checkpoint only (none: they
+    // are removed).
+    vtu_writer->write_index();
     print_header();
     pcout << "  resumed from " << latest << " (step " << step
           << ", t = " << sig6(current_time) << " s)" << std::endl;
@@ -1271,12 +1276,15 @@ namespace DynamicContact
                                           t_out > t - k + allowance);
     const unsigned int csv_every = parameters.output.output_every;
     const unsigned int vtu_every = parameters.output.vtu_every;
+    // The VTU files on the same schedule with their own cadence, unless
+    // switched off.
     output_results(step,
                    t,
                    last || at_output_time ||
                      (csv_every > 0 && step % csv_every == 0),
-                   vtu_every > 0 &&
-                     (last || at_output_time || step % vtu_every == 0));
+                   parameters.output.write_vtu &&
+                     (last || at_output_time ||
+                      (vtu_every > 0 && step % vtu_every == 0)));
 
     const unsigned int progress = parameters.output.progress_every;
     if (progress > 0 && (step % progress == 0 || last))

@@ -140,7 +140,8 @@ namespace DynamicContact
           foundation, nodes[i], u_old_nodes[g], w_old_nodes[g], wi, k, theta);
         s.friction_force = lambda[g];
         s.mu             = mu[g];
-        s.slip_rate      = nodes[i].tangential(w_e).norm();
+        s.slip_velocity  = nodes[i].tangential(w_e);
+        s.slip_rate      = s.slip_velocity.norm();
         s.state          = ContactState::free;
         if (friction)
           s.state = friction_response(

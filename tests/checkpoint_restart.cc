@@ -51,6 +51,8 @@ namespace
                                              "--set",
                                              "Checkpoint/Keep=2",
                                              "--set",
+                                             "Output/Write VTU=true",
+                                             "--set",
                                              "Output/VTU every=8",
                                              "--set",
                                              "Output/Progress every=0",

@@ -389,9 +389,16 @@ main(int argc, char **argv)
         lines_of(read_text("run/contact_00002.csv"))[0];
     out << "  contact_00002.csv: " << contact_header << ", "
         << (contact.empty() ? 0 : contact.size() - 1) << " rows" << std::endl;
-    checks.add(contact_header.rfind("x,y,u_nu,w_nu,normal_pressure", 0) == 0,
+    checks.add(contact_header.rfind("time,x,y,u_nu,w_nu,normal_pressure",
+                                    0) == 0,
                "run: contact_00002.csv has the columns "
-               "x,y,u_nu,w_nu,normal_pressure first");
+               "time,x,y,u_nu,w_nu,normal_pressure first");
+    bool time_of_step = contact.size() > 1;
+    for (std::size_t r = 1; r < contact.size(); ++r)
+      time_of_step = time_of_step && !contact[r].empty() &&
+                     std::stod(contact[r][0]) == 2.;
+    checks.add(time_of_step,
+               "run: every row of contact_00002.csv has the time 2 of step 2");
     checks.add(contact.size() == 6,
                "run: contact_00002.csv has a row per contact node (5)");
   }

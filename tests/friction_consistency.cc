@@ -33,7 +33,8 @@ main(int argc, char *argv[])
   std::map<std::string, unsigned int> count;
   double slip_law = 0, slip_coefficient = 0, stick_excess = 0,
          stick_velocity = 0, free_traction = 0, p_max = 0, slip_max = 0;
-  bool opposes = true;
+  bool   opposes = true, one_time = true, time_increases = true;
+  double last_time = 0;
   for (unsigned int step = 1; step <= 128; ++step)
     {
       char name[64];
@@ -43,17 +44,23 @@ main(int argc, char *argv[])
         test_tools::check(false, std::string("read ") + name);
       if (step == 1)
         test_tools::check(rows[0] ==
-                            test_tools::split("x,y,u_nu,w_nu,normal_pressure,"
-                                              "w_tau,tangential_traction,mu,"
+                            test_tools::split("time,x,y,u_nu,w_nu,"
+                                              "normal_pressure,w_tau,"
+                                              "tangential_traction,mu,"
                                               "u_x,u_y,state",
                                               ','),
                           "contact CSV header");
+      // The time of the step, in every row.
+      const double time = rows.size() > 1 ? std::stod(rows[1][0]) : 0;
+      time_increases    = time_increases && time > last_time;
+      last_time         = time;
       for (std::size_t r = 1; r < rows.size(); ++r)
         {
           const auto &fields = rows[r];
-          const double p = std::stod(fields[4]), w_tau = std::stod(fields[5]),
-                       t = std::stod(fields[6]), m = std::stod(fields[7]);
-          const std::string &state = fields[10];
+          one_time           = one_time && std::stod(fields[0]) == time;
+          const double p = std::stod(fields[5]), w_tau = std::stod(fields[6]),
+                       t = std::stod(fields[7]), m = std::stod(fields[8]);
+          const std::string &state = fields[11];
           ++count[state];
           p_max = std::max(p_max, p);
           if (state == "slip")
@@ -73,6 +80,9 @@ main(int argc, char *argv[])
             free_traction = std::max(free_traction, std::abs(t));
         }
     }
+  test_tools::check(one_time && time_increases,
+                    "the time column: one time per file, increasing with "
+                    "the step");
   test_tools::check(count["slip"] > 100 && count["stick"] > 10,
                     "many slip and stick node-steps");
   test_tools::check(slip_law < 1e-8 * p_max,

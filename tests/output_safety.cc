@@ -130,7 +130,8 @@ main()
     const Outcome second =
       execute(with(here,
                    with(quiet,
-                        {"--set", "Output/VTU every=4", "--set",
+                        {"--set", "Output/Write VTU=true", "--set",
+                         "Output/VTU every=4", "--set",
                          "Checkpoint/Every=2"})),
               launch);
     const bool second_wrote =
@@ -243,7 +244,8 @@ main()
   // ------------------------------------------------------------ full disk
   out << "Full disk" << std::endl;
   const std::vector<std::string> paper_settings = {
-    "--set", "Time/End time=0.0625", "--set", "Output/VTU every=4",
+    "--set", "Time/End time=0.0625", "--set", "Output/Write VTU=true",
+    "--set", "Output/VTU every=4",
     "--set", "Checkpoint/Every=4", "--set", "Checkpoint/Keep=10"};
   auto full_disk = [&](const std::string &             name,
                        const std::string &             injection,

@@ -148,7 +148,7 @@ namespace test_tools
     overrides.insert(overrides.begin(),
                      {"Output/Print timings=false",
                       "Output/Progress every=0",
-                      "Output/VTU every=0"});
+                      "Output/Write VTU=false"});
     dealii::ParameterHandler prm;
     const auto               parameters =
       DynamicContact::read_parameters(file, overrides, prm);

@@ -185,7 +185,7 @@ def generate(dim):
         "subsection Output",
         "  set Directory    = output-manufactured-%dd" % dim,
         "  set Output every = 0",
-        "  set VTU every    = 0",
+        "  set Write VTU    = false",
         "end",
     ]
     path = os.path.join(ROOT, "prm", "manufactured_%dd.prm" % dim)

@@ -70,16 +70,18 @@ namespace DynamicContact
 
   /**
    * contact_NNNNN.csv: one row per node of Gamma_3, gathered from all
-   * processes on rank 0 and sorted by coordinates. Columns: x, y (, z),
-   * u_nu, w_nu, normal_pressure (= p + q), then the friction columns when
-   * the scene has friction, then the displacement u_x, u_y (, u_z) (for
-   * drawing the deformed boundary). Collective; the name is entered in
-   * @p directory's manifest first, the write checked (CollectiveError).
+   * processes on rank 0 and sorted by coordinates. Columns: time (the same
+   * @p time in every row), x, y (, z), u_nu, w_nu, normal_pressure (= p +
+   * q), then the friction columns when the scene has friction, then the
+   * displacement u_x, u_y (, u_z) (for drawing the deformed boundary).
+   * Collective; the name is entered in @p directory's manifest first, the
+   * write checked (CollectiveError).
    */
   template <int dim>
   void
   write_contact_csv(OutputDirectory &                          directory,
                     const std::string &                        name,
+                    const double                               time,
                     const ContactBoundary<dim> &               boundary,
                     const std::vector<ContactNodeState<dim>> &states,
                     const Vector_t &                           u,
@@ -89,21 +91,38 @@ namespace DynamicContact
 
 
   /**
-   * solution_NNNNN.pvtu (+ one .vtu per process) and the time index
-   * solution.pvd: displacement, velocity, stress (tensor components and von
-   * Mises, cell averages), the contact pressure and traction on Gamma_3,
-   * friction fields when present, and the MPI subdomain. Each process
-   * writes its piece solution_NNNNN.R.vtu, rank 0 the record .pvtu and the
-   * index (replaced atomically); every write is checked, and write() is
-   * collective (CollectiveError on every process if a write fails).
+   * The integer code of a node's state in the VTU files (doc/output.md):
+   * 0 free (no normal force), 1 in contact without friction, 2 stick,
+   * 3 slip.
+   */
+  template <int dim>
+  int
+  contact_state_code(const ContactNodeState<dim> &state);
+
+
+  /**
+   * The VTU output for ParaView, each file carrying its time and step:
+   * - solution_NNNNN.pvtu (+ one .vtu per process), indexed by
+   *   solution.pvd: displacement, velocity, the stress tensor (cell
+   *   averages) and von Mises stress, the contact fields of Gamma_3 as
+   *   nodal fields of the whole mesh, and the MPI subdomain;
+   * - contact_surface_NNNNN.pvtu (+ one .vtu per process), indexed by
+   *   contact_surface.pvd: the faces of Gamma_3 (the boundary ids
+   *   @p contact_ids) with the nodal quantities of the contact laws.
+   * Each process writes its pieces solution_NNNNN.R.vtu and
+   * contact_surface_NNNNN.R.vtu, rank 0 the records .pvtu and the indexes
+   * (replaced atomically); every file is entered in the manifest first,
+   * every write is checked, and write() is collective (CollectiveError on
+   * every process if a write fails).
    */
   template <int dim>
   class VtuWriter
   {
   public:
-    VtuWriter(OutputDirectory &  directory,
-              const MPI_Comm     comm,
-              const unsigned int subdivisions = 0);
+    VtuWriter(OutputDirectory &                      directory,
+              const MPI_Comm                         comm,
+              const std::vector<types::boundary_id> &contact_ids,
+              const unsigned int                     subdivisions = 0);
 
     void
     write(const unsigned int                         step,
@@ -116,7 +135,10 @@ namespace DynamicContact
           const Vector_t &                           w,
           const bool                                 friction);
 
-    /** The time index (solution.pvd): (time, pvtu file) pairs. */
+    /**
+     * The time index (solution.pvd): (time, pvtu file) pairs. The index of
+     * the surface (contact_surface.pvd) has the same times.
+     */
     const std::vector<std::pair<double, std::string>> &
     get_records() const
     {
@@ -128,18 +150,28 @@ namespace DynamicContact
       records = r;
     }
 
-    /** Collective: write the index solution.pvd of the records. */
+    /**
+     * Collective: write the indexes solution.pvd and contact_surface.pvd of
+     * the records, or remove them if there are no records.
+     */
     void
     write_index();
 
-    /** The files of the VTU output of @p step on @p n_processes. */
+    /**
+     * The files of the VTU output of @p step on @p n_processes: the record
+     * BASE_NNNNN.pvtu, then the piece BASE_NNNNN.R.vtu of each process
+     * (BASE: solution or contact_surface).
+     */
     static std::vector<std::string>
-    file_names(const unsigned int step, const unsigned int n_processes);
+    file_names(const std::string & base,
+               const unsigned int  step,
+               const unsigned int  n_processes);
 
   private:
-    OutputDirectory &                         directory;
-    MPI_Comm                                  comm;
-    unsigned int                              subdivisions;
+    OutputDirectory &                           directory;
+    MPI_Comm                                    comm;
+    std::vector<types::boundary_id>             contact_ids;
+    unsigned int                                subdivisions;
     std::vector<std::pair<double, std::string>> records;
   };
 } // namespace DynamicContact

@@ -258,6 +258,7 @@ namespace DynamicContact
     {
       std::string         directory;
       unsigned int        output_every;
+      bool                write_vtu;
       unsigned int        vtu_every;
       unsigned int        vtu_subdivisions;
       std::vector<double> output_times;

@@ -29,7 +29,9 @@ namespace DynamicContact
     /** The frozen friction coefficient mu_i of the last iterate. */
     double       mu    = 0;
     ContactState state = ContactState::free;
-    /** |w_e,tau| (w_e = w_n for backward Euler). */
+    /** w_e,tau, the tangential part of w_e (w_e = w_n for backward Euler). */
+    Tensor<1, dim> slip_velocity;
+    /** |w_e,tau|. */
     double slip_rate = 0;
 
     /** Normal nodal force N_i = m_i (p + q). */

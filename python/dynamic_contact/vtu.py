@@ -8,7 +8,9 @@ Handles exactly what DataOut::write_vtu / write_pvtu_record produce:
 - the header of a binary DataArray in UInt32 (the default) or UInt64
   (attribute header_type of VTKFile);
 - .pvtu records (type="PUnstructuredGrid"): the pieces are read and
-  concatenated (point and cell indices of later pieces are shifted).
+  concatenated (point and cell indices of later pieces are shifted);
+- the FieldData TIME and CYCLE (the time and the step the program writes
+  into every piece).
 
 Only numpy, zlib, base64 and xml.etree: no dependency on VTK or meshio.
 "Appended" data (format="appended") is not supported (deal.II does not
@@ -19,6 +21,8 @@ Gamma_3 (contact_surface_NNNNN.pvtu, if the program writes it).
     mesh = read_vtu("solution_00026.pvtu")
     mesh.points            # (n_points, 3) float array
     mesh.point_data["displacement"]   # (n_points, 3)
+    mesh.point_data["stress"]         # (n_points, 9): the 3x3 tensor, row by row
+    mesh.time, mesh.step              # TIME and CYCLE (None if absent)
     mesh.connectivity, mesh.offsets, mesh.types
     mesh.cells()           # list of point-index arrays, one per cell
 """
@@ -43,13 +47,26 @@ class UnstructuredGrid:
     """Points, cells (VTK connectivity/offsets/types) and point/cell data."""
 
     def __init__(self, points, connectivity, offsets, types,
-                 point_data, cell_data):
+                 point_data, cell_data, field_data=None):
         self.points = points
         self.connectivity = connectivity
         self.offsets = offsets
         self.types = types
         self.point_data = point_data
         self.cell_data = cell_data
+        self.field_data = field_data or {}
+
+    @property
+    def time(self):
+        """The time the file carries (FieldData TIME), or None."""
+        t = self.field_data.get("TIME")
+        return None if t is None else float(np.ravel(t)[0])
+
+    @property
+    def step(self):
+        """The step the file carries (FieldData CYCLE), or None."""
+        c = self.field_data.get("CYCLE")
+        return None if c is None else int(np.ravel(c)[0])
 
     @property
     def n_points(self):
@@ -151,13 +168,19 @@ def _read_piece_file(path):
                             ).newbyteorder("<")
 
     grid = root.find("UnstructuredGrid")
+    field_data = {}
+    fd = grid.find("FieldData")
+    if fd is not None:
+        for da in fd.findall("DataArray"):
+            field_data[da.get("Name")] = _read_data_array(da, header_dtype,
+                                                          compressed)
     pieces = []
     for piece in grid.findall("Piece"):
         n_points = int(piece.get("NumberOfPoints"))
         n_cells = int(piece.get("NumberOfCells"))
         points = _read_data_array(piece.find("Points/DataArray"),
                                   header_dtype, compressed)
-        points = points.reshape(n_points, -1).astype(np.float64)
+        points = points.reshape(n_points, -1 if n_points else 3).astype(np.float64)
         cells = {}
         for da in piece.find("Cells").findall("DataArray"):
             cells[da.get("Name")] = _read_data_array(da, header_dtype,
@@ -180,7 +203,8 @@ def _read_piece_file(path):
                              % (path, offsets.shape[0], n_cells))
         pieces.append(UnstructuredGrid(
             points, cells["connectivity"].astype(np.int64), offsets,
-            cells["types"].astype(np.int64), point_data, cell_data))
+            cells["types"].astype(np.int64), point_data, cell_data,
+            field_data))
     return pieces
 
 
@@ -206,7 +230,7 @@ def _merge(pieces):
                  for n in names_c}
     return UnstructuredGrid(np.concatenate(points), np.concatenate(conn),
                             np.concatenate(offs), np.concatenate(types),
-                            point_data, cell_data)
+                            point_data, cell_data, pieces[0].field_data)
 
 
 def read_vtu(path):
