@@ -42,7 +42,7 @@ CASES = [
     ("frictionless", "prm/pressed_block.prm", 1,
      ["Time/End time=3", "Output/Output every=1"]),
 ]
-QUIET = ["Output/VTU every=0", "Output/Progress every=0",
+QUIET = ["Output/Write VTU=false", "Output/Progress every=0",
          "Output/Print timings=false"]
 
 failures = []

@@ -114,7 +114,7 @@ def overrides_of(program, root, relative, quick, steps):
     end = steps * k
     if "Time/End time" in given:
         end = min(end, float(given["Time/End time"]))
-    generic = ["Output/VTU every=0", "Output/Progress every=0",
+    generic = ["Output/Write VTU=false", "Output/Progress every=0",
                "Output/Print timings=false", "Time/End time=%.17g" % end]
     return generic + own
 
