@@ -672,15 +672,49 @@ namespace DynamicContact
                         step_solver.has_friction(),
                         comm);
     if (vtu)
-      vtu_writer->write(n,
-                        t,
-                        discretization,
-                        material,
-                        contact_boundary,
-                        node_states,
-                        u,
-                        w,
-                        step_solver.has_friction());
+      {
+        const auto start = std::chrono::steady_clock::now();
+        vtu_writer->write(n,
+                          t,
+                          discretization,
+                          material,
+                          contact_boundary,
+                          node_states,
+                          u,
+                          w,
+                          step_solver.has_friction());
+        vtu_seconds += std::chrono::duration<double>(
+                         std::chrono::steady_clock::now() - start)
+                         .count();
+        ++vtu_files;
+      }
+  }
+
+
+  template <int dim>
+  unsigned int
+  Simulator<dim>::vtu_files_left() const
+  {
+    const unsigned int every = parameters.output.vtu_every;
+    if (every == 0)
+      return 0;
+    const unsigned int last = step + remaining_steps();
+    if (last <= step)
+      return 0;
+    // Every N steps, the last step, and the steps at the output times (on
+    // the nominal time grid).
+    unsigned int n = last / every - step / every;
+    if (last % every != 0)
+      ++n;
+    const double k0 = parameters.time.time_step;
+    for (const double t_out : parameters.output.output_times)
+      {
+        const auto at = static_cast<unsigned int>(
+          std::max(0., std::ceil(t_out / k0 - 1e-9)));
+        if (at > step && at < last && at % every != 0)
+          ++n;
+      }
+    return n;
   }
 
 
@@ -713,17 +747,21 @@ namespace DynamicContact
         // The wall time per simulated second since the end of the first
         // step of this run (set-up and the first step's one-off work, the
         // factorization and the first compliance columns, left out), times
-        // the simulated time left.
+        // the simulated time left; VTU files (seconds each on large meshes,
+        // every few steps) apart: those still to come at their mean cost.
         if (stepping_start)
           {
             const double stepping =
               std::chrono::duration<double>(now - stepping_start->first)
-                .count();
+                .count() -
+              (vtu_seconds - vtu_seconds_at_start);
             const double simulated = current_time - stepping_start->second;
             if (simulated > 0)
               pcout << ", ~"
-                    << seconds(stepping / simulated *
-                               (parameters.time.end_time - current_time))
+                    << seconds(std::max(0., stepping) / simulated *
+                                 (parameters.time.end_time - current_time) +
+                               (vtu_files > 0 ? vtu_seconds / vtu_files : 0.) *
+                                 vtu_files_left())
                     << " left";
           }
         pcout << ")";
@@ -1267,7 +1305,11 @@ namespace DynamicContact
     // The estimate of the time left starts after the first step of this
     // run (whose one-off work would inflate it).
     if (!stepping_start)
-      stepping_start.emplace(std::chrono::steady_clock::now(), current_time);
+      {
+        stepping_start.emplace(std::chrono::steady_clock::now(),
+                               current_time);
+        vtu_seconds_at_start = vtu_seconds;
+      }
 
     time_series_writer->write(row);
     rows.push_back(row);

@@ -226,6 +226,18 @@ namespace DynamicContact
     std::optional<std::pair<std::chrono::steady_clock::time_point, double>>
       stepping_start;
     /**
+     * Wall time spent writing VTU files (and how many were written), in all
+     * and when stepping_start was set: the estimate of the time left counts
+     * the VTU files still to come at their mean cost instead of spreading
+     * the bursts of the ones written so far over the steps.
+     */
+    double       vtu_seconds          = 0;
+    unsigned int vtu_files            = 0;
+    double       vtu_seconds_at_start = 0;
+    /** The VTU files the run will still write after the current step. */
+    unsigned int
+    vtu_files_left() const;
+    /**
      * Fault injection for the restart test, from the environment variable
      * DYNAMIC_CONTACT_KILL = "after-step N" or "in-checkpoint N": the run
      * kills itself (SIGKILL) after step N, or while writing the checkpoint
