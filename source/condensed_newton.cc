@@ -7,6 +7,7 @@
 
 #include <dynamic_contact/condensed_newton.h>
 #include <dynamic_contact/newton_driver.h>
+#include <dynamic_contact/timing.h>
 
 #include <algorithm>
 #include <cmath>
@@ -142,7 +143,7 @@ namespace DynamicContact
       regularized.compress(VectorOperation::add);
     }
     {
-      TimerOutput::Scope t(problem.timer, "Bulk: factorization of K0");
+      TimerSection t(problem.timer, "Bulk: factorization of K0");
       bulk_solver.initialize(regularized, problem.discretization);
     }
     ++result.factorizations;
@@ -163,7 +164,7 @@ namespace DynamicContact
                                    Vector_t &      x,
                                    Result &        result)
   {
-    TimerOutput::Scope t(problem.timer, "Bulk: solves with K0");
+    TimerSection t(problem.timer, "Bulk: solves with K0");
     bulk_solver.solve(b, x);
     problem.discretization.constraints.set_zero(x);
     ++result.bulk_solves;
@@ -181,7 +182,7 @@ namespace DynamicContact
         missing.push_back(j);
     if (missing.empty())
       return;
-    TimerOutput::Scope t(problem.timer, "Bulk: compliance columns");
+    TimerSection t(problem.timer, "Bulk: compliance columns");
 
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
@@ -261,7 +262,7 @@ namespace DynamicContact
     for (const unsigned int j : nodes)
       if (full_columns[dim * j].empty())
         return false;
-    TimerOutput::Scope t(problem.timer, "Bulk: sums of compliance columns");
+    TimerSection t(problem.timer, "Bulk: sums of compliance columns");
     x            = 0;
     double *   y = x.trilinos_vector()[0];
     const auto n = problem.discretization.locally_owned.n_elements();
@@ -680,7 +681,7 @@ namespace DynamicContact
     for (unsigned int i = 0; i < n; ++i)
       w_scale = std::max({w_scale, w_free_nodes[i].norm(), it.w[i].norm()});
     {
-      TimerOutput::Scope t(problem.timer, "Contact: boundary Newton");
+      TimerSection t(problem.timer, "Contact: boundary Newton");
       BoundaryProblem boundary_problem(*this, w_scale, result);
       NewtonPolicy    policy;
       policy.monotone          = false;
@@ -735,7 +736,7 @@ namespace DynamicContact
     //   R = K0 w - b + sum_i P_i^T f_i(w),
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
-    TimerOutput::Scope t(problem.timer, "Contact: refinement");
+    TimerSection t(problem.timer, "Contact: refinement");
     SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
     SystemIterate<dim> x;
     x.w      = w;

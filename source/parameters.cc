@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/gmsh_file.h>
 #include <dynamic_contact/parameters.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -25,14 +27,69 @@ namespace DynamicContact
       return s;
     }
 
-    /** A list of boundary ids; the pattern has already checked the syntax. */
+    void
+    require(const bool condition, const std::string &message);
+
+    /**
+     * A list of boundary ids (Boundary conditions/@p list): numbers 0 to
+     * 255, or names of physical groups of the Gmsh mesh (@p names, read from
+     * @p mesh_file when the first name is met).
+     */
     std::vector<types::boundary_id>
-    parse_ids(const std::string &text)
+    parse_ids(const std::string &                         text,
+              const std::string &                         list,
+              const Parameters::Geometry &                geometry,
+              const unsigned int                          dim,
+              std::optional<std::map<std::string, types::boundary_id>> &names)
     {
       std::vector<types::boundary_id> ids;
-      for (const int id :
-           Utilities::string_to_int(Utilities::split_string_list(text)))
-        ids.push_back(static_cast<types::boundary_id>(id));
+      for (const auto &item : Utilities::split_string_list(text))
+        {
+          const std::string entry = "Boundary conditions/" + list;
+          if (!item.empty() &&
+              item.find_first_not_of("0123456789") == std::string::npos)
+            {
+              const long id = item.size() > 3 ? 256 : std::stol(item);
+              require(id <= 255,
+                      entry + ": boundary id " + item +
+                        " is out of range (0 to 255).");
+              ids.push_back(static_cast<types::boundary_id>(id));
+              continue;
+            }
+          require(!item.empty(), entry + " = '" + text +
+                                   "': an empty item in the list.");
+          require(geometry.type == Parameters::Geometry::Type::gmsh,
+                  entry + ": '" + item +
+                    "' is not a boundary id (a number from 0 to 255); names "
+                    "of physical groups need Geometry/Type = gmsh (the "
+                    "rectangle's ids are 0/1 at x = min/max, 2/3 at y = "
+                    "min/max, 4/5 at z = min/max).");
+          if (!names)
+            {
+              // A mesh the program cannot use is the first thing to say.
+              const GmshFileInfo info = scan_gmsh_file(geometry.mesh_file);
+              check_gmsh_cells(info, geometry.mesh_file, dim);
+              names = gmsh_boundary_names(info, dim);
+            }
+          const auto found = names->find(item);
+          if (found == names->end())
+            {
+              std::string known;
+              for (const auto &[name, id] : *names)
+                known += (known.empty() ? "" : ", ") + ("'" + name + "'") +
+                         " (" + std::to_string(id) + ")";
+              require(false,
+                      entry + ": '" + item +
+                        "' is neither a boundary id nor the name of a "
+                        "physical group of dimension " +
+                        std::to_string(dim - 1) + " in Geometry/Mesh file '" +
+                        geometry.mesh_file + "' (" +
+                        (known.empty() ? std::string("it names none") :
+                                         "its names: " + known) +
+                        ").");
+            }
+          ids.push_back(found->second);
+        }
       return ids;
     }
 
@@ -120,8 +177,12 @@ namespace DynamicContact
           "Mesh file",
           "",
           Patterns::Anything(),
-          "Gmsh mesh file for Type = gmsh. A relative path is taken relative "
-          "to the directory of the parameter file.");
+          "Gmsh mesh file for Type = gmsh (MSH 2.2 or 4.1, ASCII): "
+          "quadrilaterals in 2D, hexahedra in 3D, first order; the number of "
+          "a physical group of boundary elements is their boundary id, and "
+          "named groups may be named in the Boundary conditions lists. A "
+          "relative path is taken relative to the directory of the "
+          "parameter file.");
       }
       prm.leave_subsection();
     }
@@ -195,14 +256,19 @@ namespace DynamicContact
     BoundaryConditions::declare_parameters(ParameterHandler & prm,
                                            const unsigned int dim)
     {
-      const auto ids = Patterns::List(Patterns::Integer(0, 255));
+      // Numbers 0 to 255 or names of Gmsh physical groups: checked by
+      // parse_parameters (against the mesh file for names).
+      const auto ids = Patterns::List(Patterns::Anything());
       prm.enter_subsection("Boundary conditions");
       {
         prm.declare_entry("Clamped",
                           "0, 1",
                           ids,
                           "Boundary ids where the body is clamped (Gamma_1, "
-                          "u = 0).");
+                          "u = 0). In every list: numbers from 0 to 255 "
+                          "or, with Geometry/Type = gmsh, names of physical "
+                          "groups of the mesh file (of dimension dim - 1; "
+                          "a group's number is its boundary id).");
         prm.declare_entry("Roller",
                           "",
                           ids,
@@ -241,15 +307,23 @@ namespace DynamicContact
     }
 
     void
-    BoundaryConditions::parse_parameters(ParameterHandler &prm)
+    BoundaryConditions::parse_parameters(ParameterHandler &prm,
+                                         const Geometry &  geometry,
+                                         const unsigned int dim)
     {
+      std::optional<std::map<std::string, types::boundary_id>> names;
       prm.enter_subsection("Boundary conditions");
-      clamped  = parse_ids(prm.get("Clamped"));
-      roller   = parse_ids(prm.get("Roller"));
-      traction = parse_ids(prm.get("Traction"));
-      contact  = parse_ids(prm.get("Contact"));
-      free     = parse_ids(prm.get("Free"));
+      const std::string text[] = {prm.get("Clamped"),
+                                  prm.get("Roller"),
+                                  prm.get("Traction"),
+                                  prm.get("Contact"),
+                                  prm.get("Free")};
       prm.leave_subsection();
+      clamped  = parse_ids(text[0], "Clamped", geometry, dim, names);
+      roller   = parse_ids(text[1], "Roller", geometry, dim, names);
+      traction = parse_ids(text[2], "Traction", geometry, dim, names);
+      contact  = parse_ids(text[3], "Contact", geometry, dim, names);
+      free     = parse_ids(text[4], "Free", geometry, dim, names);
 
       std::map<types::boundary_id, std::string> seen;
       for (const auto &[id, list] : all_ids())
@@ -985,12 +1059,17 @@ namespace DynamicContact
           "Print timings",
           "true",
           Patterns::Bool(),
-          "Print the iteration counts and the estimated time left in the "
-          "progress lines, and the TimerOutput summary at the end. "
-          "Regression tests switch this off so that their output is "
-          "deterministic: times vary, and iteration counts follow the "
-          "round-off of a parallel direct solver near the stopping "
-          "thresholds (time_series.csv has them in any case).");
+          "Print what differs from run to run: the elapsed time, the "
+          "estimated time left and the Newton and convexification counts in "
+          "the progress lines, and at the end the iteration totals, the wall "
+          "time, the peak memory and the table of the timer sections "
+          "(disjoint sections that add up to the wall time). Regression "
+          "tests switch this off so that their output is deterministic (on "
+          "several processes the iteration counts follow the round-off of "
+          "the parallel direct solver; time_series.csv has them in any "
+          "case); the summary of the run (cut-backs, unconverged steps, the "
+          "largest energy defect and friction-law residual) is printed in "
+          "any case.");
         prm.declare_entry("Solver details",
                           "false",
                           Patterns::Bool(),
@@ -1090,7 +1169,7 @@ namespace DynamicContact
         parameter_file.substr(0, parameter_file.rfind('/'));
     geometry.parse_parameters(prm, dimension, directory);
     finite_element.parse_parameters(prm);
-    boundary_conditions.parse_parameters(prm);
+    boundary_conditions.parse_parameters(prm, geometry, dimension);
     material.parse_parameters(prm);
     foundation.parse_parameters(prm);
     friction.parse_parameters(prm);

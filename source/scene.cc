@@ -3,6 +3,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/gmsh_file.h>
 #include <dynamic_contact/scene.h>
 
 #include <cmath>
@@ -243,6 +244,11 @@ namespace DynamicContact
       }
     else
       {
+        // deal.II 9.4 reads triangles and tetrahedra into a simplex mesh
+        // this program cannot use (without a message): look first.
+        check_gmsh_cells(scan_gmsh_file(geometry.mesh_file),
+                         geometry.mesh_file,
+                         dim);
         GridIn<dim> grid_in;
         grid_in.attach_triangulation(tria);
         std::ifstream in(geometry.mesh_file);

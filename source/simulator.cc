@@ -7,6 +7,7 @@
 #include <dynamic_contact/error_norms.h>
 #include <dynamic_contact/failure.h>
 #include <dynamic_contact/simulator.h>
+#include <dynamic_contact/timing.h>
 
 #include <unistd.h>
 
@@ -156,8 +157,9 @@ namespace DynamicContact
     , friction_law(FrictionLaw::create(parameters.friction))
     , timer(comm,
             pcout,
-            parameters.output.print_timings ? TimerOutput::summary :
-                                              TimerOutput::never,
+            // The table of the sections is printed by finish() (disjoint
+            // sections, timing.h), not by TimerOutput.
+            TimerOutput::never,
             TimerOutput::wall_times)
     , discretization(comm, parameters.finite_element.degree)
     , bulk(discretization, material)
@@ -235,14 +237,17 @@ namespace DynamicContact
 
 
   template <int dim>
-  Simulator<dim>::~Simulator() = default;
+  Simulator<dim>::~Simulator()
+  {
+    forget_timer(timer);
+  }
 
 
   template <int dim>
   void
   Simulator<dim>::setup_dofs()
   {
-    TimerOutput::Scope t(timer, "Setup: DoFs and Gamma_3");
+    TimerSection t(timer, "Setup: DoFs and Gamma_3");
     discretization.setup_dofs(parameters.boundary_conditions);
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
@@ -267,7 +272,7 @@ namespace DynamicContact
   void
   Simulator<dim>::setup_operators()
   {
-    TimerOutput::Scope t(timer, "Setup: bulk matrices");
+    TimerSection t(timer, "Setup: bulk matrices");
     bulk.reinit();
     force_balance.reinit();
     // c_t of the friction complementarity function, like E/h.
@@ -367,7 +372,7 @@ namespace DynamicContact
   void
   Simulator<dim>::checkpoint()
   {
-    TimerOutput::Scope scope(timer, "Checkpoint");
+    TimerSection scope(timer, "Checkpoint");
     RunState           state;
     state.step                     = step;
     state.time                     = current_time;
@@ -426,7 +431,7 @@ namespace DynamicContact
   double
   Simulator<dim>::adapt_mesh(const double t0, const double t1, const double k)
   {
-    TimerOutput::Scope scope(timer, "Mesh adaptation");
+    TimerSection scope(timer, "Mesh adaptation");
     const double       energy_before = energy_now();
     bool               changed       = false;
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
@@ -526,7 +531,7 @@ namespace DynamicContact
 
     const double theta = parameters.time.theta();
     {
-      TimerOutput::Scope scope(timer, "Step: load and right-hand side");
+      TimerSection scope(timer, "Step: load and right-hand side");
       bulk.set_time_step(k, theta);
       // f_theta = theta f_n + (1 - theta) f_{n-1}.
       bulk.assemble_load_vector(scene, t, load);
@@ -575,6 +580,7 @@ namespace DynamicContact
     // cap is kept (reported) rather than failing the run.
     record.statistics =
       step_solver.solve(rhs, u_old, w_old, w, !can_cut_back(k));
+    last_newton_residual = record.statistics.residual;
 
     if (!std::isfinite(w.l2_norm()))
       throw StepFailure("the solution is not finite");
@@ -585,7 +591,7 @@ namespace DynamicContact
     if (theta < 1)
       u.add(k * (1 - theta), w_old);
 
-    TimerOutput::Scope scope(timer, "Step: energy and force balance");
+    TimerSection scope(timer, "Step: energy and force balance");
     record.terms = energy_balance.step_terms(u_old,
                                              w_old,
                                              u,
@@ -653,7 +659,7 @@ namespace DynamicContact
   {
     const auto &node_states =
       states != nullptr ? *states : step_solver.node_states();
-    TimerOutput::Scope scope(timer, "Output");
+    TimerSection scope(timer, "Output");
     char               name[64];
     std::snprintf(name, sizeof(name), "contact_%05u.csv", n);
     if (contact_csv)
@@ -667,15 +673,49 @@ namespace DynamicContact
                         step_solver.has_friction(),
                         comm);
     if (vtu)
-      vtu_writer->write(n,
-                        t,
-                        discretization,
-                        material,
-                        contact_boundary,
-                        node_states,
-                        u,
-                        w,
-                        step_solver.has_friction());
+      {
+        const auto start = std::chrono::steady_clock::now();
+        vtu_writer->write(n,
+                          t,
+                          discretization,
+                          material,
+                          contact_boundary,
+                          node_states,
+                          u,
+                          w,
+                          step_solver.has_friction());
+        vtu_seconds += std::chrono::duration<double>(
+                         std::chrono::steady_clock::now() - start)
+                         .count();
+        ++vtu_files;
+      }
+  }
+
+
+  template <int dim>
+  unsigned int
+  Simulator<dim>::vtu_files_left() const
+  {
+    const unsigned int every = parameters.output.vtu_every;
+    if (every == 0)
+      return 0;
+    const unsigned int last = step + remaining_steps();
+    if (last <= step)
+      return 0;
+    // Every N steps, the last step, and the steps at the output times (on
+    // the nominal time grid).
+    unsigned int n = last / every - step / every;
+    if (last % every != 0)
+      ++n;
+    const double k0 = parameters.time.time_step;
+    for (const double t_out : parameters.output.output_times)
+      {
+        const auto at = static_cast<unsigned int>(
+          std::max(0., std::ceil(t_out / k0 - 1e-9)));
+        if (at > step && at < last && at % every != 0)
+          ++n;
+      }
+    return n;
   }
 
 
@@ -683,17 +723,18 @@ namespace DynamicContact
   void
   Simulator<dim>::print_progress(const TimeSeriesRow &row) const
   {
-    // Iteration counts (like times) follow the round-off of the parallel
-    // direct solver near the stopping thresholds: they are left out of the
-    // deterministic output of regression runs.
-    const bool interactive = parameters.output.print_timings;
+    // Output/Print timings = false leaves out what differs from run to run:
+    // the times, and the iteration counts (on several processes they follow
+    // the round-off of the parallel direct solver near the stopping
+    // thresholds: two runs of tests/paper_small on 2 processes differed by
+    // one Newton iteration in 3 of 16 progress lines).
     pcout << "step " << std::setw(5) << step << '/' << step + remaining_steps()
           << "  t = " << sig6(row.get("time"));
     if (row.get("time_step") != parameters.time.time_step ||
         row.get("cutbacks") > 0)
       pcout << "  k = " << sig6(row.get("time_step")) << " ("
             << row.get("cutbacks") << " cut-backs)";
-    if (interactive)
+    if (parameters.output.print_timings)
       {
         pcout << "  Newton " << row.get("newton_iterations");
         if (step_solver.has_friction())
@@ -705,23 +746,30 @@ namespace DynamicContact
       pcout << "  cells " << row.get("cells");
     pcout << "  N = " << sig6(row.get("normal_force"))
           << "  E = " << sig6(row.get("total_energy"));
-    if (interactive)
+    if (parameters.output.print_timings)
       {
-        const double elapsed = std::chrono::duration<double>(
-                                 std::chrono::steady_clock::now() - wall_start)
-                                 .count();
+        const auto   now     = std::chrono::steady_clock::now();
+        const double elapsed =
+          std::chrono::duration<double>(now - wall_start).count();
         pcout << "  (" << seconds(elapsed);
+        // The wall time per simulated second since the end of the first
+        // step of this run (set-up and the first step's one-off work, the
+        // factorization and the first compliance columns, left out), times
+        // the simulated time left; VTU files (seconds each on large meshes,
+        // every few steps) apart: those still to come at their mean cost.
         if (stepping_start)
           {
             const double stepping =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                            stepping_start->first)
-                .count();
+              std::chrono::duration<double>(now - stepping_start->first)
+                .count() -
+              (vtu_seconds - vtu_seconds_at_start);
             const double simulated = current_time - stepping_start->second;
             if (simulated > 0)
               pcout << ", ~"
-                    << seconds(stepping / simulated *
-                               (parameters.time.end_time - current_time))
+                    << seconds(std::max(0., stepping) / simulated *
+                                 (parameters.time.end_time - current_time) +
+                               (vtu_files > 0 ? vtu_seconds / vtu_files : 0.) *
+                                 vtu_files_left())
                     << " left";
           }
         pcout << ")";
@@ -907,7 +955,7 @@ namespace DynamicContact
         check_resources(n);
       }
     {
-      TimerOutput::Scope t(timer, "Setup: mesh");
+      TimerSection t(timer, "Setup: mesh");
       scene.create_mesh(discretization.triangulation, false);
       if (!rectangle)
         check_resources(discretization.triangulation.n_cells(0));
@@ -1038,6 +1086,28 @@ namespace DynamicContact
     const std::string series = directory + "/time_series.csv";
     const TimeSeriesOnDisk on_disk =
       read_time_series(series, state.step, comm);
+    // The end summary covers the steps before the checkpoint too (rank 0
+    // holds the rows; only rank 0 prints).
+    {
+      const auto               lines  = Utilities::split_string_list(
+        on_disk.kept, '\n');
+      std::vector<std::string> header;
+      for (const auto &line : lines)
+        {
+          const auto values = Utilities::split_string_list(line, ',');
+          if (header.empty())
+            {
+              header = values;
+              continue;
+            }
+          if (values.size() != header.size() || values[0] == "0")
+            continue; // row 0 is the initial state
+          TimeSeriesRow row;
+          for (unsigned int c = 0; c < values.size(); ++c)
+            row.add(header[c], std::strtod(values[c].c_str(), nullptr));
+          account_for(row);
+        }
+    }
     if (T < on_disk.last_time - 1e-9 * k0)
       throw CollectiveError(
         "--resume: Time/End time = " + sig6(T) +
@@ -1145,8 +1215,6 @@ namespace DynamicContact
   bool
   Simulator<dim>::advance()
   {
-    if (!stepping_start)
-      stepping_start.emplace(std::chrono::steady_clock::now(), current_time);
     const double T  = parameters.time.end_time;
     const double k0 = parameters.time.time_step;
     if (current_time >= T - 1e-9 * k0)
@@ -1240,9 +1308,20 @@ namespace DynamicContact
         good_steps_since_cutback = 0;
       }
     const double t = current_time;
+    // The estimate of the time left starts after the first step of this
+    // run (whose one-off work would inflate it).
+    if (!stepping_start)
+      {
+        stepping_start.emplace(std::chrono::steady_clock::now(),
+                               current_time);
+        vtu_seconds_at_start = vtu_seconds;
+      }
 
     time_series_writer->write(row);
     rows.push_back(row);
+    account_for(row);
+    if (last_newton_residual > parameters.solver.newton_tolerance)
+      ++stagnated_steps;
 
     max_relative_defect =
       std::max(max_relative_defect, row.get("relative_energy_defect"));
@@ -1307,26 +1386,60 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Simulator<dim>::account_for(const TimeSeriesRow &row)
+  {
+    total_cutbacks += static_cast<unsigned int>(row.get("cutbacks"));
+    total_convexification +=
+      static_cast<unsigned int>(row.get("convexification_iterations"));
+    max_coefficient_residual =
+      std::max(max_coefficient_residual, row.get("coefficient_residual"));
+  }
+
+
+  template <int dim>
+  void
   Simulator<dim>::finish()
   {
     time_series_writer->close();
-    pcout << "Completed " << step << " steps";
-    if (parameters.output.print_timings)
-      pcout << ", " << total_newton << " Newton iterations (mean "
-            << std::fixed << std::setprecision(2)
-            << static_cast<double>(total_newton) / std::max(step, 1u)
-            << std::defaultfloat << " per step)";
+    const bool friction = step_solver.has_friction();
+    pcout << "Completed " << step << " steps (t = " << sig6(current_time)
+          << " s)";
+    if (parameters.output.print_timings) // see print_progress()
+      {
+        pcout << ", " << total_newton << " Newton iterations (mean "
+              << std::fixed << std::setprecision(2)
+              << static_cast<double>(total_newton) / std::max(step, 1u)
+              << std::defaultfloat << " per step)";
+        if (friction)
+          pcout << ", " << total_convexification << " convexification passes";
+      }
+    pcout << ".\n";
     const bool balance = max_relative_defect < 1e-8;
     const bool dissipation =
       min_dissipation >= -EnergyBalanceTerms::roundoff;
-    pcout << ".\n"
-          << "  energy balance: max relative defect "
+    pcout << "  energy balance: max relative defect "
           << (balance ? "below 1e-8" :
                         "ABOVE 1e-8 (" + sig6(max_relative_defect) + ")")
           << ", every dissipation term >= 0: "
           << (dissipation ? "yes" :
                             "NO (" + sig6(min_dissipation) + " of the energy)")
           << std::endl;
+    // The summary: what a user checks before trusting the results.
+    pcout << "Summary: results in " << parameters.output.directory << "/\n"
+          << "  time step cut-backs: " << total_cutbacks
+          << "; steps kept with an unconverged convexification loop: "
+          << unconverged_steps
+          << "; steps whose Newton iteration ended at stagnation (residual "
+             "below the square root of Solver/Newton tolerance): "
+          << stagnated_steps << "\n"
+          << "  largest relative energy balance defect: "
+          << scientific(max_relative_defect, 2);
+    if (friction)
+      pcout << "; largest friction-law residual max |mu_i - mu(|w_tau,i|)|: "
+            << scientific(max_coefficient_residual, 2)
+            << " (Friction/Coefficient tolerance "
+            << parameters.friction.coefficient_tolerance << ")";
+    pcout << std::endl;
 
     // An honest ending: completed, or completed with what did not hold.
     std::vector<std::string> warnings;
@@ -1355,6 +1468,10 @@ namespace DynamicContact
       }
     if (parameters.output.print_timings)
       {
+        const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                        wall_start)
+            .count();
         // Peak resident memory, summed over the processes.
         Utilities::System::MemoryStats memory;
         Utilities::System::get_memory_stats(memory);
@@ -1363,11 +1480,9 @@ namespace DynamicContact
         pcout << "  contact solver: " << step_solver.solver_name()
               << ", peak memory: " << std::fixed << std::setprecision(0)
               << peak_mb << " MB (all processes), wall time: "
-              << std::setprecision(1)
-              << std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                               wall_start)
-                   .count()
-              << " s" << std::defaultfloat << std::endl;
+              << std::setprecision(1) << wall << " s" << std::defaultfloat
+              << std::endl;
+        pcout << timing_table(timer, wall);
       }
     write_status(status);
   }

@@ -3,6 +3,7 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <dynamic_contact/sparse_newton.h>
+#include <dynamic_contact/timing.h>
 
 #include <algorithm>
 #include <array>
@@ -94,7 +95,7 @@ namespace DynamicContact
     policy.stagnation_factor = 0.5;
     policy.name              = "whole system";
     {
-      TimerOutput::Scope t(problem.timer, "Contact: sparse Newton");
+      TimerSection t(problem.timer, "Contact: sparse Newton");
       globalized_newton(
         system, x, policy, problem.parameters, problem.details, result);
     }
@@ -216,12 +217,12 @@ namespace DynamicContact
     const double theta = problem.theta;
     if (!amg || amg_k != k)
       {
-        TimerOutput::Scope t(problem.timer, "Newton: AMG setup");
+        TimerSection t(problem.timer, "Newton: AMG setup");
         amg = std::make_unique<BulkAMG>();
         amg->initialize(problem.bulk.newton_matrix(), problem.discretization);
         amg_k = k;
       }
-    TimerOutput::Scope t(problem.timer, "Newton: iterative solve");
+    TimerSection t(problem.timer, "Newton: iterative solve");
 
     // dw = dw0 + delta: dw0 holds the prescribed tangential increments of
     // the stick nodes (t . dw = -(t . w_e)/theta), delta solves the system
@@ -393,7 +394,7 @@ namespace DynamicContact
 
     if (!same)
       {
-        TimerOutput::Scope t(problem.timer, "Newton: matrix update");
+        TimerSection t(problem.timer, "Newton: matrix update");
         system_matrix.copy_from(problem.bulk.newton_matrix());
         for (unsigned int i = 0; i < nodes.size(); ++i)
           for (unsigned int r = 0; r < dim; ++r)
@@ -468,7 +469,7 @@ namespace DynamicContact
 
     if (!same)
       {
-        TimerOutput::Scope t(problem.timer, "Newton: factorization");
+        TimerSection t(problem.timer, "Newton: factorization");
         direct = std::make_unique<TrilinosWrappers::SolverDirect>(
           direct_control,
           TrilinosWrappers::SolverDirect::AdditionalData(
@@ -479,7 +480,7 @@ namespace DynamicContact
         factorized_stick  = system.stick;
         factorized_k      = k;
       }
-    TimerOutput::Scope t(problem.timer, "Newton: triangular solves");
+    TimerSection t(problem.timer, "Newton: triangular solves");
     direct->solve(dw, scratch2);
   }
 

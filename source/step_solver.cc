@@ -5,6 +5,7 @@
 #include <dynamic_contact/condensed_newton.h>
 #include <dynamic_contact/sparse_newton.h>
 #include <dynamic_contact/step_solver.h>
+#include <dynamic_contact/timing.h>
 
 #include <cmath>
 #include <limits>
@@ -370,7 +371,7 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>> xi_previous;
     if (loop)
       {
-        TimerOutput::Scope t(timer, "Friction: convexification update");
+        TimerSection t(timer, "Friction: convexification update");
         const NodalIterate start = nodal_iterate(w);
         for (unsigned int i = 0; i < all.size(); ++i)
           mu[i] = checked_coefficient(*friction_law, start.slip_rate[i]);
@@ -410,7 +411,7 @@ namespace DynamicContact
       std::vector<double>         mu_new;
     };
     auto measure = [&](const unsigned int pass) {
-      TimerOutput::Scope t(timer, "Friction: convexification update");
+      TimerSection t(timer, "Friction: convexification update");
       // Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
       // ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law.
       difference = u_old;
@@ -501,7 +502,7 @@ namespace DynamicContact
             " passes (max |mu_i - mu(|w_tau,i|)| = " +
             scientific(m.coefficient_residual) + ")");
         // The next frozen coefficients: the relaxed update, accelerated.
-        TimerOutput::Scope t(timer, "Friction: convexification update");
+        TimerSection t(timer, "Friction: convexification update");
         for (unsigned int i = 0; i < all.size(); ++i)
           if (!(m.iterate.pressure[i] > 0))
             m.mu_new[i] =

@@ -70,8 +70,16 @@ namespace DynamicContact
 
       static void
       declare_parameters(ParameterHandler &prm, const unsigned int dim);
+      /**
+       * Each list holds boundary ids (0 to 255) or names of physical groups
+       * of the Gmsh mesh of @p geometry (its $PhysicalNames of dimension
+       * dim - 1), resolved to their tags here; an unknown name is an error
+       * listing the names the mesh has.
+       */
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler &prm,
+                       const Geometry &  geometry,
+                       const unsigned int dim);
 
       /** All ids named in any list, with the name of the list. */
       std::vector<std::pair<types::boundary_id, std::string>>

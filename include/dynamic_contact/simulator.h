@@ -217,13 +217,26 @@ namespace DynamicContact
     double
     energy_now();
     /**
-     * Wall clock and simulated time when this process took its first step:
-     * the estimate of the time left is the wall time per simulated second
-     * since then (cut-backs and a resume included) times the simulated time
-     * left.
+     * Wall clock and simulated time when the first step of this run (since
+     * its start or resume) ended: the estimate of the time left is the wall
+     * time per simulated second since then (cut-backs included) times the
+     * simulated time left; set-up and the one-off work of the first step
+     * are left out.
      */
     std::optional<std::pair<std::chrono::steady_clock::time_point, double>>
       stepping_start;
+    /**
+     * Wall time spent writing VTU files (and how many were written), in all
+     * and when stepping_start was set: the estimate of the time left counts
+     * the VTU files still to come at their mean cost instead of spreading
+     * the bursts of the ones written so far over the steps.
+     */
+    double       vtu_seconds          = 0;
+    unsigned int vtu_files            = 0;
+    double       vtu_seconds_at_start = 0;
+    /** The VTU files the run will still write after the current step. */
+    unsigned int
+    vtu_files_left() const;
     /**
      * Fault injection for the restart test, from the environment variable
      * DYNAMIC_CONTACT_KILL = "after-step N" or "in-checkpoint N": the run
@@ -253,6 +266,23 @@ namespace DynamicContact
     double                                max_relative_defect = 0;
     double                                min_dissipation     = 0;
     unsigned int                          total_newton        = 0;
+    /**
+     * For the end summary, from the rows of time_series.csv (those before
+     * a resume included): cut-backs, convexification passes, the largest
+     * coefficient residual max_i |mu_i - mu(|w_tau,i|)| of a step.
+     */
+    unsigned int total_cutbacks           = 0;
+    unsigned int total_convexification    = 0;
+    double       max_coefficient_residual = 0;
+    void
+    account_for(const TimeSeriesRow &row);
+    /**
+     * Steps of this run (since its start or resume) whose Newton iteration
+     * ended at stagnation (residual above Solver/Newton tolerance, below
+     * its square root), and the final residual of the last step solved.
+     */
+    unsigned int stagnated_steps      = 0;
+    double       last_newton_residual = 0;
 
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void

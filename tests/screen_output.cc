@@ -1,0 +1,167 @@
+// What a run prints (issue 12): the end summary agrees with
+// time_series.csv (steps, cut-backs, the largest relative energy defect and
+// the largest friction-law residual of a step), the timer sections are
+// disjoint (the rows of the table add up to the total, which is the wall
+// time), the progress lines give an estimate of the time left, and
+// Output/Print timings = false leaves out the times and the iteration counts
+// (they differ from run to run on several processes): the summary stays. The scene: prm/stress/critical_speed.prm at the
+// size of the stress suite's quick mode (the load at the critical speed:
+// the time step is cut back several times), 1 ms of it.
+//
+// Only verdicts are printed (no times, no counts): the output compares on
+// every machine.
+
+#include "program_tools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace program_tools;
+
+namespace
+{
+  Outcome
+  run(const std::string &directory, const bool timings)
+  {
+    Launch launch;
+    launch.name    = directory;
+    launch.timeout = 300;
+    return execute({test_tools::scene("stress/critical_speed.prm"),
+                    "--set", "Output/Directory=" + directory,
+                    "--set", "Geometry/Repetitions=32, 8",
+                    "--set", "Output/Output every=0",
+                    "--set", "Output/Progress every=50",
+                    "--set", "Output/VTU every=100",
+                    "--set", std::string("Output/Print timings=") +
+                                (timings ? "true" : "false")},
+                   launch);
+  }
+
+  /** The number after @p label in @p text (NaN if absent). */
+  double
+  number_after(const std::string &text, const std::string &label)
+  {
+    const auto at = text.find(label);
+    if (at == std::string::npos)
+      return std::nan("");
+    return std::strtod(text.c_str() + at + label.size(), nullptr);
+  }
+
+  double
+  column_max(const std::vector<std::vector<std::string>> &csv,
+             const std::string &                          name,
+             const bool                                   sum = false)
+  {
+    const auto c =
+      std::find(csv[0].begin(), csv[0].end(), name) - csv[0].begin();
+    double result = 0;
+    for (unsigned int r = 2; r < csv.size(); ++r) // after row 0
+      {
+        const double x = std::stod(csv[r][c]);
+        result         = sum ? result + x : std::max(result, x);
+      }
+    return result;
+  }
+} // namespace
+
+
+int
+main()
+{
+  Checks     checks;
+  const auto say = [&checks](const bool ok, const std::string &what) {
+    test_tools::out() << what << ": " << yes_no(ok) << std::endl;
+    checks.add(ok, what);
+  };
+
+  const Outcome timed = run("timed", true);
+  const Outcome quiet = run("quiet", false);
+  say(timed.succeeded() && quiet.succeeded(), "both runs complete");
+  const auto csv = test_tools::read_csv(fs::path("timed") / "time_series.csv");
+  say(csv.size() > 3, "time_series.csv has rows");
+  if (csv.size() <= 3)
+    {
+      checks.assert_all();
+      return 1;
+    }
+
+  // The summary against time_series.csv.
+  const std::string &out   = timed.out;
+  const double       steps = csv.size() - 2; // header, row 0
+  say(number_after(out, "Completed ") == steps,
+      "summary: the number of steps");
+  const double cutbacks = column_max(csv, "cutbacks", true);
+  say(cutbacks > 0 && number_after(out, "time step cut-backs: ") == cutbacks,
+      "summary: the cut-backs (their sum in time_series.csv, > 0)");
+  say(out.find("steps kept with an unconverged convexification loop: 0") !=
+        std::string::npos,
+      "summary: no step kept with an unconverged convexification loop");
+  say(out.find("Summary: results in timed/") != std::string::npos,
+      "summary: the output directory");
+  const double defect = column_max(csv, "relative_energy_defect");
+  say(test_tools::close(number_after(out,
+                                     "largest relative energy balance "
+                                     "defect: "),
+                        defect,
+                        0.01),
+      "summary: the largest relative energy defect (to 3 digits)");
+  const double residual = column_max(csv, "coefficient_residual");
+  say(test_tools::close(number_after(out,
+                                     "largest friction-law residual max "
+                                     "|mu_i - mu(|w_tau,i|)|: "),
+                        residual,
+                        0.01),
+      "summary: the largest friction-law residual (to 3 digits)");
+
+  // The table of timer sections: disjoint, adding up to the wall time.
+  static const std::regex row(R"(^  (.+?)\s+(\d*)\s+([0-9.]+) s\s+([0-9.]+) %$)");
+  double       sum = 0, total = -1, shares = 0;
+  unsigned int sections = 0;
+  bool         in_table = false;
+  for (const auto &line : lines_of(out))
+    {
+      if (line.rfind("Timings (wall clock", 0) == 0)
+        in_table = true;
+      std::smatch m;
+      if (!in_table || !std::regex_match(line, m, row))
+        continue;
+      const double t = std::stod(m[3].str());
+      if (m[1].str() == "total")
+        total = t;
+      else
+        {
+          sum += t;
+          shares += std::stod(m[4].str());
+          sections += m[2].str().empty() ? 0 : 1;
+        }
+    }
+  say(sections >= 8, "the timer table lists the sections");
+  // Each row is rounded to 0.01 s and 0.1 %.
+  say(total > 0 && std::abs(sum - total) <= 0.005 * (sections + 1) + 1e-9,
+      "the rows of the timer table add up to the total");
+  say(std::abs(shares - 100) <= 0.05 * (sections + 1),
+      "the shares of the timer table add up to 100 %");
+  const double wall = number_after(out, "wall time: ");
+  say(std::abs(wall - total) <= 0.05 + 0.01 * wall,
+      "the total of the table is the wall time of the run");
+
+  // Progress lines: the time left with timings, Newton counts in both.
+  say(std::regex_search(out, std::regex(R"(Newton \d+ .*\([0-9.]+ s, ~[0-9.]+ s left\))")),
+      "with timings: the progress lines give the time left");
+  say(std::regex_search(quiet.out, std::regex(R"(step .* contact \d+ )")) &&
+        !std::regex_search(quiet.out, std::regex(R"(Newton \d)")) &&
+        quiet.out.find(" left)") == std::string::npos,
+      "without timings: progress lines without times and counts");
+  say(quiet.out.find("Summary: results in quiet/") != std::string::npos &&
+        quiet.out.find("time step cut-backs: ") != std::string::npos &&
+        quiet.out.find("Timings") == std::string::npos &&
+        quiet.out.find("wall time") == std::string::npos,
+      "without timings: the summary, no timer table, no wall time");
+
+  checks.assert_all();
+  return 0;
+}
