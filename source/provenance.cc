@@ -270,10 +270,8 @@ namespace DynamicContact
 
 
   // ------------------------------------------------------ parameter files
-  void
-  write_parameter_files(OutputDirectory &    directory,
-                        ParameterHandler &   prm,
-                        const RunParameters &parameters)
+  ParameterFiles::ParameterFiles(ParameterHandler &   prm,
+                                 const RunParameters &parameters)
   {
     // A relative mesh file is relative to the parameter file; the copy
     // lives elsewhere, so it names the mesh by its absolute path.
@@ -302,10 +300,18 @@ namespace DynamicContact
         prm.set("Mesh file", original_mesh_file);
         prm.leave_subsection();
       }
+    this->prm  = prm_text.str();
+    this->json = json_text.str();
+  }
+
+
+  void
+  ParameterFiles::write(OutputDirectory &directory) const
+  {
     directory.claim(
       std::vector<std::string>{"parameters.prm", "parameters.json"});
-    write_file(directory.file("parameters.prm"), prm_text.str());
-    write_file(directory.file("parameters.json"), json_text.str());
+    write_file(directory.file("parameters.prm"), prm);
+    write_file(directory.file("parameters.json"), json);
   }
 
 

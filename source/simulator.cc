@@ -152,7 +152,6 @@ namespace DynamicContact
     , details(screen_log,
               Utilities::MPI::this_mpi_process(comm) == 0 &&
                 parameters.output.solver_details)
-    , parameter_handler(prm)
     , scene(parameters, prm)
     , material(parameters.material)
     , foundation(parameters.foundation)
@@ -184,6 +183,7 @@ namespace DynamicContact
   {
     output_directory = std::make_unique<OutputDirectory>(
       parameters.output.directory, comm);
+    parameter_files   = ParameterFiles(prm, parameters);
     parameters_of_run = parameters_text(
       prm,
       parameters.geometry.type == Parameters::Geometry::Type::gmsh ?
@@ -481,7 +481,7 @@ namespace DynamicContact
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         return;
       screen_log.open(*output_directory, resume);
-      write_parameter_files(*output_directory, parameter_handler, parameters);
+      parameter_files.write(*output_directory);
     });
   }
 

@@ -66,18 +66,28 @@ namespace DynamicContact
   parameters_markdown();
 
   /**
-   * Rank 0: write parameters.prm and parameters.json into @p directory
-   * (entered in its manifest, written with checked writes): every value of
-   * @p prm, that is the parameter file with the --set overrides applied.
-   * Either file, given back to the program, runs the same scene (into the
-   * same Output/Directory unless --set changes it); a relative
-   * Geometry/Mesh file is written as an absolute path, since the file no
-   * longer sits beside the mesh.
+   * parameters.prm and parameters.json of a run: every value of @p prm,
+   * that is the parameter file with the --set overrides applied. Either
+   * file, given back to the program, runs the same scene (into the same
+   * Output/Directory unless --set changes it); a relative Geometry/Mesh
+   * file is written as an absolute path, since the copy no longer sits
+   * beside the mesh (@p prm is left as it was).
    */
-  void
-  write_parameter_files(OutputDirectory &       directory,
-                        ParameterHandler &      prm,
-                        const RunParameters &   parameters);
+  struct ParameterFiles
+  {
+    std::string prm;
+    std::string json;
+
+    ParameterFiles() = default;
+    ParameterFiles(ParameterHandler &prm, const RunParameters &parameters);
+
+    /**
+     * Rank 0: write both into @p directory (entered in its manifest,
+     * written with checked writes).
+     */
+    void
+    write(OutputDirectory &directory) const;
+  };
 
 
   /**

@@ -188,8 +188,6 @@ namespace DynamicContact
     std::string         start_time;
     ConditionalOStream  pcout;
     ConditionalOStream  details;
-    /** The values read (written to parameters.prm and parameters.json). */
-    ParameterHandler &  parameter_handler;
 
     // The input is parsed (and can fail) before anything else is built.
     Scene<dim>                   scene;
@@ -218,6 +216,8 @@ namespace DynamicContact
     bool                              validate_only = false;
     /** The parameters of the run as text (checkpoints, --resume). */
     std::string                       parameters_of_run;
+    /** parameters.prm and parameters.json of the run. */
+    ParameterFiles                    parameter_files;
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
     std::vector<TimeSeriesRow>        rows;
