@@ -16,6 +16,23 @@ namespace DynamicContact
           c.help = true;
         else if (arg == "--print-parameters")
           c.print_parameters = true;
+        else if (arg.rfind("--print-parameters=", 0) == 0)
+          {
+            c.print_parameters = true;
+            c.print_format     = arg.substr(19);
+            if (c.print_format == "md")
+              c.print_format = "markdown";
+            if (c.print_format != "prm" && c.print_format != "json" &&
+                c.print_format != "xml" && c.print_format != "markdown")
+              {
+                c.error = "--print-parameters: unknown format '" +
+                          c.print_format +
+                          "' (prm, json, xml or markdown).";
+                return c;
+              }
+          }
+        else if (arg == "--validate")
+          c.validate = true;
         else if (arg == "--resume")
           c.resume = true;
         else if (arg == "--resume=auto")
@@ -63,6 +80,20 @@ namespace DynamicContact
         c.error = "--resume and --resume=auto exclude each other.";
         return c;
       }
+    if (c.print_parameters && c.print_format == "markdown" &&
+        (!c.parameter_file.empty() || !c.overrides.empty()))
+      {
+        c.error = "--print-parameters=markdown lists the declarations: it "
+                  "takes no parameter file and no --set.";
+        return c;
+      }
+    if (c.validate && (c.resume || c.resume_auto || c.print_parameters))
+      {
+        c.error = std::string("--validate and ") +
+                  (c.print_parameters ? "--print-parameters" : "--resume") +
+                  " exclude each other.";
+        return c;
+      }
     if (!c.help && !c.version && !c.print_parameters &&
         c.parameter_file.empty())
       c.error = "no parameter file given.";
@@ -73,18 +104,33 @@ namespace DynamicContact
   std::string
   CommandLine::usage()
   {
-    return "Usage: dynamic-contact [options] scene.prm\n"
+    return "Usage: dynamic-contact [options] scene.prm|scene.json|scene.xml\n"
            "       mpirun -np N dynamic-contact [options] scene.prm\n"
            "\n"
            "Simulates a viscoelastic body in dynamic frictional contact with a\n"
            "deformable foundation (Barboteu & Danan 2016) as the parameter\n"
            "file describes; results go to the directory Output/Directory.\n"
+           "The parameter file is read as JSON if its name ends in .json,\n"
+           "as XML if in .xml (the formats --print-parameters writes), else\n"
+           "as deal.II's PRM text. doc/parameters.md lists every parameter.\n"
            "\n"
            "Options:\n"
            "  -h, --help              print this help and exit\n"
-           "  --print-parameters      print every parameter with its value,\n"
+           "  --print-parameters[=FORMAT]\n"
+           "                          print every parameter with its value,\n"
            "                          default and documentation, and exit\n"
-           "                          (the values of scene.prm if given)\n"
+           "                          (the values of scene.prm if given);\n"
+           "                          FORMAT: prm (default), json or xml\n"
+           "                          (each can be read back as a scene), or\n"
+           "                          markdown (doc/parameters.md: the\n"
+           "                          declarations, for both dimensions)\n"
+           "  --validate              check the scene as a run would before\n"
+           "                          its first step (parameters, mesh file,\n"
+           "                          boundary ids, the functions and the\n"
+           "                          friction law evaluated on the mesh,\n"
+           "                          resources) without writing anything;\n"
+           "                          exit 0 if it would start, else 1 with\n"
+           "                          the error\n"
            "  --resume                continue from the newest complete\n"
            "                          checkpoint in Output/Directory\n"
            "                          (see Checkpoint/Every)\n"
@@ -97,6 +143,13 @@ namespace DynamicContact
            "                          override one entry of the parameter\n"
            "                          file (repeatable), e.g.\n"
            "                          --set 'Time/Time step=0.001'\n";
+  }
+
+
+  std::string
+  CommandLine::version_number()
+  {
+    return DYNAMIC_CONTACT_VERSION;
   }
 
 

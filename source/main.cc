@@ -5,6 +5,7 @@
 #include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/failure.h>
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/provenance.h>
 #include <dynamic_contact/simulator.h>
 
 #include <iostream>
@@ -47,6 +48,16 @@ main(int argc, char *argv[])
     {
       if (command_line.print_parameters)
         {
+          PrintFormat format = PrintFormat::prm;
+          parse_print_format(command_line.print_format, format);
+          if (format == PrintFormat::markdown)
+            {
+              // The declarations (both dimensions), not the values of a
+              // scene.
+              if (root)
+                std::cout << parameters_markdown();
+              return 0;
+            }
           dealii::ParameterHandler prm;
           if (command_line.parameter_file.empty())
             {
@@ -68,7 +79,7 @@ main(int argc, char *argv[])
                             command_line.overrides,
                             prm);
           if (root)
-            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+            print_parameters(std::cout, prm, format);
           return 0;
         }
 
@@ -76,7 +87,8 @@ main(int argc, char *argv[])
                             command_line.overrides,
                             comm,
                             command_line.resume,
-                            command_line.resume_auto);
+                            command_line.resume_auto,
+                            command_line.validate);
     }
   catch (const AgreedError &e)
     {

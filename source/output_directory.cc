@@ -494,7 +494,8 @@ namespace DynamicContact
   OutputDirectory::is_result_name(const std::string &name)
   {
     static const std::regex pattern(
-      R"((time_series\.csv|run_status|solution\.pvd|contact_[0-9]{5,}\.csv|)"
+      R"((time_series\.csv|run_status|log\.txt|parameters\.prm|)"
+      R"(parameters\.json|solution\.pvd|contact_[0-9]{5,}\.csv|)"
       R"(solution_[0-9]{5,}\.pvtu|solution_[0-9]{5,}\.[0-9]+\.vtu|)"
       R"(contact_surface\.pvd|contact_surface_[0-9]{5,}\.pvtu|)"
       R"(contact_surface_[0-9]{5,}\.[0-9]+\.vtu|)"

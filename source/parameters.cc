@@ -5,10 +5,16 @@
 #include <dynamic_contact/gmsh_file.h>
 #include <dynamic_contact/parameters.h>
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <regex>
@@ -1287,32 +1293,81 @@ namespace DynamicContact
         }
     }
 
+    /**
+     * The number of values a JSON or XML parameter file sets (the leaves of
+     * its tree); throws an error naming the file if it is not valid JSON or
+     * XML.
+     */
+    unsigned int
+    count_structured_values(const std::string &parameter_file,
+                            const std::string &text,
+                            const ParameterFormat format)
+    {
+      namespace pt = boost::property_tree;
+      pt::ptree tree;
+      try
+        {
+          std::istringstream in(text);
+          if (format == ParameterFormat::json)
+            pt::read_json(in, tree);
+          else
+            pt::read_xml(in, tree);
+        }
+      catch (const pt::file_parser_error &e)
+        {
+          AssertThrow(false,
+                      ExcMessage("The parameter file '" + parameter_file +
+                                 "' is not valid " +
+                                 (format == ParameterFormat::json ? "JSON" :
+                                                                    "XML") +
+                                 " (line " + std::to_string(e.line()) +
+                                 ": " + e.message() + ")."));
+        }
+      const std::function<unsigned int(const pt::ptree &)> leaves =
+        [&](const pt::ptree &t) -> unsigned int {
+        unsigned int n = 0;
+        for (const auto &child : t)
+          if (child.first == "<xmlattr>" || child.first == "<xmlcomment>")
+            continue;
+          else if (child.second.empty())
+            ++n;
+          else
+            n += leaves(child.second);
+        return n;
+      };
+      return leaves(tree);
+    }
+
     void
     check_readable(const std::string &parameter_file)
     {
       check_file_kind(parameter_file, "");
-      {
-        std::error_code          ec;
-        std::vector<std::string> chain = {
-          std::filesystem::weakly_canonical(parameter_file, ec).string()};
-        std::vector<std::string> shown = {parameter_file};
-        check_includes(parameter_file, chain, shown);
-      }
+      const ParameterFormat format = parameter_format(parameter_file);
+      if (format == ParameterFormat::prm)
+        {
+          std::error_code          ec;
+          std::vector<std::string> chain = {
+            std::filesystem::weakly_canonical(parameter_file, ec).string()};
+          std::vector<std::string> shown = {parameter_file};
+          check_includes(parameter_file, chain, shown);
+        }
       const std::string text = without_bom(read_file(parameter_file));
       // A parameter file is text: refuse binary content with a clear message
       // rather than a confusing parse error about an unprintable line.
       // And a scene that sets nothing is a mistake, not the default scene.
       bool sets_something = false;
-      {
-        std::istringstream lines(text);
-        std::string        line;
-        while (std::getline(lines, line))
-          {
-            line = Utilities::trim(line.substr(0, line.find('#')));
-            if (line.rfind("set ", 0) == 0 || line.rfind("include ", 0) == 0)
-              sets_something = true;
-          }
-      }
+      if (format == ParameterFormat::prm)
+        {
+          std::istringstream lines(text);
+          std::string        line;
+          while (std::getline(lines, line))
+            {
+              line = Utilities::trim(line.substr(0, line.find('#')));
+              if (line.rfind("set ", 0) == 0 ||
+                  line.rfind("include ", 0) == 0)
+                sets_something = true;
+            }
+        }
       unsigned int line = 1;
       for (const char c : text)
         {
@@ -1325,6 +1380,11 @@ namespace DynamicContact
                                  "in line " +
                                  std::to_string(line) + ")."));
         }
+      if (format != ParameterFormat::prm)
+        sets_something =
+          Utilities::trim(text).empty() ?
+            false :
+            count_structured_values(parameter_file, text, format) > 0;
       AssertThrow(sets_something,
                   ExcMessage("The parameter file '" + parameter_file +
                              "' is empty: it sets no parameter (write the "
@@ -1419,11 +1479,172 @@ namespace DynamicContact
       return where + rest;
     }
 
+    /** How setting one entry went: set_entry(). */
+    enum class SetResult
+    {
+      ok,
+      undeclared,
+      bad_value
+    };
+
+    /**
+     * Set the entry "sections/entry" of @p prm to @p value; on failure
+     * @p reason says why, naming the entry as Section/Entry.
+     */
+    SetResult
+    set_entry(ParameterHandler &              prm,
+              const std::vector<std::string> &sections,
+              const std::string &             entry,
+              const std::string &             value,
+              std::string &                   reason)
+    {
+      unsigned int entered = 0;
+      try
+        {
+          for (const auto &s : sections)
+            {
+              prm.enter_subsection(s);
+              ++entered;
+            }
+          prm.set(entry, value);
+        }
+      catch (const std::exception &e)
+        {
+          for (; entered > 0; --entered)
+            prm.leave_subsection();
+          const std::string message = error_message(e);
+          std::string       full_path;
+          for (const auto &s : sections)
+            full_path += s + "/";
+          full_path += entry;
+          std::smatch m;
+          reason = message;
+          if (message.find("not yet declared") != std::string::npos)
+            {
+              reason = "there is no parameter '" + full_path +
+                       "' (--print-parameters lists every parameter).";
+              return SetResult::undeclared;
+            }
+          if (std::regex_search(
+                message,
+                m,
+                std::regex(R"(does not match the given pattern <(.*)>)")))
+            reason = full_path + " = '" + value + "' is not " +
+                     readable_pattern(Utilities::trim(m[1].str())) + ".";
+          return SetResult::bad_value;
+        }
+      for (; entered > 0; --entered)
+        prm.leave_subsection();
+      return SetResult::ok;
+    }
+
+    /** An XML name as ParameterHandler writes it ("Time_20step"), decoded. */
+    std::string
+    demangle(const std::string &name)
+    {
+      std::string result;
+      for (std::size_t i = 0; i < name.size(); ++i)
+        if (name[i] == '_' && i + 2 < name.size() &&
+            std::isxdigit(static_cast<unsigned char>(name[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(name[i + 2])))
+          {
+            result += static_cast<char>(std::stoi(name.substr(i + 1, 2),
+                                                  nullptr,
+                                                  16));
+            i += 2;
+          }
+        else
+          result += name[i];
+      return result;
+    }
+
+    /**
+     * Set the entries of a JSON or XML tree in the form
+     * ParameterHandler::print_parameters writes (every entry an object
+     * with its "value"; also the value alone, as a scene written by hand
+     * may give it: "End time": "2" or 2), subsections as objects. The
+     * tree is read by deal.II's ParameterHandler conventions, the entries
+     * set one by one so that an error names the entry as Section/Entry.
+     */
+    void
+    set_entries(ParameterHandler &                  prm,
+                const boost::property_tree::ptree &node,
+                std::vector<std::string> &          path,
+                const std::string &                 file,
+                const bool                          xml,
+                const bool                          skip_undefined)
+    {
+      for (const auto &[key, child] : node)
+        {
+          if (key == "<xmlattr>" || key == "<xmlcomment>")
+            continue;
+          const std::string name = xml ? demangle(key) : key;
+          const auto        value_node = child.find("value");
+          if (value_node == child.not_found() && !child.empty())
+            {
+              path.push_back(name);
+              set_entries(prm, child, path, file, xml, skip_undefined);
+              path.pop_back();
+              continue;
+            }
+          const std::string value = Utilities::trim(
+            value_node == child.not_found() ? child.data() :
+                                              value_node->second.data());
+          std::string     reason;
+          const SetResult result = set_entry(prm, path, name, value, reason);
+          if (result == SetResult::ok ||
+              (result == SetResult::undeclared && skip_undefined))
+            continue;
+          AssertThrow(false,
+                      ExcMessage("Error in the parameter file '" + file +
+                                 "': " + reason));
+        }
+    }
+
+    void
+    parse_structured_file(ParameterHandler & prm,
+                          const std::string &parameter_file,
+                          const bool         xml,
+                          const bool         skip_undefined)
+    {
+      namespace pt = boost::property_tree;
+      pt::ptree          tree;
+      std::istringstream in(without_bom(read_file(parameter_file)));
+      // The syntax has been checked (check_readable).
+      if (xml)
+        pt::read_xml(in, tree);
+      else
+        pt::read_json(in, tree);
+      std::vector<std::string> path;
+      if (xml)
+        {
+          const auto root = tree.find("ParameterHandler");
+          AssertThrow(root != tree.not_found() && tree.size() == 1,
+                      ExcMessage("The parameter file '" + parameter_file +
+                                 "' is not a parameter file in XML: its "
+                                 "root element must be <ParameterHandler> "
+                                 "(as --print-parameters=xml writes it)."));
+          set_entries(
+            prm, root->second, path, parameter_file, true, skip_undefined);
+        }
+      else
+        set_entries(prm, tree, path, parameter_file, false, skip_undefined);
+    }
+
     void
     parse_file(ParameterHandler & prm,
                const std::string &parameter_file,
                const bool         skip_undefined)
     {
+      const ParameterFormat format = parameter_format(parameter_file);
+      if (format != ParameterFormat::prm)
+        {
+          parse_structured_file(prm,
+                                parameter_file,
+                                format == ParameterFormat::xml,
+                                skip_undefined);
+          return;
+        }
       try
         {
           // Parsed from its text, so that a UTF-8 byte order mark (which
@@ -1440,6 +1661,23 @@ namespace DynamicContact
         }
     }
   } // namespace
+
+
+  ParameterFormat
+  parameter_format(const std::string &parameter_file)
+  {
+    std::string extension =
+      std::filesystem::path(parameter_file).extension().string();
+    std::transform(extension.begin(),
+                   extension.end(),
+                   extension.begin(),
+                   [](const unsigned char c) { return std::tolower(c); });
+    if (extension == ".json")
+      return ParameterFormat::json;
+    if (extension == ".xml")
+      return ParameterFormat::xml;
+    return ParameterFormat::prm;
+  }
 
 
   void
@@ -1461,41 +1699,9 @@ namespace DynamicContact
       }
     const std::string entry = Utilities::trim(path);
 
-    unsigned int entered = 0;
-    try
-      {
-        for (const auto &s : sections)
-          {
-            prm.enter_subsection(s);
-            ++entered;
-          }
-        prm.set(entry, value);
-      }
-    catch (const std::exception &e)
-      {
-        for (; entered > 0; --entered)
-          prm.leave_subsection();
-        const std::string message = error_message(e);
-        std::string       full_path;
-        for (const auto &s : sections)
-          full_path += s + "/";
-        full_path += entry;
-        std::smatch m;
-        std::string reason = message;
-        if (message.find("not yet declared") != std::string::npos)
-          reason = "there is no parameter '" + full_path +
-                   "' (--print-parameters lists every parameter).";
-        else if (std::regex_search(
-                   message,
-                   m,
-                   std::regex(R"(does not match the given pattern <(.*)>)")))
-          reason = full_path + " = '" + value + "' is not " +
-                   readable_pattern(Utilities::trim(m[1].str())) + ".";
-        AssertThrow(false,
-                    ExcMessage("--set '" + assignment + "': " + reason));
-      }
-    for (; entered > 0; --entered)
-      prm.leave_subsection();
+    std::string reason;
+    if (set_entry(prm, sections, entry, value, reason) != SetResult::ok)
+      AssertThrow(false, ExcMessage("--set '" + assignment + "': " + reason));
   }
 
 

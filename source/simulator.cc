@@ -147,8 +147,10 @@ namespace DynamicContact
                             const MPI_Comm       comm)
     : parameters(parameters)
     , comm(comm)
-    , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
-    , details(std::cout,
+    , screen_log(std::cout)
+    , start_time(utc_timestamp())
+    , pcout(screen_log, Utilities::MPI::this_mpi_process(comm) == 0)
+    , details(screen_log,
               Utilities::MPI::this_mpi_process(comm) == 0 &&
                 parameters.output.solver_details)
     , scene(parameters, prm)
@@ -183,6 +185,7 @@ namespace DynamicContact
   {
     output_directory = std::make_unique<OutputDirectory>(
       parameters.output.directory, comm);
+    parameter_files   = ParameterFiles(prm, parameters);
     parameters_of_run = parameters_text(
       prm,
       parameters.geometry.type == Parameters::Geometry::Type::gmsh ?
@@ -477,6 +480,34 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Simulator<dim>::write_provenance(const bool resume)
+  {
+    collectively(comm, [&]() {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      screen_log.open(*output_directory, resume);
+      parameter_files.write(*output_directory);
+    });
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_log(const bool close)
+  {
+    collectively(comm, [&]() {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      if (close)
+        screen_log.close();
+      else
+        screen_log.write_pending();
+    });
+  }
+
+
+  template <int dim>
+  void
   Simulator<dim>::print_header() const
   {
     pcout << "dynamic-contact: " << dim << "D, Q" << discretization.fe.degree
@@ -487,6 +518,16 @@ namespace DynamicContact
     if (mesh_adaptation.enabled())
       pcout << " (adaptive)";
     pcout << '\n';
+    // Which program ran, where and when: on the screen with the timings
+    // (output that differs from run to run), in log.txt always.
+    const std::string provenance =
+      "  " +
+      provenance_line(Utilities::MPI::n_mpi_processes(comm), start_time) +
+      "\n";
+    if (parameters.output.print_timings)
+      pcout << provenance;
+    else if (Utilities::MPI::this_mpi_process(comm) == 0)
+      screen_log.log_only(provenance);
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
             << ", parameter file: " << parameters.parameter_file
@@ -981,10 +1022,15 @@ namespace DynamicContact
                               "state is not finite.");
     }
 
+    // --validate: the scene would start; nothing is written.
+    if (validate_only)
+      return;
+
     // The directory is ours (locked, no foreign results), the results of
     // an earlier run in it are gone.
     output_directory->open(false);
     write_status("running");
+    write_provenance(false);
     time_series_writer =
       std::make_unique<TimeSeriesWriter>(*output_directory, comm);
     vtu_writer = std::make_unique<VtuWriter<dim>>(
@@ -1013,6 +1059,22 @@ namespace DynamicContact
     time_series_writer->write(row);
     rows.push_back(row);
     output_results(0, 0., true, parameters.output.write_vtu);
+  }
+
+
+  template <int dim>
+  std::string
+  Simulator<dim>::validate()
+  {
+    validate_only = true;
+    initialize(false);
+    timer.disable_output(); // set-up times of a run that does not run
+    std::ostringstream summary;
+    summary << dim << "D, Q" << discretization.fe.degree << " elements, "
+            << discretization.triangulation.n_global_active_cells()
+            << " cells, " << discretization.dof_handler.n_dofs() << " DoFs, "
+            << contact_boundary.n_global_nodes() << " contact nodes";
+    return summary.str();
   }
 
 
@@ -1183,6 +1245,7 @@ namespace DynamicContact
     // The indexes list the VTU files up to the checkpoint only (none: they
     // are removed).
     vtu_writer->write_index();
+    write_provenance(true);
     print_header();
     pcout << "  resumed from " << latest << " (step " << step
           << ", t = " << sig6(current_time) << " s)" << std::endl;
@@ -1371,6 +1434,7 @@ namespace DynamicContact
     if (parameters.checkpoint.every > 0 &&
         step % parameters.checkpoint.every == 0 && !last)
       checkpoint();
+    write_log();
     if (kill_after_step == step)
       std::raise(SIGKILL);
     const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
@@ -1484,6 +1548,7 @@ namespace DynamicContact
               << std::endl;
         pcout << timing_table(timer, wall);
       }
+    write_log(true);
     write_status(status);
   }
 
@@ -1512,6 +1577,7 @@ namespace DynamicContact
     else
       pcout << "; no checkpoint (Checkpoint/Every = 0)";
     pcout << "." << std::endl;
+    write_log(true);
   }
 
 
@@ -1566,6 +1632,26 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Simulator<dim>::close_log_after_error(const std::string &reason)
+  {
+    // Rank 0, after an error: log.txt ends with the message main prints
+    // (a failed write here is reported; run_status is written anyway).
+    if (!screen_log.is_open())
+      return;
+    try
+      {
+        screen_log.log_only("dynamic-contact: error: " + reason + "\n");
+        screen_log.close();
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "dynamic-contact: " << e.what() << std::endl;
+      }
+  }
+
+
+  template <int dim>
+  void
   Simulator<dim>::abandon(const std::string &reason)
   {
     timer.disable_output();
@@ -1574,6 +1660,7 @@ namespace DynamicContact
     if (took_over && Utilities::MPI::this_mpi_process(comm) == 0)
       try
         {
+          close_log_after_error(reason);
           output_directory->write_status("failed: " + reason);
         }
       catch (const std::exception &e)
@@ -1593,7 +1680,10 @@ namespace DynamicContact
     try
       {
         if (Utilities::MPI::this_mpi_process(comm) == 0)
-          output_directory->write_status("failed: " + reason);
+          {
+            close_log_after_error(reason);
+            output_directory->write_status("failed: " + reason);
+          }
         else
           {
             StatusFile status;
@@ -1613,7 +1703,8 @@ namespace DynamicContact
   run_dimension(const RunParameters &parameters,
                 ParameterHandler &   prm,
                 const MPI_Comm       comm,
-                const bool           resume)
+                const bool           resume,
+                const bool           validate)
   {
     // Catch inside the simulator's lifetime, so that it is destroyed with no
     // exception in flight (its timer would otherwise warn about it).
@@ -1623,7 +1714,18 @@ namespace DynamicContact
       Simulator<dim> simulator(parameters, prm, comm);
       try
         {
-          exit_code = simulator.run(resume);
+          if (validate)
+            {
+              const std::string summary = simulator.validate();
+              if (Utilities::MPI::this_mpi_process(comm) == 0)
+                std::cout << "dynamic-contact: the scene '"
+                          << parameters.parameter_file << "' is valid ("
+                          << summary << "); Output/Directory '"
+                          << parameters.output.directory
+                          << "' is not looked at." << std::endl;
+            }
+          else
+            exit_code = simulator.run(resume);
         }
       catch (const std::exception &e)
         {
@@ -1653,7 +1755,8 @@ namespace DynamicContact
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
                  bool                            resume,
-                 const bool                      resume_auto)
+                 const bool                      resume_auto,
+                 const bool                      validate)
   {
     ParameterHandler    prm;
     const RunParameters parameters =
@@ -1668,9 +1771,9 @@ namespace DynamicContact
                     << std::endl;
       }
     if (parameters.dimension == 2)
-      return run_dimension<2>(parameters, prm, comm, resume);
+      return run_dimension<2>(parameters, prm, comm, resume, validate);
     else
-      return run_dimension<3>(parameters, prm, comm, resume);
+      return run_dimension<3>(parameters, prm, comm, resume, validate);
   }
 
 

@@ -114,7 +114,10 @@ namespace
   /**
    * The result files of a run (no checkpoints), sorted; not the program's
    * bookkeeping (.dynamic-contact, the manifest of what it wrote, and the
-   * lock .dynamic-contact.lock: they name the process and its history).
+   * lock .dynamic-contact.lock: they name the process and its history),
+   * nor its provenance (log.txt, parameters.prm and parameters.json name
+   * the start time, the output directory and the resume; tests/provenance
+   * checks them).
    */
   std::vector<std::string>
   result_files(const std::string &directory)
@@ -123,7 +126,9 @@ namespace
     for (const auto &e : fs::directory_iterator(directory))
       {
         const std::string n = e.path().filename().string();
-        if (e.is_regular_file() && n != "run_status" && n[0] != '.')
+        if (e.is_regular_file() && n != "run_status" && n[0] != '.' &&
+            n != "log.txt" && n != "parameters.prm" &&
+            n != "parameters.json")
           names.push_back(n);
       }
     std::sort(names.begin(), names.end());

@@ -188,7 +188,8 @@ main(int argc, char **argv)
   // ------------------------------------------------------------ --help
   {
     out << "--help:" << std::endl;
-    for (const std::string word : {"Usage:", "--set", "--print-parameters", "--resume"})
+    for (const std::string word :
+         {"Usage:", "--set", "--print-parameters", "--resume", "--validate"})
       {
         const bool found = help.out.find(word) != std::string::npos;
         out << "  the usage text mentions '" << word << "': " << yes_no(found)

@@ -11,6 +11,10 @@ namespace DynamicContact
   {
     bool                     help             = false;
     bool                     print_parameters = false;
+    /** --print-parameters=FORMAT: prm (the default), json, xml, markdown. */
+    std::string              print_format     = "prm";
+    /** --validate: check the scene as a run would, without running it. */
+    bool                     validate         = false;
     bool                     resume           = false;
     /** --resume=auto: resume if Output/Directory has a checkpoint, else
      *  start a new run (a chain of batch jobs). */
@@ -29,6 +33,10 @@ namespace DynamicContact
     /** "dynamic-contact X.Y.Z (git H), deal.II A.B.C" */
     static std::string
     version_text();
+
+    /** "X.Y.Z": the version of dynamic-contact. */
+    static std::string
+    version_number();
   };
 } // namespace DynamicContact
 

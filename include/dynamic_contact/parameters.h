@@ -312,10 +312,27 @@ namespace DynamicContact
   };
 
 
+  /** The formats of a parameter file (deal.II's ParameterHandler). */
+  enum class ParameterFormat
+  {
+    prm,
+    json,
+    xml
+  };
+
   /**
-   * Read a parameter file in two passes: first the Dimension (everything else
-   * ignored), then every entry, declared for that dimension, strictly: an
-   * unknown or malformed entry is an error naming the file and the line.
+   * The format of @p parameter_file by its extension: ".json" JSON, ".xml"
+   * XML (as ParameterHandler::print_parameters writes them), anything else
+   * the PRM text format.
+   */
+  ParameterFormat
+  parameter_format(const std::string &parameter_file);
+
+  /**
+   * Read a parameter file (PRM, JSON or XML: parameter_format()) in two
+   * passes: first the Dimension (everything else ignored), then every
+   * entry, declared for that dimension, strictly: an unknown or malformed
+   * entry is an error naming the file and (PRM) the line.
    * Each override "Section/Subsection/Entry=value" is applied after the file.
    * The ParameterHandler @p prm is left holding the values read.
    */

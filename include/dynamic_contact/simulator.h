@@ -18,6 +18,7 @@
 #include <dynamic_contact/output.h>
 #include <dynamic_contact/output_directory.h>
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/provenance.h>
 #include <dynamic_contact/scene.h>
 #include <dynamic_contact/step_solver.h>
 
@@ -70,6 +71,17 @@ namespace DynamicContact
      */
     void
     initialize(const bool resume = false);
+
+    /**
+     * --validate: everything initialize() does before the first result is
+     * written (the mesh and its boundary ids, the resources, the functions
+     * of the scene and the friction law sampled, the operators set up, the
+     * initial state), and nothing more: the output directory is not
+     * touched. Throws the error the run would stop with; returns
+     * "2D, Q1 elements, N cells, M DoFs, K contact nodes".
+     */
+    std::string
+    validate();
 
     /**
      * One time step; false (and nothing done) once the end time is reached
@@ -170,6 +182,10 @@ namespace DynamicContact
   private:
     const RunParameters parameters;
     MPI_Comm            comm;
+    /** The screen output, and its copy log.txt (rank 0). */
+    mutable ScreenLog   screen_log;
+    /** When the run started (UTC, ISO 8601), for the header. */
+    std::string         start_time;
     ConditionalOStream  pcout;
     ConditionalOStream  details;
 
@@ -196,8 +212,12 @@ namespace DynamicContact
     std::unique_ptr<OutputDirectory>  output_directory;
     /** Whether this run has written run_status (taken over the results). */
     bool                              took_over = false;
+    /** validate(): initialize() stops before the output directory. */
+    bool                              validate_only = false;
     /** The parameters of the run as text (checkpoints, --resume). */
     std::string                       parameters_of_run;
+    /** parameters.prm and parameters.json of the run. */
+    ParameterFiles                    parameter_files;
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
     std::vector<TimeSeriesRow>        rows;
@@ -387,6 +407,19 @@ namespace DynamicContact
     /** Collective: write run_status (a failure is a CollectiveError). */
     void
     write_status(const std::string &status);
+    /**
+     * Collective: open log.txt (with the screen output so far) and write
+     * parameters.prm and parameters.json; with @p resume continue log.txt.
+     */
+    void
+    write_provenance(const bool resume);
+    /** Collective: write the screen output since the last call to log.txt;
+     *  with @p close close it (before the final run_status). */
+    void
+    write_log(const bool close = false);
+    /** Rank 0 after an error: the message into log.txt, and close it. */
+    void
+    close_log_after_error(const std::string &reason);
   };
 
 
@@ -397,14 +430,16 @@ namespace DynamicContact
    * and returns 1); an error of some processes only ends the job from
    * there (abort_run). @p resume_auto: resume if Output/Directory holds a
    * checkpoint (damaged or not: a damaged one is then named), else a new
-   * run.
+   * run. @p validate: only check the scene (Simulator::validate()), print
+   * that it is valid and return 0.
    */
   int
   run_simulation(const std::string &             parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
                  const bool                      resume      = false,
-                 const bool                      resume_auto = false);
+                 const bool                      resume_auto = false,
+                 const bool                      validate    = false);
 } // namespace DynamicContact
 
 #endif

@@ -1,0 +1,428 @@
+// Provenance and input formats of the real executable (issue 12):
+//   - every output directory holds parameters.prm and parameters.json (the
+//     parameters with the --set overrides applied) and log.txt (the screen
+//     output, with a line naming the version, deal.II, the processes and
+//     the start time), all three in the manifest; run again from either
+//     parameter file into another directory, the program writes the same
+//     time_series.csv, byte for byte;
+//   - after --resume, log.txt goes on (a new section), the first part kept;
+//   - a scene in JSON or XML (as --print-parameters=json|xml writes it)
+//     runs and gives the same time_series.csv as the PRM scene; a
+//     hand-written short JSON scene too; bad JSON/XML files give one clear
+//     error naming the file (empty, no parameter set, unknown entry, bad
+//     value, not JSON at all, missing);
+//   - --validate: exit 0 and nothing written for a good scene; for a bad
+//     one (unassigned boundary id, broken expression, missing mesh file,
+//     an initial condition that is not finite) exit 1 with exactly the
+//     error line the run itself stops with, and nothing written either;
+//   - doc/parameters.md is what --print-parameters=markdown prints (the
+//     test fails while the committed file is stale).
+//
+// Every run happens first and prints what it found; the checks follow.
+
+#include "program_tools.h"
+
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+  using namespace program_tools;
+
+  struct Run : Outcome
+  {
+    Run(const std::vector<std::string> &arguments, const std::string &name)
+      : arguments(arguments)
+      , name(name)
+    {}
+    std::vector<std::string> arguments;
+    std::string              name;
+  };
+
+  void
+  execute_all(std::vector<Run *> runs)
+  {
+    std::vector<std::thread> threads;
+    for (Run *r : runs)
+      threads.emplace_back([r]() {
+        Launch launch;
+        launch.name                = r->name;
+        launch.timeout             = 300;
+        static_cast<Outcome &>(*r) = execute(r->arguments, launch);
+      });
+    for (auto &t : threads)
+      t.join();
+  }
+
+  /** An error line without the directories of absolute paths. */
+  std::string
+  without_paths(const std::string &text)
+  {
+    static const std::regex path(R"((^|[\s'"<(])/(?:[^\s'"<>()]*/)?)");
+    return std::regex_replace(text, path, "$1");
+  }
+
+  std::string
+  first_error(const Outcome &o)
+  {
+    const auto lines = error_lines(o);
+    return lines.empty() ? "<none>" : without_paths(lines[0]);
+  }
+
+  /** The names the manifest of @p directory lists. */
+  std::set<std::string>
+  manifest(const fs::path &directory)
+  {
+    std::set<std::string> names;
+    for (const auto &line : lines_of(read_text(directory / ".dynamic-contact")))
+      if (!trim(line).empty() && trim(line)[0] != '#')
+        names.insert(trim(line));
+    return names;
+  }
+
+  const std::regex provenance_line(
+    R"(  dynamic-contact [0-9][^ ]* \(git [^ )]+\), deal\.II [0-9.]+, 1 MPI process, started [0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z)");
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  std::ostream &                           out = test_tools::out();
+
+  const std::string scene = test_tools::scene("pressed_block.prm");
+  // The directories of an earlier run of this test.
+  for (const std::string d : {"original", "again_prm", "again_json",
+                              "from_json", "from_xml", "from_short_json",
+                              "resumed", "bad", "validate_good",
+                              "validate_unassigned_id", "run_unassigned_id",
+                              "validate_broken_expression",
+                              "run_broken_expression", "validate_missing_mesh",
+                              "run_missing_mesh", "validate_nan_initial",
+                              "run_nan_initial"})
+    fs::remove_all(d);
+  for (const std::string f : {"scene.json", "scene.xml", "short.json"})
+    fs::remove(f);
+
+  // The scene of every comparison: pressed_block.prm with overrides.
+  const std::vector<std::string> overrides = {"--set",
+                                              "Time/End time=3",
+                                              "--set",
+                                              "Material/Density=2000",
+                                              "--set",
+                                              "Output/Print timings=false"};
+  const auto with = [&](std::vector<std::string> arguments,
+                        const std::string &      directory) {
+    arguments.insert(arguments.end(), overrides.begin(), overrides.end());
+    arguments.insert(arguments.end(),
+                     {"--set", "Output/Directory=" + directory});
+    return arguments;
+  };
+
+  // ---------------------------------------------------------------- runs
+  Run original(with({scene}, "original"), "original");
+  Run print_json(with({"--print-parameters=json", scene}, "from_json"),
+                 "print_json");
+  Run print_xml(with({"--print-parameters=xml", scene}, "from_xml"),
+                "print_xml");
+  Run markdown({"--print-parameters=markdown"}, "markdown");
+  execute_all({&original, &print_json, &print_xml, &markdown});
+  write_text("scene.json", print_json.out);
+  write_text("scene.xml", print_xml.out);
+  // A JSON scene written by hand: the values only (pressed_block.prm).
+  write_text(
+    "short.json",
+    R"({
+  "Dimension": "2",
+  "Geometry": {"Lower left": "0, 0", "Upper right": "1, 0.5",
+               "Repetitions": "4, 2"},
+  "Boundary conditions": {
+    "Clamped": "", "Roller": "0, 1", "Contact": "2", "Traction": "3",
+    "Traction function": {"Function constants": "P=1e7",
+                          "Function expression": "0; -P"}},
+  "Material": {"Density": "2000", "Young modulus": "1e9",
+               "Poisson ratio": "0.3"},
+  "Foundation": {"Normal compliance stiffness": "1e10",
+                 "Normal damping": "1e8"},
+  "Time": {"End time": "3", "Time step": "1"},
+  "Output": {"Directory": "from_short_json", "VTU every": "0",
+             "Print timings": "false"}
+}
+)");
+
+  Run again_prm({"original/parameters.prm", "--set", "Output/Directory=again_prm"},
+                "again_prm");
+  Run again_json(
+    {"original/parameters.json", "--set", "Output/Directory=again_json"},
+    "again_json");
+  Run from_json({"scene.json"}, "from_json");
+  Run from_xml({"scene.xml"}, "from_xml");
+  Run from_short_json({"short.json"}, "from_short_json");
+  // A run with checkpoints to t = 2, resumed to t = 3.
+  Run first_part(with({scene}, "resumed") , "first_part");
+  first_part.arguments.insert(first_part.arguments.end(),
+                              {"--set",
+                               "Checkpoint/Every=1",
+                               "--set",
+                               "Time/End time=2"});
+  execute_all({&again_prm, &again_json, &from_json, &from_xml,
+               &from_short_json, &first_part});
+  Run second_part(with({scene, "--resume"}, "resumed"), "second_part");
+  second_part.arguments.insert(second_part.arguments.end(),
+                               {"--set", "Checkpoint/Every=1"});
+  execute_all({&second_part});
+
+  // Bad JSON and XML files.
+  struct BadFile
+  {
+    std::string name, file, content, must_contain;
+  };
+  const std::vector<BadFile> bad_files = {
+    {"json_empty", "empty.json", "", "is empty: it sets no parameter"},
+    {"json_no_value", "nothing.json", "{ }\n", "is empty: it sets no parameter"},
+    {"json_unknown",
+     "unknown.json",
+     R"({"Material": {"Densty": "1000"}})",
+     "Densty"},
+    {"json_bad_value",
+     "bad_value.json",
+     R"({"Material": {"Density": "heavy"}})",
+     "Density = 'heavy' is not a number"},
+    {"json_not_json", "broken.json", "{\"Material\": ", "is not valid JSON"},
+    {"xml_unknown",
+     "unknown.xml",
+     "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<ParameterHandler>"
+     "<Materiall><Density><value>1</value></Density></Materiall>"
+     "</ParameterHandler>\n",
+     "Materiall"},
+    {"json_missing", "missing.json", "", "Cannot open the parameter file"}};
+  std::vector<Run> bad_runs;
+  fs::create_directories("bad");
+  for (const auto &b : bad_files)
+    {
+      if (b.name != "json_missing")
+        write_text(fs::path("bad") / b.file, b.content);
+      bad_runs.emplace_back(std::vector<std::string>{"bad/" + b.file},
+                            b.name);
+    }
+
+  // --validate, and the run itself, on good and bad scenes.
+  struct Validation
+  {
+    std::string              name;
+    std::vector<std::string> sets;
+    std::string              must_contain; // "" for the good scene
+  };
+  const std::vector<Validation> validations = {
+    {"good", {}, ""},
+    {"unassigned_id", {"Boundary conditions/Traction="}, "3"},
+    {"broken_expression",
+     {"Boundary conditions/Traction function/Function expression=0; -P*"},
+     "Traction function"},
+    {"missing_mesh",
+     {"Geometry/Type=gmsh", "Geometry/Mesh file=no_such_mesh.msh"},
+     "no_such_mesh.msh"},
+    {"nan_initial",
+     {"Initial conditions/Velocity/Function expression=0; sqrt(-1-x)"},
+     "Initial conditions"}};
+  std::vector<Run> validate_runs, plain_runs;
+  for (const auto &v : validations)
+    {
+      std::vector<std::string> arguments = {scene};
+      for (const auto &s : v.sets)
+        arguments.insert(arguments.end(), {"--set", s});
+      arguments.insert(arguments.end(),
+                       {"--set", "Output/Directory=validate_" + v.name});
+      std::vector<std::string> validate = arguments;
+      validate.insert(validate.begin(), "--validate");
+      validate_runs.emplace_back(validate, "validate_" + v.name);
+      arguments.back() = "Output/Directory=run_" + v.name;
+      plain_runs.emplace_back(arguments, "run_" + v.name);
+    }
+  {
+    std::vector<Run *> all;
+    for (auto &r : bad_runs)
+      all.push_back(&r);
+    for (auto &r : validate_runs)
+      all.push_back(&r);
+    for (unsigned int i = 1; i < plain_runs.size(); ++i)
+      all.push_back(&plain_runs[i]);
+    execute_all(all);
+  }
+
+  Checks checks;
+  // ----------------------------------------------------------- provenance
+  {
+    out << "provenance files:" << std::endl;
+    const auto names = manifest("original");
+    for (const std::string f :
+         {"parameters.prm", "parameters.json", "log.txt"})
+      {
+        const bool exists = fs::is_regular_file(fs::path("original") / f);
+        const bool listed = names.count(f) == 1;
+        out << "  " << f << ": written " << yes_no(exists)
+            << ", in the manifest " << yes_no(listed) << std::endl;
+        checks.add(exists && listed, f + " written and in the manifest");
+      }
+    const std::string prm = read_text("original/parameters.prm");
+    const bool        has_overrides =
+      std::regex_search(prm, std::regex(R"(set Density\s*=\s*2000)")) &&
+      std::regex_search(prm, std::regex(R"(set End time\s*=\s*3)"));
+    out << "  parameters.prm has the --set values: " << yes_no(has_overrides)
+        << std::endl;
+    checks.add(has_overrides, "parameters.prm holds the --set values");
+
+    // log.txt: the screen output and one provenance line.
+    std::string  rest;
+    unsigned int provenance_lines = 0;
+    for (const auto &line : lines_of(read_text("original/log.txt")))
+      if (std::regex_match(line, provenance_line))
+        ++provenance_lines;
+      else
+        rest += line + "\n";
+    std::string screen;
+    for (const auto &line : lines_of(original.out))
+      screen += line + "\n";
+    out << "  log.txt: " << provenance_lines
+        << " provenance line(s); the rest is the screen output: "
+        << yes_no(rest == screen) << std::endl;
+    checks.add(original.succeeded(), "original: exit code 0");
+    checks.add(provenance_lines == 1, "log.txt has one provenance line");
+    checks.add(rest == screen && !screen.empty(),
+               "log.txt is a copy of the screen output");
+    checks.add(!std::regex_search(original.out, std::regex("started [0-9]")),
+               "with Print timings = false the screen has no start time");
+
+    // Run again from the files written.
+    const std::string series = read_text("original/time_series.csv");
+    checks.add(!series.empty(), "original: time_series.csv written");
+    for (const Run *r : {&again_prm, &again_json})
+      {
+        const bool same =
+          read_text(fs::path(r->name) / "time_series.csv") == series;
+        out << "  " << r->name << ": exit " << r->code
+            << ", the same time_series.csv: " << yes_no(same) << std::endl;
+        checks.add(r->succeeded() && same,
+                   r->name + ": the run again gives the same time series");
+      }
+
+    // --resume: log.txt goes on.
+    const std::string first  = read_text("first_part.stdout");
+    const std::string log    = read_text("resumed/log.txt");
+    std::string       first_screen;
+    for (const auto &line : lines_of(first))
+      first_screen += line + "\n";
+    std::string log_without;
+    unsigned int resume_marks = 0;
+    for (const auto &line : lines_of(log))
+      {
+        resume_marks += (line == "==== --resume ====");
+        if (!std::regex_match(line, provenance_line))
+          log_without += line + "\n";
+      }
+    const bool kept = log_without.rfind(first_screen, 0) == 0;
+    const bool goes_on =
+      log_without.find(second_part.out) != std::string::npos;
+    out << "  --resume: log.txt keeps the first part " << yes_no(kept)
+        << ", one section mark " << yes_no(resume_marks == 1)
+        << ", then the resumed run's screen output " << yes_no(goes_on)
+        << std::endl;
+    checks.add(first_part.succeeded() && second_part.succeeded(),
+               "first_part and second_part exit with code 0");
+    checks.add(kept && resume_marks == 1 && goes_on,
+               "after --resume log.txt is continued, not overwritten");
+  }
+
+  // ------------------------------------------------------- input formats
+  {
+    out << "input formats:" << std::endl;
+    const std::string series = read_text("original/time_series.csv");
+    checks.add(print_json.succeeded() && print_xml.succeeded(),
+               "--print-parameters=json|xml exit with code 0");
+    for (const Run *r : {&from_json, &from_xml, &from_short_json})
+      {
+        const bool same =
+          read_text(fs::path(r->name) / "time_series.csv") == series;
+        out << "  " << r->name << ": exit " << r->code
+            << ", the time_series.csv of the PRM scene: " << yes_no(same)
+            << std::endl;
+        checks.add(r->succeeded() && same,
+                   r->name + ": the same time series as the PRM scene");
+      }
+    for (unsigned int i = 0; i < bad_files.size(); ++i)
+      {
+        const Run & r     = bad_runs[i];
+        const auto  lines = error_lines(r);
+        const bool  ok    = r.code == 1 && lines.size() == 1 &&
+                        lines[0].find(bad_files[i].file) != std::string::npos &&
+                        lines[0].find(bad_files[i].must_contain) !=
+                          std::string::npos;
+        out << "  " << r.name << ": exit " << r.code << ": " << first_error(r)
+            << std::endl;
+        checks.add(ok,
+                   r.name + ": exit 1 and one error naming the file and '" +
+                     bad_files[i].must_contain + "'");
+      }
+  }
+
+  // ----------------------------------------------------------- --validate
+  {
+    out << "--validate:" << std::endl;
+    for (unsigned int i = 0; i < validations.size(); ++i)
+      {
+        const auto &v          = validations[i];
+        const Run & validate   = validate_runs[i];
+        const bool  nothing    = !fs::exists("validate_" + v.name);
+        if (v.must_contain.empty())
+          {
+            const bool said =
+              validate.out.find("is valid") != std::string::npos;
+            out << "  " << v.name << ": exit " << validate.code
+                << ", says it is valid " << yes_no(said)
+                << ", nothing written " << yes_no(nothing) << std::endl;
+            checks.add(validate.succeeded() && said && nothing &&
+                         validate.err.empty(),
+                       "--validate " + v.name + ": exit 0, nothing written");
+            continue;
+          }
+        const Run &run        = plain_runs[i];
+        const auto validate_e = error_lines(validate);
+        const auto run_e      = error_lines(run);
+        const bool same       = validate_e == run_e && validate_e.size() == 1;
+        out << "  " << v.name << ": exit " << validate.code
+            << " (the run: " << run.code << "), the error of the run "
+            << yes_no(same) << ", nothing written " << yes_no(nothing)
+            << ": " << first_error(validate) << std::endl;
+        checks.add(validate.code == 1 && run.code == 1,
+                   "--validate " + v.name + ": exit 1 like the run");
+        checks.add(same, "--validate " + v.name +
+                           ": exactly the error line of the run");
+        checks.add(validate_e.size() == 1 &&
+                     validate_e[0].find(v.must_contain) != std::string::npos,
+                   "--validate " + v.name + ": the error names '" +
+                     v.must_contain + "'");
+        checks.add(nothing, "--validate " + v.name + ": nothing written");
+      }
+  }
+
+  // ---------------------------------------------------- doc/parameters.md
+  {
+    const fs::path    doc = fs::path(SOURCE_DIR) / ".." / "doc" / "parameters.md";
+    const bool        fresh = markdown.succeeded() && read_text(doc) == markdown.out;
+    out << "doc/parameters.md is what --print-parameters=markdown prints: "
+        << yes_no(fresh) << std::endl;
+    checks.add(fresh,
+               "doc/parameters.md is up to date (if not, regenerate it: "
+               "build/dynamic-contact --print-parameters=markdown > "
+               "doc/parameters.md)");
+  }
+
+  checks.assert_all();
+  out << "OK" << std::endl;
+}
