@@ -1065,17 +1065,23 @@ namespace DynamicContact
           "Print timings",
           "true",
           Patterns::Bool(),
-          "Print what differs from run to run: the elapsed time, the "
-          "estimated time left and the Newton and convexification counts in "
-          "the progress lines, and at the end the iteration totals, the wall "
-          "time, the peak memory and the table of the timer sections "
-          "(disjoint sections that add up to the wall time). Regression "
-          "tests switch this off so that their output is deterministic (on "
-          "several processes the iteration counts follow the round-off of "
-          "the parallel direct solver; time_series.csv has them in any "
-          "case); the summary of the run (cut-backs, unconverged steps, the "
-          "largest energy defect and friction-law residual) is printed in "
-          "any case.");
+          "Print the times: the elapsed time and the estimated time left in "
+          "the progress lines, the program's provenance line (version, start "
+          "time) and its parameter file in the header, and at the end the "
+          "wall time, the peak memory and the table of the timer sections "
+          "(disjoint sections that add up to the wall time). The summary of "
+          "the run (cut-backs, unconverged steps, the largest energy defect "
+          "and friction-law residual) is printed in any case.");
+        prm.declare_entry(
+          "Print iteration counts",
+          "true",
+          Patterns::Bool(),
+          "Print the Newton and convexification counts in the progress lines "
+          "and their totals at the end. Regression tests switch this and "
+          "Print timings off so that their output is deterministic: on "
+          "several processes the counts follow the round-off of the parallel "
+          "direct solver near the stopping thresholds (time_series.csv has "
+          "them in any case).");
         prm.declare_entry("Solver details",
                           "false",
                           Patterns::Bool(),
@@ -1098,6 +1104,7 @@ namespace DynamicContact
         Utilities::split_string_list(prm.get("Output times")));
       progress_every = prm.get_integer("Progress every");
       print_timings  = prm.get_bool("Print timings");
+      print_iteration_counts = prm.get_bool("Print iteration counts");
       solver_details = prm.get_bool("Solver details");
       prm.leave_subsection();
       require(!directory.empty(), "Output/Directory must not be empty.");

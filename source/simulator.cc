@@ -764,18 +764,19 @@ namespace DynamicContact
   void
   Simulator<dim>::print_progress(const TimeSeriesRow &row) const
   {
-    // Output/Print timings = false leaves out what differs from run to run:
-    // the times, and the iteration counts (on several processes they follow
-    // the round-off of the parallel direct solver near the stopping
-    // thresholds: two runs of tests/paper_small on 2 processes differed by
-    // one Newton iteration in 3 of 16 progress lines).
+    // Output/Print timings and Print iteration counts = false leave out
+    // what differs from run to run: the times, and the iteration counts (on
+    // several processes they follow the round-off of the parallel direct
+    // solver near the stopping thresholds: two runs of tests/paper_small on
+    // 2 processes differed by one Newton iteration in 3 of 16 progress
+    // lines).
     pcout << "step " << std::setw(5) << step << '/' << step + remaining_steps()
           << "  t = " << sig6(row.get("time"));
     if (row.get("time_step") != parameters.time.time_step ||
         row.get("cutbacks") > 0)
       pcout << "  k = " << sig6(row.get("time_step")) << " ("
             << row.get("cutbacks") << " cut-backs)";
-    if (parameters.output.print_timings)
+    if (parameters.output.print_iteration_counts)
       {
         pcout << "  Newton " << row.get("newton_iterations");
         if (step_solver.has_friction())
@@ -1468,7 +1469,7 @@ namespace DynamicContact
     const bool friction = step_solver.has_friction();
     pcout << "Completed " << step << " steps (t = " << sig6(current_time)
           << " s)";
-    if (parameters.output.print_timings) // see print_progress()
+    if (parameters.output.print_iteration_counts) // see print_progress()
       {
         pcout << ", " << total_newton << " Newton iterations (mean "
               << std::fixed << std::setprecision(2)

@@ -57,7 +57,8 @@ namespace
                                              "--set",
                                              "Output/Progress every=0",
                                              "--set",
-                                             "Output/Print timings=false"};
+                                             "Output/Print timings=false",
+    "--set", "Output/Print iteration counts=false"};
   const unsigned int             n_steps  = 48;
 
   /** Run the uniform or the adaptive scene into @p directory. */

@@ -49,7 +49,8 @@ namespace
   const std::vector<std::string> quiet = {"--set",
                                           "Output/Progress every=0",
                                           "--set",
-                                          "Output/Print timings=false"};
+                                          "Output/Print timings=false",
+    "--set", "Output/Print iteration counts=false"};
 
   std::vector<std::string>
   with(std::vector<std::string> a, const std::vector<std::string> &more)

@@ -29,7 +29,8 @@ namespace
     "Output/Output every=0",               "--set",
     "Output/Output times=0.1, 0.2",        "--set",
     "Output/Progress every=0",             "--set",
-    "Output/Print timings=false"};
+    "Output/Print timings=false",
+    "--set", "Output/Print iteration counts=false"};
 
   std::vector<std::string>
   arguments(const std::string &directory, const std::vector<std::string> &more)
@@ -54,7 +55,8 @@ namespace
     "--set",
     "Output/Progress every=0",
     "--set",
-    "Output/Print timings=false"};
+    "Output/Print timings=false",
+    "--set", "Output/Print iteration counts=false"};
 
   /** The files of @p directory (not the manifest and the lock). */
   std::set<std::string>

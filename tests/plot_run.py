@@ -43,7 +43,8 @@ CASES = [
      ["Time/End time=3", "Output/Output every=1"]),
 ]
 QUIET = ["Output/Write VTU=false", "Output/Progress every=0",
-         "Output/Print timings=false"]
+         "Output/Print timings=false",
+         "Output/Print iteration counts=false"]
 
 failures = []
 

@@ -116,7 +116,8 @@ main(int argc, char **argv)
                                               "--set",
                                               "Material/Density=2000",
                                               "--set",
-                                              "Output/Print timings=false"};
+                                              "Output/Print timings=false",
+    "--set", "Output/Print iteration counts=false"};
   const auto with = [&](std::vector<std::string> arguments,
                         const std::string &      directory) {
     arguments.insert(arguments.end(), overrides.begin(), overrides.end());
@@ -152,7 +153,8 @@ main(int argc, char **argv)
                  "Normal damping": "1e8"},
   "Time": {"End time": "3", "Time step": "1"},
   "Output": {"Directory": "from_short_json", "VTU every": "0",
-             "Print timings": "false"}
+             "Print timings": "false",
+             "Print iteration counts": "false"}
 }
 )");
 

@@ -46,7 +46,8 @@ namespace
                                              "--set",
                                              "Output/Progress every=0",
                                              "--set",
-                                             "Output/Print timings=false"};
+                                             "Output/Print timings=false",
+    "--set", "Output/Print iteration counts=false"};
 
   std::vector<std::string>
   arguments(const std::string &             directory,

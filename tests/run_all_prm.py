@@ -115,7 +115,8 @@ def overrides_of(program, root, relative, quick, steps):
     if "Time/End time" in given:
         end = min(end, float(given["Time/End time"]))
     generic = ["Output/Write VTU=false", "Output/Progress every=0",
-               "Output/Print timings=false", "Time/End time=%.17g" % end]
+               "Output/Print timings=false", "Output/Print iteration counts=false",
+               "Time/End time=%.17g" % end]
     return generic + own
 
 

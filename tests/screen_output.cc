@@ -3,8 +3,9 @@
 // the largest friction-law residual of a step), the timer sections are
 // disjoint (the rows of the table add up to the total, which is the wall
 // time), the progress lines give an estimate of the time left, and
-// Output/Print timings = false leaves out the times and the iteration counts
-// (they differ from run to run on several processes): the summary stays. The scene: prm/stress/critical_speed.prm at the
+// Output/Print timings = false leaves out the times only and Output/Print
+// iteration counts = false the iteration counts (both differ from run to
+// run on several processes): the summary stays. The scene: prm/stress/critical_speed.prm at the
 // size of the stress suite's quick mode (the load at the critical speed:
 // the time step is cut back several times), 1 ms of it.
 //
@@ -25,7 +26,7 @@ using namespace program_tools;
 namespace
 {
   Outcome
-  run(const std::string &directory, const bool timings)
+  run(const std::string &directory, const bool timings, const bool counts)
   {
     Launch launch;
     launch.name    = directory;
@@ -37,7 +38,9 @@ namespace
                     "--set", "Output/Progress every=50",
                     "--set", "Output/VTU every=100",
                     "--set", std::string("Output/Print timings=") +
-                                (timings ? "true" : "false")},
+                                (timings ? "true" : "false"),
+                    "--set", std::string("Output/Print iteration counts=") +
+                                (counts ? "true" : "false")},
                    launch);
   }
 
@@ -78,9 +81,11 @@ main()
     checks.add(ok, what);
   };
 
-  const Outcome timed = run("timed", true);
-  const Outcome quiet = run("quiet", false);
-  say(timed.succeeded() && quiet.succeeded(), "both runs complete");
+  const Outcome timed  = run("timed", true, true);
+  const Outcome counts = run("counts", false, true);
+  const Outcome quiet  = run("quiet", false, false);
+  say(timed.succeeded() && counts.succeeded() && quiet.succeeded(),
+      "the three runs complete");
   const auto csv = test_tools::read_csv(fs::path("timed") / "time_series.csv");
   say(csv.size() > 3, "time_series.csv has rows");
   if (csv.size() <= 3)
@@ -152,14 +157,24 @@ main()
   // Progress lines: the time left with timings, Newton counts in both.
   say(std::regex_search(out, std::regex(R"(Newton \d+ .*\([0-9.]+ s, ~[0-9.]+ s left\))")),
       "with timings: the progress lines give the time left");
+  say(std::regex_search(counts.out,
+                        std::regex(R"(step .* Newton \d+ .* contact \d+ )")) &&
+        counts.out.find(" left)") == std::string::npos &&
+        counts.out.find(" Newton iterations (mean ") != std::string::npos,
+      "without timings, with iteration counts: progress lines and the "
+      "summary with the counts, without times");
   say(std::regex_search(quiet.out, std::regex(R"(step .* contact \d+ )")) &&
         !std::regex_search(quiet.out, std::regex(R"(Newton \d)")) &&
+        quiet.out.find(" Newton iterations") == std::string::npos &&
         quiet.out.find(" left)") == std::string::npos,
-      "without timings: progress lines without times and counts");
+      "without timings and iteration counts: progress lines without times "
+      "and counts");
   say(quiet.out.find("Summary: results in quiet/") != std::string::npos &&
         quiet.out.find("time step cut-backs: ") != std::string::npos &&
         quiet.out.find("Timings") == std::string::npos &&
-        quiet.out.find("wall time") == std::string::npos,
+        quiet.out.find("wall time") == std::string::npos &&
+        counts.out.find("Timings") == std::string::npos &&
+        counts.out.find("wall time") == std::string::npos,
       "without timings: the summary, no timer table, no wall time");
 
   checks.assert_all();

@@ -51,6 +51,8 @@ namespace
       "--set",
       "Output/Print timings=false",
       "--set",
+      "Output/Print iteration counts=false",
+      "--set",
       "Output/Directory=" + directory};
     a.insert(a.end(), more.begin(), more.end());
     return a;

@@ -272,6 +272,7 @@ namespace DynamicContact
       std::vector<double> output_times;
       unsigned int progress_every;
       bool         print_timings;
+      bool         print_iteration_counts;
       bool         solver_details;
 
       static void
