@@ -6,14 +6,13 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
 
 namespace DynamicContact
 {
   using namespace dealii;
-  using Vector_t = TrilinosWrappers::MPI::Vector;
-  using Matrix_t = TrilinosWrappers::SparseMatrix;
 
   /**
    * The linear part of the scheme (doc/theory.md section 2; the theta-scheme

@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/parameters.h>
 
 #include <functional>
@@ -18,8 +19,6 @@ class Epetra_LinearProblem;
 
 namespace DynamicContact
 {
-  using Vector_t = dealii::TrilinosWrappers::MPI::Vector;
-  using Matrix_t = dealii::TrilinosWrappers::SparseMatrix;
 
   /**
    * Algebraic multigrid for the bulk matrix K0 (Trilinos ML, smoothed

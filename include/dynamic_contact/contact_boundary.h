@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 
 #include <array>
 #include <vector>
@@ -14,7 +15,6 @@
 namespace DynamicContact
 {
   using namespace dealii;
-  using Vector_t = TrilinosWrappers::MPI::Vector;
 
   /**
    * One node of the contact boundary Gamma_3 (doc/theory.md section 3): a support

@@ -2,6 +2,7 @@
 #define dynamic_contact_system_newton_h
 
 #include <dynamic_contact/contact_newton.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/newton_driver.h>
 
 #include <vector>
