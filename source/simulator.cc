@@ -734,29 +734,43 @@ namespace DynamicContact
 
 
   template <int dim>
+  bool
+  Simulator<dim>::at_output_time(const double t, const double k) const
+  {
+    const double allowance = 1e-12 * std::max(std::abs(t), k);
+    for (const double t_out : parameters.output.output_times)
+      if (t_out <= t + allowance && t_out > t - k + allowance)
+        return true;
+    return false;
+  }
+
+
+  template <int dim>
+  bool
+  Simulator<dim>::vtu_due(const unsigned int n,
+                          const double       t,
+                          const double       k,
+                          const bool         last) const
+  {
+    // Output/Output times and the last step, and every N steps, unless
+    // switched off.
+    const unsigned int every = parameters.output.vtu_every;
+    return parameters.output.write_vtu &&
+           (last || at_output_time(t, k) || (every > 0 && n % every == 0));
+  }
+
+
+  template <int dim>
   unsigned int
   Simulator<dim>::vtu_files_left() const
   {
-    const unsigned int every = parameters.output.vtu_every;
-    if (every == 0)
-      return 0;
+    // The schedule of the steps to come at the nominal time step.
     const unsigned int last = step + remaining_steps();
-    if (last <= step)
-      return 0;
-    // Every N steps, the last step, and the steps at the output times (on
-    // the nominal time grid).
-    unsigned int n = last / every - step / every;
-    if (last % every != 0)
-      ++n;
-    const double k0 = parameters.time.time_step;
-    for (const double t_out : parameters.output.output_times)
-      {
-        const auto at = static_cast<unsigned int>(
-          std::max(0., std::ceil(t_out / k0 - 1e-9)));
-        if (at > step && at < last && at % every != 0)
-          ++n;
-      }
-    return n;
+    const double       k0   = parameters.time.time_step;
+    unsigned int       n_files = 0;
+    for (unsigned int n = step + 1; n <= last; ++n)
+      n_files += vtu_due(n, current_time + (n - step) * k0, k0, n == last);
+    return n_files;
   }
 
 
@@ -1409,25 +1423,14 @@ namespace DynamicContact
             << sig6(row.get("coefficient_residual")) << std::endl;
 
     const bool last = (current_time >= T - 1e-9 * k0);
-    // An output time is due at the first step reaching it: t - k < t_out <=
-    // t, with a round-off allowance that moves both ends up (an output time
-    // on the time grid belongs to the step ending there, not the next).
-    bool         at_output_time = false;
-    const double allowance      = 1e-12 * std::max(std::abs(t), k);
-    for (const double t_out : parameters.output.output_times)
-      at_output_time = at_output_time || (t_out <= t + allowance &&
-                                          t_out > t - k + allowance);
+    // An output time is due at the first step reaching it; the VTU files
+    // on the same schedule with their own cadence, unless switched off.
     const unsigned int csv_every = parameters.output.output_every;
-    const unsigned int vtu_every = parameters.output.vtu_every;
-    // The VTU files on the same schedule with their own cadence, unless
-    // switched off.
     output_results(step,
                    t,
-                   last || at_output_time ||
+                   last || at_output_time(t, k) ||
                      (csv_every > 0 && step % csv_every == 0),
-                   parameters.output.write_vtu &&
-                     (last || at_output_time ||
-                      (vtu_every > 0 && step % vtu_every == 0)));
+                   vtu_due(step, t, k, last));
 
     const unsigned int progress = parameters.output.progress_every;
     if (progress > 0 && (step % progress == 0 || last))

@@ -26,7 +26,6 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -34,26 +33,6 @@ namespace fs = std::filesystem;
 namespace
 {
   using namespace program_tools;
-
-  /** One run of the program in the working directory. */
-  struct Run : Outcome
-  {
-    Run(const std::vector<std::string> &arguments, const std::string &name)
-      : arguments(arguments)
-      , name(name)
-    {}
-
-    std::vector<std::string> arguments;
-    std::string              name;
-  };
-
-  void
-  execute(Run &run)
-  {
-    Launch launch;
-    launch.name                 = run.name;
-    static_cast<Outcome &>(run) = program_tools::execute(run.arguments, launch);
-  }
 
   /**
    * The entries of a parameter listing in deal.II's PRM format, by path
@@ -147,11 +126,10 @@ main(int argc, char **argv)
   };
   // Most of a run is MPI's start-up, spent waiting: run them side by side.
   {
-    std::vector<std::thread> threads;
+    std::vector<Run *> all;
     for (auto &r : runs)
-      threads.emplace_back([&r]() { execute(r); });
-    for (auto &t : threads)
-      t.join();
+      all.push_back(&r);
+    execute_all(all);
   }
   // --resume=auto twice in one directory with checkpoints: a new run to
   // t = 2, then (a later end time) a resumed one to t = 4.
@@ -164,11 +142,11 @@ main(int argc, char **argv)
   Run auto_new(auto_run, "resume_auto_new");
   auto_new.arguments.insert(auto_new.arguments.end(),
                             {"--set", "Time/End time=2"});
-  execute(auto_new);
+  execute_all({&auto_new});
   Run auto_resumed(auto_run, "resume_auto_resumed");
   auto_resumed.arguments.insert(auto_resumed.arguments.end(),
                                 {"--set", "Time/End time=4"});
-  execute(auto_resumed);
+  execute_all({&auto_resumed});
   runs.push_back(auto_new);
   runs.push_back(auto_resumed);
   const Run &help = runs[0], &h = runs[1], &print_defaults = runs[2],

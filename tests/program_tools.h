@@ -18,6 +18,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -140,6 +141,39 @@ namespace program_tools
     o.out = read_text(launch.directory / (launch.name + ".stdout"));
     o.err = read_text(launch.directory / (launch.name + ".stderr"));
     return o;
+  }
+
+
+  /** One run of the program: its arguments, the NAME of its NAME.stdout and
+   *  NAME.stderr, and (once executed) its outcome. */
+  struct Run : Outcome
+  {
+    Run(const std::vector<std::string> &arguments, const std::string &name)
+      : arguments(arguments)
+      , name(name)
+    {}
+
+    std::vector<std::string> arguments;
+    std::string              name;
+  };
+
+  /**
+   * Execute @p runs side by side, in the current directory (most of a run
+   * is MPI's start-up, spent waiting), each ended after @p timeout seconds.
+   */
+  inline void
+  execute_all(const std::vector<Run *> &runs, const unsigned int timeout = 300)
+  {
+    std::vector<std::thread> threads;
+    for (Run *r : runs)
+      threads.emplace_back([r, timeout]() {
+        Launch launch;
+        launch.name                = r->name;
+        launch.timeout             = timeout;
+        static_cast<Outcome &>(*r) = execute(r->arguments, launch);
+      });
+    for (auto &t : threads)
+      t.join();
   }
 
   /**

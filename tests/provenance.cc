@@ -25,7 +25,6 @@
 #include <filesystem>
 #include <regex>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -33,31 +32,6 @@ namespace fs = std::filesystem;
 namespace
 {
   using namespace program_tools;
-
-  struct Run : Outcome
-  {
-    Run(const std::vector<std::string> &arguments, const std::string &name)
-      : arguments(arguments)
-      , name(name)
-    {}
-    std::vector<std::string> arguments;
-    std::string              name;
-  };
-
-  void
-  execute_all(std::vector<Run *> runs)
-  {
-    std::vector<std::thread> threads;
-    for (Run *r : runs)
-      threads.emplace_back([r]() {
-        Launch launch;
-        launch.name                = r->name;
-        launch.timeout             = 300;
-        static_cast<Outcome &>(*r) = execute(r->arguments, launch);
-      });
-    for (auto &t : threads)
-      t.join();
-  }
 
   /** An error line without the directories of absolute paths. */
   std::string

@@ -258,6 +258,19 @@ namespace DynamicContact
     unsigned int
     vtu_files_left() const;
     /**
+     * Whether an Output/Output times entry falls in the step (t - k, t]
+     * (with a round-off allowance: an output time on the time grid belongs
+     * to the step ending there).
+     */
+    bool
+    at_output_time(const double t, const double k) const;
+    /** Whether step @p n, ending at @p t after a step @p k, writes VTU. */
+    bool
+    vtu_due(const unsigned int n,
+            const double       t,
+            const double       k,
+            const bool         last) const;
+    /**
      * Fault injection for the restart test, from the environment variable
      * DYNAMIC_CONTACT_KILL = "after-step N" or "in-checkpoint N": the run
      * kills itself (SIGKILL) after step N, or while writing the checkpoint

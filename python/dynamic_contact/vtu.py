@@ -167,13 +167,15 @@ def _read_piece_file(path):
     header_dtype = np.dtype(_DTYPES[root.get("header_type", "UInt32")]
                             ).newbyteorder("<")
 
+    def arrays(element):
+        """The DataArrays under `element` (which may be None), by name."""
+        if element is None:
+            return {}
+        return {da.get("Name"): _read_data_array(da, header_dtype, compressed)
+                for da in element.findall("DataArray")}
+
     grid = root.find("UnstructuredGrid")
-    field_data = {}
-    fd = grid.find("FieldData")
-    if fd is not None:
-        for da in fd.findall("DataArray"):
-            field_data[da.get("Name")] = _read_data_array(da, header_dtype,
-                                                          compressed)
+    field_data = arrays(grid.find("FieldData"))
     pieces = []
     for piece in grid.findall("Piece"):
         n_points = int(piece.get("NumberOfPoints"))
@@ -181,22 +183,9 @@ def _read_piece_file(path):
         points = _read_data_array(piece.find("Points/DataArray"),
                                   header_dtype, compressed)
         points = points.reshape(n_points, -1 if n_points else 3).astype(np.float64)
-        cells = {}
-        for da in piece.find("Cells").findall("DataArray"):
-            cells[da.get("Name")] = _read_data_array(da, header_dtype,
-                                                     compressed)
-        point_data = {}
-        pd = piece.find("PointData")
-        if pd is not None:
-            for da in pd.findall("DataArray"):
-                point_data[da.get("Name")] = _read_data_array(
-                    da, header_dtype, compressed)
-        cell_data = {}
-        cd = piece.find("CellData")
-        if cd is not None:
-            for da in cd.findall("DataArray"):
-                cell_data[da.get("Name")] = _read_data_array(
-                    da, header_dtype, compressed)
+        cells = arrays(piece.find("Cells"))
+        point_data = arrays(piece.find("PointData"))
+        cell_data = arrays(piece.find("CellData"))
         offsets = cells["offsets"].astype(np.int64)
         if offsets.shape[0] != n_cells:
             raise ValueError("%s: %d offsets for %d cells"
