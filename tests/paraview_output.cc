@@ -73,10 +73,7 @@ namespace
   bool
   all_in_manifest(const fs::path &directory)
   {
-    std::set<std::string> listed;
-    for (const auto &line :
-         lines_of(read_text(directory / ".dynamic-contact")))
-      listed.insert(trim(line));
+    const std::set<std::string> listed = manifest(directory);
     for (const auto &name : files_of(directory))
       if (listed.count(name) == 0)
         return false;

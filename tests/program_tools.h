@@ -176,6 +176,17 @@ namespace program_tools
       t.join();
   }
 
+  /** The names the output manifest of @p directory lists. */
+  inline std::set<std::string>
+  manifest(const fs::path &directory)
+  {
+    std::set<std::string> names;
+    for (const auto &line : lines_of(read_text(directory / ".dynamic-contact")))
+      if (!trim(line).empty() && trim(line)[0] != '#')
+        names.insert(trim(line));
+    return names;
+  }
+
   /**
    * Every regular file under @p directory with its content, by relative
    * path, without the lock (every run takes it and writes its process

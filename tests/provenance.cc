@@ -48,17 +48,6 @@ namespace
     return lines.empty() ? "<none>" : without_paths(lines[0]);
   }
 
-  /** The names the manifest of @p directory lists. */
-  std::set<std::string>
-  manifest(const fs::path &directory)
-  {
-    std::set<std::string> names;
-    for (const auto &line : lines_of(read_text(directory / ".dynamic-contact")))
-      if (!trim(line).empty() && trim(line)[0] != '#')
-        names.insert(trim(line));
-    return names;
-  }
-
   const std::regex provenance_line(
     R"(  dynamic-contact [0-9][^ ]* \(git [^ )]+\), deal\.II [0-9.]+, 1 MPI process, started [0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z)");
 } // namespace
