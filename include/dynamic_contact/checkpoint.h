@@ -3,7 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <dynamic_contact/bulk_solver.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/output_directory.h>
 

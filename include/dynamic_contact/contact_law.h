@@ -48,6 +48,30 @@ namespace DynamicContact
     }
   };
 
+  /** What the solver knows about one (owned) node of Gamma_3 after a step. */
+  template <int dim>
+  struct ContactNodeState
+  {
+    NormalResponse normal{};
+    /** Friction force lambda_i (a nodal force: m_i times the traction). */
+    Tensor<1, dim> friction_force;
+    /** The frozen friction coefficient mu_i of the last iterate. */
+    double       mu    = 0;
+    ContactState state = ContactState::free;
+    /** w_e,tau, the tangential part of w_e (w_e = w_n for backward Euler). */
+    Tensor<1, dim> slip_velocity;
+    /** |w_e,tau|. */
+    double slip_rate = 0;
+
+    /** Normal nodal force N_i = m_i (p + q). */
+    double
+    normal_force(const double weight) const
+    {
+      return weight * normal.pressure;
+    }
+  };
+
+
   NormalResponse
   normal_response(const Foundation &foundation,
                   const double      u_nu,

@@ -4,7 +4,7 @@
 #include <dynamic_contact/bulk_operator.h>
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/foundation.h>
-#include <dynamic_contact/step_solver.h>
+#include <dynamic_contact/contact_law.h>
 
 namespace DynamicContact
 {

@@ -1,7 +1,7 @@
 #ifndef dynamic_contact_error_norms_h
 #define dynamic_contact_error_norms_h
 
-#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>

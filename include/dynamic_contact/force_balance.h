@@ -7,7 +7,7 @@
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
-#include <dynamic_contact/step_solver.h>
+#include <dynamic_contact/contact_law.h>
 
 namespace DynamicContact
 {

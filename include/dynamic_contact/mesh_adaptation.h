@@ -3,7 +3,7 @@
 
 #include <deal.II/base/point.h>
 
-#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/scene.h>

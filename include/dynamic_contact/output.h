@@ -1,12 +1,12 @@
 #ifndef dynamic_contact_output_h
 #define dynamic_contact_output_h
 
-#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/output_directory.h>
-#include <dynamic_contact/step_solver.h>
+#include <dynamic_contact/contact_law.h>
 
 #include <string>
 #include <utility>
