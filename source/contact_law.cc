@@ -28,8 +28,8 @@ namespace DynamicContact
   {
     if (theta == 1)
       return normal_response(foundation, u_nu, w_nu, k);
-    const CappedRamp &p = foundation.compliance();
-    const CappedRamp &q = foundation.damping();
+    const ResponseLaw &p = foundation.compliance();
+    const ResponseLaw &q = foundation.damping();
     NormalResponse    r;
     r.u_nu                 = u_nu;
     r.w_nu                 = w_nu;
@@ -54,8 +54,8 @@ namespace DynamicContact
                   const double      w_nu,
                   const double      k)
   {
-    const CappedRamp &p = foundation.compliance();
-    const CappedRamp &q = foundation.damping();
+    const ResponseLaw &p = foundation.compliance();
+    const ResponseLaw &q = foundation.damping();
     NormalResponse    r;
     r.u_nu                 = u_nu;
     r.w_nu                 = w_nu;

@@ -53,26 +53,139 @@ namespace DynamicContact
   }
 
 
-  std::unique_ptr<FrictionLaw>
-  FrictionLaw::create(const Parameters::Friction &p)
+  namespace
   {
-    using Law = Parameters::Friction::Law;
-    switch (p.law)
-      {
-        case Law::none:
-          return nullptr;
-        case Law::constant:
-          return std::make_unique<ConstantFriction>(p.coefficient);
-        case Law::exponential:
-          return std::make_unique<ExponentialFriction>(p.static_coefficient,
-                                                       p.dynamic_coefficient,
-                                                       p.decay_rate);
-        case Law::expression:
-          return std::make_unique<ExpressionFriction>(p.expression,
-                                                      p.expression_constants);
-      }
-    return nullptr;
+    using FrictionLaws = PluginRegistry<FrictionLaw>;
+
+    std::string
+    str(const double x)
+    {
+      std::ostringstream s;
+      s << x;
+      return s.str();
+    }
+  } // namespace
+
+
+  void
+  FrictionLaw::declare_parameters(ParameterHandler &prm)
+  {
+    const auto &laws = FrictionLaws::instance();
+    prm.declare_entry(
+      "Law",
+      "none",
+      Patterns::Selection("none|" + laws.names()),
+      "The friction coefficient mu(s) of the slip rate s = |w_tau|, with "
+      "the parameters in the subsection of the law's name: 'none' "
+      "(frictionless: no multiplier, no sets, no loop). " +
+        laws.documentation());
+    laws.declare_subsections(prm);
   }
+
+
+  std::unique_ptr<FrictionLaw>
+  FrictionLaw::create(ParameterHandler &prm)
+  {
+    const std::string name = prm.get("Law");
+    if (name == "none")
+      return nullptr;
+    return FrictionLaws::instance().create(name, prm);
+  }
+
+
+  void
+  ConstantFriction::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Coefficient",
+                      "0",
+                      Patterns::Double(),
+                      "mu, >= 0. Zero means no friction.");
+  }
+
+  void
+  ConstantFriction::parse_parameters(ParameterHandler &prm)
+  {
+    mu = prm.get_double("Coefficient");
+    AssertThrow(std::isfinite(mu) && mu >= 0,
+                ExcMessage("Friction/Constant/Coefficient must be >= 0, got " +
+                           str(mu) + "."));
+  }
+
+  DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+                           ConstantFriction,
+                           "constant",
+                           "mu = Coefficient.");
+
+
+  void
+  ExponentialFriction::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Static coefficient",
+                      "1",
+                      Patterns::Double(),
+                      "a = mu(0).");
+    prm.declare_entry("Dynamic coefficient",
+                      "0.5",
+                      Patterns::Double(),
+                      "b = mu(infinity), 0 < b <= a.");
+    prm.declare_entry("Decay rate",
+                      "2000",
+                      Patterns::Double(),
+                      "alpha (s/m), >= 0.");
+  }
+
+  void
+  ExponentialFriction::parse_parameters(ParameterHandler &prm)
+  {
+    a     = prm.get_double("Static coefficient");
+    b     = prm.get_double("Dynamic coefficient");
+    alpha = prm.get_double("Decay rate");
+    AssertThrow(std::isfinite(b) && b > 0,
+                ExcMessage(
+                  "Friction/Exponential/Dynamic coefficient must be positive, "
+                  "got " +
+                  str(b) + "."));
+    AssertThrow(std::isfinite(a) && a >= b,
+                ExcMessage("Friction/Exponential/Static coefficient must be >= "
+                           "the dynamic coefficient (a >= b), got a = " +
+                           str(a) + "."));
+    AssertThrow(std::isfinite(alpha) && alpha >= 0,
+                ExcMessage("Friction/Exponential/Decay rate must be >= 0, got " +
+                           str(alpha) + "."));
+  }
+
+  DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+                           ExponentialFriction,
+                           "exponential",
+                           "the paper's slip weakening, eq. (90): mu(s) = "
+                           "(a - b) exp(-alpha s) + b.");
+
+
+  void
+  ExpressionFriction::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Function expression",
+                      "0.5",
+                      Patterns::Anything(),
+                      "mu(s), a function of the slip rate s (m/s) in "
+                      "muparser syntax.");
+    prm.declare_entry("Function constants",
+                      "",
+                      Patterns::Anything(),
+                      "Constants of the expression, as name=value pairs "
+                      "separated by commas.");
+  }
+
+  void
+  ExpressionFriction::parse_parameters(ParameterHandler &prm)
+  {
+    initialize(prm.get("Function expression"), prm.get("Function constants"));
+  }
+
+  DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+                           ExpressionFriction,
+                           "expression",
+                           "mu(s) given by Function expression.");
 
 
   std::string
@@ -105,17 +218,31 @@ namespace DynamicContact
   }
 
 
+  ExpressionFriction::ExpressionFriction()
+  {
+    initialize("0.5", "");
+  }
+
+
   ExpressionFriction::ExpressionFriction(const std::string &expression,
                                          const std::string &constants)
-    : expression(expression)
-    , parser(1)
   {
+    initialize(expression, constants);
+  }
+
+
+  void
+  ExpressionFriction::initialize(const std::string &expression,
+                                 const std::string &constants)
+  {
+    this->expression = expression;
+    parser           = std::make_unique<FunctionParser<1>>(1);
     std::map<std::string, double> constant_map;
     for (const auto &pair : Utilities::split_string_list(constants, ','))
       {
         const auto terms = Utilities::split_string_list(pair, '=');
         AssertThrow(terms.size() == 2,
-                    ExcMessage("Friction/Expression constants: '" + pair +
+                    ExcMessage("Friction/Expression/Function constants: '" + pair +
                                "' is not of the form name=value."));
         try
           {
@@ -124,20 +251,20 @@ namespace DynamicContact
         catch (const std::exception &)
           {
             AssertThrow(false,
-                        ExcMessage("Friction/Expression constants: '" +
+                        ExcMessage("Friction/Expression/Function constants: '" +
                                    terms[1] + "' is not a number."));
           }
       }
     try
       {
         const SilenceStderr silence;
-        parser.initialize("s", expression, constant_map);
-        parser.value(Point<1>(0.));
+        parser->initialize("s", expression, constant_map);
+        parser->value(Point<1>(0.));
       }
     catch (const std::exception &e)
       {
         AssertThrow(false,
-                    ExcMessage("Friction/Expression: cannot parse '" +
+                    ExcMessage("Friction/Expression/Function expression: cannot parse '" +
                                expression + "': " + expression_error_message(e)));
       }
   }
@@ -145,7 +272,7 @@ namespace DynamicContact
   double
   ExpressionFriction::value(const double s) const
   {
-    return parser.value(Point<1>(s));
+    return parser->value(Point<1>(s));
   }
 
   double

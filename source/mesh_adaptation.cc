@@ -18,91 +18,34 @@ namespace DynamicContact
   MeshAdaptation<dim>::MeshAdaptation(
     const Parameters::MeshRefinement &parameters,
     const Scene<dim> &                 scene,
-    Discretization<dim> &              discretization)
+    Discretization<dim> &              discretization,
+    ParameterHandler &                 prm)
     : parameters(parameters)
     , scene(scene)
     , discretization(discretization)
+    , strategies(RefinementStrategy<dim>::create(prm))
   {}
 
 
   template <int dim>
-  std::vector<Point<dim>>
-  MeshAdaptation<dim>::large_load_points(const double t0,
-                                         const double t1,
-                                         const double k) const
+  unsigned int
+  MeshAdaptation<dim>::lookahead_steps() const
   {
-    const auto &d  = discretization;
-    const auto &bc = scene.boundary_conditions();
-    const std::set<types::boundary_id> traction_ids(bc.traction.begin(),
-                                                    bc.traction.end());
-    const bool traction   = scene.has_traction() && !traction_ids.empty();
-    const bool body_force = scene.has_body_force();
+    unsigned int steps = 0;
+    for (const auto &strategy : strategies)
+      steps = std::max(steps, strategy->lookahead_steps());
+    return steps > 0 ? steps : parameters.refine_every;
+  }
 
-    std::vector<double> times;
-    for (double t = t0; t <= t1 * (1 + 1e-12) + 1e-300; t += k)
-      times.push_back(t);
-    if (times.empty() || times.back() < t1)
-      times.push_back(t1);
 
-    // Sample the load magnitude at face (traction) and cell (body force)
-    // quadrature points, at every time; keep each point's largest value.
-    const QGauss<dim - 1> face_quadrature(2);
-    const QGauss<dim>     quadrature(2);
-    FEFaceValues<dim>     fe_face(d.mapping,
-                              d.fe,
-                              face_quadrature,
-                              update_quadrature_points);
-    FEValues<dim>         fe_values(d.mapping,
-                            d.fe,
-                            quadrature,
-                            update_quadrature_points);
-    std::vector<Point<dim>> points;
-    std::vector<double>     magnitude;
-    Vector<double>          value(dim);
-    auto sample = [&](const Point<dim> &p, Function<dim> &f) {
-      double largest = 0;
-      for (const double t : times)
-        {
-          f.set_time(t);
-          f.vector_value(p, value);
-          largest = std::max(largest, value.l2_norm());
-        }
-      points.push_back(p);
-      magnitude.push_back(largest);
-    };
-    for (const auto &cell : d.triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          if (traction)
-            for (const auto f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  traction_ids.count(cell->face(f)->boundary_id()))
-                {
-                  fe_face.reinit(cell, f);
-                  for (const auto &p : fe_face.get_quadrature_points())
-                    sample(p, scene.traction());
-                }
-          if (body_force)
-            {
-              fe_values.reinit(cell);
-              for (const auto &p : fe_values.get_quadrature_points())
-                sample(p, scene.body_force());
-            }
-        }
-    const double largest = Utilities::MPI::max(
-      magnitude.empty() ? 0. : *std::max_element(magnitude.begin(),
-                                                 magnitude.end()),
-      d.comm);
-
-    std::vector<Point<dim>> large;
-    if (largest > 0)
-      for (unsigned int i = 0; i < points.size(); ++i)
-        if (magnitude[i] >= parameters.load_threshold * largest)
-          large.push_back(points[i]);
-    std::vector<Point<dim>> all;
-    for (const auto &part : Utilities::MPI::all_gather(d.comm, large))
-      all.insert(all.end(), part.begin(), part.end());
-    return all;
+  template <int dim>
+  bool
+  MeshAdaptation<dim>::needs_contact_points() const
+  {
+    for (const auto &strategy : strategies)
+      if (strategy->needs_contact_points())
+        return true;
+    return false;
   }
 
 
@@ -118,64 +61,12 @@ namespace DynamicContact
     auto &             tria = discretization.triangulation;
     const unsigned int min_level = parameters.minimum_level;
 
-    // Kelly's indicator: one level up for the largest, down for the
-    // smallest (normalized sum of the indicators of u and w).
-    std::map<unsigned int, int> kelly_change; // active cell index -> +-1
-    if (parameters.error_indicator)
-      {
-        Vector<float> eu(tria.n_active_cells()), ew(tria.n_active_cells());
-        const QGauss<dim - 1> q(discretization.fe.degree + 1);
-        KellyErrorEstimator<dim>::estimate(discretization.mapping,
-                                           discretization.dof_handler,
-                                           q,
-                                           {},
-                                           u,
-                                           eu);
-        KellyErrorEstimator<dim>::estimate(discretization.mapping,
-                                           discretization.dof_handler,
-                                           q,
-                                           {},
-                                           w,
-                                           ew);
-        const double mu = Utilities::MPI::max(static_cast<double>(eu.linfty_norm()),
-                                              discretization.comm);
-        const double mw = Utilities::MPI::max(static_cast<double>(ew.linfty_norm()),
-                                              discretization.comm);
-        Vector<float> indicator(tria.n_active_cells());
-        for (unsigned int i = 0; i < indicator.size(); ++i)
-          indicator(i) = (mu > 0 ? eu(i) / mu : 0.) + (mw > 0 ? ew(i) / mw : 0.);
-        parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-          tria,
-          indicator,
-          parameters.refine_fraction,
-          parameters.coarsen_fraction);
-        for (const auto &cell : tria.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              if (cell->refine_flag_set())
-                kelly_change[cell->active_cell_index()] = 1;
-              else if (cell->coarsen_flag_set())
-                kelly_change[cell->active_cell_index()] = -1;
-              cell->clear_refine_flag();
-              cell->clear_coarsen_flag();
-            }
-      }
-
-    const std::vector<Point<dim>> load_points =
-      parameters.load_following ? large_load_points(t0, t1, k) :
-                                  std::vector<Point<dim>>();
-
-    // Within a distance of a point set (cell centre, minus half the cell).
-    auto near = [](const auto &cell,
-                   const std::vector<Point<dim>> &points,
-                   const double                   window) {
-      const Point<dim> c = cell->center();
-      const double     r = window + 0.5 * cell->diameter();
-      for (const auto &p : points)
-        if (c.distance_square(p) <= r * r)
-          return true;
-      return false;
-    };
+    // The levels each strategy asks for (collective, once per cycle).
+    const AdaptationContext<dim> context{
+      scene, discretization, t0, t1, k, contact_points, u, w};
+    std::vector<typename RefinementStrategy<dim>::Levels> levels;
+    for (const auto &strategy : strategies)
+      levels.push_back(strategy->levels(context));
 
     // The level each cell asks for, with the finest level lowered until the
     // estimated number of cells fits the budget.
@@ -188,17 +79,8 @@ namespace DynamicContact
           if (cell->is_locally_owned())
             {
               int level = min_level;
-              if ((parameters.load_following &&
-                   near(cell, load_points, parameters.load_window)) ||
-                  (parameters.contact_following &&
-                   near(cell, contact_points, parameters.contact_window)))
-                level = max_level;
-              const auto kelly = kelly_change.find(cell->active_cell_index());
-              if (kelly != kelly_change.end())
-                level = std::max(level, static_cast<int>(cell->level()) +
-                                          kelly->second);
-              else if (parameters.error_indicator)
-                level = std::max(level, static_cast<int>(cell->level()));
+              for (const auto &asked : levels)
+                level = std::max(level, asked(cell, max_level));
               level = std::clamp(level,
                                  static_cast<int>(min_level),
                                  static_cast<int>(max_level));

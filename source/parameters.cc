@@ -2,7 +2,10 @@
 #include <deal.II/base/utilities.h>
 
 #include <dynamic_contact/error_messages.h>
+#include <dynamic_contact/foundation.h>
+#include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/gmsh_file.h>
+#include <dynamic_contact/plugins.h>
 #include <dynamic_contact/parameters.h>
 
 #include <boost/property_tree/json_parser.hpp>
@@ -447,35 +450,7 @@ namespace DynamicContact
     {
       prm.enter_subsection("Foundation");
       {
-        prm.declare_entry("Normal compliance stiffness",
-                          "5e9",
-                          Patterns::Double(),
-                          "c_nu in p(r) = min(c_nu r_+, c3), eq. (88) "
-                          "(Pa/m), >= 0.");
-        prm.declare_entry("Normal damping",
-                          "1e8",
-                          Patterns::Double(),
-                          "d_nu in q(r) = min(d_nu r_+, c4), eq. (88) "
-                          "(Pa s/m), >= 0. Zero switches the damped response "
-                          "off.");
-        prm.declare_entry("Compliance cap",
-                          "1e17",
-                          Patterns::Double(),
-                          "c3, the bound of the normal compliance p (Pa), "
-                          "> 0. The paper's 1e8 GPa/m is not reached.");
-        prm.declare_entry("Damping cap",
-                          "1e17",
-                          Patterns::Double(),
-                          "c4, the bound of the normal damped response q "
-                          "(Pa), > 0.");
-        prm.declare_entry(
-          "Damping only in contact",
-          "false",
-          Patterns::Bool(),
-          "false: q acts wherever the normal velocity is positive, as eq. (17) "
-          "is written (a continuous law). true: q acts only where the body "
-          "penetrates (u_nu > 0), a physical variant with a discontinuous "
-          "law.");
+        DynamicContact::Foundation::declare_parameters(prm);
         declare_function(prm,
                          "Initial gap",
                          dim,
@@ -489,26 +464,9 @@ namespace DynamicContact
     void
     Foundation::parse_parameters(ParameterHandler &prm)
     {
-      prm.enter_subsection("Foundation");
-      compliance_stiffness    = prm.get_double("Normal compliance stiffness");
-      damping_coefficient     = prm.get_double("Normal damping");
-      compliance_cap          = prm.get_double("Compliance cap");
-      damping_cap             = prm.get_double("Damping cap");
-      damping_only_in_contact = prm.get_bool("Damping only in contact");
-      prm.leave_subsection();
-
-      require(std::isfinite(compliance_stiffness) && compliance_stiffness >= 0,
-              "Foundation/Normal compliance stiffness must be >= 0, got " +
-                str(compliance_stiffness) + ".");
-      require(std::isfinite(damping_coefficient) && damping_coefficient >= 0,
-              "Foundation/Normal damping must be >= 0, got " +
-                str(damping_coefficient) + ".");
-      require(std::isfinite(compliance_cap) && compliance_cap > 0,
-              "Foundation/Compliance cap must be positive, got " +
-                str(compliance_cap) + ".");
-      require(std::isfinite(damping_cap) && damping_cap > 0,
-              "Foundation/Damping cap must be positive, got " +
-                str(damping_cap) + ".");
+      const ScopedSubsection section(prm, "Foundation");
+      law = std::make_shared<const DynamicContact::Foundation>(
+        DynamicContact::Foundation::create(prm));
     }
 
     // ------------------------------------------------------------ Friction
@@ -517,43 +475,7 @@ namespace DynamicContact
     {
       prm.enter_subsection("Friction");
       {
-        prm.declare_entry(
-          "Law",
-          "none",
-          Patterns::Selection("none|constant|exponential|expression"),
-          "Friction coefficient mu(s) of the slip rate s = |w_tau|: "
-          "'none' (frictionless: no multiplier, no sets, no loop), "
-          "'constant' (mu = Coefficient), 'exponential' (eq. (90): "
-          "mu = (a - b) exp(-alpha s) + b), 'expression' (mu(s) given by "
-          "'Expression').");
-        prm.declare_entry("Coefficient",
-                          "0",
-                          Patterns::Double(),
-                          "mu of the constant law, >= 0. Zero means no "
-                          "friction.");
-        prm.declare_entry("Static coefficient",
-                          "1",
-                          Patterns::Double(),
-                          "a = mu(0) of the exponential law.");
-        prm.declare_entry("Dynamic coefficient",
-                          "0.5",
-                          Patterns::Double(),
-                          "b = mu(infinity) of the exponential law, "
-                          "0 < b <= a.");
-        prm.declare_entry("Decay rate",
-                          "2000",
-                          Patterns::Double(),
-                          "alpha of the exponential law (s/m), >= 0.");
-        prm.declare_entry("Expression",
-                          "0.5",
-                          Patterns::Anything(),
-                          "mu(s) for Law = expression, a function of the "
-                          "slip rate s (m/s) in muparser syntax.");
-        prm.declare_entry("Expression constants",
-                          "",
-                          Patterns::Anything(),
-                          "Constants for 'Expression', as name=value pairs "
-                          "separated by commas.");
+        FrictionLaw::declare_parameters(prm);
         prm.declare_entry(
           "Maximum slip rate",
           "100",
@@ -619,22 +541,10 @@ namespace DynamicContact
     void
     Friction::parse_parameters(ParameterHandler &prm)
     {
-      prm.enter_subsection("Friction");
       {
-        const std::string l = prm.get("Law");
-        law                 = (l == "none"        ? Law::none :
-                               l == "constant"    ? Law::constant :
-                               l == "exponential" ? Law::exponential :
-                               l == "expression"  ? Law::expression :
-                                                    throw ExcMessage(
-                                                      "Friction/Law: unknown "
-                                                      "law '" + l + "'."));
-        coefficient         = prm.get_double("Coefficient");
-        static_coefficient  = prm.get_double("Static coefficient");
-        dynamic_coefficient = prm.get_double("Dynamic coefficient");
-        decay_rate          = prm.get_double("Decay rate");
-        expression          = prm.get("Expression");
-        expression_constants = prm.get("Expression constants");
+        const ScopedSubsection section(prm, "Friction");
+        law      = FrictionLaw::create(prm);
+        law_name = prm.get("Law");
         maximum_slip_rate    = prm.get_double("Maximum slip rate");
         convexification_tolerance =
           prm.get_double("Convexification tolerance");
@@ -647,27 +557,7 @@ namespace DynamicContact
         allow_velocity_strengthening =
           prm.get("Velocity strengthening") == "allow";
       }
-      prm.leave_subsection();
 
-      if (law == Law::constant)
-        require(std::isfinite(coefficient) && coefficient >= 0,
-                "Friction/Coefficient must be >= 0, got " + str(coefficient) +
-                  ".");
-      if (law == Law::exponential)
-        {
-          require(std::isfinite(dynamic_coefficient) &&
-                    dynamic_coefficient > 0,
-                  "Friction/Dynamic coefficient must be positive, got " +
-                    str(dynamic_coefficient) + ".");
-          require(std::isfinite(static_coefficient) &&
-                    static_coefficient >= dynamic_coefficient,
-                  "Friction/Static coefficient must be >= Friction/Dynamic "
-                  "coefficient (a >= b), got a = " +
-                    str(static_coefficient) + ".");
-          require(std::isfinite(decay_rate) && decay_rate >= 0,
-                  "Friction/Decay rate must be >= 0, got " + str(decay_rate) +
-                    ".");
-        }
       require(std::isfinite(maximum_slip_rate) && maximum_slip_rate > 0,
               "Friction/Maximum slip rate must be positive.");
       require(std::isfinite(convexification_tolerance) &&
@@ -690,21 +580,7 @@ namespace DynamicContact
     {
       prm.enter_subsection("Mesh refinement");
       {
-        prm.declare_entry(
-          "Strategy",
-          "none",
-          Patterns::List(Patterns::Selection(
-            "none|error indicator|load following|contact following")),
-          "How the mesh adapts, a list of: 'none' (a uniform mesh), "
-          "'error indicator' (Kelly's indicator on displacement and "
-          "velocity: the largest 'Refine fraction' of the cells refined, the "
-          "smallest 'Coarsen fraction' coarsened), 'load following' (the "
-          "finest level in a window around where the traction and body "
-          "force are large, predicted until the next adaptation from their "
-          "expressions), 'contact following' (the finest level around the "
-          "nodes that penetrate the foundation). With several, every cell "
-          "gets the finest level any of them asks for; cells none asks for "
-          "are coarsened towards the minimum level (behind the load).");
+        declare_refinement_strategies(prm);
         prm.declare_entry("Refine every",
                           "4",
                           Patterns::Integer(1),
@@ -724,38 +600,6 @@ namespace DynamicContact
                           "Most active cells allowed (0: no limit): above it "
                           "the finest level of this adaptation is lowered "
                           "until the mesh fits.");
-        prm.declare_entry("Load window",
-                          "0.2",
-                          Patterns::Double(0),
-                          "Load following: cells closer than this (m) to a "
-                          "point where the load is large get the finest "
-                          "level. It must reach from the loaded boundary to "
-                          "the contact boundary if both should be fine.");
-        prm.declare_entry("Load threshold",
-                          "0.05",
-                          Patterns::Double(0, 1),
-                          "Load following: the load is large where its "
-                          "magnitude exceeds this fraction of its maximum.");
-        prm.declare_entry("Look-ahead steps",
-                          "0",
-                          Patterns::Integer(0),
-                          "Load following: how many steps ahead the load is "
-                          "sampled (0: until the next adaptation, 'Refine "
-                          "every' steps).");
-        prm.declare_entry("Contact window",
-                          "0.05",
-                          Patterns::Double(0),
-                          "Contact following: cells closer than this (m) to "
-                          "a node that penetrates the foundation get the "
-                          "finest level.");
-        prm.declare_entry("Refine fraction",
-                          "0.3",
-                          Patterns::Double(0, 1),
-                          "Error indicator: fraction of the cells refined.");
-        prm.declare_entry("Coarsen fraction",
-                          "0.1",
-                          Patterns::Double(0, 1),
-                          "Error indicator: fraction of the cells coarsened.");
       }
       prm.leave_subsection();
     }
@@ -766,31 +610,19 @@ namespace DynamicContact
     {
       prm.enter_subsection("Mesh refinement");
       {
-        const auto strategies =
-          Utilities::split_string_list(prm.get("Strategy"));
-        error_indicator = load_following = contact_following = false;
-        for (const auto &s : strategies)
-          {
-            error_indicator   = error_indicator || s == "error indicator";
-            load_following    = load_following || s == "load following";
-            contact_following = contact_following || s == "contact following";
-          }
+        strategies = Utilities::split_string_list(prm.get("Strategy"));
         require(!(std::find(strategies.begin(), strategies.end(), "none") !=
                     strategies.end() &&
                   strategies.size() > 1),
                 "Mesh refinement/Strategy: 'none' cannot be combined with "
                 "other strategies.");
+        if (strategies.size() == 1 && strategies[0] == "none")
+          strategies.clear();
         refine_every     = prm.get_integer("Refine every");
         minimum_level    = std::max<unsigned int>(prm.get_integer("Minimum level"),
                                                global_refinements);
         maximum_level    = prm.get_integer("Maximum level");
         cell_budget      = prm.get_integer("Cell budget");
-        load_window      = prm.get_double("Load window");
-        load_threshold   = prm.get_double("Load threshold");
-        lookahead_steps  = prm.get_integer("Look-ahead steps");
-        contact_window   = prm.get_double("Contact window");
-        refine_fraction  = prm.get_double("Refine fraction");
-        coarsen_fraction = prm.get_double("Coarsen fraction");
       }
       prm.leave_subsection();
       if (enabled())
@@ -800,9 +632,6 @@ namespace DynamicContact
                   ") must not be below the minimum level (" +
                   std::to_string(minimum_level) +
                   ", at least Geometry/Global refinements).");
-      require(refine_fraction + coarsen_fraction <= 1,
-              "Mesh refinement: Refine fraction + Coarsen fraction must not "
-              "exceed 1.");
     }
 
     // ---------------------------------------------------------------- Time
@@ -1446,6 +1275,64 @@ namespace DynamicContact
     }
 
     /**
+     * Where an entry of the flat layout of earlier versions lives now that
+     * each law and refinement strategy has a subsection of its own (the
+     * table of scripts/update-prm); empty if @p path did not move.
+     */
+    std::string
+    moved_entry(const std::string &path)
+    {
+      static const std::map<std::string, std::string> moves = {
+        {"Foundation/Normal compliance stiffness",
+         "Foundation/Normal compliance/Capped ramp/Stiffness"},
+        {"Foundation/Compliance cap",
+         "Foundation/Normal compliance/Capped ramp/Cap"},
+        {"Foundation/Normal damping",
+         "Foundation/Normal damping/Capped ramp/Coefficient"},
+        {"Foundation/Damping cap", "Foundation/Normal damping/Capped ramp/Cap"},
+        {"Foundation/Damping only in contact",
+         "Foundation/Normal damping/Only in contact"},
+        {"Friction/Coefficient", "Friction/Constant/Coefficient"},
+        {"Friction/Static coefficient",
+         "Friction/Exponential/Static coefficient"},
+        {"Friction/Dynamic coefficient",
+         "Friction/Exponential/Dynamic coefficient"},
+        {"Friction/Decay rate", "Friction/Exponential/Decay rate"},
+        {"Friction/Expression", "Friction/Expression/Function expression"},
+        {"Friction/Expression constants",
+         "Friction/Expression/Function constants"},
+        {"Mesh refinement/Load window",
+         "Mesh refinement/Load following/Window"},
+        {"Mesh refinement/Load threshold",
+         "Mesh refinement/Load following/Threshold"},
+        {"Mesh refinement/Look-ahead steps",
+         "Mesh refinement/Load following/Look-ahead steps"},
+        {"Mesh refinement/Contact window",
+         "Mesh refinement/Contact following/Window"},
+        {"Mesh refinement/Refine fraction",
+         "Mesh refinement/Error indicator/Refine fraction"},
+        {"Mesh refinement/Coarsen fraction",
+         "Mesh refinement/Error indicator/Coarsen fraction"}};
+      const auto found = moves.find(path);
+      return found == moves.end() ? std::string() : found->second;
+    }
+
+    /** Why @p path is unknown: misspelt, or moved (and where to). */
+    std::string
+    unknown_entry(const std::string &path, const std::string &file)
+    {
+      const std::string moved = moved_entry(path);
+      if (moved.empty())
+        return "there is no parameter '" + path +
+               "' (misspelt? --print-parameters lists every parameter).";
+      return "there is no parameter '" + path + "': it is now '" + moved +
+             "' (each law and refinement strategy has a subsection of its "
+             "own; scripts/update-prm " +
+             (file.empty() ? std::string("FILE") : "'" + file + "'") +
+             " rewrites a parameter file of the old layout).";
+    }
+
+    /**
      * Rewrite a ParameterHandler error so that it names the parameter as
      * Section/Entry and the line: "line 2: Material/Density = 'abc' is not a
      * number."
@@ -1468,8 +1355,7 @@ namespace DynamicContact
             rest,
             m,
             std::regex(R"(No entry with name <([^>]*)> was declared)")))
-        return where + "there is no parameter '" + path + m[1].str() +
-               "' (misspelt? --print-parameters lists every parameter).";
+        return where + unknown_entry(path + m[1].str(), file);
       if (std::regex_search(
             rest,
             m,
@@ -1480,9 +1366,16 @@ namespace DynamicContact
                readable_pattern(Utilities::trim(m[3].str())) + ".";
       if (std::regex_search(
             rest, m, std::regex(R"(no such subsection to be entered: (.*))")))
-        return where + "there is no subsection '" + path +
-               Utilities::trim(m[1].str()) +
-               "' (misspelt? --print-parameters lists every subsection).";
+        {
+          // deal.II names the whole path, its sections joined by '.'.
+          std::string name = Utilities::trim(m[1].str());
+          std::string dotted_path = path;
+          std::replace(dotted_path.begin(), dotted_path.end(), '/', '.');
+          if (!dotted_path.empty() && name.rfind(dotted_path, 0) == 0)
+            name = name.substr(dotted_path.size());
+          return where + "there is no subsection '" + path + name +
+                 "' (misspelt? --print-parameters lists every subsection).";
+        }
       return where + rest;
     }
 
@@ -1528,8 +1421,7 @@ namespace DynamicContact
           reason = message;
           if (message.find("not yet declared") != std::string::npos)
             {
-              reason = "there is no parameter '" + full_path +
-                       "' (--print-parameters lists every parameter).";
+              reason = unknown_entry(full_path, "");
               return SetResult::undeclared;
             }
           if (std::regex_search(

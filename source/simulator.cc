@@ -155,8 +155,8 @@ namespace DynamicContact
                 parameters.output.solver_details)
     , scene(parameters, prm)
     , material(parameters.material)
-    , foundation(parameters.foundation)
-    , friction_law(FrictionLaw::create(parameters.friction))
+    , foundation(*parameters.foundation.law)
+    , friction_law(parameters.friction.law)
     , timer(comm,
             pcout,
             // The table of the sections is printed by finish() (disjoint
@@ -180,7 +180,7 @@ namespace DynamicContact
                      material.density(),
                      comm)
     , force_balance(discretization, material, scene)
-    , mesh_adaptation(parameters.mesh_refinement, scene, discretization)
+    , mesh_adaptation(parameters.mesh_refinement, scene, discretization, prm)
     , k_current(parameters.time.time_step)
   {
     output_directory = std::make_unique<OutputDirectory>(
@@ -312,7 +312,7 @@ namespace DynamicContact
   Simulator<dim>::penetrating_nodes() const
   {
     // Only contact following asks for them (the same on every process).
-    if (!parameters.mesh_refinement.contact_following)
+    if (!mesh_adaptation.needs_contact_points())
       return {};
     std::vector<Point<dim>> local;
     for (const auto &node : contact_boundary.nodes())
@@ -921,12 +921,10 @@ namespace DynamicContact
     if (friction_law)
       {
         const double s_max = parameters.friction.maximum_slip_rate;
-        const bool   expression =
-          parameters.friction.law == Parameters::Friction::Law::expression;
         const std::string name =
-          expression ? "Friction/Expression: mu(s) = '" +
-                         parameters.friction.expression + "'" :
-                       std::string("Friction/Law");
+          "Friction/" +
+          PluginRegistry<FrictionLaw>::subsection(parameters.friction.law_name) +
+          ": " + friction_law->description();
         const std::vector<double> s = FrictionLaw::sample_points(s_max);
         std::vector<double>       mu(s.size());
         for (unsigned int i = 0; i < s.size(); ++i)

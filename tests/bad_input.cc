@@ -455,8 +455,8 @@ main(int argc, char **argv)
              "Function expression = log(x-2)\n  end"),
       file, 1, {"Foundation/Initial gap", "log(x-2)"});
   add("friction_not_finite",
-      scene + "\nsubsection Friction\n  set Law = expression\n  set "
-              "Expression = 0.5/(s-1)\nend\n",
+      scene + "\nsubsection Friction\n  set Law = expression\n  subsection "
+              "Expression\n    set Function expression = 0.5/(s-1)\n  end\nend\n",
       file, 1, {"Friction/Expression", "0.5/(s-1)", "not finite"});
   // NaN only near t = 2.1, between the sampled times (0, 1, 8 and every
   // 0.5 s), reached by the steps of k = 0.3: the run stops after step 6.
@@ -469,8 +469,9 @@ main(int argc, char **argv)
        "last good state (step 6)"})
     .runtime = true;
   add("velocity_strengthening",
-      scene + "\nsubsection Friction\n  set Law = expression\n  set "
-              "Expression = 1 - 0.5*exp(-2000*s)\nend\n",
+      scene + "\nsubsection Friction\n  set Law = expression\n  subsection "
+              "Expression\n    set Function expression = 1 - 0.5*exp(-2000*s)\n  "
+              "end\nend\n",
       file, 1, {"Friction/Expression", "increases with the slip rate",
                 "Friction/Velocity strengthening"});
 

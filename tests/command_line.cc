@@ -213,7 +213,7 @@ main(int argc, char **argv)
                                 "Boundary conditions/Traction function/Function expression",
                                 "Boundary conditions/Traction function/Function constants",
                                 "Material/Density",
-                                "Foundation/Normal damping",
+                                "Foundation/Normal damping/Capped ramp/Coefficient",
                                 "Foundation/Initial gap/Function expression",
                                 "Friction/Law",
                                 "Time/Time step",

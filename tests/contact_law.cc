@@ -49,13 +49,8 @@ namespace
   Foundation
   make_foundation(const bool only_in_contact = false)
   {
-    Parameters::Foundation p{};
-    p.compliance_stiffness    = 2.;
-    p.compliance_cap          = 3.;
-    p.damping_coefficient     = 0.5;
-    p.damping_cap             = 0.25;
-    p.damping_only_in_contact = only_in_contact;
-    return Foundation(p);
+    return Foundation(CappedRamp(2., 3.), CappedRamp(0.5, 0.25),
+                      only_in_contact);
   }
 
   /** 2D: n = (0.6, -0.8), t = (-n_y, n_x) = (0.8, 0.6). */

@@ -103,7 +103,7 @@ main(int argc, char *argv[])
   // Velocity strengthening: refused, unless allowed.
   const std::vector<std::string> strengthening = {
     "Friction/Law=expression",
-    "Friction/Expression=1 - 0.5*exp(-2000*s)",
+    "Friction/Expression/Function expression=1 - 0.5*exp(-2000*s)",
     "Time/End time=0.0625",
     "Time/Minimum time step=0.0078125",
     "Output/Output every=0"};

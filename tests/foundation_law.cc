@@ -33,20 +33,16 @@ namespace
     return std::abs(a - b) <= tol;
   }
 
-  Parameters::Foundation
+  /** The paper's foundation: capped ramps (c_nu, c3) and (d_nu, c4). */
+  Foundation
   foundation_parameters(const double c_nu,
                         const double c3,
                         const double d_nu,
                         const double c4,
                         const bool   only_in_contact)
   {
-    Parameters::Foundation p{};
-    p.compliance_stiffness    = c_nu;
-    p.compliance_cap          = c3;
-    p.damping_coefficient     = d_nu;
-    p.damping_cap             = c4;
-    p.damping_only_in_contact = only_in_contact;
-    return p;
+    return Foundation(CappedRamp(c_nu, c3), CappedRamp(d_nu, c4),
+                      only_in_contact);
   }
 
 

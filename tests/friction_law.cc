@@ -14,22 +14,40 @@ using test_tools::check;
 using test_tools::close;
 using test_tools::digits;
 using test_tools::out;
-using Law = Parameters::Friction::Law;
 
 namespace
 {
-  Parameters::Friction
-  friction_parameters(const Law law)
+  /**
+   * FrictionLaw::create for Friction/Law = @p law from the entries the
+   * laws declare (mu = 0.4, a = 1, b = 0.5, alpha = 2000, expression
+   * 0.5 + 0.5 exp(-10 s)), with @p entries ("Subsection/Entry", value) set
+   * on top.
+   */
+  std::unique_ptr<FrictionLaw>
+  create(const std::string &                                       law,
+         const std::vector<std::pair<std::string, std::string>> &entries = {})
   {
-    Parameters::Friction p{};
-    p.law                 = law;
-    p.coefficient         = 0.4;
-    p.static_coefficient  = 1.;
-    p.dynamic_coefficient = 0.5;
-    p.decay_rate          = 2000.;
-    p.expression          = "0.5 + 0.5*exp(-10*s)";
-    p.maximum_slip_rate   = 1.;
-    return p;
+    dealii::ParameterHandler prm;
+    prm.enter_subsection("Friction");
+    FrictionLaw::declare_parameters(prm);
+    prm.set("Law", law);
+    std::vector<std::pair<std::string, std::string>> all = {
+      {"Constant/Coefficient", "0.4"},
+      {"Exponential/Static coefficient", "1"},
+      {"Exponential/Dynamic coefficient", "0.5"},
+      {"Exponential/Decay rate", "2000"},
+      {"Expression/Function expression", "0.5 + 0.5*exp(-10*s)"}};
+    all.insert(all.end(), entries.begin(), entries.end());
+    for (const auto &[path, value] : all)
+      {
+        const auto slash = path.find('/');
+        prm.enter_subsection(path.substr(0, slash));
+        prm.set(path.substr(slash + 1), value);
+        prm.leave_subsection();
+      }
+    auto object = FrictionLaw::create(prm);
+    prm.leave_subsection();
+    return object;
   }
 
   /** max |mu'(s) - central difference| / max(1, |mu'(s)|) over @p points. */
@@ -78,7 +96,7 @@ namespace
   test_constant()
   {
     out() << "--- constant mu = 0.4" << std::endl;
-    const auto law = FrictionLaw::create(friction_parameters(Law::constant));
+    const auto law = create("constant");
     check(law != nullptr && dynamic_cast<ConstantFriction *>(law.get()),
           "create(constant) is a ConstantFriction");
     check(law->value(0.) == 0.4 && law->value(1.) == 0.4 &&
@@ -106,7 +124,7 @@ namespace
     out() << "--- exponential (a - b) exp(-alpha s) + b, a = 1, b = 0.5, "
              "alpha = 2000"
           << std::endl;
-    const auto law = FrictionLaw::create(friction_parameters(Law::exponential));
+    const auto law = create("exponential");
     check(law != nullptr && dynamic_cast<ExponentialFriction *>(law.get()),
           "create(exponential) is an ExponentialFriction");
     // By hand: 0.5 exp(-2) = 0.0676676416, 0.5 exp(-0.2) = 0.409365377.
@@ -158,7 +176,7 @@ namespace
   test_expression()
   {
     out() << "--- expression 0.5 + 0.5*exp(-10*s)" << std::endl;
-    const auto law = FrictionLaw::create(friction_parameters(Law::expression));
+    const auto law = create("expression");
     check(law != nullptr && dynamic_cast<ExpressionFriction *>(law.get()),
           "create(expression) is an ExpressionFriction");
     // By hand: 0.5 exp(-1) = 0.183939721, 0.5 exp(-0.5) = 0.303265330.
@@ -242,32 +260,38 @@ namespace
   test_create_and_errors()
   {
     out() << "--- create and errors" << std::endl;
-    check(FrictionLaw::create(friction_parameters(Law::none)) == nullptr,
+    check(create("none") == nullptr,
           "create(none) = nullptr");
 
     bool deal_ii;
     for (const std::string expression : {"0.5 +* s", "0.5 + x", "exp(-s"})
       {
-        Parameters::Friction p = friction_parameters(Law::expression);
-        p.expression           = expression;
-        const std::string message =
-          thrown_message([&] { FrictionLaw::create(p); }, deal_ii);
+        const std::string message = thrown_message(
+          [&] {
+            create("expression",
+                   {{"Expression/Function expression", expression}});
+          },
+          deal_ii);
         check(!message.empty() && deal_ii &&
-                contains(message, "Friction/Expression"),
+                contains(message, "Friction/Expression/Function expression"),
               "create('" + expression +
-                "') throws, naming \"Friction/Expression\"");
+                "') throws, naming \"Friction/Expression/Function "
+                "expression\"");
       }
     for (const std::string constants : {"a:0.3", "a=x"})
       {
-        Parameters::Friction p = friction_parameters(Law::expression);
-        p.expression           = "a + 0*s";
-        p.expression_constants = constants;
-        const std::string message =
-          thrown_message([&] { FrictionLaw::create(p); }, deal_ii);
+        const std::string message = thrown_message(
+          [&] {
+            create("expression",
+                   {{"Expression/Function expression", "a + 0*s"},
+                    {"Expression/Function constants", constants}});
+          },
+          deal_ii);
         check(!message.empty() && deal_ii &&
-                contains(message, "Friction/Expression constants"),
+                contains(message, "Friction/Expression/Function constants"),
               "constants '" + constants +
-                "' throw, naming \"Friction/Expression constants\"");
+                "' throw, naming \"Friction/Expression/Function "
+                "constants\"");
       }
   }
 } // namespace

@@ -112,8 +112,9 @@ main(int argc, char **argv)
                           "Function expression": "0; -P"}},
   "Material": {"Density": "2000", "Young modulus": "1e9",
                "Poisson ratio": "0.3"},
-  "Foundation": {"Normal compliance stiffness": "1e10",
-                 "Normal damping": "1e8"},
+  "Foundation": {
+    "Normal compliance": {"Capped ramp": {"Stiffness": "1e10"}},
+    "Normal damping": {"Capped ramp": {"Coefficient": "1e8"}}},
   "Time": {"End time": "3", "Time step": "1"},
   "Output": {"Directory": "from_short_json", "VTU every": "0",
              "Print timings": "false",

@@ -279,9 +279,9 @@ main()
           {"Geometry/Upper right = '20, 1' (checkpoint: '2, 0.1')"});
   refused("changed_friction",
           {"--set", "Friction/Law=constant", "--set",
-           "Friction/Coefficient=0.3", "--set", "Material/Density=1e3"},
+           "Friction/Constant/Coefficient=0.3", "--set", "Material/Density=1e3"},
           {"2 entries", "Friction/Law = 'constant'",
-           "Friction/Coefficient = '0.3'"});
+           "Friction/Constant/Coefficient = '0.3'"});
   refused("end_before_rows",
           {"--set", "Time/End time=0.1"},
           {"Time/End time", "before the last row already written"});

@@ -1,10 +1,13 @@
 #ifndef dynamic_contact_foundation_h
 #define dynamic_contact_foundation_h
 
-#include <dynamic_contact/parameters.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <dynamic_contact/plugins.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace DynamicContact
 {
@@ -137,36 +140,221 @@ namespace DynamicContact
 
 
   /**
+   * A law of the foundation's normal response r -> f(r) (doc/theory.md
+   * section 2): nondecreasing, f(r) = 0 for r <= 0; the normal compliance p
+   * of the penetration and the normal damped response q of the normal
+   * velocity are such laws (NormalLaw and DampingLaw, chosen by
+   * Foundation/Normal compliance/Law and Foundation/Normal damping/Law).
+   * What the solver and the energy balance use: value, a generalized
+   * derivative, the primitive, and for the trapezoidal scheme the discrete
+   * gradient and the dissipation of a step (with generic forms from the
+   * primitive that an implementation may replace by exact ones).
+   */
+  class ResponseLaw
+  {
+  public:
+    virtual ~ResponseLaw() = default;
+
+    virtual double
+    value(const double r) const = 0;
+    /** A generalized derivative (the one semismooth Newton uses). */
+    virtual double
+    derivative(const double r) const = 0;
+    /** int_0^r value(s) ds. */
+    virtual double
+    primitive(const double r) const = 0;
+    /** Whether f vanishes everywhere (the law switched off). */
+    virtual bool
+    is_zero() const = 0;
+    /** Where the law acts (r > 0): a set of the active-set Newton. */
+    virtual bool
+    active(const double r) const
+    {
+      return !is_zero() && r > 0;
+    }
+    /** Where f stops growing (a set of the active-set Newton). */
+    virtual bool
+    saturated(const double) const
+    {
+      return false;
+    }
+    /** f(b)(b - a) - (Pi(b) - Pi(a)) >= 0: the dissipation of a step. */
+    virtual double
+    dissipation(const double a, const double b) const
+    {
+      return std::max(0., value(b) * (b - a) - (primitive(b) - primitive(a)));
+    }
+    /** (Pi(b) - Pi(a))/(b - a), f((a+b)/2) as b -> a. */
+    virtual double
+    discrete_gradient(const double a, const double b) const
+    {
+      if (std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+        return value(0.5 * (a + b));
+      return (primitive(b) - primitive(a)) / (b - a);
+    }
+    /** d/db of the discrete gradient. */
+    virtual double
+    discrete_gradient_derivative(const double a, const double b) const
+    {
+      if (std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+        return 0.5 * derivative(0.5 * (a + b));
+      return dissipation(a, b) / ((b - a) * (b - a));
+    }
+
+    /** Parse the law's own subsection (called inside it). */
+    virtual void
+    parse_parameters(ParameterHandler &prm) = 0;
+  };
+
+  /** The normal compliance p(u_nu) (eq. (17)); see ResponseLaw. */
+  class NormalLaw : public ResponseLaw
+  {};
+
+  /** The normal damped response q(u'_nu) (eq. (17)); see ResponseLaw. */
+  class DampingLaw : public ResponseLaw
+  {};
+
+
+  /**
+   * The paper's capped ramp (eq. (88)) as a law of the foundation: the
+   * implementation 'capped ramp' of both NormalLaw (entries Stiffness c_nu
+   * and Cap c3) and DampingLaw (entries Coefficient d_nu and Cap c4).
+   */
+  template <class Interface>
+  class CappedRampLaw : public Interface
+  {
+  public:
+    CappedRampLaw() = default;
+    explicit CappedRampLaw(const CappedRamp &ramp)
+      : ramp(ramp)
+    {}
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
+
+    double
+    value(const double r) const override
+    {
+      return ramp.value(r);
+    }
+    double
+    derivative(const double r) const override
+    {
+      return ramp.derivative(r);
+    }
+    double
+    primitive(const double r) const override
+    {
+      return ramp.primitive(r);
+    }
+    bool
+    is_zero() const override
+    {
+      return ramp.get_slope() == 0;
+    }
+    bool
+    active(const double r) const override
+    {
+      return ramp.active(r);
+    }
+    bool
+    saturated(const double r) const override
+    {
+      return ramp.saturated(r);
+    }
+    double
+    dissipation(const double a, const double b) const override
+    {
+      return ramp.dissipation(a, b);
+    }
+    double
+    discrete_gradient(const double a, const double b) const override
+    {
+      return ramp.discrete_gradient(a, b);
+    }
+    double
+    discrete_gradient_derivative(const double a,
+                                 const double b) const override
+    {
+      return ramp.discrete_gradient_derivative(a, b);
+    }
+
+  private:
+    CappedRamp ramp{0., 1.};
+  };
+
+
+  // The entries of the two capped ramps (source/foundation.cc).
+  template <>
+  void
+  CappedRampLaw<NormalLaw>::declare_parameters(ParameterHandler &prm);
+  template <>
+  void
+  CappedRampLaw<NormalLaw>::parse_parameters(ParameterHandler &prm);
+  template <>
+  void
+  CappedRampLaw<DampingLaw>::declare_parameters(ParameterHandler &prm);
+  template <>
+  void
+  CappedRampLaw<DampingLaw>::parse_parameters(ParameterHandler &prm);
+
+
+  /**
    * The deformable foundation of eq. (17): -sigma_nu = p(u_nu) + q(u'_nu),
    * p the normal compliance, q the normal damped response.
    */
   class Foundation
   {
   public:
-    explicit Foundation(const Parameters::Foundation &parameters)
-      : p(parameters.compliance_stiffness, parameters.compliance_cap)
-      , q(parameters.damping_coefficient, parameters.damping_cap)
-      , damping_only_in_contact(parameters.damping_only_in_contact)
+    Foundation(std::shared_ptr<const NormalLaw>  compliance,
+               std::shared_ptr<const DampingLaw> damping,
+               const bool                        damping_only_in_contact)
+      : p(std::move(compliance))
+      , q(std::move(damping))
+      , damping_only_in_contact(damping_only_in_contact)
     {}
 
-    /** Normal compliance p(r) = min(c_nu r_+, c3). */
-    const CappedRamp &
+    /** The paper's foundation: capped ramps p = (c_nu, c3), q = (d_nu, c4). */
+    Foundation(const CappedRamp &compliance,
+               const CappedRamp &damping,
+               const bool        damping_only_in_contact)
+      : Foundation(std::make_shared<CappedRampLaw<NormalLaw>>(compliance),
+                   std::make_shared<CappedRampLaw<DampingLaw>>(damping),
+                   damping_only_in_contact)
+    {}
+
+    /**
+     * Declare, inside subsection Foundation, the subsections Normal
+     * compliance and Normal damping: each with the entry Law (the
+     * registered laws) and a subsection per law.
+     */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** The foundation the entries name (called inside Foundation). */
+    static Foundation
+    create(ParameterHandler &prm);
+
+    /** Normal compliance p(r), e.g. min(c_nu r_+, c3). */
+    const ResponseLaw &
     compliance() const
     {
-      return p;
+      return *p;
     }
 
-    /** Normal damped response q(r) = min(d_nu r_+, c4). */
-    const CappedRamp &
+    /** Normal damped response q(r), e.g. min(d_nu r_+, c4). */
+    const ResponseLaw &
     damping() const
     {
-      return q;
+      return *q;
     }
 
     bool
     has_damping() const
     {
-      return q.get_slope() > 0;
+      return !q->is_zero();
     }
 
     /** Whether q acts at a node with penetration @p u_nu. */
@@ -180,13 +368,13 @@ namespace DynamicContact
     double
     pressure(const double u_nu, const double w_nu) const
     {
-      return p.value(u_nu) + (damping_acts(u_nu) ? q.value(w_nu) : 0.);
+      return p->value(u_nu) + (damping_acts(u_nu) ? q->value(w_nu) : 0.);
     }
 
   private:
-    CappedRamp p;
-    CappedRamp q;
-    bool       damping_only_in_contact;
+    std::shared_ptr<const NormalLaw>  p;
+    std::shared_ptr<const DampingLaw> q;
+    bool                              damping_only_in_contact;
   };
 } // namespace DynamicContact
 

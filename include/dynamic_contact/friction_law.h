@@ -3,7 +3,9 @@
 
 #include <deal.II/base/function_parser.h>
 
-#include <dynamic_contact/parameters.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <dynamic_contact/plugins.h>
 
 #include <algorithm>
 #include <memory>
@@ -14,8 +16,12 @@ namespace DynamicContact
 {
   /**
    * The friction coefficient mu(s) of the slip rate s = |u'_tau| (eq. (18)):
-   * constant, the paper's slip-weakening exponential (eq. (90)), or a
-   * function expression of s.
+   * an interface with the implementations 'constant', the paper's
+   * slip-weakening 'exponential' (eq. (90)) and 'expression' (a function of
+   * s), chosen by Friction/Law. A new law is a class derived from this one
+   * with declare_parameters/parse_parameters for its own subsection
+   * Friction/<Name>, registered with DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+   * Class, "name", "description") (doc/extending.md).
    */
   class FrictionLaw
   {
@@ -62,18 +68,37 @@ namespace DynamicContact
     static std::vector<double>
     sample_points(const double s_max);
 
-    /** nullptr for Law = none. */
+    /** Parse the law's own subsection (called inside it). */
+    virtual void
+    parse_parameters(ParameterHandler &prm) = 0;
+
+    /**
+     * Declare, inside subsection Friction, the entry Law (every registered
+     * name, and 'none') and the subsection of every registered law.
+     */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The law that Friction/Law names, with its parameters (called inside
+     * subsection Friction); nullptr for Law = none.
+     */
     static std::unique_ptr<FrictionLaw>
-    create(const Parameters::Friction &parameters);
+    create(ParameterHandler &prm);
   };
 
 
   class ConstantFriction : public FrictionLaw
   {
   public:
+    ConstantFriction() = default;
     explicit ConstantFriction(const double mu)
       : mu(mu)
     {}
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
     double
     value(const double) const override
     {
@@ -98,7 +123,7 @@ namespace DynamicContact
     }
 
   private:
-    double mu;
+    double mu = 0;
   };
 
 
@@ -106,11 +131,16 @@ namespace DynamicContact
   class ExponentialFriction : public FrictionLaw
   {
   public:
+    ExponentialFriction() = default;
     ExponentialFriction(const double a, const double b, const double alpha)
       : a(a)
       , b(b)
       , alpha(alpha)
     {}
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
     double
     value(const double s) const override;
     double
@@ -130,7 +160,7 @@ namespace DynamicContact
     }
 
   private:
-    double a, b, alpha;
+    double a = 1, b = 0.5, alpha = 2000;
   };
 
 
@@ -138,8 +168,13 @@ namespace DynamicContact
   class ExpressionFriction : public FrictionLaw
   {
   public:
+    ExpressionFriction();
     ExpressionFriction(const std::string &expression,
                        const std::string &constants);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
     double
     value(const double s) const override;
     double
@@ -150,8 +185,12 @@ namespace DynamicContact
     description() const override;
 
   private:
-    std::string           expression;
-    FunctionParser<1>     parser;
+    /** Parse @p expression with the constants "name=value, ...". */
+    void
+    initialize(const std::string &expression, const std::string &constants);
+
+    std::string                        expression;
+    std::unique_ptr<FunctionParser<1>> parser;
   };
 } // namespace DynamicContact
 

@@ -6,6 +6,7 @@
 #include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/refinement_strategy.h>
 #include <dynamic_contact/scene.h>
 
 #include <functional>
@@ -16,15 +17,9 @@ namespace DynamicContact
   /**
    * Where the mesh should be fine (the paper's scene, doc/theory.md
    * section 8: a Gaussian load of width ~1/sqrt(psi) travelling along the
-   * rail). Each strategy of
-   * Mesh refinement/Strategy asks for a level per cell:
-   *   load following:    the maximum level within 'Load window' of a point
-   *                      where the traction (or body force) is large at some
-   *                      time until the next adaptation, from the expressions;
-   *   contact following: the maximum level within 'Contact window' of a node
-   *                      that penetrates the foundation;
-   *   error indicator:   one level up or down by Kelly's indicator on u and w;
-   * each cell is flagged towards the largest level asked for (the minimum
+   * rail). Each RefinementStrategy of Mesh refinement/Strategy (load
+   * following, contact following, error indicator, or one of your own)
+   * asks for a level per cell; each cell is flagged towards the largest level asked for (the minimum
    * level if none asks), within the cell budget. One call flags one cycle
    * (a cell changes by at most one level); the caller repeats until nothing
    * is flagged, transferring the fields each time.
@@ -33,9 +28,11 @@ namespace DynamicContact
   class MeshAdaptation
   {
   public:
+    /** The strategies are created from @p prm (Mesh refinement/Strategy). */
     MeshAdaptation(const Parameters::MeshRefinement &parameters,
                    const Scene<dim> &                 scene,
-                   Discretization<dim> &              discretization);
+                   Discretization<dim> &              discretization,
+                   ParameterHandler &                 prm);
 
     bool
     enabled() const
@@ -50,13 +47,16 @@ namespace DynamicContact
       return enabled() && step > 1 && (step - 1) % parameters.refine_every == 0;
     }
 
-    /** The number of steps ahead that load following samples the load. */
+    /**
+     * The number of steps ahead the strategies look (the largest they ask
+     * for; 'Refine every' if none asks).
+     */
     unsigned int
-    lookahead_steps() const
-    {
-      return parameters.lookahead_steps > 0 ? parameters.lookahead_steps :
-                                              parameters.refine_every;
-    }
+    lookahead_steps() const;
+
+    /** Whether flag_cells() needs the penetrating nodes of Gamma_3. */
+    bool
+    needs_contact_points() const;
 
     /**
      * Set refinement and coarsening flags for the times [t0, t1] (sampled
@@ -90,14 +90,13 @@ namespace DynamicContact
     std::pair<types::global_cell_index, double>
     fingerprint() const;
 
-    /** The points where the load is large in [t0, t1] (every process). */
-    std::vector<Point<dim>>
-    large_load_points(const double t0, const double t1, const double k) const;
 
   private:
     const Parameters::MeshRefinement parameters;
     const Scene<dim> &               scene;
     Discretization<dim> &            discretization;
+    const std::vector<std::unique_ptr<const RefinementStrategy<dim>>>
+      strategies;
   };
 
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +12,9 @@
 namespace DynamicContact
 {
   using namespace dealii;
+
+  class Foundation;
+  class FrictionLaw;
 
   /**
    * The parameters of a scene, one struct per subsection of the parameter
@@ -108,11 +112,11 @@ namespace DynamicContact
 
     struct Foundation
     {
-      double compliance_stiffness; // c_nu
-      double damping_coefficient;  // d_nu
-      double compliance_cap;       // c3
-      double damping_cap;          // c4
-      bool   damping_only_in_contact;
+      /**
+       * The normal compliance and damped response the entries choose
+       * (foundation.h; each law parses its own subsection).
+       */
+      std::shared_ptr<const DynamicContact::Foundation> law;
 
       static void
       declare_parameters(ParameterHandler &prm, const unsigned int dim);
@@ -122,21 +126,13 @@ namespace DynamicContact
 
     struct Friction
     {
-      enum class Law
-      {
-        none,
-        constant,
-        exponential,
-        expression
-      };
-      Law         law;
-      double      coefficient;       // constant law
-      double      static_coefficient; // a: mu(0) of the exponential law
-      double      dynamic_coefficient; // b: mu(infinity)
-      double      decay_rate;        // alpha
-      std::string expression;        // mu(s), variable s
-      std::string expression_constants;
-      double      maximum_slip_rate; // range on which mu is checked
+      /**
+       * The law Friction/Law names, with the parameters of its own
+       * subsection (friction_law.h); nullptr for 'none'.
+       */
+      std::shared_ptr<const FrictionLaw> law;
+      std::string                        law_name;
+      double maximum_slip_rate; // range on which mu is checked
 
       // Convexification loop (doc/theory.md section 4).
       double       convexification_tolerance; // epsilon_conv, eq. (85)
@@ -159,7 +155,7 @@ namespace DynamicContact
       bool
       enabled() const
       {
-        return law != Law::none;
+        return law != nullptr;
       }
     };
 
@@ -170,24 +166,17 @@ namespace DynamicContact
      */
     struct MeshRefinement
     {
-      bool         error_indicator   = false;
-      bool         load_following    = false;
-      bool         contact_following = false;
-      unsigned int refine_every;
-      unsigned int minimum_level;
-      unsigned int maximum_level;
-      unsigned int cell_budget;
-      double       load_window;
-      double       load_threshold;
-      unsigned int lookahead_steps;
-      double       contact_window;
-      double       refine_fraction;
-      double       coarsen_fraction;
+      /** The strategies of the list Strategy (refinement_strategy.h). */
+      std::vector<std::string> strategies;
+      unsigned int             refine_every;
+      unsigned int             minimum_level;
+      unsigned int             maximum_level;
+      unsigned int             cell_budget;
 
       bool
       enabled() const
       {
-        return error_indicator || load_following || contact_following;
+        return !strategies.empty();
       }
 
       static void
@@ -312,6 +301,14 @@ namespace DynamicContact
     parse_parameters(ParameterHandler &prm);
   };
 
+
+  /**
+   * Declare Mesh refinement/Strategy and the subsection of every registered
+   * refinement strategy (inside subsection Mesh refinement; defined with the
+   * strategies, in refinement_strategy.cc).
+   */
+  void
+  declare_refinement_strategies(ParameterHandler &prm);
 
   /** The formats of a parameter file (deal.II's ParameterHandler). */
   enum class ParameterFormat

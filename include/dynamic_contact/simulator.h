@@ -193,7 +193,7 @@ namespace DynamicContact
     Scene<dim>                   scene;
     KelvinVoigtMaterial<dim>     material;
     Foundation                   foundation;
-    std::unique_ptr<FrictionLaw> friction_law;
+    std::shared_ptr<const FrictionLaw> friction_law;
 
     TimerOutput timer;
 
