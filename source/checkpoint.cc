@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <map>
 #include <sstream>
 
 namespace DynamicContact
@@ -88,22 +89,16 @@ namespace DynamicContact
     }
 
     std::string
-    format_state(const RunState &state, const std::string &signature)
+    format_state(RunState state, const std::string &signature)
     {
       std::ostringstream out;
       out.precision(17);
-      out << "signature " << signature << '\n'
-          << "step " << state.step << '\n'
-          << "time " << state.time << '\n'
-          << "time_step " << state.time_step << '\n'
-          << "good_steps_since_cutback " << state.good_steps_since_cutback
-          << '\n'
-          << "max_relative_defect " << state.max_relative_defect << '\n'
-          << "min_dissipation " << state.min_dissipation << '\n'
-          << "total_newton " << state.total_newton << '\n'
-          << "unconverged_steps " << state.unconverged_steps << '\n'
-          << "worst_unconverged " << state.worst_unconverged << '\n'
-          << "vtu_records " << state.vtu_records.size() << '\n';
+      out << "signature " << signature << '\n';
+      state.for_each_number(
+        [&](const char *name, const auto &value) {
+          out << name << ' ' << value << '\n';
+        });
+      out << "vtu_records " << state.vtu_records.size() << '\n';
       for (const auto &[t, file] : state.vtu_records)
         out << t << ' ' << file << '\n';
       out << "end\n";
@@ -518,36 +513,37 @@ namespace DynamicContact
     const std::string  text = read_collectively(checkpoint + "/state.txt", comm);
     std::istringstream in(text);
     RunState           state;
-    std::string        line, key;
-    auto               expect = [&](const char *name) {
-      in >> key;
-      if (!in || key != name)
-        throw CollectiveError("The checkpoint '" + checkpoint +
-                              "' is damaged (state.txt: '" + name +
-                              "' expected).");
+    const auto         damaged = [&](const std::string &what) {
+      return CollectiveError("The checkpoint '" + checkpoint +
+                             "' is damaged (state.txt: " + what + ").");
     };
+    // "name value" lines up to vtu_records, by name.
+    std::map<std::string, std::string> numbers;
+    std::string                        line;
     std::getline(in, line); // the signature, checked by load_checkpoint
     unsigned int n_records = 0;
-    expect("step");
-    in >> state.step;
-    expect("time");
-    in >> state.time;
-    expect("time_step");
-    in >> state.time_step;
-    expect("good_steps_since_cutback");
-    in >> state.good_steps_since_cutback;
-    expect("max_relative_defect");
-    in >> state.max_relative_defect;
-    expect("min_dissipation");
-    in >> state.min_dissipation;
-    expect("total_newton");
-    in >> state.total_newton;
-    expect("unconverged_steps");
-    in >> state.unconverged_steps;
-    expect("worst_unconverged");
-    in >> state.worst_unconverged;
-    expect("vtu_records");
-    in >> n_records;
+    for (std::string key; in >> key;)
+      {
+        if (key == "vtu_records")
+          {
+            in >> n_records;
+            break;
+          }
+        std::string value;
+        in >> value;
+        if (!numbers.emplace(key, value).second)
+          throw damaged("'" + key + "' twice");
+      }
+    std::size_t used = 0;
+    state.for_each_number([&](const char *name, auto &value) {
+      const auto found = numbers.find(name);
+      std::istringstream parse(found == numbers.end() ? "" : found->second);
+      if (found == numbers.end() || !(parse >> value) || !parse.eof())
+        throw damaged("'" + std::string(name) + "' missing or not a number");
+      ++used;
+    });
+    if (used != numbers.size())
+      throw damaged("an unknown entry");
     for (unsigned int i = 0; in && i < n_records; ++i)
       {
         double      t;
@@ -555,7 +551,10 @@ namespace DynamicContact
         in >> t >> file;
         state.vtu_records.emplace_back(t, file);
       }
-    expect("end");
+    std::string end;
+    in >> end;
+    if (!in || end != "end")
+      throw damaged("'end' expected");
     if (!(state.time >= 0) || !(state.time_step > 0))
       throw CollectiveError("The checkpoint '" + checkpoint +
                             "' is damaged (state.txt: time or time step).");

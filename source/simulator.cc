@@ -48,96 +48,6 @@ namespace DynamicContact
       using std::runtime_error::runtime_error;
     };
 
-    /** Columns name_x, name_y (, name_z) of a vector. */
-    template <int dim>
-    void
-    add_vector_columns(TimeSeriesRow &       row,
-                       const std::string &   name,
-                       const Tensor<1, dim> &v)
-    {
-      const char *axes[] = {"_x", "_y", "_z"};
-      for (unsigned int d = 0; d < dim; ++d)
-        row.add(name + axes[d], v[d]);
-    }
-
-    /** Everything a row of time_series.csv says about a step. */
-    template <int dim>
-    struct StepRecord
-    {
-      unsigned int                         step             = 0;
-      double                               time             = 0;
-      double                               time_step        = 0;
-      double                               normal_force     = 0;
-      double                               tangential_force = 0;
-      ForceBalance<dim>                    forces;
-      EnergyBalanceTerms                   terms;
-      double                               previous_energy = 0;
-      typename StepSolver<dim>::Statistics statistics;
-      double                               remesh_energy_change = 0;
-      unsigned int                         cutbacks             = 0;
-      unsigned long long                   dofs                 = 0;
-      unsigned long long                   cells                = 0;
-      bool                                 has_errors           = false;
-      Errors                               errors;
-
-      TimeSeriesRow
-      row() const
-      {
-        TimeSeriesRow r;
-        r.add_integer("step", step);
-        r.add("time", time);
-        r.add("time_step", time_step);
-        r.add_integer("cutbacks", cutbacks);
-        r.add("normal_force", normal_force);
-        r.add("tangential_force", tangential_force);
-        add_vector_columns(r, "applied_force", forces.applied);
-        add_vector_columns(r, "reaction_force", forces.reaction);
-        add_vector_columns(r, "inertia_force", forces.inertia);
-        r.add("kinetic_energy", terms.energy.kinetic);
-        r.add("elastic_energy", terms.energy.elastic);
-        r.add("foundation_energy", terms.energy.foundation);
-        r.add("total_energy", terms.energy.total());
-        r.add("load_work", terms.load_work);
-        r.add("dissipation", terms.dissipation());
-        r.add("dissipation_inertia", terms.inertia);
-        r.add("dissipation_elastic", terms.elastic);
-        r.add("dissipation_viscous", terms.viscous);
-        r.add("dissipation_compliance", terms.compliance);
-        r.add("dissipation_damping", terms.damping);
-        r.add("friction_dissipation", terms.friction);
-        r.add("energy_balance_defect", terms.defect);
-        r.add("relative_energy_defect",
-              std::abs(terms.defect) / terms.scale(previous_energy));
-        r.add("relative_min_dissipation",
-              terms.min_dissipation_term() / terms.scale(previous_energy));
-        r.add("remesh_energy_change", remesh_energy_change);
-        r.add_integer("newton_iterations", statistics.newton_iterations);
-        r.add_integer("convexification_iterations",
-                      statistics.convexification_iterations);
-        r.add_integer("convexification_converged",
-                      statistics.convexification_converged ? 1 : 0);
-        r.add("coefficient_residual", statistics.coefficient_residual);
-        r.add_integer("factorizations", statistics.factorizations);
-        r.add_integer("active_set_cycles", statistics.cycles);
-        r.add_integer("line_search_steps", statistics.line_search_steps);
-        r.add_integer("linear_iterations", statistics.linear_iterations);
-        r.add_integer("n_contact", statistics.n_contact);
-        r.add_integer("n_stick", statistics.n_stick);
-        r.add_integer("n_slip", statistics.n_slip);
-        r.add_integer("dofs", dofs);
-        r.add_integer("cells", cells);
-        if (has_errors)
-          {
-            // doc/theory.md section 7; Theorem 6's error is the maximum over the
-            // steps of error_theorem6.
-            r.add("error_strain", errors.strain);
-            r.add("error_velocity", errors.velocity);
-            r.add("error_theorem6", errors.strain + errors.velocity);
-            r.add("error_energy", errors.energy);
-          }
-        return r;
-      }
-    };
   } // namespace
 
 
@@ -551,7 +461,7 @@ namespace DynamicContact
 
 
   template <int dim>
-  TimeSeriesRow
+  StepRecord<dim>
   Simulator<dim>::do_time_step(const unsigned int n,
                                const double       t,
                                const double       k,
@@ -685,7 +595,7 @@ namespace DynamicContact
     record.dofs  = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
     energy_of_state = record.terms.energy.total(); // the step succeeded
-    return record.row();
+    return record;
   }
 
 
@@ -776,7 +686,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::print_progress(const TimeSeriesRow &row) const
+  Simulator<dim>::print_progress(const StepRecord<dim> &record) const
   {
     // Output/Print timings and Print iteration counts = false leave out
     // what differs from run to run: the times, and the iteration counts (on
@@ -785,23 +695,23 @@ namespace DynamicContact
     // 2 processes differed by one Newton iteration in 3 of 16 progress
     // lines).
     pcout << "step " << std::setw(5) << step << '/' << step + remaining_steps()
-          << "  t = " << sig6(row.get("time"));
-    if (row.get("time_step") != parameters.time.time_step ||
-        row.get("cutbacks") > 0)
-      pcout << "  k = " << sig6(row.get("time_step")) << " ("
-            << row.get("cutbacks") << " cut-backs)";
+          << "  t = " << sig6(record.time);
+    if (record.time_step != parameters.time.time_step || record.cutbacks > 0)
+      pcout << "  k = " << sig6(record.time_step) << " (" << record.cutbacks
+            << " cut-backs)";
+    const auto &statistics = record.statistics;
     if (parameters.output.print_iteration_counts)
       {
-        pcout << "  Newton " << row.get("newton_iterations");
+        pcout << "  Newton " << statistics.newton_iterations;
         if (step_solver.has_friction())
           pcout << "  convexification "
-                << row.get("convexification_iterations");
+                << statistics.convexification_iterations;
       }
-    pcout << "  contact " << row.get("n_contact");
+    pcout << "  contact " << statistics.n_contact;
     if (mesh_adaptation.enabled())
-      pcout << "  cells " << row.get("cells");
-    pcout << "  N = " << sig6(row.get("normal_force"))
-          << "  E = " << sig6(row.get("total_energy"));
+      pcout << "  cells " << record.cells;
+    pcout << "  N = " << sig6(record.normal_force)
+          << "  E = " << sig6(record.terms.energy.total());
     if (parameters.output.print_timings)
       {
         const auto   now     = std::chrono::steady_clock::now();
@@ -1068,9 +978,8 @@ namespace DynamicContact
     energy_of_state        = record.previous_energy;
     record.dofs            = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
-    const TimeSeriesRow row = record.row();
-    time_series_writer->write(row);
-    rows.push_back(row);
+    time_series_writer->write(record.row());
+    rows.push_back(record);
     output_results(0, 0., true, parameters.output.write_vtu);
   }
 
@@ -1177,10 +1086,17 @@ namespace DynamicContact
             }
           if (values.size() != header.size() || values[0] == "0")
             continue; // row 0 is the initial state
-          TimeSeriesRow row;
-          for (unsigned int c = 0; c < values.size(); ++c)
-            row.add(header[c], std::strtod(values[c].c_str(), nullptr));
-          account_for(row);
+          // The counts of the end summary, by column name.
+          const auto value = [&](const std::string &name) {
+            const auto c = std::find(header.begin(), header.end(), name);
+            return c == header.end() ?
+                     0. :
+                     std::strtod(values[c - header.begin()].c_str(), nullptr);
+          };
+          account_for(static_cast<unsigned int>(value("cutbacks")),
+                      static_cast<unsigned int>(
+                        value("convexification_iterations")),
+                      value("coefficient_residual"));
         }
     }
     if (T < on_disk.last_time - 1e-9 * k0)
@@ -1316,7 +1232,7 @@ namespace DynamicContact
     last_good_states                = step_solver.node_states();
     unsigned int        cutbacks    = 0;
     double              k           = 0;
-    TimeSeriesRow       row;
+    StepRecord<dim>     record;
     for (;;)
       {
         k = std::min(k_current, T - current_time);
@@ -1324,11 +1240,11 @@ namespace DynamicContact
           k = T - current_time;
         try
           {
-            row = do_time_step(
+            record = do_time_step(
               step + 1, current_time + k, k, remesh_energy_change, cutbacks);
             // Nothing that is not finite reaches a file.
             std::string bad;
-            for (const auto &[name, value] : row.columns())
+            for (const auto &[name, value] : record.row().columns())
               if (value.find("nan") != std::string::npos ||
                   value.find("inf") != std::string::npos)
                 bad += (bad.empty() ? "" : ", ") + name;
@@ -1393,32 +1309,34 @@ namespace DynamicContact
         vtu_seconds_at_start = vtu_seconds;
       }
 
-    time_series_writer->write(row);
-    rows.push_back(row);
-    account_for(row);
+    time_series_writer->write(record.row());
+    rows.push_back(record);
+    const auto &statistics = record.statistics;
+    account_for(record.cutbacks,
+                statistics.convexification_iterations,
+                statistics.coefficient_residual);
     if (last_newton_residual > parameters.solver.newton_tolerance)
       ++stagnated_steps;
 
     max_relative_defect =
-      std::max(max_relative_defect, row.get("relative_energy_defect"));
+      std::max(max_relative_defect, record.relative_energy_defect());
     min_dissipation =
-      std::min(min_dissipation, row.get("relative_min_dissipation"));
-    total_newton += row.get("newton_iterations");
+      std::min(min_dissipation, record.relative_min_dissipation());
+    total_newton += statistics.newton_iterations;
 
-    if (row.get("convexification_converged") == 0)
+    if (!statistics.convexification_converged)
       {
         ++unconverged_steps;
         worst_unconverged =
-          std::max(worst_unconverged, row.get("coefficient_residual"));
+          std::max(worst_unconverged, statistics.coefficient_residual);
+        pcout << "Warning: step " << step << " (t = " << sig6(t)
+              << "): the convexification loop reached Friction/Maximum "
+                 "convexification iterations = "
+              << parameters.friction.max_convexification_iterations
+              << " at the minimum time step without converging; kept, with "
+                 "max |mu_i - mu(|w_tau,i|)| = "
+              << sig6(statistics.coefficient_residual) << std::endl;
       }
-    if (row.get("convexification_converged") == 0)
-      pcout << "Warning: step " << step << " (t = " << sig6(t)
-            << "): the convexification loop reached Friction/Maximum "
-               "convexification iterations = "
-            << parameters.friction.max_convexification_iterations
-            << " at the minimum time step without converging; kept, with "
-               "max |mu_i - mu(|w_tau,i|)| = "
-            << sig6(row.get("coefficient_residual")) << std::endl;
 
     const bool last = (current_time >= T - 1e-9 * k0);
     // An output time is due at the first step reaching it; the VTU files
@@ -1432,7 +1350,7 @@ namespace DynamicContact
 
     const unsigned int progress = parameters.output.progress_every;
     if (progress > 0 && (step % progress == 0 || last))
-      print_progress(row);
+      print_progress(record);
     if (parameters.checkpoint.every > 0 &&
         step % parameters.checkpoint.every == 0 && !last)
       checkpoint();
@@ -1452,13 +1370,14 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::account_for(const TimeSeriesRow &row)
+  Simulator<dim>::account_for(const unsigned int cutbacks,
+                              const unsigned int convexification_iterations,
+                              const double       coefficient_residual)
   {
-    total_cutbacks += static_cast<unsigned int>(row.get("cutbacks"));
-    total_convexification +=
-      static_cast<unsigned int>(row.get("convexification_iterations"));
+    total_cutbacks += cutbacks;
+    total_convexification += convexification_iterations;
     max_coefficient_residual =
-      std::max(max_coefficient_residual, row.get("coefficient_residual"));
+      std::max(max_coefficient_residual, coefficient_residual);
   }
 
 

@@ -19,7 +19,7 @@ main(int argc, char *argv[])
     "Friction/Convexification tolerance=1e-10",
     "Friction/Coefficient tolerance=1e-10"};
 
-  std::vector<TimeSeriesRow> serial;
+  std::vector<StepRecord<2>> serial;
   if (rank == 0)
     {
       auto o = overrides;
@@ -51,8 +51,8 @@ main(int argc, char *argv[])
   for (unsigned int n = 0; n < serial.size(); ++n)
     {
       same_mesh = same_mesh &&
-                  serial[n].get("cells") == parallel[n].get("cells") &&
-                  serial[n].get("dofs") == parallel[n].get("dofs");
+                  serial[n].cells == parallel[n].cells &&
+                  serial[n].dofs == parallel[n].dofs;
       for (const char *column : {"normal_force",
                                  "tangential_force",
                                  "kinetic_energy",
@@ -63,11 +63,11 @@ main(int argc, char *argv[])
                                  "remesh_energy_change",
                                  "reaction_force_y"})
         {
-          const double a = serial[n].get(column), b = parallel[n].get(column);
+          const auto   q = test_tools::quantity<2>(column);
+          const double a = q.of(serial[n]), b = q.of(parallel[n]);
           const double scale =
-            std::string(column).find("force") != std::string::npos ?
-              std::max(std::abs(a), 1e3) :
-              std::max(serial[n].get("total_energy"), 1.);
+            q.force ? std::max(std::abs(a), 1e3) :
+                      std::max(serial[n].terms.energy.total(), 1.);
           worst = std::max(worst, std::abs(a - b) / scale);
         }
     }
@@ -76,6 +76,6 @@ main(int argc, char *argv[])
                     "every step's forces and energies agree to 1e-8");
   bool adapted = false;
   for (const auto &row : serial)
-    adapted = adapted || row.get("remesh_energy_change") != 0;
+    adapted = adapted || row.remesh_energy_change != 0;
   test_tools::check(adapted, "the mesh was adapted during the run");
 }

@@ -42,12 +42,12 @@ main(int argc, char *argv[])
     Counts c;
     for (const auto &row : simulator->time_series())
       {
-        if (row.get("step") == 0)
+        if (row.step == 0)
           continue;
         ++c.rows;
-        c.cutbacks += row.get("cutbacks");
-        const double residual = row.get("coefficient_residual");
-        if (row.get("convexification_converged") == 0)
+        c.cutbacks += row.cutbacks;
+        const double residual = row.statistics.coefficient_residual;
+        if (!row.statistics.convexification_converged)
           {
             ++c.unconverged;
             c.worst_unconverged = std::max(c.worst_unconverged, residual);

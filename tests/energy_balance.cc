@@ -43,19 +43,19 @@ check_balance(const std::string &scheme)
     {
       const auto & row = rows[n];
       const double scale =
-        std::max({std::abs(row.get("total_energy")),
-                  std::abs(rows[n - 1].get("total_energy")),
-                  std::abs(row.get("load_work")),
-                  std::abs(row.get("dissipation"))});
-      const double defect = row.get("total_energy") -
-                            rows[n - 1].get("total_energy") +
-                            row.get("dissipation") - row.get("load_work");
+        std::max({std::abs(row.terms.energy.total()),
+                  std::abs(rows[n - 1].terms.energy.total()),
+                  std::abs(row.terms.load_work),
+                  std::abs(row.terms.dissipation())});
+      const double defect = row.terms.energy.total() -
+                            rows[n - 1].terms.energy.total() +
+                            row.terms.dissipation() - row.terms.load_work;
       worst_column =
         std::max(worst_column,
-                 std::abs(defect - row.get("energy_balance_defect")) / scale);
+                 std::abs(defect - row.terms.defect) / scale);
       worst_defect = std::max(worst_defect, std::abs(defect) / scale);
       most_negative =
-        std::min(most_negative, row.get("relative_min_dissipation"));
+        std::min(most_negative, row.relative_min_dissipation());
       for (unsigned int t = 0; t < 6; ++t)
         {
           most_negative = std::min(most_negative, row.get(terms[t]) / scale);

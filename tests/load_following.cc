@@ -44,7 +44,7 @@ main(int argc, char *argv[])
     {
       while (simulator->time() < t_check - 1e-12 && simulator->advance())
         most_cells = std::max(most_cells,
-                              simulator->time_series().back().get("cells"));
+                              simulator->time_series().back().cells);
       const double t = simulator->time();
       const double x = c * t;
       bool         fine_under_load = true;

@@ -20,12 +20,12 @@ main(int argc, char *argv[])
 
   double worst_balance = 0;
   for (const auto &row : simulator->time_series())
-    if (row.get("step") > 0)
+    if (row.step > 0)
       {
-        const double applied  = row.get("applied_force_y");
-        const double contact  = row.get("normal_force");
-        const double reaction = row.get("reaction_force_y");
-        const double inertia  = row.get("inertia_force_y");
+        const double applied  = row.forces.applied[1];
+        const double contact  = row.normal_force;
+        const double reaction = row.forces.reaction[1];
+        const double inertia  = row.forces.inertia[1];
         worst_balance =
           std::max(worst_balance,
                    std::abs(contact + applied + reaction - inertia) /
@@ -36,11 +36,11 @@ main(int argc, char *argv[])
 
   // Mid-span (t = 0.5 s, the load at x = 1 m).
   const auto &mid = simulator->time_series()[64];
-  test_tools::check(std::abs(mid.get("time") - 0.5) < 1e-12, "t = 0.5");
-  const double applied  = -mid.get("applied_force_y");
-  const double contact  = mid.get("normal_force");
-  const double reaction = mid.get("reaction_force_y");
-  const double inertia  = mid.get("inertia_force_y");
+  test_tools::check(std::abs(mid.time - 0.5) < 1e-12, "t = 0.5");
+  const double applied  = -mid.forces.applied[1];
+  const double contact  = mid.normal_force;
+  const double reaction = mid.forces.reaction[1];
+  const double inertia  = mid.forces.inertia[1];
   test_tools::check(std::abs(inertia) < 1e-6 * applied,
                     "quasi-static: inertia below 1e-6 of the load");
   test_tools::check(std::abs(contact - applied) <=

@@ -130,7 +130,7 @@ namespace
                                     "everywhere.");
 
 
-  std::vector<TimeSeriesRow>
+  std::vector<StepRecord<2>>
   series(const std::string &name, std::vector<std::string> overrides)
   {
     overrides.push_back("Output/Directory=output-" + name);
@@ -143,8 +143,8 @@ namespace
   /** The largest difference of the columns over the steps (relative). */
   void
   compare(const std::string &                what,
-          const std::vector<TimeSeriesRow> & a,
-          const std::vector<TimeSeriesRow> & b,
+          const std::vector<StepRecord<2>> & a,
+          const std::vector<StepRecord<2>> & b,
           const std::vector<std::string> &   columns,
           const double                       tolerance)
   {
@@ -153,7 +153,8 @@ namespace
     for (unsigned int n = 0; n < a.size(); ++n)
       for (const auto &column : columns)
         {
-          const double x = a[n].get(column), y = b[n].get(column);
+          const auto   q = test_tools::quantity<2>(column);
+          const double x = q.of(a[n]), y = q.of(b[n]);
           worst = std::max(worst,
                            std::abs(x - y) / std::max({std::abs(x), std::abs(y),
                                                        1e-300}));

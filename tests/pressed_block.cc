@@ -53,7 +53,7 @@ check_block(const std::string &name, std::vector<std::string> overrides)
   test_tools::check(worst_top <= 1e-8,
                     name + ": top displacement P/c_nu + P H/M to 1e-8");
   const auto &last = simulator->time_series().back();
-  test_tools::check(test_tools::close(last.get("normal_force"),
+  test_tools::check(test_tools::close(last.normal_force,
                                       P * (dim == 3 ? 0.5 : 1.),
                                       1e-8),
                     name + ": total normal force P |Gamma_3| to 1e-8");

@@ -12,7 +12,7 @@
 using namespace DynamicContact;
 
 template <int dim>
-std::vector<TimeSeriesRow>
+std::vector<StepRecord<dim>>
 series(const std::string &             prm,
        const std::string &             name,
        const std::string &             solver,
@@ -48,7 +48,7 @@ compare(const std::string &                                      prm,
       unsigned int linear_its     = 0;
       for (unsigned int n = 1; n < reference.size(); ++n)
         {
-          const double scale = std::max(reference[n].get("total_energy"), 1.);
+          const double scale = std::max(reference[n].terms.energy.total(), 1.);
           for (const char *column : {"normal_force",
                                      "tangential_force",
                                      "kinetic_energy",
@@ -56,15 +56,14 @@ compare(const std::string &                                      prm,
                                      "foundation_energy",
                                      "dissipation"})
             {
-              const double a = reference[n].get(column),
-                           b = other[n].get(column);
+              const auto   q = test_tools::quantity<dim>(column);
+              const double a = q.of(reference[n]), b = q.of(other[n]);
               worst = std::max(worst,
-                               std::string(column).find("force") !=
-                                   std::string::npos ?
+                               q.force ?
                                  std::abs(a - b) / std::max(std::abs(a), 1.) :
                                  std::abs(a - b) / scale);
             }
-          linear_its += other[n].get("linear_iterations");
+          linear_its += other[n].statistics.linear_iterations;
         }
       test_tools::check(worst < 1e-8,
                         name + ", " + solver + "/" + linear +

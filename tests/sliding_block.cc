@@ -40,17 +40,17 @@ check_block(const std::string &name, const double T,
   for (unsigned int d = 0; d < dim; ++d)
     a[d] = last.get(std::string("inertia_force") + axes[d]) / (rho * H * area);
 
-  test_tools::check(test_tools::close(last.get("normal_force"), P * area, 1e-8),
+  test_tools::check(test_tools::close(last.normal_force, P * area, 1e-8),
                     name + ": normal force P |Gamma_3| once settled");
   if (T > mu * P)
     {
       const double expected = (T - mu * P) / (rho * H);
       test_tools::check((a - expected * direction).norm() <= 1e-8 * expected,
                         name + ": slides with (|T| - mu P)/(rho H) along T");
-      test_tools::check(last.get("n_slip") == last.get("n_contact") &&
-                          last.get("n_stick") == 0,
+      test_tools::check(last.statistics.n_slip == last.statistics.n_contact &&
+                          last.statistics.n_stick == 0,
                         name + ": every contact node slips");
-      test_tools::check(test_tools::close(last.get("tangential_force"),
+      test_tools::check(test_tools::close(last.tangential_force,
                                           mu * P * area,
                                           1e-8),
                         name + ": friction force mu P |Gamma_3|");
@@ -64,8 +64,8 @@ check_block(const std::string &name, const double T,
       test_tools::check(max_slip < 1e-10, name + ": no slip velocity");
       test_tools::check(a.norm() < 1e-8 * T / (rho * H),
                         name + ": no acceleration");
-      test_tools::check(last.get("n_stick") == last.get("n_contact") &&
-                          last.get("n_slip") == 0,
+      test_tools::check(last.statistics.n_stick == last.statistics.n_contact &&
+                          last.statistics.n_slip == 0,
                         name + ": every contact node sticks");
       // The friction forces (vector sum) hold the shear.
       Tensor<1, dim> friction;

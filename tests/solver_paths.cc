@@ -10,7 +10,7 @@ using namespace DynamicContact;
 void
 compare(const std::string &name, const std::vector<std::string> &overrides)
 {
-  std::vector<std::vector<TimeSeriesRow>> series;
+  std::vector<std::vector<StepRecord<2>>> series;
   for (const std::string solver : {"condensed", "assembled"})
     {
       auto o = overrides;
@@ -32,10 +32,11 @@ compare(const std::string &name, const std::vector<std::string> &overrides)
                                "foundation_energy",
                                "dissipation"})
       {
-        const double a = series[0][n].get(column), b = series[1][n].get(column);
-        const double s = std::max(series[0][n].get("total_energy"), 1.);
+        const auto   q = test_tools::quantity<2>(column);
+        const double a = q.of(series[0][n]), b = q.of(series[1][n]);
+        const double s = std::max(series[0][n].terms.energy.total(), 1.);
         worst = std::max(worst,
-                         std::string(column).find("force") != std::string::npos ?
+                         q.force ?
                            std::abs(a - b) / std::max(std::abs(a), 1.) :
                            std::abs(a - b) / s);
       }
@@ -44,8 +45,8 @@ compare(const std::string &name, const std::vector<std::string> &overrides)
   unsigned int stick = 0, slip = 0;
   for (const auto &row : series[0])
     {
-      stick += row.get("n_stick");
-      slip += row.get("n_slip");
+      stick += row.statistics.n_stick;
+      slip += row.statistics.n_slip;
     }
   if (name == "friction")
     test_tools::check(stick > 0 && slip > 0,

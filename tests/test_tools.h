@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <iostream>
 #include <memory>
@@ -133,6 +134,46 @@ namespace test_tools
     char buffer[32];
     std::snprintf(buffer, sizeof(buffer), "%.*e", n - 1, x);
     return buffer;
+  }
+
+  /** A quantity of a step: its name (for messages) and its value. */
+  template <int dim>
+  struct Quantity
+  {
+    std::string                                                name;
+    std::function<double(const DynamicContact::StepRecord<dim> &)> of;
+    /** A force (compared relative to itself), else an energy (relative
+     *  to the total energy). */
+    bool force;
+  };
+
+  /** The quantities the tests compare between runs, by column name. */
+  template <int dim>
+  Quantity<dim>
+  quantity(const std::string &name)
+  {
+    using R = DynamicContact::StepRecord<dim>;
+    static const std::vector<Quantity<dim>> all = {
+      {"normal_force", [](const R &r) { return r.normal_force; }, true},
+      {"tangential_force", [](const R &r) { return r.tangential_force; }, true},
+      {"reaction_force_y", [](const R &r) { return r.forces.reaction[1]; }, true},
+      {"kinetic_energy", [](const R &r) { return r.terms.energy.kinetic; }, false},
+      {"elastic_energy", [](const R &r) { return r.terms.energy.elastic; }, false},
+      {"foundation_energy",
+       [](const R &r) { return r.terms.energy.foundation; },
+       false},
+      {"total_energy", [](const R &r) { return r.terms.energy.total(); }, false},
+      {"load_work", [](const R &r) { return r.terms.load_work; }, false},
+      {"dissipation", [](const R &r) { return r.terms.dissipation(); }, false},
+      {"remesh_energy_change",
+       [](const R &r) { return r.remesh_energy_change; },
+       false},
+      {"dofs", [](const R &r) { return double(r.dofs); }, false},
+      {"cells", [](const R &r) { return double(r.cells); }, false}};
+    for (const auto &q : all)
+      if (q.name == name)
+        return q;
+    throw std::runtime_error("test_tools::quantity: unknown '" + name + "'");
   }
 
   /**

@@ -31,6 +31,26 @@ namespace DynamicContact
     double       worst_unconverged  = 0;
     /** The time index of the VTU files (solution.pvd). */
     std::vector<std::pair<double, std::string>> vtu_records;
+
+    /**
+     * Call @p visit(name, field) for every number above: state.txt writes
+     * them as "name value" lines and reads them back by name (each must be
+     * there, once), so that a new field is one line here.
+     */
+    template <class Visitor>
+    void
+    for_each_number(Visitor &&visit)
+    {
+      visit("step", step);
+      visit("time", time);
+      visit("time_step", time_step);
+      visit("good_steps_since_cutback", good_steps_since_cutback);
+      visit("max_relative_defect", max_relative_defect);
+      visit("min_dissipation", min_dissipation);
+      visit("total_newton", total_newton);
+      visit("unconverged_steps", unconverged_steps);
+      visit("worst_unconverged", worst_unconverged);
+    }
   };
 
 

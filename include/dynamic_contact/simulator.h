@@ -20,6 +20,7 @@
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/provenance.h>
 #include <dynamic_contact/scene.h>
+#include <dynamic_contact/step_record.h>
 #include <dynamic_contact/step_solver.h>
 
 #include <chrono>
@@ -127,8 +128,8 @@ namespace DynamicContact
     void
     abandon_alone(const std::string &reason);
 
-    /** The rows written to time_series.csv so far. */
-    const std::vector<TimeSeriesRow> &
+    /** The steps written to time_series.csv so far (step 0 first). */
+    const std::vector<StepRecord<dim>> &
     time_series() const
     {
       return rows;
@@ -220,7 +221,7 @@ namespace DynamicContact
     ParameterFiles                    parameter_files;
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
-    std::vector<TimeSeriesRow>        rows;
+    std::vector<StepRecord<dim>>      rows;
 
     // The time loop: steps of the nominal Time/Time step, or shorter after a
     // cut-back (k_current), growing back after good steps.
@@ -308,7 +309,9 @@ namespace DynamicContact
     unsigned int total_convexification    = 0;
     double       max_coefficient_residual = 0;
     void
-    account_for(const TimeSeriesRow &row);
+    account_for(const unsigned int cutbacks,
+                const unsigned int convexification_iterations,
+                const double       coefficient_residual);
     /**
      * Steps of this run (since its start or resume) whose Newton iteration
      * ended at stagnation (residual above Solver/Newton tolerance, below
@@ -389,7 +392,7 @@ namespace DynamicContact
      * One step from t - k to t; returns the time series row (which records
      * the energy change of a mesh transfer just before the step).
      */
-    TimeSeriesRow
+    StepRecord<dim>
     do_time_step(const unsigned int step,
                  const double       t,
                  const double       k,
@@ -416,7 +419,7 @@ namespace DynamicContact
     /** The node states of the last good step (before a step is tried). */
     std::vector<ContactNodeState<dim>> last_good_states;
     void
-    print_progress(const TimeSeriesRow &row) const;
+    print_progress(const StepRecord<dim> &record) const;
     /** Collective: write run_status (a failure is a CollectiveError). */
     void
     write_status(const std::string &status);
