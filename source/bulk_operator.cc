@@ -110,27 +110,26 @@ namespace DynamicContact
       viscosity_matrix.compress(VectorOperation::add);
 
     bulk_matrix.reinit(pattern);
-    current_k     = 0;
-    current_theta = 1;
+    current = TimeScheme();
     discretization.reinit_owned(tmp);
   }
 
 
   template <int dim>
   void
-  BulkOperator<dim>::set_time_step(const double k, const double theta)
+  BulkOperator<dim>::set_time_step(const TimeScheme &scheme)
   {
-    Assert(k > 0, ExcMessage("The time step must be positive."));
-    if (k == current_k && theta == current_theta)
+    Assert(scheme.time_step() > 0,
+           ExcMessage("The time step must be positive."));
+    if (scheme == current)
       return;
     // K0 = (rho/k) M + theta A + theta^2 k B.
     bulk_matrix.copy_from(elasticity_matrix);
-    bulk_matrix *= theta * theta * k;
-    bulk_matrix.add(material.density() / k, mass_matrix);
+    bulk_matrix *= scheme.elasticity_coefficient();
+    bulk_matrix.add(scheme.mass_coefficient(material.density()), mass_matrix);
     if (material.has_viscosity())
-      bulk_matrix.add(theta, viscosity_matrix);
-    current_k     = k;
-    current_theta = theta;
+      bulk_matrix.add(scheme.viscosity_coefficient(), viscosity_matrix);
+    current = scheme;
   }
 
 

@@ -306,8 +306,8 @@ namespace DynamicContact
     const auto &w_nodes = it.w;
     const auto &       nodes = gathered.all_nodes();
     const unsigned int n     = nodes.size();
-    const double       k     = problem.bulk.time_step();
-    const double       theta = problem.theta;
+    const TimeScheme & scheme = problem.bulk.scheme();
+    const double       k      = scheme.time_step();
     it.w_old = w_old;
     it.lin.resize(n);
     it.forces.resize(n);
@@ -326,8 +326,7 @@ namespace DynamicContact
                                                    u_old[i],
                                                    w_old[i],
                                                    w_nodes[i],
-                                                   k,
-                                                   theta,
+                                                   scheme,
                                                    problem.friction,
                                                    lambda[i],
                                                    problem.friction ? mu[i] :
@@ -360,8 +359,7 @@ namespace DynamicContact
               (lambda[i] -
                projected_friction_force(nodes[i],
                                         l.friction.threshold,
-                                        theta * w_nodes[i] +
-                                          (1 - theta) * w_old[i],
+                                        scheme.weighted(w_nodes[i], w_old[i]),
                                         lambda[i],
                                         problem.c_t * k))
                 .norm();
@@ -448,8 +446,8 @@ namespace DynamicContact
               // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
               vector(stick_offset[a] + s) =
                 -(nodes[i].tangents[s] *
-                  (problem.theta * it.w[i] + (1 - problem.theta) * it.w_old[i])) /
-                problem.theta;
+                  problem.bulk.scheme().weighted(it.w[i], it.w_old[i])) /
+                problem.bulk.scheme().effective_derivative();
             }
       }
     matrix.compute_lu_factorization();

@@ -23,11 +23,10 @@ namespace DynamicContact
                   const double      u_nu_old,
                   const double      u_nu,
                   const double      w_nu,
-                  const double      k,
-                  const double      theta)
+                  const TimeScheme &scheme)
   {
-    if (theta == 1)
-      return normal_response(foundation, u_nu, w_nu, k);
+    if (scheme.is_backward_euler())
+      return normal_response(foundation, u_nu, w_nu, scheme.time_step());
     const ResponseLaw &p = foundation.compliance();
     const ResponseLaw &q = foundation.damping();
     NormalResponse    r;
@@ -42,8 +41,9 @@ namespace DynamicContact
                  (damping ? q.value(w_nu) : 0.);
     // d u_n/d w_n = theta k, d w_e/d w_n = theta.
     r.dpressure_dw =
-      theta * k * p.discrete_gradient_derivative(u_nu_old, u_nu) +
-      (damping ? theta * q.derivative(w_nu) : 0.);
+      scheme.displacement_derivative() *
+        p.discrete_gradient_derivative(u_nu_old, u_nu) +
+      (damping ? scheme.effective_derivative() * q.derivative(w_nu) : 0.);
     return r;
   }
 
@@ -96,7 +96,7 @@ namespace DynamicContact
                     const Tensor<1, dim> &  lambda,
                     const double            mu,
                     const double            c,
-                    const double            theta)
+                    const double            effective_derivative)
   {
     FrictionResponse<dim> r;
     r.threshold = mu * node.weight * normal.pressure;
@@ -143,7 +143,8 @@ namespace DynamicContact
         //   lambda' = t (g + dg.dw) + beta P dw_tau - alpha/(1-alpha) P lambda,
         //   beta = alpha c m_i/(1-alpha).
         const double   alpha = r.threshold / norm;
-        const double   beta  = theta * alpha * c_node / (1 - alpha);
+        const double   beta =
+          effective_derivative * alpha * c_node / (1 - alpha);
         Tensor<2, dim> P     = unit_symmetric_tensor<dim>();
         P -= outer_product(node.normal, node.normal);
         P -= outer_product(r.direction, r.direction);

@@ -64,11 +64,11 @@ namespace DynamicContact
     const Vector_t &                          u,
     const Vector_t &                          w,
     const Vector_t &                          load,
-    const double                              k,
+    const TimeScheme &                        scheme,
     const std::vector<ContactNodeState<dim>> &states,
-    const double                              previous_energy,
-    const double                              theta) const
+    const double                              previous_energy) const
   {
+    const double k = scheme.time_step();
     EnergyBalanceTerms t;
     t.energy = energy(u, w);
 
@@ -78,16 +78,16 @@ namespace DynamicContact
     difference = u;
     difference -= u_old;
     t.load_work = load * difference;
-    t.elastic   = (theta - 0.5) * bulk.elastic_product(difference, difference);
+    t.elastic   = scheme.numerical_dissipation_factor() *
+                bulk.elastic_product(difference, difference);
     difference  = w;
     difference -= w_old;
-    t.inertia =
-      (theta - 0.5) * density * bulk.mass_product(difference, difference);
+    t.inertia = scheme.numerical_dissipation_factor() * density *
+                bulk.mass_product(difference, difference);
     if (bulk.has_viscosity())
       {
         difference = w;
-        difference *= theta;
-        difference.add(1 - theta, w_old); // w_e
+        scheme.weigh(difference, w_old); // w_e
         t.viscous = k * bulk.viscous_product(difference, difference);
       }
 
@@ -102,19 +102,20 @@ namespace DynamicContact
         const double u_nu_old   = nodes[i].value(u_old) * nodes[i].normal -
                                 nodes[i].gap;
         const double w_nu       = states[i].normal.w_nu; // w_e . nu
-        const double P = theta == 1 ? p.value(u_nu) :
-                                      p.discrete_gradient(u_nu_old, u_nu);
+        const double P = scheme.is_backward_euler() ?
+                           p.value(u_nu) :
+                           p.discrete_gradient(u_nu_old, u_nu);
         const double q = states[i].normal.pressure - P;
         // The compliance force's work minus the change of Pi: >= 0 for
         // p(u_n) (evaluated without cancellation), 0 for the discrete
         // gradient.
-        compliance += theta == 1 ?
+        compliance += scheme.is_backward_euler() ?
                         m * p.dissipation(u_nu_old, u_nu) :
                         m * (P * (u_nu - u_nu_old) -
                              (p.primitive(u_nu) - p.primitive(u_nu_old)));
         damping += k * m * q * w_nu;
         const Tensor<1, dim> w_e =
-          theta * nodes[i].value(w) + (1 - theta) * nodes[i].value(w_old);
+          scheme.weighted(nodes[i].value(w), nodes[i].value(w_old));
         friction +=
           k * (states[i].friction_force * nodes[i].tangential(w_e));
       }

@@ -70,14 +70,14 @@ namespace DynamicContact
     const ContactBoundary<dim> &              boundary,
     const std::vector<ContactNodeState<dim>> &states,
     const double                              t,
-    const double                              k,
-    const double                              theta,
+    const TimeScheme &                        scheme,
     const Vector_t &                          u,
     const Vector_t &                          w_theta,
     const Vector_t &                          w,
     const Vector_t &                          w_old) const
   {
     const auto &d = discretization;
+    const double k = scheme.time_step();
     ForceBalance<dim> b;
     // Inertia: rho/k sum_i (int phi_i) (w - w_old)_i, per component.
     {
@@ -95,12 +95,11 @@ namespace DynamicContact
     auto load = [&](Function<dim> &f, const Point<dim> &p, Vector<double> &v) {
       scene.set_time(t);
       f.vector_value(p, v);
-      if (theta < 1)
+      if (!scheme.is_backward_euler())
         {
           scene.set_time(t - k);
           f.vector_value(p, value_old);
-          v *= theta;
-          v.add(1 - theta, value_old);
+          scheme.weigh(v, value_old);
         }
     };
     const auto &       fe = d.fe;

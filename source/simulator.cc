@@ -194,7 +194,7 @@ namespace DynamicContact
         parameters.friction.complementarity_constant :
         parameters.material.young_modulus /
           discretization.minimal_cell_diameter();
-    step_solver.reinit(c_t, parameters.time.theta());
+    step_solver.reinit(c_t);
   }
 
 
@@ -480,30 +480,29 @@ namespace DynamicContact
     record.cutbacks             = cutbacks;
     record.previous_energy = energy_now(); // of u_old = u, w_old = w
 
-    const double theta = parameters.time.theta();
+    const TimeScheme scheme(k, parameters.time.theta());
     {
       TimerSection scope(timer, "Step: load and right-hand side");
-      bulk.set_time_step(k, theta);
+      bulk.set_time_step(scheme);
       // f_theta = theta f_n + (1 - theta) f_{n-1}.
       bulk.assemble_load_vector(scene, t, load);
-      if (theta < 1)
+      if (!scheme.is_backward_euler())
         {
           bulk.assemble_load_vector(scene, t - k, scratch);
-          load *= theta;
-          load.add(1 - theta, scratch);
+          scheme.weigh(load, scratch);
         }
       // b = (rho/k) M w_{n-1} - (1 - theta) A w_{n-1}
       //     - B (u_{n-1} + theta (1 - theta) k w_{n-1}) + f_theta
       bulk.mass().vmult(rhs, w_old);
-      rhs *= material.density() / k;
+      rhs *= scheme.mass_coefficient(material.density());
       scratch = u_old;
-      scratch.add(theta * (1 - theta) * k, w_old);
+      scratch.add(scheme.elastic_old_velocity_factor(), w_old);
       bulk.elasticity().vmult(u, scratch); // u as scratch
       rhs -= u;
-      if (theta < 1 && bulk.has_viscosity())
+      if (!scheme.is_backward_euler() && bulk.has_viscosity())
         {
           bulk.viscosity().vmult(u, w_old);
-          rhs.add(-(1 - theta), u);
+          rhs.add(-scheme.viscosity_old_factor(), u);
         }
       rhs += load;
     }
@@ -513,7 +512,7 @@ namespace DynamicContact
     if (!std::isfinite(load.l2_norm()))
       {
         std::vector<double> times = {t};
-        if (theta < 1)
+        if (!scheme.is_backward_euler())
           times.push_back(t - k);
         std::string where = collective_message(
           comm,
@@ -536,11 +535,7 @@ namespace DynamicContact
     if (!std::isfinite(w.l2_norm()))
       throw StepFailure("the solution is not finite");
 
-    // u_n = u_{n-1} + k (theta w_n + (1 - theta) w_{n-1})
-    u = u_old;
-    u.add(k * theta, w);
-    if (theta < 1)
-      u.add(k * (1 - theta), w_old);
+    scheme.advance_displacement(u, u_old, w, w_old);
 
     TimerSection scope(timer, "Step: energy and force balance");
     record.terms = energy_balance.step_terms(u_old,
@@ -548,10 +543,9 @@ namespace DynamicContact
                                              u,
                                              w,
                                              load,
-                                             k,
+                                             scheme,
                                              step_solver.node_states(),
-                                             record.previous_energy,
-                                             theta);
+                                             record.previous_energy);
     const auto &nodes = contact_boundary.nodes();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
@@ -569,18 +563,15 @@ namespace DynamicContact
                      w_old_ghosted = discretization.expanded(w_old);
       // The stress of the scheme's equation: at u_theta, w_theta.
       scratch = u;
-      scratch *= theta;
-      scratch.add(1 - theta, u_old);
+      scheme.weigh(scratch, u_old);
       const Vector_t u_theta = discretization.expanded(scratch);
       scratch = w;
-      scratch *= theta;
-      scratch.add(1 - theta, w_old);
+      scheme.weigh(scratch, w_old);
       const Vector_t w_theta = discretization.expanded(scratch);
       record.forces = force_balance.compute(contact_boundary,
                                             step_solver.node_states(),
                                             t,
-                                            k,
-                                            theta,
+                                            scheme,
                                             u_theta,
                                             w_theta,
                                             w_ghosted,

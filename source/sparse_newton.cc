@@ -214,7 +214,7 @@ namespace DynamicContact
   {
     const auto & nodes = problem.boundary.nodes();
     const double k     = problem.bulk.time_step();
-    const double theta = problem.theta;
+    const double theta = problem.bulk.scheme().effective_derivative();
     if (!amg || amg_k != k)
       {
         TimerSection t(problem.timer, "Newton: AMG setup");
@@ -463,7 +463,8 @@ namespace DynamicContact
           for (unsigned int c = 0; c < dim; ++c)
             if (c != host)
               scratch2(node.dofs[c]) =
-                -(node.tangents[s++] * w_e) / problem.theta;
+                -(node.tangents[s++] * w_e) /
+                problem.bulk.scheme().effective_derivative();
         }
     scratch2.compress(VectorOperation::insert);
 

@@ -56,11 +56,9 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::reinit(const double complementarity_constant,
-                          const double theta_)
+  StepSolver<dim>::reinit(const double complementarity_constant)
   {
-    c_t   = complementarity_constant;
-    theta = theta_;
+    c_t = complementarity_constant;
     const ContactProblem<dim> problem{discretization,
                                       bulk,
                                       contact_boundary,
@@ -69,8 +67,7 @@ namespace DynamicContact
                                       timer,
                                       details,
                                       friction,
-                                      c_t,
-                                      theta};
+                                      c_t};
     using CS   = Parameters::Solver::ContactSolver;
     condensed  = (parameters.contact_solver == CS::condensed ||
                  (parameters.contact_solver == CS::automatic &&
@@ -95,8 +92,7 @@ namespace DynamicContact
                               timer,
                               details,
                               friction,
-                              c_t,
-                              theta});
+                              c_t});
       }
     newton->reinit();
 
@@ -128,25 +124,31 @@ namespace DynamicContact
     const Vector_t &                   w,
     Statistics &                       statistics)
   {
-    const auto & nodes  = contact_boundary.nodes();
-    const double k      = bulk.time_step();
+    const auto &       nodes  = contact_boundary.nodes();
+    const TimeScheme & scheme = bulk.scheme();
+    const double       k      = scheme.time_step();
     unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const unsigned int   g   = i;
         const Tensor<1, dim> wi  = nodes[i].value(w);
-        const Tensor<1, dim> w_e = theta * wi + (1 - theta) * w_old_nodes[g];
+        const Tensor<1, dim> w_e = scheme.weighted(wi, w_old_nodes[g]);
         auto &               s   = states[i];
         s.normal         = normal_response(
-          foundation, nodes[i], u_old_nodes[g], w_old_nodes[g], wi, k, theta);
+          foundation, nodes[i], u_old_nodes[g], w_old_nodes[g], wi, scheme);
         s.friction_force = lambda[g];
         s.mu             = mu[g];
         s.slip_velocity  = nodes[i].tangential(w_e);
         s.slip_rate      = s.slip_velocity.norm();
         s.state          = ContactState::free;
         if (friction)
-          s.state = friction_response(
-                      nodes[i], s.normal, w_e, lambda[g], mu[g], c_t * k, theta)
+          s.state = friction_response(nodes[i],
+                                      s.normal,
+                                      w_e,
+                                      lambda[g],
+                                      mu[g],
+                                      c_t * k,
+                                      scheme.effective_derivative())
                       .state;
         if (s.normal.pressure > 0)
           ++n_contact;
@@ -308,8 +310,9 @@ namespace DynamicContact
                          Vector_t &      w,
                          const bool      accept_unconverged_loop)
   {
-    Statistics   statistics;
-    const double k           = bulk.time_step();
+    Statistics         statistics;
+    const TimeScheme & scheme    = bulk.scheme();
+    const double       k         = scheme.time_step();
     const auto   u_old_nodes = contact_boundary.values(u_old);
     const auto   w_old_nodes = contact_boundary.values(w_old);
     const auto & all         = contact_boundary.nodes();
@@ -333,15 +336,14 @@ namespace DynamicContact
         {
           n.slip_rate[i] =
             all[i]
-              .tangential(theta * values[i] + (1 - theta) * w_old_nodes[i])
+              .tangential(scheme.weighted(values[i], w_old_nodes[i]))
               .norm();
           n.pressure[i] = normal_response(foundation,
                                           all[i],
                                           u_old_nodes[i],
                                           w_old_nodes[i],
                                           values[i],
-                                          k,
-                                          theta)
+                                          scheme)
                             .pressure;
         }
       return n;

@@ -9,6 +9,7 @@
 #include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
+#include <dynamic_contact/time_scheme.h>
 
 namespace DynamicContact
 {
@@ -38,11 +39,11 @@ namespace DynamicContact
     reinit();
 
     /**
-     * Form K0 = (rho/k) M + theta A + theta^2 k B for the time step k and the
-     * scheme's theta (a no-op if both are unchanged).
+     * Form K0 = (rho/k) M + theta A + theta^2 k B for the scheme's time step
+     * k and theta (a no-op if both are unchanged).
      */
     void
-    set_time_step(const double k, const double theta = 1);
+    set_time_step(const TimeScheme &scheme);
 
     /** K0 for the last k and theta. */
     const Matrix_t &
@@ -97,7 +98,17 @@ namespace DynamicContact
     double
     time_step() const
     {
-      return current_k;
+      return current.time_step();
+    }
+
+    /**
+     * The scheme (k, theta) K0 was formed for: the step the Newton solvers
+     * and the nodal laws are solving.
+     */
+    const TimeScheme &
+    scheme() const
+    {
+      return current;
     }
 
     /** A sparsity pattern for matrices that share K0's structure. */
@@ -117,8 +128,7 @@ namespace DynamicContact
     Matrix_t                          viscosity_matrix;
     Matrix_t                          strain_matrix;
     Matrix_t                          bulk_matrix;
-    double                            current_k     = 0;
-    double                            current_theta = 1;
+    TimeScheme                        current;
     mutable Vector_t                  tmp;
   };
 } // namespace DynamicContact

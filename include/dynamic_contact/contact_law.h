@@ -5,6 +5,7 @@
 
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/foundation.h>
+#include <dynamic_contact/time_scheme.h>
 
 namespace DynamicContact
 {
@@ -91,8 +92,7 @@ namespace DynamicContact
                   const double      u_nu_old,
                   const double      u_nu,
                   const double      w_nu_effective,
-                  const double      k,
-                  const double      theta);
+                  const TimeScheme &scheme);
 
   /** The normal response of @p node for the nodal u_{n-1} and w. */
   template <int dim>
@@ -118,17 +118,15 @@ namespace DynamicContact
                   const Tensor<1, dim> &  u_old,
                   const Tensor<1, dim> &  w_old,
                   const Tensor<1, dim> &  w,
-                  const double            k,
-                  const double            theta)
+                  const TimeScheme &      scheme)
   {
-    const Tensor<1, dim> w_e = theta * w + (1 - theta) * w_old;
-    const Tensor<1, dim> u   = u_old + k * w_e;
+    const Tensor<1, dim> w_e = scheme.weighted(w, w_old);
+    const Tensor<1, dim> u   = scheme.displacement(u_old, w_e);
     return normal_response(foundation,
                            u_old * node.normal - node.gap,
                            u * node.normal - node.gap,
                            w_e * node.normal,
-                           k,
-                           theta);
+                           scheme);
   }
 
 
@@ -161,7 +159,8 @@ namespace DynamicContact
    * at w, @p c = c_t k the complementarity constant. With the theta-scheme
    * @p w is the effective velocity w_e (friction acts on its slip) and the
    * Jacobian is with respect to w_n = (w_e - (1-theta) w_{n-1})/theta (the
-   * direction term scaled by theta; normal.dpressure_dw already is).
+   * direction term scaled by @p effective_derivative = d w_e/d w_n = theta,
+   * TimeScheme::effective_derivative(); normal.dpressure_dw already is).
    * Nodes with a constrained
    * component are frictionless (their tangential motion is prescribed).
    */
@@ -173,7 +172,7 @@ namespace DynamicContact
                     const Tensor<1, dim> &  lambda,
                     const double            mu,
                     const double            c,
-                    const double            theta = 1);
+                    const double            effective_derivative = 1);
 
   /**
    * The friction force the law assigns to (lambda, w): the projection of
@@ -228,7 +227,7 @@ namespace DynamicContact
                  const double            c)
   {
     return linearize_node(
-      foundation, node, u_old, w, w, k, 1., friction, lambda, mu, c);
+      foundation, node, u_old, w, w, TimeScheme(k), friction, lambda, mu, c);
   }
 
   /**
@@ -243,17 +242,15 @@ namespace DynamicContact
                  const Tensor<1, dim> &  u_old,
                  const Tensor<1, dim> &  w_old,
                  const Tensor<1, dim> &  w,
-                 const double            k,
-                 const double            theta,
+                 const TimeScheme &      scheme,
                  const bool              friction,
                  const Tensor<1, dim> &  lambda,
                  const double            mu,
                  const double            c)
   {
     NodeLinearization<dim> l;
-    const Tensor<1, dim>   w_e = theta * w + (1 - theta) * w_old;
-    l.normal =
-      normal_response(foundation, node, u_old, w_old, w, k, theta);
+    const Tensor<1, dim>   w_e = scheme.weighted(w, w_old);
+    l.normal = normal_response(foundation, node, u_old, w_old, w, scheme);
     const double N = node.weight * l.normal.pressure;
     l.force        = N * node.normal;
     l.block        = (node.weight * l.normal.dpressure_dw) *
@@ -261,7 +258,13 @@ namespace DynamicContact
     if (friction)
       {
         l.friction =
-          friction_response(node, l.normal, w_e, lambda, mu, c, theta);
+          friction_response(node,
+                            l.normal,
+                            w_e,
+                            lambda,
+                            mu,
+                            c,
+                            scheme.effective_derivative());
         l.force += l.friction.value;
         l.block += l.friction.jacobian;
       }

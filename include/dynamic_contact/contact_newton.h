@@ -70,12 +70,8 @@ namespace DynamicContact
      * nodal laws use c = c_t k.
      */
     double c_t;
-    /**
-     * The time scheme's theta: 1 backward Euler, 1/2 the energy-consistent
-     * trapezoidal scheme (Time/Scheme); the laws act on u_n and
-     * w_e = theta w_n + (1 - theta) w_{n-1}.
-     */
-    double theta;
+    // The time scheme of the step (k, theta) is bulk.scheme(): the laws act
+    // on u_n and w_e = theta w_n + (1 - theta) w_{n-1} (TimeScheme).
   };
 
 

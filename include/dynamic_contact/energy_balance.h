@@ -5,6 +5,7 @@
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/time_scheme.h>
 
 namespace DynamicContact
 {
@@ -90,7 +91,8 @@ namespace DynamicContact
 
     /**
      * All terms of step n, from u_{n-1}, w_{n-1}, u_n, w_n, the load vector
-     * f_n, the time step and the node states of the converged solve;
+     * f_n (f_theta), the step's scheme (k, theta) and the node states of
+     * the converged solve;
      * @p previous_energy is E_{n-1}.
      */
     EnergyBalanceTerms
@@ -99,10 +101,9 @@ namespace DynamicContact
                const Vector_t &                         u,
                const Vector_t &                         w,
                const Vector_t &                         load,
-               const double                             k,
+               const TimeScheme &                       scheme,
                const std::vector<ContactNodeState<dim>> &states,
-               const double                             previous_energy,
-               const double                             theta = 1) const;
+               const double previous_energy) const;
 
   private:
     const BulkOperator<dim> &    bulk;

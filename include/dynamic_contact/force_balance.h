@@ -8,6 +8,7 @@
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
 #include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/time_scheme.h>
 
 namespace DynamicContact
 {
@@ -60,8 +61,7 @@ namespace DynamicContact
     compute(const ContactBoundary<dim> &              boundary,
             const std::vector<ContactNodeState<dim>> &states,
             const double                              t,
-            const double                              k,
-            const double                              theta,
+            const TimeScheme &                        scheme,
             const Vector_t &                          u_theta,
             const Vector_t &                          w_theta,
             const Vector_t &                          w,

@@ -68,7 +68,7 @@ namespace DynamicContact
      * @p c_t is the complementarity constant of friction.
      */
     void
-    reinit(const double complementarity_constant, const double theta = 1);
+    reinit(const double complementarity_constant);
 
     /**
      * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
@@ -130,7 +130,6 @@ namespace DynamicContact
     const ConditionalOStream &   details;
     const bool                   friction;
     double                       c_t   = 0;
-    double                       theta = 1;
 
     std::unique_ptr<ContactNewton<dim>> newton;
     /** The condensed solver is in use; else the sparse one with: */

@@ -139,7 +139,7 @@ namespace DynamicContact
     Tensor<1, dim>
     effective_velocity(const unsigned int i, const Tensor<1, dim> &w_i) const
     {
-      return problem.theta * w_i + (1 - problem.theta) * w_old[i];
+      return problem.bulk.scheme().weighted(w_i, w_old[i]);
     }
 
     const ContactProblem<dim> &        problem;
