@@ -306,8 +306,6 @@ namespace DynamicContact
     const auto &w_nodes = it.w;
     const auto &       nodes = gathered.all_nodes();
     const unsigned int n     = nodes.size();
-    const TimeScheme & scheme = problem.bulk.scheme();
-    const double       k      = scheme.time_step();
     it.w_old = w_old;
     it.lin.resize(n);
     it.forces.resize(n);
@@ -321,26 +319,16 @@ namespace DynamicContact
     it.law_squares  = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const auto &l = it.lin[i] = linearize_node(problem.foundation,
-                                                   nodes[i],
-                                                   u_old[i],
-                                                   w_old[i],
-                                                   w_nodes[i],
-                                                   scheme,
-                                                   problem.friction,
-                                                   lambda[i],
-                                                   problem.friction ? mu[i] :
-                                                                      0.,
-                                                   problem.c_t * k);
-        const Tensor<1, dim> normal_force =
-          l.normal.pressure * nodes[i].weight * nodes[i].normal;
-        // The force at the iterate (normal law at w, the friction force as it
-        // stands) and the part of the linearized force that does not depend
-        // on the unknowns of the Newton step.
-        it.forces[i]    = normal_force + lambda[i];
-        it.base_true[i] = normal_force;
-        if (l.friction.state == ContactState::slip)
-          it.base_true[i] += l.friction.value;
+        const NodeEvaluation<dim> e = evaluate_node(problem,
+                                                    nodes[i],
+                                                    u_old[i],
+                                                    w_old[i],
+                                                    w_nodes[i],
+                                                    lambda[i],
+                                                    mu.empty() ? 0. : mu[i]);
+        const auto &l = it.lin[i] = e.lin;
+        it.forces[i]    = e.force;
+        it.base_true[i] = e.base;
         // Condensation with K0' = K0 + S sees the forces minus the springs'.
         // S_i = s_i P_i, and P_i w_i = w_i (P_i diagonal, 0 or 1).
         const double s = spring_stiffness[i];
@@ -348,24 +336,10 @@ namespace DynamicContact
         it.base[i]      = it.base_true[i] - s * w_nodes[i];
         if (s > 0)
           it.lin[i].block -= s * nodes[i].constraint_map;
-        it.signature += node_set_hash(nodes[i].dofs[0],
-                                      l.normal.set_signature() +
-                                        16 * static_cast<unsigned int>(
-                                               l.friction.state));
-        it.f_scale = std::max(it.f_scale, it.forces[i].norm());
-        if (problem.friction)
-          {
-            const double law =
-              (lambda[i] -
-               projected_friction_force(nodes[i],
-                                        l.friction.threshold,
-                                        scheme.weighted(w_nodes[i], w_old[i]),
-                                        lambda[i],
-                                        problem.c_t * k))
-                .norm();
-            it.law_residual = std::max(it.law_residual, law);
-            it.law_squares += law * law;
-          }
+        it.signature += e.signature;
+        it.f_scale = std::max(it.f_scale, e.force.norm());
+        it.law_residual = std::max(it.law_residual, e.law_residual);
+        it.law_squares += e.law_residual * e.law_residual;
         if (l.active() || it.forces[i].norm_square() > 0 || s > 0)
           it.active.push_back(i);
       }

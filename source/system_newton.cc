@@ -47,8 +47,6 @@ namespace DynamicContact
   {
     const auto &       nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
-    const double       k     = problem.bulk.time_step();
-    const double       c     = problem.c_t * k;
     x.lin.resize(n);
     x.forces.resize(n);
     x.base.resize(n);
@@ -56,41 +54,20 @@ namespace DynamicContact
     std::uint64_t signature = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const Tensor<1, dim> wi = nodes[i].value(x.w);
-        const auto &         l  = x.lin[i] =
-          linearize_node(problem.foundation,
-                         nodes[i],
-                         u_old[i],
-                         w_old[i],
-                         wi,
-                         problem.bulk.scheme(),
-                         problem.friction,
-                         x.lambda[i],
-                         problem.friction ? mu[i] : 0.,
-                         c);
-        const Tensor<1, dim> normal_force =
-          l.normal.pressure * nodes[i].weight * nodes[i].normal;
-        x.forces[i] = normal_force + x.lambda[i];
-        x.base[i]   = normal_force;
-        if (l.friction.state == ContactState::slip)
-          x.base[i] += l.friction.value;
-        f_scale = std::max(f_scale, x.forces[i].norm());
-        if (problem.friction)
-          {
-            const double law =
-              (x.lambda[i] - projected_friction_force(nodes[i],
-                                                      l.friction.threshold,
-                                                      effective_velocity(i, wi),
-                                                      x.lambda[i],
-                                                      c))
-                .norm();
-            law_residual = std::max(law_residual, law);
-            law_squares += law * law;
-          }
-        signature += node_set_hash(nodes[i].dofs[0],
-                                   l.normal.set_signature() +
-                                     16 * static_cast<unsigned int>(
-                                            l.friction.state));
+        const NodeEvaluation<dim> e = evaluate_node(problem,
+                                                    nodes[i],
+                                                    u_old[i],
+                                                    w_old[i],
+                                                    nodes[i].value(x.w),
+                                                    x.lambda[i],
+                                                    mu.empty() ? 0. : mu[i]);
+        x.lin[i]    = e.lin;
+        x.forces[i] = e.force;
+        x.base[i]   = e.base;
+        f_scale     = std::max(f_scale, e.force.norm());
+        law_residual = std::max(law_residual, e.law_residual);
+        law_squares += e.law_residual * e.law_residual;
+        signature += e.signature;
       }
 
     if (x.residual.size() != x.w.size())

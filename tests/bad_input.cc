@@ -468,6 +468,11 @@ main(int argc, char **argv)
       {"Boundary conditions/Traction function", "t = 2.1",
        "last good state (step 6)"})
     .runtime = true;
+  // An entry of the flat layout of earlier versions: its new place named.
+  add("old_layout_entry",
+      scene + "\nsubsection Friction\n  set Decay rate = 3\nend\n",
+      file, 1, {"Friction/Decay rate", "Friction/Exponential/Decay rate",
+                "scripts/update-prm"});
   add("velocity_strengthening",
       scene + "\nsubsection Friction\n  set Law = expression\n  subsection "
               "Expression\n    set Function expression = 1 - 0.5*exp(-2000*s)\n  "

@@ -43,8 +43,9 @@ main(int argc, char *argv[])
   for (const double t_check : {0.2, 0.4, 0.6, 0.8})
     {
       while (simulator->time() < t_check - 1e-12 && simulator->advance())
-        most_cells = std::max(most_cells,
-                              simulator->time_series().back().cells);
+        most_cells =
+          std::max(most_cells,
+                   static_cast<double>(simulator->time_series().back().cells));
       const double t = simulator->time();
       const double x = c * t;
       bool         fine_under_load = true;

@@ -194,6 +194,76 @@ namespace DynamicContact
     z               = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
   }
+
+
+  /**
+   * What every Newton back-end needs to know about one node of Gamma_3 at
+   * an iterate (w_i, lambda_i): the linearized laws, the nodal force at the
+   * iterate (normal law at w plus the friction force as it stands), the
+   * part of the linearized force that does not depend on the unknowns of
+   * the Newton step, the residual of the friction law, and the hash of the
+   * node's sets.
+   */
+  template <int dim>
+  struct NodeEvaluation
+  {
+    NodeLinearization<dim> lin;
+    Tensor<1, dim>         force;
+    Tensor<1, dim>         base;
+    /** |lambda_i - P(lambda_i + c w_e,tau)| (0 without friction). */
+    double                 law_residual = 0;
+    std::uint64_t          signature    = 0;
+  };
+
+  /**
+   * The one per-node evaluation of the Newton back-ends (condensed and
+   * whole-system): the laws of @p problem at node @p node with the old
+   * values @p u_old, @p w_old, the iterate @p w, @p lambda and the frozen
+   * coefficient @p mu.
+   */
+  template <int dim>
+  NodeEvaluation<dim>
+  evaluate_node(const ContactProblem<dim> &problem,
+                const ContactNode<dim> &   node,
+                const Tensor<1, dim> &     u_old,
+                const Tensor<1, dim> &     w_old,
+                const Tensor<1, dim> &     w,
+                const Tensor<1, dim> &     lambda,
+                const double               mu)
+  {
+    const TimeScheme &  scheme = problem.bulk.scheme();
+    const double        c      = problem.c_t * scheme.time_step();
+    NodeEvaluation<dim> e;
+    e.lin = linearize_node(problem.foundation,
+                           node,
+                           u_old,
+                           w_old,
+                           w,
+                           scheme,
+                           problem.friction,
+                           lambda,
+                           problem.friction ? mu : 0.,
+                           c);
+    const Tensor<1, dim> normal_force =
+      e.lin.normal.pressure * node.weight * node.normal;
+    e.force = normal_force + lambda;
+    e.base  = normal_force;
+    if (e.lin.friction.state == ContactState::slip)
+      e.base += e.lin.friction.value;
+    if (problem.friction)
+      e.law_residual = (lambda - projected_friction_force(
+                                   node,
+                                   e.lin.friction.threshold,
+                                   scheme.weighted(w, w_old),
+                                   lambda,
+                                   c))
+                         .norm();
+    e.signature = node_set_hash(node.dofs[0],
+                                e.lin.normal.set_signature() +
+                                  16 * static_cast<unsigned int>(
+                                         e.lin.friction.state));
+    return e;
+  }
 } // namespace DynamicContact
 
 #endif
