@@ -116,7 +116,14 @@ def main():
     td, d = q["deflection"]
     check(np.allclose(td, times[1:]) and np.allclose(d, np.array(times[1:]) + 1.0),
           "largest deflection max_x(-u_y) at every contact CSV (%s)" % d)
-    check(np.allclose(q["normal_force"][1], 1 + np.array(times[1:])), "N(t) read, row 0 left out")
+    check(np.allclose(q["normal_force"][1], 1 + np.array(times[1:])),
+          "N(t) read, row 0 left out")
+    ee.HISTORY_START = 0.2
+    late = ee.extract(run)
+    check(np.allclose(late["normal_force"][0], times[2:]) and np.allclose(late["deflection"][0],
+                                                                          times[2:]),
+          "histories start at HISTORY_START")
+    ee.HISTORY_START = 0.0
 
     # Errors against a reference: N_ref = 1 + t + 0.01 sin(...) on a fine grid.
     tr_ = np.linspace(0, 1, 1001)
