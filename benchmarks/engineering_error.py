@@ -63,7 +63,7 @@ PROFILE_COLUMN = {"pressure": "normal_pressure", "traction": "tangential_tractio
 # The runs of benchmarks/reference: cells nx x ny, k = 1/m; the finest one's
 # VTU fields are the reference of the Theorem-6 error.
 REFERENCE_RUNS = os.path.join(benchlib.SCRATCH, "reference-wp")
-FINEST = (256, 32, 320)
+FINEST = (512, 64, 320)
 
 
 def run_name(nx, ny, m):
