@@ -74,6 +74,14 @@ def finest_directory():
     return os.path.join(REFERENCE_RUNS, run_name(*FINEST))
 
 
+def field_times(directory):
+    """The VTU_TIMES the run in `directory` wrote VTU at (a cut-back shifts
+    a run's later steps off 'VTU every')."""
+    from dynamic_contact.vtu import read_pvd
+    written = [t for t, _ in read_pvd(os.path.join(directory, "solution.pvd"))]
+    return [t for t in VTU_TIMES if any(abs(t - w) < 1e-6 for w in written)]
+
+
 # 'Output/Output times' writes at the first step with t >= t_out (to a
 # round-off allowance); asking for t - 1e-7 makes the step at t the one.
 SHIFT = 1e-7
