@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""The ctest `engineering_error`: the error measures and the Richardson
+extrapolation of benchmarks/engineering_error.py (used by
+benchmarks/reference and benchmarks/work-precision, doc/accuracy.md), on
+data made by hand whose answers are known:
+
+- Richardson in space (order 2) and in time (order 1) on nested samples
+  recovers the limit exactly and the observed order to round-off;
+- a profile at a time between two output steps is the linear interpolation
+  in time, read from contact CSVs;
+- the Output times a run needs hit or bracket t = 0.2, ..., 0.8;
+- the history and profile errors are the relative maxima they are defined
+  to be.
+
+    engineering_error.py --source-dir REPO --work-dir DIR
+
+Prints one line per check; exit code 1 if one fails.
+"""
+
+import argparse
+import os
+import sys
+
+import numpy as np
+
+failures = []
+
+
+def check(condition, text):
+    print("%s: %s" % ("ok" if condition else "FAILED", text), flush=True)
+    if not condition:
+        failures.append(text)
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--source-dir", required=True)
+    parser.add_argument("--work-dir", required=True)
+    args = parser.parse_args()
+    sys.path.insert(0, os.path.join(args.source_dir, "benchmarks"))
+    import engineering_error as ee
+
+    # Richardson in space: Q_h(x) = sin(x) + 0.3 h^2 cos(3x) on nested grids.
+    def level(n, h):
+        x = np.linspace(0.0, 2.0, n + 1)
+        return [(x, np.sin(x) + 0.3 * h ** 2 * np.cos(3 * x) + 2.0)]
+    levels = [level(16, 1 / 16), level(32, 1 / 32), level(64, 1 / 64)]
+    scales = ee.scale(levels[2])
+    p, d01, d12 = ee.order(levels, scales)
+    check(abs(p - 2.0) < 1e-6, "observed order in space %.8f (2 expected)" % p)
+    x, c = ee.correction(levels[1][0], levels[2][0], p)
+    fine_x, fine_y = levels[2][0]
+    extrapolated = fine_y + np.interp(fine_x, x, c)
+    exact = np.sin(fine_x) + 2.0
+    # exact on the nodes of the middle level; between them the correction
+    # is interpolated linearly (an O(h^2) part of an O(h^2) correction)
+    on_mid = np.abs(fine_x * 16 - np.round(fine_x * 16)) < 1e-9  # x = 2 j / 32
+    check(np.max(np.abs(extrapolated - exact)[on_mid]) < 1e-12,
+          "space extrapolation exact on the middle level's nodes (%.1e)"
+          % np.max(np.abs(extrapolated - exact)[on_mid]))
+    check(np.max(np.abs(extrapolated - exact)) < 0.1 * np.max(np.abs(fine_y - exact)),
+          "space extrapolation at least 10 times better than the finest level everywhere")
+
+    # Richardson in time, order 1, correction of the middle level (k = 1/320).
+    def tlevel(m):
+        t = np.arange(1, m + 1) / m
+        return [(t, np.exp(-t) + 0.05 * (1.0 / m) * t ** 2)]
+    tl = [tlevel(160), tlevel(320), tlevel(640)]
+    q, _, _ = ee.order(tl, ee.scale(tl[1]))
+    check(abs(q - 1.0) < 1e-6, "observed order in time %.8f (1 expected)" % q)
+    t, ct = ee.correction(tl[1][0], tl[2][0], q, factor_fine=True)
+    check(np.max(np.abs(tl[1][0][1] + ct - np.exp(-t))) < 1e-12,
+          "time correction of k = 1/320 gives the limit")
+    check(ee.used(0.7) == 1.0 and ee.used(5.0) == 3.0 and ee.used(1.7) == 1.7,
+          "orders used for the corrections are clipped to [1, 3]")
+    check(ee.used(float("nan")) is None and ee.used(0.3) is None and ee.used(-1.0) is None,
+          "no correction for a sequence that does not converge (order < 1/2)")
+
+    # Output times: on the grid, or bracketing.
+    check(ee.output_times(1.0 / 80)[:3] == [0.125, 0.2, 0.25],
+          "k = 1/80: the profile times are steps (%s)" % ee.output_times(1.0 / 80)[:3])
+    check([0.1875, 0.203125] == [t for t in ee.output_times(1.0 / 64) if 0.15 < t < 0.21],
+          "k = 1/64: the steps around t = 0.2 (0.1875, 0.203125)")
+    o = ee.output_overrides(1.0 / 64, write_vtu=False)
+    check("Output/Write VTU=false" in o and any(s.startswith("Output/Output times=0.1249999")
+                                                for s in o),
+          "output overrides: no VTU, Output times shifted below the steps")
+
+    # A run written by hand: steps at t = 0.1, 0.3, 0.5, 0.7, 0.9 with
+    # profiles linear in t; N(t) = 1 + t.
+    run = os.path.join(args.work_dir, "run")
+    os.makedirs(run, exist_ok=True)
+    for name in os.listdir(run):
+        os.remove(os.path.join(run, name))
+    times = [0.0, 0.1, 0.3, 0.5, 0.7, 0.9]
+    lines = ["step,time,normal_force,tangential_force,total_energy"]
+    for s, t in enumerate(times):
+        lines.append("%d,%g,%g,%g,%g" % (s, t, 1 + t, 2 * t, 3 - t))
+    write(os.path.join(run, "time_series.csv"), "\n".join(lines) + "\n")
+    xs = [0.0, 0.5, 1.0]
+    for s, t in enumerate(times):
+        rows = ["time,x,y,normal_pressure,tangential_traction,u_y"]
+        for x in xs:
+            rows.append("%g,%g,0,%g,%g,%g" % (t, x, 10 * t + x, -t * x, -(t + x)))
+        write(os.path.join(run, "contact_%05d.csv" % s), "\n".join(rows) + "\n")
+    write(os.path.join(run, "run_status"), "completed\n")
+    q = ee.extract(run)
+    x, p = q["pressure"][0.4]
+    check(np.allclose(p, 4.0 + np.array(xs)), "pressure profile at t = 0.4 interpolated in time "
+          "between t = 0.3 and 0.5 (%s)" % p)
+    x, tr = q["traction"][0.8]
+    check(np.allclose(tr, -0.8 * np.array(xs)), "traction profile at t = 0.8 (%s)" % tr)
+    td, d = q["deflection"]
+    check(np.allclose(td, times[1:]) and np.allclose(d, np.array(times[1:]) + 1.0),
+          "largest deflection max_x(-u_y) at every contact CSV (%s)" % d)
+    check(np.allclose(q["normal_force"][1], 1 + np.array(times[1:])),
+          "N(t) read, row 0 left out")
+    ee.HISTORY_START = 0.2
+    late = ee.extract(run)
+    check(np.allclose(late["normal_force"][0], times[2:]) and np.allclose(late["deflection"][0],
+                                                                          times[2:]),
+          "histories start at HISTORY_START")
+    ee.HISTORY_START = 0.0
+
+    # Errors against a reference: N_ref = 1 + t + 0.01 sin(...) on a fine grid.
+    tr_ = np.linspace(0, 1, 1001)
+    ref = {"normal_force": (tr_, 1 + tr_), "friction_force": (tr_, 2 * tr_ + 0.02),
+           "energy": (tr_, 3 - tr_), "deflection": (tr_, tr_ + 1.0)}
+    for key in ("pressure", "traction"):
+        ref[key] = {T: (np.array([0.0, 1.0]),
+                        (10 * T + np.array([0.0, 1.0])) if key == "pressure"
+                        else -T * np.array([0.0, 1.0]) * 1.1)
+                    for T in ee.PROFILE_TIMES}
+    e = ee.errors(q, ref)
+    check(e["normal_force"] < 1e-12 and e["energy"] < 1e-12 and e["deflection"] < 1e-12,
+          "exact histories have no error")
+    check(abs(e["friction_force"] - 0.02 / 2.02) < 1e-12,
+          "friction-force error 0.02 / max|ref| (%.6g)" % e["friction_force"])
+    check(e["pressure"] < 1e-12, "exact pressure profiles have no error")
+    # traction: run -T x, reference -1.1 T x: max |0.1 T x| / (1.1 T) = 0.1/1.1
+    check(abs(e["traction"] - 0.1 / 1.1) < 1e-12,
+          "traction error max_x |p - p_ref| / max|p_ref| (%.6g)" % e["traction"])
+
+    # The reference files round-trip.
+    hist = {k: ref[k] for k in ee.HISTORIES}
+    ee.write_reference(args.work_dir, hist, {"pressure": ref["pressure"],
+                                             "traction": ref["traction"]}, "# test\n")
+    back = ee.read_reference(args.work_dir)
+    check(all(np.allclose(back[k][1], ref[k][1]) for k in ee.HISTORIES)
+          and np.allclose(back["pressure"][0.6][1], ref["pressure"][0.6][1]),
+          "reference_histories.csv and reference_profiles.csv read back")
+    if failures:
+        print("%d check(s) failed" % len(failures))
+        sys.exit(1)
+    print("all checks passed")
+
+
+if __name__ == "__main__":
+    main()
