@@ -202,12 +202,6 @@ namespace DynamicContact
     Vector<double>        local(n);
     Vector<double>        value(dim);
     std::vector<types::global_dof_index> dofs(n);
-    const std::set<types::boundary_id>   traction_ids(
-      scene.boundary_conditions().traction.begin(),
-      scene.boundary_conditions().traction.end());
-    const std::set<types::boundary_id> contact_ids(
-      scene.boundary_conditions().contact.begin(),
-      scene.boundary_conditions().contact.end());
 
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -232,14 +226,9 @@ namespace DynamicContact
               has_load = true;
             }
           for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                ((traction && traction_ids.count(cell->face(f)->boundary_id())) ||
-                 (source && contact_ids.count(cell->face(f)->boundary_id()))))
+            if (Function<dim> *const load_function = scene.face_load(cell, f))
                 {
-                  Function<dim> &g =
-                    traction_ids.count(cell->face(f)->boundary_id()) ?
-                      scene.traction() :
-                      scene.contact_source();
+                  Function<dim> &g = *load_function;
                   fe_face.reinit(cell, f);
                   for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                     {

@@ -91,16 +91,8 @@ namespace DynamicContact
       b.inertia *= material.density() / k;
     }
     // theta f(t) + (1 - theta) f(t - k) at a point.
-    Vector<double> value_old(dim);
     auto load = [&](Function<dim> &f, const Point<dim> &p, Vector<double> &v) {
-      scene.set_time(t);
-      f.vector_value(p, v);
-      if (!scheme.is_backward_euler())
-        {
-          scene.set_time(t - k);
-          f.vector_value(p, value_old);
-          scheme.weigh(v, value_old);
-        }
+      scene.step_load(f, p, t, scheme, v);
     };
     const auto &       fe = d.fe;
     const unsigned int n  = fe.n_dofs_per_cell();
@@ -123,13 +115,7 @@ namespace DynamicContact
       eps_w(quadrature.size());
     std::vector<types::global_dof_index> dofs(n);
     Vector<double>                       value(dim), residual(n);
-    const auto &bc         = scene.boundary_conditions();
-    const bool  body_force = scene.has_body_force();
-    const bool  source     = scene.has_contact_source();
-    const std::set<types::boundary_id> contact_ids(bc.contact.begin(),
-                                                   bc.contact.end());
-    const std::set<types::boundary_id> traction_ids(bc.traction.begin(),
-                                                    bc.traction.end());
+    const bool body_force = scene.has_body_force();
 
     // Constrained by a clamped or roller condition (not a hanging node).
     auto supported = [&](const types::global_dof_index dof) {
@@ -144,14 +130,7 @@ namespace DynamicContact
           bool has_support = false;
           for (const auto dof : dofs)
             has_support = has_support || supported(dof);
-          bool has_traction = false;
-          for (const auto f : cell->face_indices())
-            has_traction =
-              has_traction ||
-              (cell->face(f)->at_boundary() &&
-               (traction_ids.count(cell->face(f)->boundary_id()) ||
-                (source && contact_ids.count(cell->face(f)->boundary_id()))));
-          if (!has_support && !has_traction && !body_force)
+          if (!has_support && !scene.carries_load(cell))
             continue;
 
           fe_values.reinit(cell);
@@ -191,14 +170,9 @@ namespace DynamicContact
                 }
             }
           for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                (traction_ids.count(cell->face(f)->boundary_id()) ||
-                 (source && contact_ids.count(cell->face(f)->boundary_id()))))
+            if (Function<dim> *const load_function = scene.face_load(cell, f))
               {
-                Function<dim> &g =
-                  traction_ids.count(cell->face(f)->boundary_id()) ?
-                    scene.traction() :
-                    scene.contact_source();
+                Function<dim> &g = *load_function;
                 fe_face.reinit(cell, f);
                 for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                   {

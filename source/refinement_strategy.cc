@@ -76,10 +76,6 @@ namespace DynamicContact
       const auto &d     = c.discretization;
       const auto &scene = c.scene;
       const double t0 = c.t0, t1 = c.t1, k = c.k;
-      const auto &bc = scene.boundary_conditions();
-      const std::set<types::boundary_id> traction_ids(bc.traction.begin(),
-                                                      bc.traction.end());
-      const bool traction   = scene.has_traction() && !traction_ids.empty();
       const bool body_force = scene.has_body_force();
 
       std::vector<double> times;
@@ -117,10 +113,9 @@ namespace DynamicContact
       for (const auto &cell : d.triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            if (traction)
-              for (const auto f : cell->face_indices())
-                if (cell->face(f)->at_boundary() &&
-                    traction_ids.count(cell->face(f)->boundary_id()))
+            // The traction (not the contact source of manufactured scenes).
+            for (const auto f : cell->face_indices())
+              if (scene.face_load(cell, f) == &scene.traction())
                   {
                     fe_face.reinit(cell, f);
                     for (const auto &p : fe_face.get_quadrature_points())

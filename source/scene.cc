@@ -77,6 +77,8 @@ namespace DynamicContact
   Scene<dim>::Scene(const RunParameters &parameters, ParameterHandler &prm)
     : geometry(parameters.geometry)
     , boundaries(parameters.boundary_conditions)
+    , traction_ids(boundaries.traction.begin(), boundaries.traction.end())
+    , contact_ids(boundaries.contact.begin(), boundaries.contact.end())
   {
     bool unused;
     traction_function   = parse_function<dim>(prm,
@@ -119,10 +121,6 @@ namespace DynamicContact
                                const std::vector<double> &times,
                                const bool                 initial) const
   {
-    const std::set<types::boundary_id> traction_ids(boundaries.traction.begin(),
-                                                    boundaries.traction.end());
-    const std::set<types::boundary_id> contact_ids(boundaries.contact.begin(),
-                                                   boundaries.contact.end());
     std::set<unsigned int>  body_seen, traction_seen, contact_seen;
     std::vector<Point<dim>> body, on_traction, on_contact;
     for (const auto &cell : tria.active_cell_iterators())
@@ -312,6 +310,56 @@ namespace DynamicContact
                              std::to_string(id) + " of " + mesh +
                              " is not assigned a condition; list it in one "
                              "of Clamped, Roller, Traction, Contact, Free."));
+  }
+
+
+  template <int dim>
+  Function<dim> *
+  Scene<dim>::face_load(const typename Triangulation<dim>::cell_iterator &cell,
+                        const unsigned int f) const
+  {
+    if (!cell->face(f)->at_boundary())
+      return nullptr;
+    const types::boundary_id id = cell->face(f)->boundary_id();
+    if (traction_nonzero && traction_ids.count(id))
+      return traction_function.get();
+    if (contact_source_nonzero && contact_ids.count(id))
+      return contact_source_function.get();
+    return nullptr;
+  }
+
+
+  template <int dim>
+  bool
+  Scene<dim>::carries_load(
+    const typename Triangulation<dim>::cell_iterator &cell) const
+  {
+    if (body_force_nonzero)
+      return true;
+    for (const auto f : cell->face_indices())
+      if (face_load(cell, f) != nullptr)
+        return true;
+    return false;
+  }
+
+
+  template <int dim>
+  void
+  Scene<dim>::step_load(Function<dim> &   f,
+                        const Point<dim> &p,
+                        const double      t,
+                        const TimeScheme &scheme,
+                        Vector<double> &  value) const
+  {
+    set_time(t);
+    f.vector_value(p, value);
+    if (!scheme.is_backward_euler())
+      {
+        Vector<double> old(value.size());
+        set_time(t - scheme.time_step());
+        f.vector_value(p, old);
+        scheme.weigh(value, old);
+      }
   }
 
 

@@ -6,6 +6,7 @@
 #include <deal.II/distributed/tria.h>
 
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/time_scheme.h>
 
 #include <map>
 #include <memory>
@@ -139,6 +140,33 @@ namespace DynamicContact
     void
     set_time(const double t) const;
 
+    /**
+     * The load on face @p f of @p cell: the traction on a face of
+     * Boundary conditions/Traction, the contact source on a face of
+     * Contact (each only if its expression is not zero), nullptr
+     * elsewhere. The one place that says which face carries which load,
+     * for the load vector, the force balance and load following.
+     */
+    Function<dim> *
+    face_load(const typename Triangulation<dim>::cell_iterator &cell,
+              const unsigned int                                 f) const;
+
+    /** Whether @p cell carries a load: a body force or a loaded face. */
+    bool
+    carries_load(const typename Triangulation<dim>::cell_iterator &cell) const;
+
+    /**
+     * The load @p f at @p p in the equation of a step of @p scheme ending
+     * at @p t: f(t) for backward Euler, theta f(t) + (1 - theta) f(t - k)
+     * for the theta-scheme. Sets the time of the scene's functions.
+     */
+    void
+    step_load(Function<dim> &    f,
+              const Point<dim> & p,
+              const double       t,
+              const TimeScheme & scheme,
+              Vector<double> &   value) const;
+
     const Parameters::BoundaryConditions &
     boundary_conditions() const
     {
@@ -163,6 +191,9 @@ namespace DynamicContact
     bool traction_nonzero;
     bool body_force_nonzero;
     bool contact_source_nonzero;
+    /** The boundary ids of Traction and Contact (face_load). */
+    std::set<types::boundary_id> traction_ids;
+    std::set<types::boundary_id> contact_ids;
 
     void
     check_boundary_ids(const Triangulation<dim> &tria) const;
