@@ -39,7 +39,7 @@ namespace DynamicContact
     const auto &global = gathered.global_indices();
     for (unsigned int i = 0; i < global.size(); ++i)
       owned_index[global[i]] = i;
-    prepared_k          = 0;
+    prepared_scheme     = TimeScheme();
     free_response_valid = false;
     regularized.reinit(problem.bulk.sparsity_pattern());
     choose_spring_nodes();
@@ -118,8 +118,7 @@ namespace DynamicContact
   void
   CondensedNewton<dim>::prepare(Result &result)
   {
-    const double k = problem.bulk.time_step();
-    if (k == prepared_k)
+    if (problem.bulk.scheme() == prepared_scheme)
       return;
     // K0' = K0 + S.
     const Matrix_t &K0 = problem.bulk.newton_matrix();
@@ -147,7 +146,7 @@ namespace DynamicContact
       bulk_solver.initialize(regularized, problem.discretization);
     }
     ++result.factorizations;
-    prepared_k          = k;
+    prepared_scheme     = problem.bulk.scheme();
     free_response_valid = false;
     // C depends on K0: forget it.
     for (auto &c : columns)

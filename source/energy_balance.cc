@@ -25,6 +25,35 @@ namespace DynamicContact
   }
 
 
+  EnergyBalanceTerms
+  bathe_terms(const EnergyBalanceTerms &first,
+              const Energy &            extrapolated,
+              const EnergyBalanceTerms &second,
+              const double              extrapolation_work,
+              const double              previous_energy)
+  {
+    EnergyBalanceTerms t;
+    t.energy = second.energy;
+    t.load_work =
+      first.load_work + second.load_work + extrapolation_work;
+    const Energy &half = first.energy;
+    t.inertia = first.inertia + first.elastic + second.inertia +
+                second.elastic -
+                ((extrapolated.kinetic - half.kinetic) +
+                 (extrapolated.elastic - half.elastic) +
+                 (extrapolated.foundation - half.foundation) -
+                 extrapolation_work);
+    t.elastic    = 0;
+    t.viscous    = first.viscous + second.viscous;
+    t.compliance = first.compliance + second.compliance;
+    t.damping    = first.damping + second.damping;
+    t.friction   = first.friction + second.friction;
+    t.defect =
+      t.energy.total() - previous_energy + t.dissipation() - t.load_work;
+    return t;
+  }
+
+
   template <int dim>
   EnergyBalance<dim>::EnergyBalance(const BulkOperator<dim> &    bulk,
                                     const ContactBoundary<dim> &boundary,

@@ -660,14 +660,48 @@ namespace DynamicContact
       prm.declare_entry(
         "Scheme",
         "backward Euler",
-        Patterns::Selection("backward Euler|trapezoidal"),
+        Patterns::Selection("backward Euler|trapezoidal|bathe"),
         "'backward Euler': the paper's scheme (eqs. (52)-(54)), first order. "
         "'trapezoidal': second order, u_n = u_{n-1} + k (w_n + w_{n-1})/2, "
         "the equation of motion at the midpoint, the compliance force the "
         "discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}), damping "
         "and friction on (w_n + w_{n-1})/2: energy-consistent (no numerical "
         "dissipation; the balance of doc/theory.md section 6 still holds "
-        "exactly, with only the physical dissipation).");
+        "exactly, with only the physical dissipation). "
+        "'bathe': the Bathe composite scheme, second order with strong "
+        "high-frequency dissipation (spectral radius 0 at infinity, like "
+        "backward Euler, but little dissipation of the resolved modes): a "
+        "trapezoidal sub-step over k/2, then the three-point backward "
+        "difference, which is a backward-Euler step of k/3 from the "
+        "extrapolated state (4 x_{n-1/2} - x_{n-1})/3; two solves per step "
+        "(doc/theory.md section 2).");
+      prm.declare_entry(
+        "Adaptive",
+        "false",
+        Patterns::Bool(),
+        "true: choose each step's k from a local error estimate "
+        "(doc/theory.md section 2.5): a step whose estimate exceeds "
+        "Adaptive tolerance is rejected and repeated with a smaller k, and "
+        "the next k follows the estimate (safety factor 0.9, at most 2 times "
+        "larger, at least 0.2 times smaller, rounded down to Time step times "
+        "a power of 2 so that factorizations are reused), between Minimum "
+        "time step and Maximum time step; Time step is the first k. Steps end exactly at "
+        "the Output times. Needs Time/Scheme = bathe or backward Euler. "
+        "time_series.csv gets the columns time_error_estimate and "
+        "rejected_steps.");
+      prm.declare_entry(
+        "Adaptive tolerance",
+        "1e-3",
+        Patterns::Double(0),
+        "The bound on the local error estimate of one step, relative to the "
+        "size of the state in the energy norm (doc/theory.md section 2.5), "
+        "> 0.");
+      prm.declare_entry(
+        "Maximum time step",
+        "0",
+        Patterns::Double(0),
+        "With Adaptive = true: the largest k (0: no bound but the End "
+        "time).");
       prm.leave_subsection();
     }
 
@@ -680,8 +714,15 @@ namespace DynamicContact
       minimum_time_step = prm.get_double("Minimum time step");
       if (minimum_time_step == 0)
         minimum_time_step = time_step / 1024;
-      scheme    = (prm.get("Scheme") == "trapezoidal" ? Scheme::trapezoidal :
-                                                     Scheme::backward_euler);
+      const std::string scheme_name = prm.get("Scheme");
+      scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
+                scheme_name == "bathe"       ? Scheme::bathe :
+                                               Scheme::backward_euler);
+      adaptive           = prm.get_bool("Adaptive");
+      adaptive_tolerance = prm.get_double("Adaptive tolerance");
+      maximum_time_step  = prm.get_double("Maximum time step");
+      if (maximum_time_step == 0)
+        maximum_time_step = end_time;
       prm.leave_subsection();
       require(std::isfinite(end_time) && end_time > 0,
               "Time/End time must be positive, got " + str(end_time) + ".");
@@ -689,6 +730,14 @@ namespace DynamicContact
               "Time/Time step must be positive, got " + str(time_step) + ".");
       require(minimum_time_step <= time_step,
               "Time/Minimum time step must not exceed Time/Time step.");
+      require(!adaptive || scheme != Scheme::trapezoidal,
+              "Time/Adaptive = true needs Time/Scheme = bathe or backward "
+              "Euler (the trapezoidal rule has no error estimate here).");
+      require(!adaptive || adaptive_tolerance > 0,
+              "Time/Adaptive tolerance must be positive, got " +
+                str(adaptive_tolerance) + ".");
+      require(!adaptive || maximum_time_step >= time_step,
+              "Time/Maximum time step must not be below Time/Time step.");
       require(end_time / time_step < 1e8,
               "Time/Time step: " + str(end_time / time_step) +
                 " steps to reach Time/End time; at most 1e8 are allowed.");

@@ -165,7 +165,7 @@ namespace DynamicContact
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
-    for (auto *v : {&u, &w, &u_old, &w_old, &load, &rhs, &scratch})
+    for (auto *v : {&u, &w, &u_old, &w_old, &u_bar, &w_bar, &load, &rhs, &scratch})
       discretization.reinit_owned(*v);
     energy_of_state.reset();
   }
@@ -461,26 +461,18 @@ namespace DynamicContact
 
 
   template <int dim>
-  StepRecord<dim>
-  Simulator<dim>::do_time_step(const unsigned int n,
-                               const double       t,
-                               const double       k,
-                               const double       remesh_energy_change,
-                               const unsigned int cutbacks)
+  void
+  Simulator<dim>::solve_substep(
+    const TimeScheme &                    scheme,
+    const double                          t,
+    const Vector_t &                      u_start,
+    const Vector_t &                      w_start,
+    const double                          start_energy,
+    const bool                            accept_unconverged_loop,
+    typename StepSolver<dim>::Statistics &statistics,
+    EnergyBalanceTerms &                  terms)
   {
-    u_old = u;
-    w_old = w;
-    StepRecord<dim> record;
-    record.step      = n;
-    record.time      = t;
-    record.time_step = k;
-    // The energy change of a mesh transfer before this step has its own
-    // column: E_{n-1} below is that of the transferred fields.
-    record.remesh_energy_change = remesh_energy_change;
-    record.cutbacks             = cutbacks;
-    record.previous_energy = energy_now(); // of u_old = u, w_old = w
-
-    const TimeScheme scheme(k, parameters.time.theta());
+    const double k = scheme.time_step();
     {
       TimerSection scope(timer, "Step: load and right-hand side");
       bulk.set_time_step(scheme);
@@ -493,15 +485,15 @@ namespace DynamicContact
         }
       // b = (rho/k) M w_{n-1} - (1 - theta) A w_{n-1}
       //     - B (u_{n-1} + theta (1 - theta) k w_{n-1}) + f_theta
-      bulk.mass().vmult(rhs, w_old);
+      bulk.mass().vmult(rhs, w_start);
       rhs *= scheme.mass_coefficient(material.density());
-      scratch = u_old;
-      scratch.add(scheme.elastic_old_velocity_factor(), w_old);
+      scratch = u_start;
+      scratch.add(scheme.elastic_old_velocity_factor(), w_start);
       bulk.elasticity().vmult(u, scratch); // u as scratch
       rhs -= u;
       if (!scheme.is_backward_euler() && bulk.has_viscosity())
         {
-          bulk.viscosity().vmult(u, w_old);
+          bulk.viscosity().vmult(u, w_start);
           rhs.add(-scheme.viscosity_old_factor(), u);
         }
       rhs += load;
@@ -525,27 +517,163 @@ namespace DynamicContact
                           where);
       }
 
-    w = w_old; // initial guess
+    w = w_start; // initial guess
     // At the smallest time step a convexification loop that reaches its
     // cap is kept (reported) rather than failing the run.
-    record.statistics =
-      step_solver.solve(rhs, u_old, w_old, w, !can_cut_back(k));
-    last_newton_residual = record.statistics.residual;
+    statistics =
+      step_solver.solve(rhs, u_start, w_start, w, accept_unconverged_loop);
+    last_newton_residual = statistics.residual;
 
     if (!std::isfinite(w.l2_norm()))
       throw StepFailure("the solution is not finite");
 
-    scheme.advance_displacement(u, u_old, w, w_old);
+    scheme.advance_displacement(u, u_start, w, w_start);
 
     TimerSection scope(timer, "Step: energy and force balance");
-    record.terms = energy_balance.step_terms(u_old,
-                                             w_old,
-                                             u,
-                                             w,
-                                             load,
-                                             scheme,
-                                             step_solver.node_states(),
-                                             record.previous_energy);
+    terms = energy_balance.step_terms(u_start,
+                                      w_start,
+                                      u,
+                                      w,
+                                      load,
+                                      scheme,
+                                      step_solver.node_states(),
+                                      start_energy);
+  }
+
+
+  template <int dim>
+  double
+  Simulator<dim>::time_error_estimate(const double k) const
+  {
+    // The displacement's local error, from the step just solved (u, w from
+    // u_old, w_old; for the Bathe scheme w_{n-1/2} = (3 w_bar + w_old)/4):
+    //   backward Euler: e = u_n - (u_{n-1} + k (w_{n-1} + w_n)/2)
+    //                     = (k/2) (w_n - w_{n-1}),
+    //   Bathe:          e = u_n - (u_{n-1} + k (w_{n-1} + 4 w_{n-1/2}
+    //                     + w_n)/6) = (k/6) (w_{n-1} - 2 w_{n-1/2} + w_n),
+    // the difference to a solution of higher order (the trapezoidal rule,
+    // Simpson's rule) of the velocities the step computed. Its energy norm
+    // a_E(e, e)^(1/2), relative to the larger of |(u, w)|_E at the two
+    // ends, |(u, w)|_E^2 = rho |w|^2 + a_E(u, u).
+    Vector_t e;
+    e.reinit(u, true);
+    if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
+      {
+        e = w;
+        e.add(-1.5, w_bar);
+        e.add(0.5, w_old);
+        e *= k / 6;
+      }
+    else
+      {
+        e = w;
+        e -= w_old;
+        e *= k / 2;
+      }
+    const double density = material.density();
+    const double scale   = std::max(
+      density * bulk.mass_product(w, w) + bulk.elastic_product(u, u),
+      density * bulk.mass_product(w_old, w_old) +
+        bulk.elastic_product(u_old, u_old));
+    const double error = bulk.elastic_product(e, e);
+    return scale > 0 ? std::sqrt(error / scale) : (error > 0 ? 1e300 : 0.);
+  }
+
+
+  template <int dim>
+  StepRecord<dim>
+  Simulator<dim>::do_time_step(const unsigned int n,
+                               const double       t,
+                               const double       k,
+                               const double       remesh_energy_change,
+                               const unsigned int cutbacks)
+  {
+    u_old = u;
+    w_old = w;
+    StepRecord<dim> record;
+    record.step      = n;
+    record.time      = t;
+    record.time_step = k;
+    // The energy change of a mesh transfer before this step has its own
+    // column: E_{n-1} below is that of the transferred fields.
+    record.remesh_energy_change = remesh_energy_change;
+    record.cutbacks             = cutbacks;
+    record.previous_energy = energy_now(); // of u_old = u, w_old = w
+
+    const bool accept_unconverged_loop = !can_cut_back(k);
+    // The (sub-)step that ends at t and the state it starts from: the force
+    // balance is that of its equation.
+    TimeScheme      last(k, parameters.time.theta());
+    const Vector_t *u_start = &u_old, *w_start = &w_old;
+    if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
+      {
+        // The Bathe composite scheme (doc/theory.md section 2). Sub-step 1:
+        // the trapezoidal rule from t - k to t - k/2.
+        const TimeScheme                     first(k / 2, 0.5);
+        typename StepSolver<dim>::Statistics first_statistics;
+        EnergyBalanceTerms                   first_terms;
+        solve_substep(first,
+                      t - k / 2,
+                      u_old,
+                      w_old,
+                      record.previous_energy,
+                      accept_unconverged_loop,
+                      first_statistics,
+                      first_terms);
+        // Sub-step 2: the three-point backward difference
+        //   w_n = (3 u_n - 4 u_{n-1/2} + u_{n-1})/k, the same for w,
+        // is backward Euler over k/3 from x_bar = (4 x_{n-1/2} - x_{n-1})/3.
+        u_bar = u;
+        u_bar *= 4. / 3;
+        u_bar.add(-1. / 3, u_old);
+        w_bar = w;
+        w_bar *= 4. / 3;
+        w_bar.add(-1. / 3, w_old);
+        const Energy bar_energy = energy_balance.energy(u_bar, w_bar);
+        last                    = TimeScheme(k / 3, 1.);
+        u_start                 = &u_bar;
+        w_start                 = &w_bar;
+        EnergyBalanceTerms second_terms;
+        solve_substep(last,
+                      t,
+                      u_bar,
+                      w_bar,
+                      bar_energy.total(),
+                      accept_unconverged_loop,
+                      record.statistics,
+                      second_terms);
+        record.statistics.add_work(first_statistics);
+        last_newton_residual =
+          std::max(first_statistics.residual, record.statistics.residual);
+        // (f_n, u_bar - u_{n-1/2}) = (f_n, u_bar - u_{n-1})/4.
+        scratch = u_bar;
+        scratch -= u_old;
+        const double extrapolation_work = 0.25 * (load * scratch);
+        record.terms = bathe_terms(first_terms,
+                                   bar_energy,
+                                   second_terms,
+                                   extrapolation_work,
+                                   record.previous_energy);
+      }
+    else
+      solve_substep(last,
+                    t,
+                    u_old,
+                    w_old,
+                    record.previous_energy,
+                    accept_unconverged_loop,
+                    record.statistics,
+                    record.terms);
+
+    if (parameters.time.adaptive)
+      {
+        record.adaptive_time = true;
+        record.time_error    = time_error_estimate(k);
+        record.rejected      = rejected_this_step;
+        last_time_error = record.time_error / parameters.time.adaptive_tolerance;
+      }
+
+    TimerSection scope(timer, "Step: energy and force balance");
     const auto &nodes = contact_boundary.nodes();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
@@ -560,18 +688,18 @@ namespace DynamicContact
     {
       const Vector_t u_ghosted     = discretization.expanded(u),
                      w_ghosted     = discretization.expanded(w),
-                     w_old_ghosted = discretization.expanded(w_old);
+                     w_old_ghosted = discretization.expanded(*w_start);
       // The stress of the scheme's equation: at u_theta, w_theta.
       scratch = u;
-      scheme.weigh(scratch, u_old);
+      last.weigh(scratch, *u_start);
       const Vector_t u_theta = discretization.expanded(scratch);
       scratch = w;
-      scheme.weigh(scratch, w_old);
+      last.weigh(scratch, *w_start);
       const Vector_t w_theta = discretization.expanded(scratch);
       record.forces = force_balance.compute(contact_boundary,
                                             step_solver.node_states(),
                                             t,
-                                            scheme,
+                                            last,
                                             u_theta,
                                             w_theta,
                                             w_ghosted,
@@ -969,6 +1097,7 @@ namespace DynamicContact
     energy_of_state        = record.previous_energy;
     record.dofs            = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
+    record.adaptive_time = parameters.time.adaptive; // the columns, 0
     time_series_writer->write(record.row());
     rows.push_back(record);
     output_results(0, 0., true, parameters.output.write_vtu);
@@ -1131,7 +1260,10 @@ namespace DynamicContact
         good_steps_since_cutback = 0;
       }
     else
-      k_current = std::max(std::min(k_current, k0),
+      k_current = std::max(std::min(k_current,
+                                    parameters.time.adaptive ?
+                                      parameters.time.maximum_time_step :
+                                      k0),
                            parameters.time.minimum_time_step);
 
     // Take over: the rows and the files of the interrupted continuation
@@ -1224,9 +1356,30 @@ namespace DynamicContact
     unsigned int        cutbacks    = 0;
     double              k           = 0;
     StepRecord<dim>     record;
+    const bool          adaptive    = parameters.time.adaptive;
+    // Time/Adaptive: the k after this step, from its error estimate.
+    double k_next      = k_current;
+    rejected_this_step = 0;
     for (;;)
       {
         k = std::min(k_current, T - current_time);
+        if (adaptive)
+          {
+            // Steps end exactly at the Output times and at T; a target
+            // less than two steps away is reached in two equal ones (no
+            // sliver of a step).
+            const double k_wanted = k_current;
+            std::vector<double> targets = parameters.output.output_times;
+            targets.push_back(T);
+            for (const double target : targets)
+              {
+                const double left = target - current_time;
+                if (left > 1e-9 * k_wanted && left < k + 1e-9 * k_wanted)
+                  k = left;
+                else if (left > 1e-9 * k_wanted && left < 2 * k)
+                  k = std::min(k, left / 2);
+              }
+          }
         if (T - current_time - k < 1e-9 * k0) // no sliver of a last step
           k = T - current_time;
         try
@@ -1246,6 +1399,47 @@ namespace DynamicContact
                                    " s) produced values that are not "
                                    "finite: " +
                                    bad);
+            if (adaptive)
+              {
+                // The usual controller: the local error of a scheme of
+                // order p scales like k^(p+1).
+                const double order =
+                  parameters.time.scheme == Parameters::Time::Scheme::bathe ?
+                    3 :
+                    2;
+                const double factor =
+                  last_time_error > 0 ?
+                    std::min(2., std::max(0.2,
+                                          0.9 * std::pow(last_time_error,
+                                                         -1. / order))) :
+                    2.;
+                const double k_min = parameters.time.minimum_time_step;
+                // k on the grid Time step * 2^j (rounded down): a new k
+                // costs new factorizations of K0, so k changes only by
+                // factors of 2 and stays while the estimate allows it.
+                const auto on_grid = [k0](const double x) {
+                  return k0 *
+                         std::pow(2., std::floor(std::log2(x / k0) + 1e-9));
+                };
+                if (last_time_error > 1 && k > k_min * (1 + 1e-12))
+                  {
+                    // Rejected: again from the last good state.
+                    u = u_old;
+                    w = w_old;
+                    step_solver.set_friction_forces(lambda_good);
+                    energy_of_state.reset();
+                    k_current = std::max(k_min, on_grid(k * factor));
+                    ++rejected_this_step;
+                    continue;
+                  }
+                // A step shortened to end at an Output time does not shrink
+                // the next one.
+                k_next = (k < k_current && factor >= 1) ?
+                           k_current :
+                           on_grid(k * factor);
+                k_next = std::min(parameters.time.maximum_time_step,
+                                  std::max(k_min, k_next));
+              }
             break;
           }
         catch (const NonFiniteValue &e)
@@ -1284,8 +1478,12 @@ namespace DynamicContact
       current_time = std::min(n_nominal * k0, T);
     if (std::abs(current_time - T) < 1e-9 * k0)
       current_time = T;
-    // The time step grows back after good steps.
-    if (cutbacks == 0 && k_current < k0 && ++good_steps_since_cutback >= 3)
+    // The time step grows back after good steps (Time/Adaptive: it follows
+    // the error estimate).
+    if (adaptive)
+      k_current = k_next;
+    else if (cutbacks == 0 && k_current < k0 &&
+             ++good_steps_since_cutback >= 3)
       {
         k_current                = std::min(2 * k_current, k0);
         good_steps_since_cutback = 0;

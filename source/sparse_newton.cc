@@ -58,9 +58,9 @@ namespace DynamicContact
     for (auto *v : {&increment, &scratch, &scratch2, &base_residual})
       problem.discretization.reinit_owned(*v);
     amg.reset();
-    amg_k = 0;
+    amg_scheme = TimeScheme();
     direct.reset();
-    factorized_k = -1;
+    factorized_scheme = TimeScheme();
     factorized_blocks.clear();
     factorized_stick.clear();
     if (problem.parameters.linear_solver ==
@@ -215,12 +215,12 @@ namespace DynamicContact
     const auto & nodes = problem.boundary.nodes();
     const double k     = problem.bulk.time_step();
     const double theta = problem.bulk.scheme().effective_derivative();
-    if (!amg || amg_k != k)
+    if (!amg || amg_scheme != problem.bulk.scheme())
       {
         TimerSection t(problem.timer, "Newton: AMG setup");
         amg = std::make_unique<BulkAMG>();
         amg->initialize(problem.bulk.newton_matrix(), problem.discretization);
-        amg_k = k;
+        amg_scheme = problem.bulk.scheme();
       }
     TimerSection t(problem.timer, "Newton: iterative solve");
 
@@ -377,7 +377,8 @@ namespace DynamicContact
 
     // The Newton matrix changes only through the nodal blocks, the stick
     // set and K0's k: reuse the factorization if none of them changed.
-    bool same = (factorized_k == k && factorized_blocks == system.blocks &&
+    bool same = (factorized_scheme == problem.bulk.scheme() &&
+                 factorized_blocks == system.blocks &&
                  factorized_stick == system.stick);
     same      = Utilities::MPI::min(same ? 1 : 0,
                                problem.discretization.comm) == 1;
@@ -479,7 +480,7 @@ namespace DynamicContact
         ++result.factorizations;
         factorized_blocks = system.blocks;
         factorized_stick  = system.stick;
-        factorized_k      = k;
+        factorized_scheme = problem.bulk.scheme();
       }
     TimerSection t(problem.timer, "Newton: triangular solves");
     direct->solve(dw, scratch2);

@@ -59,23 +59,12 @@ namespace DynamicContact
   StepSolver<dim>::reinit(const double complementarity_constant)
   {
     c_t = complementarity_constant;
-    const ContactProblem<dim> problem{discretization,
-                                      bulk,
-                                      contact_boundary,
-                                      foundation,
-                                      parameters,
-                                      timer,
-                                      details,
-                                      friction,
-                                      c_t};
     using CS   = Parameters::Solver::ContactSolver;
     condensed  = (parameters.contact_solver == CS::condensed ||
                  (parameters.contact_solver == CS::automatic &&
                   dim * contact_boundary.n_global_nodes() <=
                     parameters.condensed_limit));
-    if (condensed)
-      newton = std::make_unique<CondensedNewton<dim>>(problem);
-    else
+    if (!condensed)
       {
         // auto: the scalable solver is the iterative one.
         Parameters::Solver sparse_parameters = parameters;
@@ -83,23 +72,41 @@ namespace DynamicContact
           sparse_parameters.linear_solver =
             Parameters::Solver::LinearSolver::iterative;
         problem_parameters = sparse_parameters;
-        newton             = std::make_unique<SparseNewton<dim>>(
-          ContactProblem<dim>{discretization,
-                              bulk,
-                              contact_boundary,
-                              foundation,
-                              problem_parameters,
-                              timer,
-                              details,
-                              friction,
-                              c_t});
       }
-    newton->reinit();
+    for (auto &newton : newtons)
+      newton.reset();
 
     const unsigned int n = contact_boundary.nodes().size();
     mu.assign(n, friction ? friction_law->value(0) : 0.);
     lambda.assign(n, Tensor<1, dim>());
     states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
+  }
+
+
+  template <int dim>
+  ContactNewton<dim> &
+  StepSolver<dim>::newton_for_scheme()
+  {
+    auto &newton = newtons[bulk.scheme().is_backward_euler() ? 0 : 1];
+    if (!newton)
+      {
+        const ContactProblem<dim> problem{discretization,
+                                          bulk,
+                                          contact_boundary,
+                                          foundation,
+                                          condensed ? parameters :
+                                                      problem_parameters,
+                                          timer,
+                                          details,
+                                          friction,
+                                          c_t};
+        if (condensed)
+          newton = std::make_unique<CondensedNewton<dim>>(problem);
+        else
+          newton = std::make_unique<SparseNewton<dim>>(problem);
+        newton->reinit();
+      }
+    return *newton;
   }
 
 
@@ -310,8 +317,9 @@ namespace DynamicContact
                          Vector_t &      w,
                          const bool      accept_unconverged_loop)
   {
-    Statistics         statistics;
-    const TimeScheme & scheme    = bulk.scheme();
+    Statistics          statistics;
+    ContactNewton<dim> &newton    = newton_for_scheme();
+    const TimeScheme &  scheme    = bulk.scheme();
     const double       k         = scheme.time_step();
     const auto   u_old_nodes = contact_boundary.values(u_old);
     const auto   w_old_nodes = contact_boundary.values(w_old);
@@ -464,9 +472,9 @@ namespace DynamicContact
           }
         const auto result =
           allow_provisional ?
-            newton->solve_provisional(
+            newton.solve_provisional(
               rhs, u_old_nodes, w_old_nodes, mu, lambda, w) :
-            newton->solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
+            newton.solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
         add_statistics(result);
         provisional = result.provisional;
         ++statistics.convexification_iterations;
@@ -478,7 +486,7 @@ namespace DynamicContact
             (m.converged || pass + 1 == max_passes ||
              m.coefficient_residual >= best_residual))
           {
-            add_statistics(newton->finalize(w, lambda));
+            add_statistics(newton.finalize(w, lambda));
             provisional       = false;
             allow_provisional = false;
             m                 = measure(pass);
@@ -513,7 +521,7 @@ namespace DynamicContact
         xi_previous = std::move(m.xi);
       }
     if (provisional)
-      add_statistics(newton->finalize(w, lambda));
+      add_statistics(newton.finalize(w, lambda));
 
     update_states(u_old_nodes, w_old_nodes, w, statistics);
     return statistics;

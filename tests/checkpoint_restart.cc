@@ -11,7 +11,9 @@
 //                   (its temporary directory left behind), resumed;
 //   adaptive        adaptive: killed after step 25, resumed;
 //   two_processes   adaptive: run, killed and resumed on 2 processes;
-//   one_to_two      adaptive: killed on 1 process, resumed on 2.
+//   one_to_two      adaptive: killed on 1 process, resumed on 2;
+//   bathe           uniform with Time/Scheme = bathe (two sub-steps a step):
+//                   killed after step 25, resumed.
 // Every interrupted-and-resumed run must end "completed" with the results of
 // the uninterrupted run: time_series.csv with each step once, every
 // contact_NNNNN.csv, solution.pvd and the VTU files.
@@ -61,11 +63,15 @@ namespace
     "--set", "Output/Print iteration counts=false"};
   const unsigned int             n_steps  = 48;
 
-  /** Run the uniform or the adaptive scene into @p directory. */
+  /**
+   * Run the uniform or the adaptive scene into @p directory (with the Bathe
+   * scheme if @p bathe).
+   */
   std::vector<std::string>
   arguments(const bool         adaptive,
             const std::string &directory,
-            const bool         resume = false)
+            const bool         resume = false,
+            const bool         bathe  = false)
   {
     std::vector<std::string> a = {test_tools::scene(
       adaptive ? "barboteu_danan_2016_adaptive_small.prm" :
@@ -75,6 +81,11 @@ namespace
     a.insert(a.end(), settings.begin(), settings.end());
     a.push_back("--set");
     a.push_back("Output/Directory=" + directory);
+    if (bathe)
+      {
+        a.push_back("--set");
+        a.push_back("Time/Scheme=bathe");
+      }
     return a;
   }
 
@@ -320,6 +331,7 @@ main()
     std::string  checkpoints_left;
     unsigned int last_row;
     Outcome      killed;
+    bool         bathe = false;
   };
   const std::string two = "checkpoint_00010 checkpoint_00020";
   std::vector<Case> cases = {
@@ -334,17 +346,18 @@ main()
      {}},
     {"adaptive", true, "after-step 25", 0, 0, two, 25, {}},
     {"two_processes", true, "after-step 25", 2, 2, two, 25, {}},
-    {"one_to_two", true, "after-step 25", 0, 2, two, 25, {}}};
+    {"one_to_two", true, "after-step 25", 0, 2, two, 25, {}},
+    {"bathe", false, "after-step 25", 0, 0, two, 25, {}, true}};
 
   for (const std::string d :
-       {"full_uniform", "full_adaptive", "never_checkpointed"})
+       {"full_uniform", "full_adaptive", "full_bathe", "never_checkpointed"})
     fs::remove_all(d);
   for (const auto &c : cases)
     fs::remove_all(c.directory);
 
   // The uninterrupted runs and the first (killed) part of each case; runs
   // on one process side by side (most of a short run is start-up).
-  Outcome full_uniform, full_adaptive;
+  Outcome full_uniform, full_adaptive, full_bathe;
   {
     std::vector<std::thread> threads;
     threads.emplace_back([&]() {
@@ -355,11 +368,15 @@ main()
       full_adaptive =
         run("full_adaptive", arguments(true, "full_adaptive"), 0);
     });
+    threads.emplace_back([&]() {
+      full_bathe =
+        run("full_bathe", arguments(false, "full_bathe", false, true), 0);
+    });
     for (auto &c : cases)
       if (c.processes_first == 0)
         threads.emplace_back([&c]() {
           c.killed = run(c.directory + ".1",
-                         arguments(c.adaptive, c.directory),
+                         arguments(c.adaptive, c.directory, false, c.bathe),
                          0,
                          c.kill);
         });
@@ -368,14 +385,15 @@ main()
     for (auto &c : cases)
       if (c.processes_first > 0)
         c.killed = run(c.directory + ".1",
-                       arguments(c.adaptive, c.directory),
+                       arguments(c.adaptive, c.directory, false, c.bathe),
                        c.processes_first,
                        c.kill);
   }
 
   for (const auto &[name, o] :
        {std::make_pair("full_uniform", &full_uniform),
-        std::make_pair("full_adaptive", &full_adaptive)})
+        std::make_pair("full_adaptive", &full_adaptive),
+        std::make_pair("full_bathe", &full_bathe)})
     {
       out << name << " (uninterrupted): exit code " << o->code << ", "
           << status_of(name) << ", " << steps_of(name).size() - 1 << " steps"
@@ -413,13 +431,15 @@ main()
   for (const auto &c : cases)
     {
       const Outcome o = run(c.directory + ".2",
-                            arguments(c.adaptive, c.directory, true),
+                            arguments(c.adaptive, c.directory, true, c.bathe),
                             c.processes_resumed);
       const bool said_so =
         o.out.find("resumed from " + c.directory + "/checkpoint_00020") !=
         std::string::npos;
       const bool        exact = !c.adaptive;
-      const std::string full  = c.adaptive ? "full_adaptive" : "full_uniform";
+      const std::string full  = c.adaptive ? "full_adaptive" :
+                                c.bathe    ? "full_bathe" :
+                                             "full_uniform";
       const auto        steps = steps_of(c.directory);
       const auto        diff  = compare(full, c.directory, exact);
       out << c.directory << ", resumed on "

@@ -99,7 +99,7 @@ namespace DynamicContact
 
     /** Solver for K0': a factorization, or CG with AMG. */
     BulkSolver bulk_solver;
-    double     prepared_k = 0;
+    TimeScheme prepared_scheme;
 
     /** columns[j][i] = C_ij, empty until node j was first active. */
     std::vector<std::vector<Tensor<2, dim>>> columns;

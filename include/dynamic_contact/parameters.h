@@ -190,14 +190,27 @@ namespace DynamicContact
       enum class Scheme
       {
         backward_euler,
-        trapezoidal
+        trapezoidal,
+        bathe
       };
       double end_time;
       double time_step;
       double minimum_time_step;
       Scheme scheme;
+      /**
+       * Adaptive time stepping from a local error estimate (doc/theory.md
+       * section 2.5): the tolerance, and the largest step (the smallest is
+       * minimum_time_step).
+       */
+      bool   adaptive;
+      double adaptive_tolerance;
+      double maximum_time_step;
 
-      /** 1 for backward Euler, 1/2 for the trapezoidal scheme. */
+      /**
+       * The theta of the one-step schemes: 1 for backward Euler, 1/2 for
+       * the trapezoidal scheme. (The Bathe scheme's sub-steps have their
+       * own: 1/2, then 1.)
+       */
       double
       theta() const
       {

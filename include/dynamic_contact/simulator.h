@@ -206,8 +206,10 @@ namespace DynamicContact
     ForceBalanceEvaluator<dim> force_balance;
     MeshAdaptation<dim>        mesh_adaptation;
 
-    // Fields in master form (constrained entries zero).
-    Vector_t u, w, u_old, w_old, load, rhs, scratch;
+    // Fields in master form (constrained entries zero). u_old, w_old: the
+    // state at the start of the step (and the cut-back's restore point);
+    // u_bar, w_bar: the start of the Bathe scheme's second sub-step.
+    Vector_t u, w, u_old, w_old, u_bar, w_bar, load, rhs, scratch;
 
     /** Created in the constructor, opened (locked, checked) by initialize. */
     std::unique_ptr<OutputDirectory>  output_directory;
@@ -319,6 +321,16 @@ namespace DynamicContact
      */
     unsigned int stagnated_steps      = 0;
     double       last_newton_residual = 0;
+    /**
+     * Time/Adaptive: the local error estimate of the last step solved,
+     * relative to Time/Adaptive tolerance (> 1: reject), and the steps
+     * rejected before the current one was accepted.
+     */
+    double       last_time_error     = 0;
+    unsigned int rejected_this_step  = 0;
+    /** The error estimate of the step just solved (doc/theory.md 2.5). */
+    double
+    time_error_estimate(const double k) const;
 
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
@@ -398,6 +410,21 @@ namespace DynamicContact
                  const double       k,
                  const double       remesh_energy_change,
                  const unsigned int cutbacks);
+    /**
+     * One (sub-)step of the theta-scheme @p scheme that ends at @p t, from
+     * (@p u_start, @p w_start) whose energy is @p start_energy: assemble the
+     * right-hand side, solve for w, set u; the solver's statistics and the
+     * energy balance terms of the (sub-)step.
+     */
+    void
+    solve_substep(const TimeScheme &                    scheme,
+                  const double                          t,
+                  const Vector_t &                      u_start,
+                  const Vector_t &                      w_start,
+                  const double                          start_energy,
+                  const bool                            accept_unconverged_loop,
+                  typename StepSolver<dim>::Statistics &statistics,
+                  EnergyBalanceTerms &                  terms);
 
     /** Steps left at the nominal time step (for progress lines). */
     unsigned int

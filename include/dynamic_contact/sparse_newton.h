@@ -96,7 +96,7 @@ namespace DynamicContact
 
     // Iterative: the AMG of K0, for the time step it was built for.
     std::unique_ptr<BulkAMG> amg;
-    double                   amg_k = 0;
+    TimeScheme               amg_scheme;
 
     // Direct: the Newton matrix and its factorization, and what it was made
     // of (reused while unchanged).
@@ -105,7 +105,7 @@ namespace DynamicContact
     std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
     std::vector<Tensor<2, dim>>                     factorized_blocks;
     std::vector<bool>                               factorized_stick;
-    double                                          factorized_k = -1;
+    TimeScheme                                      factorized_scheme;
 
     /** The residual with the linearized forces' constant part. */
     Vector_t base_residual;

@@ -48,6 +48,10 @@ namespace DynamicContact
     unsigned long long                   cells                = 0;
     bool                                 has_errors           = false;
     Errors                               errors;
+    /** Time/Adaptive: the step's error estimate and its rejected tries. */
+    bool                                 adaptive_time        = false;
+    double                               time_error           = 0;
+    unsigned int                         rejected             = 0;
 
     /** |E_n - E_{n-1} + D_n - W_n| relative to the energy scale. */
     double
@@ -108,6 +112,11 @@ namespace DynamicContact
       r.add_integer("n_slip", statistics.n_slip);
       r.add_integer("dofs", dofs);
       r.add_integer("cells", cells);
+      if (adaptive_time)
+        {
+          r.add("time_error_estimate", time_error);
+          r.add_integer("rejected_steps", rejected);
+        }
       if (has_errors)
         {
           // doc/theory.md section 7; Theorem 6's error is the maximum over the

@@ -11,6 +11,8 @@
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 
+#include <algorithm>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +52,28 @@ namespace DynamicContact
       unsigned int n_contact                  = 0;
       unsigned int n_stick                    = 0;
       unsigned int n_slip                     = 0;
+
+      /**
+       * Add the work of an earlier sub-step of the same step (a composite
+       * scheme): the counts add up, the loop converged only if both did,
+       * the coefficient residual is the larger; the residual and the node
+       * counts stay those of this (the last) solve.
+       */
+      void
+      add_work(const Statistics &earlier)
+      {
+        newton_iterations += earlier.newton_iterations;
+        convexification_iterations += earlier.convexification_iterations;
+        convexification_converged =
+          convexification_converged && earlier.convexification_converged;
+        factorizations += earlier.factorizations;
+        bulk_solves += earlier.bulk_solves;
+        cycles += earlier.cycles;
+        line_search_steps += earlier.line_search_steps;
+        linear_iterations += earlier.linear_iterations;
+        coefficient_residual =
+          std::max(coefficient_residual, earlier.coefficient_residual);
+      }
     };
 
     StepSolver(const Discretization<dim> &  discretization,
@@ -131,7 +155,17 @@ namespace DynamicContact
     const bool                   friction;
     double                       c_t   = 0;
 
-    std::unique_ptr<ContactNewton<dim>> newton;
+    /**
+     * The Newton solver of each kind of (sub-)step: [0] theta = 1, [1]
+     * theta < 1, made when first needed. A composite scheme
+     * (Time/Scheme = bathe) alternates the two kinds, each with its own K0;
+     * one solver each keeps its factorization (and the condensed solver's
+     * compliance columns) from step to step.
+     */
+    std::array<std::unique_ptr<ContactNewton<dim>>, 2> newtons;
+    /** The solver for the scheme of bulk.scheme(). */
+    ContactNewton<dim> &
+    newton_for_scheme();
     /** The condensed solver is in use; else the sparse one with: */
     bool               condensed = true;
     Parameters::Solver problem_parameters;

@@ -1,0 +1,62 @@
+// The order in k of the time schemes on the manufactured solution
+// (prm/manufactured_2d.prm: contact, damping and slip active on part of
+// Gamma_3, viscosity on), at ctest scale: Q2 elements, which hold the exact
+// displacement, on a mesh fine enough that the spatial error stays below
+// the time error, and k halved twice. The observed rate of
+// max_n error_theorem6 must be >= 1.9 for the second-order Bathe scheme
+// (Time/Scheme = bathe) and about 1 for backward Euler (so that the check
+// can tell a first-order scheme). benchmarks/convergence runs the longer
+// study (time-bathe).
+
+#include "test_tools.h"
+
+#include <cmath>
+
+using namespace DynamicContact;
+
+double
+max_error(const std::string &scheme, const unsigned int steps)
+{
+  const std::string name =
+    (scheme == "backward Euler" ? std::string("euler") : scheme);
+  auto simulator = test_tools::run<2>(
+    test_tools::scene("manufactured_2d.prm"),
+    {"Output/Directory=output-time-convergence-" + name + "-" +
+       std::to_string(steps),
+     "Geometry/Global refinements=4",
+     "Finite element/Polynomial degree=2",
+     "Time/Time step=" + std::to_string(0.8 / steps),
+     "Time/Scheme=" + scheme});
+  double error = 0;
+  for (const auto &row : simulator->time_series())
+    if (row.step > 0)
+      error = std::max(error, row.errors.strain + row.errors.velocity);
+  return error;
+}
+
+void
+study(const std::string &scheme, const double low, const double high)
+{
+  test_tools::out() << "--- Time/Scheme = " << scheme << std::endl;
+  const std::vector<unsigned int> steps = {8, 16, 32};
+  std::vector<double>             errors;
+  for (const unsigned int n : steps)
+    errors.push_back(max_error(scheme, n));
+  for (unsigned int i = 1; i < steps.size(); ++i)
+    {
+      const double rate = std::log2(errors[i - 1] / errors[i]);
+      test_tools::check(rate >= low && rate <= high,
+                        "rate in k from " + std::to_string(steps[i - 1]) +
+                          " to " + std::to_string(steps[i]) +
+                          " steps in [" + test_tools::digits(low, 2) +
+                          ", " + test_tools::digits(high, 2) + "]");
+    }
+}
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  study("bathe", 1.9, 2.6);
+  study("backward Euler", 0.8, 1.2);
+}
