@@ -58,16 +58,16 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   Parameters::BoundaryConditions boundary_conditions;
   boundary_conditions.clamped = {0, 1};
   discretization.setup_dofs(boundary_conditions);
-  const DoFHandler<dim> &          dof_handler = discretization.dof_handler;
-  const IndexSet &                 owned       = discretization.locally_owned;
+  const DoFHandler<dim>           &dof_handler = discretization.dof_handler;
+  const IndexSet                  &owned       = discretization.locally_owned;
   const AffineConstraints<double> &constraints = discretization.constraints;
 
   // K0 = (rho/k) M + k B: E = 1e11, nu = 0.3, rho = 1000, no viscosity,
   // k = 1/128 s (backward Euler).
   Parameters::Material material_parameters;
-  material_parameters.density          = 1000;
-  material_parameters.young_modulus    = 1e11;
-  material_parameters.poisson_ratio    = 0.3;
+  material_parameters.density       = 1000;
+  material_parameters.young_modulus = 1e11;
+  material_parameters.poisson_ratio = 0.3;
   material_parameters.plane_model =
     Parameters::Material::PlaneModel::plane_strain;
   material_parameters.viscosity_lambda = 0;
@@ -91,14 +91,15 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
                     const double       setup,
                     const unsigned int iterations,
                     const double       solve) {
-    out << "  " << std::left << std::setw(32) << name << std::right
-        << " setup " << std::fixed << std::setprecision(3) << setup
-        << " s, CG iterations " << std::setw(4) << iterations << ", solve "
-        << solve << " s" << std::defaultfloat << std::endl;
+    out << "  " << std::left << std::setw(32) << name << std::right << " setup "
+        << std::fixed << std::setprecision(3) << setup << " s, CG iterations "
+        << std::setw(4) << iterations << ", solve " << solve << " s"
+        << std::defaultfloat << std::endl;
   };
-  auto cg = [&](const auto &preconditioner, const std::string &name,
-                const double setup) {
-    SolverControl control(3000, 1e-10 * b.l2_norm());
+  auto cg = [&](const auto        &preconditioner,
+                const std::string &name,
+                const double       setup) {
+    SolverControl                           control(3000, 1e-10 * b.l2_norm());
     SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
     x = 0;
     timer.restart();
@@ -127,7 +128,7 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   }
 
   // PETSc: the same matrix, CG on the true residual.
-  const IndexSet &       relevant = discretization.locally_relevant;
+  const IndexSet        &relevant = discretization.locally_relevant;
   DynamicSparsityPattern dsp(relevant);
   DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
   SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
@@ -154,39 +155,40 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   }
   MatNullSpace rigid;
   MatNullSpaceCreateRigidBody(coordinates, &rigid);
-  auto petsc = [&](const std::string &                                 name,
-                   const std::string &                                 type,
-                   const std::vector<std::pair<std::string, std::string>> &options,
-                   const bool near_null_space) {
-    PetscOptionsClear(nullptr);
-    for (const auto &[key, value] : options)
-      PetscOptionsSetValue(nullptr, key.c_str(), value.c_str());
-    MatSetNearNullSpace(P.petsc_matrix(), near_null_space ? rigid : nullptr);
-    KSP ksp;
-    KSPCreate(comm, &ksp);
-    KSPSetOperators(ksp, P.petsc_matrix(), P.petsc_matrix());
-    KSPSetType(ksp, KSPCG);
-    KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);
-    PC pc;
-    KSPGetPC(ksp, &pc);
-    PCSetType(pc, type.c_str());
-    if (type == "hypre")
-      PCHYPRESetType(pc, "boomeramg");
-    KSPSetTolerances(ksp, 1e-10, 1e-300, 1e10, 3000);
-    KSPSetFromOptions(ksp);
-    PCSetFromOptions(pc);
-    timer.restart();
-    KSPSetUp(ksp);
-    PCSetUp(pc);
-    const double setup = timer.wall_time();
-    px                 = 0;
-    timer.restart();
-    KSPSolve(ksp, pb, px);
-    PetscInt iterations;
-    KSPGetIterationNumber(ksp, &iterations);
-    report(name, setup, iterations, timer.wall_time());
-    KSPDestroy(&ksp);
-  };
+  auto petsc =
+    [&](const std::string                                      &name,
+        const std::string                                      &type,
+        const std::vector<std::pair<std::string, std::string>> &options,
+        const bool near_null_space) {
+      PetscOptionsClear(nullptr);
+      for (const auto &[key, value] : options)
+        PetscOptionsSetValue(nullptr, key.c_str(), value.c_str());
+      MatSetNearNullSpace(P.petsc_matrix(), near_null_space ? rigid : nullptr);
+      KSP ksp;
+      KSPCreate(comm, &ksp);
+      KSPSetOperators(ksp, P.petsc_matrix(), P.petsc_matrix());
+      KSPSetType(ksp, KSPCG);
+      KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);
+      PC pc;
+      KSPGetPC(ksp, &pc);
+      PCSetType(pc, type.c_str());
+      if (type == "hypre")
+        PCHYPRESetType(pc, "boomeramg");
+      KSPSetTolerances(ksp, 1e-10, 1e-300, 1e10, 3000);
+      KSPSetFromOptions(ksp);
+      PCSetFromOptions(pc);
+      timer.restart();
+      KSPSetUp(ksp);
+      PCSetUp(pc);
+      const double setup = timer.wall_time();
+      px                 = 0;
+      timer.restart();
+      KSPSolve(ksp, pb, px);
+      PetscInt iterations;
+      KSPGetIterationNumber(ksp, &iterations);
+      report(name, setup, iterations, timer.wall_time());
+      KSPDestroy(&ksp);
+    };
   const std::string threshold = (dim == 2 ? "0.25" : "0.5");
   petsc("PETSc GAMG", "gamg", {}, false);
   petsc("PETSc GAMG, rigid-body modes", "gamg", {}, true);

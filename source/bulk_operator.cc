@@ -10,7 +10,7 @@
 namespace DynamicContact
 {
   template <int dim>
-  BulkOperator<dim>::BulkOperator(const Discretization<dim> &      d,
+  BulkOperator<dim>::BulkOperator(const Discretization<dim>      &d,
                                   const KelvinVoigtMaterial<dim> &material)
     : discretization(d)
     , material(material)
@@ -55,8 +55,8 @@ namespace DynamicContact
     std::vector<SymmetricTensor<2, dim>> eps(n);
     std::vector<Tensor<1, dim>>          phi(n);
     const FEValuesExtractors::Vector     displacement(0);
-    const auto &                         E = material.elasticity();
-    const auto &                         C = material.viscosity();
+    const auto                          &E = material.elasticity();
+    const auto                          &C = material.viscosity();
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -173,34 +173,34 @@ namespace DynamicContact
   void
   BulkOperator<dim>::assemble_load_vector(const Scene<dim> &scene,
                                           const double      t,
-                                          Vector_t &        load) const
+                                          Vector_t         &load) const
   {
-    load = 0;
+    load                  = 0;
     const bool body_force = scene.has_body_force();
-    const bool traction   = scene.has_traction() &&
-                          !scene.boundary_conditions().traction.empty();
-    const bool source     = scene.has_contact_source() &&
+    const bool traction =
+      scene.has_traction() && !scene.boundary_conditions().traction.empty();
+    const bool source = scene.has_contact_source() &&
                         !scene.boundary_conditions().contact.empty();
     if (!body_force && !traction && !source)
       return;
     scene.set_time(t);
 
-    const auto &       fe = discretization.fe;
-    const unsigned int n  = fe.n_dofs_per_cell();
-    const QGauss<dim>     quadrature(fe.degree + 2);
-    const QGauss<dim - 1> face_quadrature(fe.degree + 2);
-    FEValues<dim>         fe_values(discretization.mapping,
+    const auto                          &fe = discretization.fe;
+    const unsigned int                   n  = fe.n_dofs_per_cell();
+    const QGauss<dim>                    quadrature(fe.degree + 2);
+    const QGauss<dim - 1>                face_quadrature(fe.degree + 2);
+    FEValues<dim>                        fe_values(discretization.mapping,
                             fe,
                             quadrature,
                             update_values | update_quadrature_points |
                               update_JxW_values);
-    FEFaceValues<dim>     fe_face(discretization.mapping,
+    FEFaceValues<dim>                    fe_face(discretization.mapping,
                               fe,
                               face_quadrature,
                               update_values | update_quadrature_points |
                                 update_JxW_values);
-    Vector<double>        local(n);
-    Vector<double>        value(dim);
+    Vector<double>                       local(n);
+    Vector<double>                       value(dim);
     std::vector<types::global_dof_index> dofs(n);
 
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
@@ -213,8 +213,8 @@ namespace DynamicContact
               fe_values.reinit(cell);
               for (unsigned int q = 0; q < quadrature.size(); ++q)
                 {
-                  scene.body_force().vector_value(
-                    fe_values.quadrature_point(q), value);
+                  scene.body_force().vector_value(fe_values.quadrature_point(q),
+                                                  value);
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       const unsigned int c =
@@ -227,22 +227,22 @@ namespace DynamicContact
             }
           for (const auto f : cell->face_indices())
             if (Function<dim> *const load_function = scene.face_load(cell, f))
-                {
-                  Function<dim> &g = *load_function;
-                  fe_face.reinit(cell, f);
-                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                    {
-                      g.vector_value(fe_face.quadrature_point(q), value);
-                      for (unsigned int i = 0; i < n; ++i)
-                        {
-                          const unsigned int c =
-                            fe.system_to_component_index(i).first;
-                          local(i) += value(c) * fe_face.shape_value(i, q) *
-                                      fe_face.JxW(q);
-                        }
-                    }
-                  has_load = true;
-                }
+              {
+                Function<dim> &g = *load_function;
+                fe_face.reinit(cell, f);
+                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                  {
+                    g.vector_value(fe_face.quadrature_point(q), value);
+                    for (unsigned int i = 0; i < n; ++i)
+                      {
+                        const unsigned int c =
+                          fe.system_to_component_index(i).first;
+                        local(i) +=
+                          value(c) * fe_face.shape_value(i, q) * fe_face.JxW(q);
+                      }
+                  }
+                has_load = true;
+              }
           if (has_load)
             {
               cell->get_dof_indices(dofs);

@@ -20,24 +20,23 @@ namespace DynamicContact
   template <int dim>
   std::vector<double>
   rigid_body_modes(const Discretization<dim> &discretization,
-                   std::vector<double> *      coordinates)
+                   std::vector<double>       *coordinates)
   {
     // From each owned DoF's component and support point (every owned DoF
     // lies on an owned cell).
-    const IndexSet &    owned   = discretization.locally_owned;
+    const IndexSet     &owned   = discretization.locally_owned;
     const unsigned int  n       = owned.n_elements();
     const unsigned int  n_modes = (dim == 2 ? 3 : 6);
     std::vector<double> modes(n_modes * n, 0.);
     if (coordinates != nullptr)
       coordinates->assign(n, 0.);
-    const auto &                         fe = discretization.fe;
+    const auto                          &fe = discretization.fe;
     FEValues<dim>                        fe_values(discretization.mapping,
-                                fe,
-                                Quadrature<dim>(fe.get_unit_support_points()),
-                                update_quadrature_points);
+                            fe,
+                            Quadrature<dim>(fe.get_unit_support_points()),
+                            update_quadrature_points);
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    for (const auto &cell :
-         discretization.dof_handler.active_cell_iterators())
+    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
@@ -47,7 +46,7 @@ namespace DynamicContact
               {
                 const unsigned int r = owned.index_within_set(dofs[i]);
                 const unsigned int c = fe.system_to_component_index(i).first;
-                const Point<dim> & x = fe_values.quadrature_point(i);
+                const Point<dim>  &x = fe_values.quadrature_point(i);
                 modes[c * n + r]     = 1;
                 if (coordinates != nullptr)
                   (*coordinates)[r] = x[c];
@@ -68,15 +67,14 @@ namespace DynamicContact
 
   template <int dim>
   void
-  BulkAMG::initialize(const Matrix_t &           matrix,
+  BulkAMG::initialize(const Matrix_t            &matrix,
                       const Discretization<dim> &discretization,
                       const bool                 with_rotations)
   {
     modes = rigid_body_modes(discretization);
     // The translations are the first dim columns.
-    const unsigned int n_modes =
-      (with_rotations ? (dim == 2 ? 3 : 6) : dim);
-    const auto &fe = discretization.fe;
+    const unsigned int n_modes = (with_rotations ? (dim == 2 ? 3 : 6) : dim);
+    const auto        &fe      = discretization.fe;
 
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true;
@@ -113,7 +111,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  BulkSolver::initialize(const Matrix_t &           A,
+  BulkSolver::initialize(const Matrix_t            &A,
                          const Discretization<dim> &discretization)
   {
     matrix = &A;
@@ -164,7 +162,7 @@ namespace DynamicContact
       }
     else
       {
-        SolverControl control(parameters.max_linear_iterations,
+        SolverControl      control(parameters.max_linear_iterations,
                               parameters.linear_tolerance * b.l2_norm());
         SolverCG<Vector_t> cg(control);
         x = 0;
@@ -175,9 +173,9 @@ namespace DynamicContact
 
   void
   BulkSolver::solve_columns(
-    const std::vector<SparseColumn> &                        columns,
-    const std::vector<types::global_dof_index> &             rows,
-    std::vector<std::vector<double>> &                       values,
+    const std::vector<SparseColumn>                         &columns,
+    const std::vector<types::global_dof_index>              &rows,
+    std::vector<std::vector<double>>                        &values,
     const std::function<void(unsigned int, const double *)> &store)
   {
     Assert(matrix != nullptr, ExcNotInitialized());

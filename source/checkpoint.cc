@@ -10,8 +10,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <map>
+#include <regex>
 #include <sstream>
 
 namespace DynamicContact
@@ -22,8 +22,11 @@ namespace DynamicContact
   {
     const std::string manifest_header = "dynamic-contact checkpoint 1";
     /** The files a checkpoint must have (besides manifest.txt). */
-    const std::vector<std::string> required_files = {
-      "mesh", "mesh.info", "mesh_fixed.data", "state.txt", "parameters.txt"};
+    const std::vector<std::string> required_files = {"mesh",
+                                                     "mesh.info",
+                                                     "mesh_fixed.data",
+                                                     "state.txt",
+                                                     "parameters.txt"};
 
     std::string
     checkpoint_name(const unsigned int step)
@@ -94,10 +97,9 @@ namespace DynamicContact
       std::ostringstream out;
       out.precision(17);
       out << "signature " << signature << '\n';
-      state.for_each_number(
-        [&](const char *name, const auto &value) {
-          out << name << ' ' << value << '\n';
-        });
+      state.for_each_number([&](const char *name, const auto &value) {
+        out << name << ' ' << value << '\n';
+      });
       out << "vtu_records " << state.vtu_records.size() << '\n';
       for (const auto &[t, file] : state.vtu_records)
         out << t << ' ' << file << '\n';
@@ -110,7 +112,7 @@ namespace DynamicContact
     entries_of(const std::string &text)
     {
       std::vector<std::pair<std::string, std::string>> entries;
-      std::istringstream                                in(text);
+      std::istringstream                               in(text);
       for (std::string line; std::getline(in, line);)
         {
           const auto equal = line.find(" = ");
@@ -126,7 +128,7 @@ namespace DynamicContact
     same_value(const std::string &a, const std::string &b)
     {
       static const std::regex separators(R"([\s,;]+)");
-      auto tokens = [](const std::string &s) {
+      auto                    tokens = [](const std::string &s) {
         std::vector<std::string> t;
         for (std::sregex_token_iterator i(s.begin(), s.end(), separators, -1),
              end;
@@ -143,9 +145,9 @@ namespace DynamicContact
         {
           if (ta[i] == tb[i])
             continue;
-          char *      end_a = nullptr, *end_b = nullptr;
-          const double x    = std::strtod(ta[i].c_str(), &end_a);
-          const double y    = std::strtod(tb[i].c_str(), &end_b);
+          char        *end_a = nullptr, *end_b = nullptr;
+          const double x = std::strtod(ta[i].c_str(), &end_a);
+          const double y = std::strtod(tb[i].c_str(), &end_b);
           if (*end_a != '\0' || *end_b != '\0' || end_a == ta[i].c_str() ||
               x != y)
             return false;
@@ -203,13 +205,12 @@ namespace DynamicContact
           }
         else if (line.rfind("set ", 0) == 0)
           {
-            const auto  equal = line.find('=');
-            std::string name  = Utilities::trim(line.substr(4, equal - 4));
-            const std::string value =
-              equal == std::string::npos ?
-                "" :
-                Utilities::trim(line.substr(equal + 1));
-            std::string full;
+            const auto        equal = line.find('=');
+            std::string       name = Utilities::trim(line.substr(4, equal - 4));
+            const std::string value = equal == std::string::npos ?
+                                        "" :
+                                        Utilities::trim(line.substr(equal + 1));
+            std::string       full;
             for (const auto &p : path)
               full += p + "/";
             full += name;
@@ -238,8 +239,8 @@ namespace DynamicContact
   scene_differences(const std::string &checkpoint_text,
                     const std::string &current_text)
   {
-    const auto then = entries_of(checkpoint_text);
-    const auto now  = entries_of(current_text);
+    const auto                         then = entries_of(checkpoint_text);
+    const auto                         now  = entries_of(current_text);
     std::map<std::string, std::string> then_map(then.begin(), then.end());
     std::map<std::string, std::string> now_map(now.begin(), now.end());
     std::vector<std::string>           differences;
@@ -257,8 +258,7 @@ namespace DynamicContact
       }
     for (const auto &[entry, value] : then)
       if (!may_change_on_resume(entry) && now_map.count(entry) == 0)
-        differences.push_back(entry + " not set (checkpoint: '" + value +
-                              "')");
+        differences.push_back(entry + " not set (checkpoint: '" + value + "')");
     return differences;
   }
 
@@ -281,75 +281,73 @@ namespace DynamicContact
      */
     template <int dim>
     void
-    write_checkpoint_files(OutputDirectory &              directory,
-                           Discretization<dim> &          d,
+    write_checkpoint_files(OutputDirectory               &directory,
+                           Discretization<dim>           &d,
                            const std::vector<Vector_t *> &fields,
-                           const std::string &            state_text,
-                           const std::string &            parameters,
-                           const std::string &            tmp_name)
+                           const std::string             &state_text,
+                           const std::string             &parameters,
+                           const std::string             &tmp_name)
     {
       const MPI_Comm    comm = d.comm;
       const bool        root = Utilities::MPI::this_mpi_process(comm) == 0;
       const std::string tmp  = directory.file(tmp_name);
-    collectively(comm, [&]() {
-      if (!root)
-        return;
-      directory.claim(tmp_name);
-      std::error_code ec;
-      fs::remove_all(tmp, ec);
-      fs::create_directories(tmp, ec);
-      if (ec)
-        throw std::runtime_error(cannot_write(tmp, ec.message()));
-      // p4est aborts the process if a write fails: make sure the disk has
-      // room for the mesh and the fields first (generous estimates of
-      // their sizes: p4est's connectivity and quadrants, and the values of
-      // every cell).
-      const double n_active =
-        static_cast<double>(d.triangulation.n_global_active_cells());
-      const double n_coarse = static_cast<double>(d.triangulation.n_cells(0));
-      const double n_processes = Utilities::MPI::n_mpi_processes(comm);
-      const double bytes =
-        1.25 * (8192 + n_coarse * (dim == 2 ? 128 : 384) +
-                n_active * (dim == 2 ? 16 : 24) + n_processes * 256 +
-                n_active * (16 + 8. * fields.size() * d.fe.n_dofs_per_cell()) +
-                state_text.size() + parameters.size());
-      reserve_space(tmp,
-                    static_cast<std::uintmax_t>(bytes),
-                    tmp + "/mesh");
-    });
+      collectively(comm, [&]() {
+        if (!root)
+          return;
+        directory.claim(tmp_name);
+        std::error_code ec;
+        fs::remove_all(tmp, ec);
+        fs::create_directories(tmp, ec);
+        if (ec)
+          throw std::runtime_error(cannot_write(tmp, ec.message()));
+        // p4est aborts the process if a write fails: make sure the disk has
+        // room for the mesh and the fields first (generous estimates of
+        // their sizes: p4est's connectivity and quadrants, and the values of
+        // every cell).
+        const double n_active =
+          static_cast<double>(d.triangulation.n_global_active_cells());
+        const double n_coarse = static_cast<double>(d.triangulation.n_cells(0));
+        const double n_processes = Utilities::MPI::n_mpi_processes(comm);
+        const double bytes =
+          1.25 *
+          (8192 + n_coarse * (dim == 2 ? 128 : 384) +
+           n_active * (dim == 2 ? 16 : 24) + n_processes * 256 +
+           n_active * (16 + 8. * fields.size() * d.fe.n_dofs_per_cell()) +
+           state_text.size() + parameters.size());
+        reserve_space(tmp, static_cast<std::uintmax_t>(bytes), tmp + "/mesh");
+      });
 
-    collectively(comm, [&]() {
-      FieldTransfer<dim, Vector_t> transfer(d, fields);
-      transfer.prepare(true);
-      d.triangulation.save(tmp + "/mesh");
-    });
+      collectively(comm, [&]() {
+        FieldTransfer<dim, Vector_t> transfer(d, fields);
+        transfer.prepare(true);
+        d.triangulation.save(tmp + "/mesh");
+      });
 
-    collectively(comm, [&]() {
-      if (!root)
-        return;
-      write_file(tmp + "/state.txt", state_text, true);
-      write_file(tmp + "/parameters.txt", parameters, true);
-      // Every file flushed to disk, then its size and checksum in the
-      // manifest (read back from the file), which is written last.
-      std::vector<std::string> files;
-      for (const auto &entry : fs::directory_iterator(tmp))
-        if (entry.is_regular_file())
-          files.push_back(entry.path().filename().string());
-      std::sort(files.begin(), files.end());
-      std::string manifest = manifest_header + "\n";
-      for (const auto &f : files)
-        {
-          sync_path(tmp + "/" + f);
-          const auto [size, crc] = file_size_and_crc32(tmp + "/" + f);
-          if (f.rfind("mesh", 0) == 0)
-            account_written_bytes(f, size);
-          manifest += f + " " + std::to_string(size) + " " + hex(crc) + "\n";
-        }
-      manifest += "end\n";
-      write_file(tmp + "/manifest.txt", manifest, true);
-      sync_path(tmp);
-    });
-
+      collectively(comm, [&]() {
+        if (!root)
+          return;
+        write_file(tmp + "/state.txt", state_text, true);
+        write_file(tmp + "/parameters.txt", parameters, true);
+        // Every file flushed to disk, then its size and checksum in the
+        // manifest (read back from the file), which is written last.
+        std::vector<std::string> files;
+        for (const auto &entry : fs::directory_iterator(tmp))
+          if (entry.is_regular_file())
+            files.push_back(entry.path().filename().string());
+        std::sort(files.begin(), files.end());
+        std::string manifest = manifest_header + "\n";
+        for (const auto &f : files)
+          {
+            sync_path(tmp + "/" + f);
+            const auto [size, crc] = file_size_and_crc32(tmp + "/" + f);
+            if (f.rfind("mesh", 0) == 0)
+              account_written_bytes(f, size);
+            manifest += f + " " + std::to_string(size) + " " + hex(crc) + "\n";
+          }
+        manifest += "end\n";
+        write_file(tmp + "/manifest.txt", manifest, true);
+        sync_path(tmp);
+      });
     }
   } // namespace
 
@@ -357,23 +355,24 @@ namespace DynamicContact
   // ----------------------------------------------------------- writing
   template <int dim>
   void
-  write_checkpoint(OutputDirectory &              directory,
-                   Discretization<dim> &          d,
+  write_checkpoint(OutputDirectory               &directory,
+                   Discretization<dim>           &d,
                    const std::vector<Vector_t *> &fields,
-                   const RunState &               state,
-                   const std::string &            parameters,
+                   const RunState                &state,
+                   const std::string             &parameters,
                    const unsigned int             keep,
-                   const std::function<void()> &  before_commit)
+                   const std::function<void()>   &before_commit)
   {
-    const MPI_Comm    comm     = d.comm;
-    const bool        root     = Utilities::MPI::this_mpi_process(comm) == 0;
-    const std::string name     = checkpoint_name(state.step);
-    const std::string tmp_name = name + ".tmp";
-    const std::string tmp      = directory.file(tmp_name);
+    const MPI_Comm    comm       = d.comm;
+    const bool        root       = Utilities::MPI::this_mpi_process(comm) == 0;
+    const std::string name       = checkpoint_name(state.step);
+    const std::string tmp_name   = name + ".tmp";
+    const std::string tmp        = directory.file(tmp_name);
     const std::string state_text = format_state(state, signature(d));
     try
       {
-        write_checkpoint_files(directory, d, fields, state_text, parameters, tmp_name);
+        write_checkpoint_files(
+          directory, d, fields, state_text, parameters, tmp_name);
       }
     catch (const CollectiveError &)
       {
@@ -486,10 +485,9 @@ namespace DynamicContact
                 throw std::runtime_error(name + " is missing");
               const auto size = fs::file_size(file);
               if (size != expected.first)
-                throw std::runtime_error(
-                  name + " has " + std::to_string(size) +
-                  " bytes, its manifest says " +
-                  std::to_string(expected.first));
+                throw std::runtime_error(name + " has " + std::to_string(size) +
+                                         " bytes, its manifest says " +
+                                         std::to_string(expected.first));
               const auto [read_size, crc] = file_size_and_crc32(file);
               if (read_size != expected.first || hex(crc) != expected.second)
                 throw std::runtime_error(name + " is damaged (checksum " +
@@ -510,7 +508,7 @@ namespace DynamicContact
   RunState
   read_run_state(const std::string &checkpoint, const MPI_Comm comm)
   {
-    const std::string  text = read_collectively(checkpoint + "/state.txt", comm);
+    const std::string text = read_collectively(checkpoint + "/state.txt", comm);
     std::istringstream in(text);
     RunState           state;
     const auto         damaged = [&](const std::string &what) {
@@ -536,7 +534,7 @@ namespace DynamicContact
       }
     std::size_t used = 0;
     state.for_each_number([&](const char *name, auto &value) {
-      const auto found = numbers.find(name);
+      const auto         found = numbers.find(name);
       std::istringstream parse(found == numbers.end() ? "" : found->second);
       if (found == numbers.end() || !(parse >> value) || !parse.eof())
         throw damaged("'" + std::string(name) + "' missing or not a number");
@@ -563,8 +561,7 @@ namespace DynamicContact
 
 
   std::string
-  read_checkpoint_parameters(const std::string &checkpoint,
-                             const MPI_Comm     comm)
+  read_checkpoint_parameters(const std::string &checkpoint, const MPI_Comm comm)
   {
     return read_collectively(checkpoint + "/parameters.txt", comm);
   }
@@ -572,12 +569,13 @@ namespace DynamicContact
 
   template <int dim>
   void
-  load_checkpoint(const std::string &            checkpoint,
-                  Discretization<dim> &          d,
+  load_checkpoint(const std::string             &checkpoint,
+                  Discretization<dim>           &d,
                   const std::vector<Vector_t *> &fields,
-                  const std::function<void()> &  after_load)
+                  const std::function<void()>   &after_load)
   {
-    const std::string text = read_collectively(checkpoint + "/state.txt", d.comm);
+    const std::string text =
+      read_collectively(checkpoint + "/state.txt", d.comm);
     const std::string line     = text.substr(0, text.find('\n'));
     const std::string expected = "signature " + signature(d);
     if (line != expected)
@@ -629,15 +627,13 @@ namespace DynamicContact
           const std::size_t n_columns =
             std::count(lines[0].begin(), lines[0].end(), ',') + 1;
           // A whole row: every field, the step an integer, the time a number.
-          auto parse = [&](const std::string &l,
-                           unsigned int &     s,
-                           double &           t) {
+          auto parse = [&](const std::string &l, unsigned int &s, double &t) {
             if (l.empty() ||
-                static_cast<std::size_t>(
-                  std::count(l.begin(), l.end(), ',') + 1) != n_columns ||
+                static_cast<std::size_t>(std::count(l.begin(), l.end(), ',') +
+                                         1) != n_columns ||
                 l.find(",,") != std::string::npos || l.back() == ',')
               return false;
-            const auto c1 = l.find(','), c2 = l.find(',', c1 + 1);
+            const auto        c1 = l.find(','), c2 = l.find(',', c1 + 1);
             const std::string step_text = l.substr(0, c1);
             const std::string time_text = l.substr(c1 + 1, c2 - c1 - 1);
             if (step_text.empty() ||
@@ -650,13 +646,13 @@ namespace DynamicContact
             s = std::stoul(step_text);
             return true;
           };
-          result.kept        = lines[0] + "\n";
+          result.kept          = lines[0] + "\n";
           bool         reached = false;
           unsigned int next    = 0;
           for (unsigned int i = 1; i < lines.size(); ++i)
             {
-              unsigned int s = 0;
-              double       t = 0;
+              unsigned int s     = 0;
+              double       t     = 0;
               const bool   whole = parse(lines[i], s, t);
               if (!reached)
                 {
@@ -682,8 +678,10 @@ namespace DynamicContact
             }
           if (!reached)
             throw std::runtime_error(
-              "--resume: " + file + " ends before the step of the "
-              "checkpoint (step " + std::to_string(step) +
+              "--resume: " + file +
+              " ends before the step of the "
+              "checkpoint (step " +
+              std::to_string(step) +
               "): the results of the interrupted run are incomplete");
         }
       catch (const std::exception &e)

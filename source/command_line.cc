@@ -1,5 +1,5 @@
-#include <deal.II/base/revision.h>
 #include <deal.II/base/config.h>
+#include <deal.II/base/revision.h>
 
 #include <dynamic_contact/command_line.h>
 
@@ -26,8 +26,7 @@ namespace DynamicContact
                 c.print_format != "xml" && c.print_format != "markdown")
               {
                 c.error = "--print-parameters: unknown format '" +
-                          c.print_format +
-                          "' (prm, json, xml or markdown).";
+                          c.print_format + "' (prm, json, xml or markdown).";
                 return c;
               }
           }

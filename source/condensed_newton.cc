@@ -32,9 +32,9 @@ namespace DynamicContact
     full_columns.assign(dim * all.size(), {});
     stored_full_columns = 0;
     pending.reset();
-    max_owned_dofs = Utilities::MPI::max(
-      problem.discretization.locally_owned.n_elements(),
-      problem.discretization.comm);
+    max_owned_dofs =
+      Utilities::MPI::max(problem.discretization.locally_owned.n_elements(),
+                          problem.discretization.comm);
     owned_index.assign(all.size(), -1);
     const auto &global = gathered.global_indices();
     for (unsigned int i = 0; i < global.size(); ++i)
@@ -124,7 +124,7 @@ namespace DynamicContact
     const Matrix_t &K0 = problem.bulk.newton_matrix();
     regularized.copy_from(K0);
     {
-      const auto &        all = gathered.all_nodes();
+      const auto         &all = gathered.all_nodes();
       std::vector<double> local(all.size(), 0.);
       for (const unsigned int j : spring_nodes)
         if (owned_index[j] >= 0)
@@ -160,8 +160,8 @@ namespace DynamicContact
   template <int dim>
   void
   CondensedNewton<dim>::solve_bulk(const Vector_t &b,
-                                   Vector_t &      x,
-                                   Result &        result)
+                                   Vector_t       &x,
+                                   Result         &result)
   {
     TimerSection t(problem.timer, "Bulk: solves with K0");
     bulk_solver.solve(b, x);
@@ -173,7 +173,7 @@ namespace DynamicContact
   template <int dim>
   void
   CondensedNewton<dim>::compute_columns(const std::vector<unsigned int> &nodes,
-                                        Result &                         result)
+                                        Result                          &result)
   {
     std::vector<unsigned int> missing;
     for (const unsigned int j : nodes)
@@ -185,7 +185,7 @@ namespace DynamicContact
 
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
-    const auto &                           all = gathered.all_nodes();
+    const auto                           &all = gathered.all_nodes();
     std::vector<BulkSolver::SparseColumn> rhs;
     for (const unsigned int j : missing)
       for (unsigned int c = 0; c < dim; ++c)
@@ -197,17 +197,17 @@ namespace DynamicContact
           rhs.push_back(column);
         }
     // The responses at the owned nodes, then at every node.
-    const auto &                         owned  = problem.boundary.nodes();
-    const auto &                         global = gathered.global_indices();
+    const auto                          &owned  = problem.boundary.nodes();
+    const auto                          &global = gathered.global_indices();
     std::vector<types::global_dof_index> rows;
     for (const auto &node : owned)
       for (unsigned int r = 0; r < dim; ++r)
         rows.push_back(node.dofs[r]);
     std::vector<std::vector<double>> values;
     // Keep the whole columns while they fit (the same decision everywhere).
-    const bool store = (stored_full_columns + rhs.size()) * max_owned_dofs *
-                         sizeof(double) <=
-                       full_column_budget;
+    const bool store =
+      (stored_full_columns + rhs.size()) * max_owned_dofs * sizeof(double) <=
+      full_column_budget;
     const std::size_t n_owned =
       problem.discretization.locally_owned.n_elements();
     std::function<void(unsigned int, const double *)> keep;
@@ -255,15 +255,15 @@ namespace DynamicContact
   bool
   CondensedNewton<dim>::apply_full_columns(
     const std::vector<Tensor<1, dim>> &f,
-    const std::vector<unsigned int> &  nodes,
-    Vector_t &                         x) const
+    const std::vector<unsigned int>   &nodes,
+    Vector_t                          &x) const
   {
     for (const unsigned int j : nodes)
       if (full_columns[dim * j].empty())
         return false;
     TimerSection t(problem.timer, "Bulk: sums of compliance columns");
     x            = 0;
-    double *   y = x.trilinos_vector()[0];
+    double    *y = x.trilinos_vector()[0];
     const auto n = problem.discretization.locally_owned.n_elements();
     for (const unsigned int j : nodes)
       for (unsigned int c = 0; c < dim; ++c)
@@ -284,8 +284,8 @@ namespace DynamicContact
   CondensedNewton<dim>::compliance_response(
     const std::vector<Tensor<1, dim>> &w_free,
     const std::vector<Tensor<1, dim>> &forces,
-    const std::vector<unsigned int> &  with_force,
-    std::vector<Tensor<1, dim>> &      w) const
+    const std::vector<unsigned int>   &with_force,
+    std::vector<Tensor<1, dim>>       &w) const
   {
     w = w_free;
     for (const unsigned int j : with_force)
@@ -298,14 +298,14 @@ namespace DynamicContact
   void
   CondensedNewton<dim>::linearize(Iterate &it) const
   {
-    const auto &u_old  = u_old_all;
-    const auto &w_old  = w_old_all;
-    const auto &mu     = mu_all;
-    const auto &lambda = it.lambda;
-    const auto &w_nodes = it.w;
-    const auto &       nodes = gathered.all_nodes();
-    const unsigned int n     = nodes.size();
-    it.w_old = w_old;
+    const auto        &u_old   = u_old_all;
+    const auto        &w_old   = w_old_all;
+    const auto        &mu      = mu_all;
+    const auto        &lambda  = it.lambda;
+    const auto        &w_nodes = it.w;
+    const auto        &nodes   = gathered.all_nodes();
+    const unsigned int n       = nodes.size();
+    it.w_old                   = w_old;
     it.lin.resize(n);
     it.forces.resize(n);
     it.base_true.resize(n);
@@ -325,18 +325,18 @@ namespace DynamicContact
                                                     w_nodes[i],
                                                     lambda[i],
                                                     mu.empty() ? 0. : mu[i]);
-        const auto &l = it.lin[i] = e.lin;
-        it.forces[i]    = e.force;
-        it.base_true[i] = e.base;
+        const auto               &l = it.lin[i] = e.lin;
+        it.forces[i]                            = e.force;
+        it.base_true[i]                         = e.base;
         // Condensation with K0' = K0 + S sees the forces minus the springs'.
         // S_i = s_i P_i, and P_i w_i = w_i (P_i diagonal, 0 or 1).
         const double s = spring_stiffness[i];
-        it.g[i]         = it.forces[i] - s * w_nodes[i];
-        it.base[i]      = it.base_true[i] - s * w_nodes[i];
+        it.g[i]        = it.forces[i] - s * w_nodes[i];
+        it.base[i]     = it.base_true[i] - s * w_nodes[i];
         if (s > 0)
           it.lin[i].block -= s * nodes[i].constraint_map;
         it.signature += e.signature;
-        it.f_scale = std::max(it.f_scale, e.force.norm());
+        it.f_scale      = std::max(it.f_scale, e.force.norm());
         it.law_residual = std::max(it.law_residual, e.law_residual);
         it.law_squares += e.law_residual * e.law_residual;
         if (l.active() || it.forces[i].norm_square() > 0 || s > 0)
@@ -347,19 +347,20 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::dense_step(const Iterate &                     it,
-                                   const std::vector<Tensor<1, dim>> &r,
-                                   std::vector<Tensor<1, dim>> &       dw,
-                                   std::vector<Tensor<1, dim>> &       lambda,
-                                   std::vector<Tensor<1, dim>> &new_forces) const
+  CondensedNewton<dim>::dense_step(
+    const Iterate                     &it,
+    const std::vector<Tensor<1, dim>> &r,
+    std::vector<Tensor<1, dim>>       &dw,
+    std::vector<Tensor<1, dim>>       &lambda,
+    std::vector<Tensor<1, dim>>       &new_forces) const
   {
     // The Newton system on the active nodes: unknowns dw_i (dim each) and, at
     // stick nodes, the tangential force (dim-1 each, scaled by the node's
     // compliance), for
     //   dw_i + sum_j C_ij (block_j dw_j + T_j l_j) = r_i,
     //   t_s . (w_i + dw_i) = 0 at stick nodes.
-    const auto &              nodes    = gathered.all_nodes();
-    const auto &              active   = it.active;
+    const auto               &nodes    = gathered.all_nodes();
+    const auto               &active   = it.active;
     const unsigned int        n_active = active.size();
     std::vector<unsigned int> stick_offset(n_active, 0);
     std::vector<double>       stick_scale(n_active, 0);
@@ -416,7 +417,8 @@ namespace DynamicContact
               for (unsigned int p = 0; p < dim; ++p)
                 matrix(stick_offset[a] + s, dim * a + p) =
                   nodes[i].tangents[s][p];
-              // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
+              // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s .
+              // w_e)/theta.
               vector(stick_offset[a] + s) =
                 -(nodes[i].tangents[s] *
                   problem.bulk.scheme().weighted(it.w[i], it.w_old[i])) /
@@ -449,8 +451,8 @@ namespace DynamicContact
   template <int dim>
   void
   CondensedNewton<dim>::add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
-                                         const double      factor,
-                                         Vector_t &        v) const
+                                         const double factor,
+                                         Vector_t    &v) const
   {
     const auto &global = gathered.global_indices();
     problem.boundary.add_nodal_forces(
@@ -473,7 +475,7 @@ namespace DynamicContact
 
     BoundaryProblem(CondensedNewton<dim> &solver,
                     const double          w_scale,
-                    Result &              result)
+                    Result               &result)
       : solver(solver)
       , w_scale(w_scale)
       , result(result)
@@ -484,10 +486,7 @@ namespace DynamicContact
     {
       solver.linearize(x);
       solver.compute_columns(x.active, result);
-      solver.compliance_response(solver.w_free_nodes,
-                                 x.g,
-                                 x.active,
-                                 response);
+      solver.compliance_response(solver.w_free_nodes, x.g, x.active, response);
       x.equilibrium         = 0;
       x.equilibrium_squares = 0;
       for (unsigned int i = 0; i < x.w.size(); ++i)
@@ -497,8 +496,8 @@ namespace DynamicContact
           x.equilibrium_squares += e * e;
         }
       NewtonMeasure m;
-      m.residual  = std::max(x.equilibrium / w_scale,
-                            x.law_residual / x.f_scale);
+      m.residual =
+        std::max(x.equilibrium / w_scale, x.law_residual / x.f_scale);
       m.merit     = merit(x, x);
       m.signature = x.signature;
       return m;
@@ -535,34 +534,35 @@ namespace DynamicContact
     combine(const Iterate &x,
             const Iterate &full,
             const double   alpha,
-            Iterate &      trial) const
+            Iterate       &trial) const
     {
       const unsigned int n = x.w.size();
       trial.w.resize(n);
       trial.lambda.resize(n);
       for (unsigned int i = 0; i < n; ++i)
         {
-          trial.w[i]      = x.w[i] + alpha * (full.w[i] - x.w[i]);
-          trial.lambda[i] = x.lambda[i] + alpha * (full.lambda[i] - x.lambda[i]);
+          trial.w[i] = x.w[i] + alpha * (full.w[i] - x.w[i]);
+          trial.lambda[i] =
+            x.lambda[i] + alpha * (full.lambda[i] - x.lambda[i]);
         }
     }
 
   private:
-    CondensedNewton<dim> &      solver;
+    CondensedNewton<dim>       &solver;
     const double                w_scale;
-    Result &                    result;
+    Result                     &result;
     std::vector<Tensor<1, dim>> response, r, dw, new_forces;
   };
 
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const Vector_t &                    rhs,
+  CondensedNewton<dim>::solve(const Vector_t                    &rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
                               const std::vector<Tensor<1, dim>> &w_old,
-                              const std::vector<double> &         mu,
-                              std::vector<Tensor<1, dim>> &       lambda,
-                              Vector_t &                          w)
+                              const std::vector<double>         &mu,
+                              std::vector<Tensor<1, dim>>       &lambda,
+                              Vector_t                          &w)
   {
     return solve(rhs, u_old, w_old, mu, lambda, w, false);
   }
@@ -571,12 +571,12 @@ namespace DynamicContact
   template <int dim>
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::solve_provisional(
-    const Vector_t &                    rhs,
+    const Vector_t                    &rhs,
     const std::vector<Tensor<1, dim>> &u_old,
     const std::vector<Tensor<1, dim>> &w_old,
-    const std::vector<double> &         mu,
-    std::vector<Tensor<1, dim>> &       lambda,
-    Vector_t &                          w)
+    const std::vector<double>         &mu,
+    std::vector<Tensor<1, dim>>       &lambda,
+    Vector_t                          &w)
   {
     return solve(rhs, u_old, w_old, mu, lambda, w, true);
   }
@@ -584,7 +584,7 @@ namespace DynamicContact
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::finalize(Vector_t &                   w,
+  CondensedNewton<dim>::finalize(Vector_t                    &w,
                                  std::vector<Tensor<1, dim>> &lambda)
   {
     Result result;
@@ -602,13 +602,13 @@ namespace DynamicContact
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const Vector_t &                    rhs,
+  CondensedNewton<dim>::solve(const Vector_t                    &rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
                               const std::vector<Tensor<1, dim>> &w_old,
-                              const std::vector<double> &         mu,
-                              std::vector<Tensor<1, dim>> &       lambda,
-                              Vector_t &                          w,
-                              const bool                          provisional)
+                              const std::vector<double>         &mu,
+                              std::vector<Tensor<1, dim>>       &lambda,
+                              Vector_t                          &w,
+                              const bool                         provisional)
   {
     Result result;
     pending.reset();
@@ -646,13 +646,13 @@ namespace DynamicContact
     // K0 is nearly singular (a body held only by the foundation) the
     // cancellation in w_free - C f limits its accuracy, and phase 2 polishes.
     Iterate it;
-    it.w      = gather_values(w);
-    it.lambda = gathered.gather(lambda);
+    it.w           = gather_values(w);
+    it.lambda      = gathered.gather(lambda);
     double w_scale = 1e-300;
     for (unsigned int i = 0; i < n; ++i)
       w_scale = std::max({w_scale, w_free_nodes[i].norm(), it.w[i].norm()});
     {
-      TimerSection t(problem.timer, "Contact: boundary Newton");
+      TimerSection    t(problem.timer, "Contact: boundary Newton");
       BoundaryProblem boundary_problem(*this, w_scale, result);
       NewtonPolicy    policy;
       policy.monotone          = false;
@@ -687,13 +687,13 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::polish(const Iterate &                     it,
+  CondensedNewton<dim>::polish(const Iterate                     &it,
                                const std::vector<Tensor<1, dim>> &u_old,
                                const std::vector<Tensor<1, dim>> &w_old,
-                               const std::vector<double> &         mu,
-                               std::vector<Tensor<1, dim>> &       lambda,
-                               Vector_t &                          w,
-                               Result &                            result,
+                               const std::vector<double>         &mu,
+                               std::vector<Tensor<1, dim>>       &lambda,
+                               Vector_t                          &w,
+                               Result                            &result,
                                const double tolerance_factor)
   {
     const Vector_t &rhs = cached_rhs;
@@ -707,7 +707,7 @@ namespace DynamicContact
     //   R = K0 w - b + sum_i P_i^T f_i(w),
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
-    TimerSection t(problem.timer, "Contact: refinement");
+    TimerSection       t(problem.timer, "Contact: refinement");
     SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
     SystemIterate<dim> x;
     x.w      = w;
@@ -728,8 +728,8 @@ namespace DynamicContact
   void
   CondensedNewton<dim>::newton_step(const SystemNewton<dim> & /*system*/,
                                     const SystemIterate<dim> &x,
-                                    SystemIterate<dim> &      full,
-                                    Result &                  result)
+                                    SystemIterate<dim>       &full,
+                                    Result                   &result)
   {
     // The linearization at every node (the dense system couples them).
     Iterate it;

@@ -102,8 +102,8 @@ namespace DynamicContact
     gather_nodal(const MPI_Comm                   comm,
                  const std::vector<unsigned int> &owned_to_global,
                  const unsigned int               width,
-                 const Pack &                     pack,
-                 const Unpack &                   unpack)
+                 const Pack                      &pack,
+                 const Unpack                    &unpack)
     {
       std::vector<double> local;
       local.reserve(owned_to_global.size() * (width + 1));
@@ -188,15 +188,15 @@ namespace DynamicContact
   template <int dim>
   void
   ContactBoundary<dim>::reinit(
-    const Discretization<dim> &             discretization,
+    const Discretization<dim>             &discretization,
     const std::vector<types::boundary_id> &contact_ids,
-    const Function<dim> &                  initial_gap)
+    const Function<dim>                   &initial_gap)
   {
     owned_nodes.clear();
     const std::set<types::boundary_id> ids(contact_ids.begin(),
                                            contact_ids.end());
-    const auto &fe          = discretization.fe;
-    const auto &dof_handler = discretization.dof_handler;
+    const auto                        &fe          = discretization.fe;
+    const auto                        &dof_handler = discretization.dof_handler;
 
     // Lumped weights int phi_i and normal moments int phi_i n, with the
     // Gauss-Lobatto rule whose nodes are the support points, assembled into
@@ -206,14 +206,15 @@ namespace DynamicContact
     discretization.reinit_owned(weights);
     discretization.reinit_owned(normal_moments);
     {
-      const QGaussLobatto<dim - 1> quadrature(fe.degree + 1);
-      FEFaceValues<dim>            fe_face(discretization.mapping,
+      const QGaussLobatto<dim - 1>         quadrature(fe.degree + 1);
+      FEFaceValues<dim>                    fe_face(discretization.mapping,
                                 fe,
                                 quadrature,
                                 update_values | update_normal_vectors |
                                   update_JxW_values);
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      Vector<double> local_w(fe.n_dofs_per_cell()), local_n(fe.n_dofs_per_cell());
+      Vector<double>                       local_w(fe.n_dofs_per_cell()),
+        local_n(fe.n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const auto f : cell->face_indices())
@@ -225,10 +226,12 @@ namespace DynamicContact
                 local_n = 0;
                 for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
                   {
-                    const unsigned int c = fe.system_to_component_index(i).first;
+                    const unsigned int c =
+                      fe.system_to_component_index(i).first;
                     for (unsigned int q = 0; q < quadrature.size(); ++q)
                       {
-                        const double phi = fe_face.shape_value_component(i, q, c);
+                        const double phi =
+                          fe_face.shape_value_component(i, q, c);
                         local_w(i) += phi * fe_face.JxW(q);
                         local_n(i) +=
                           phi * fe_face.normal_vector(q)[c] * fe_face.JxW(q);
@@ -277,8 +280,8 @@ namespace DynamicContact
                       continue;
                     const auto dof0 = face_dofs[j];
                     if (!discretization.locally_owned.is_element(dof0) ||
-                        discretization.hanging_node_constraints
-                          .is_constrained(dof0) ||
+                        discretization.hanging_node_constraints.is_constrained(
+                          dof0) ||
                         seen.count(dof0))
                       continue;
                     seen.insert(dof0);
@@ -347,9 +350,9 @@ namespace DynamicContact
     // A reproducible order: by position.
     std::sort(owned_nodes.begin(), owned_nodes.end(), by_position<dim>);
 
-    comm     = discretization.comm;
-    n_global = Utilities::MPI::sum<types::global_dof_index>(
-      owned_nodes.size(), comm);
+    comm = discretization.comm;
+    n_global =
+      Utilities::MPI::sum<types::global_dof_index>(owned_nodes.size(), comm);
   }
 
 

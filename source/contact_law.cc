@@ -29,7 +29,7 @@ namespace DynamicContact
       return normal_response(foundation, u_nu, w_nu, scheme.time_step());
     const ResponseLaw &p = foundation.compliance();
     const ResponseLaw &q = foundation.damping();
-    NormalResponse    r;
+    NormalResponse     r;
     r.u_nu                 = u_nu;
     r.w_nu                 = w_nu;
     r.compliance_active    = p.active(u_nu) || p.active(u_nu_old);
@@ -37,8 +37,8 @@ namespace DynamicContact
     const bool damping     = foundation.damping_acts(u_nu);
     r.damping_active       = damping && q.active(w_nu);
     r.damping_saturated    = damping && q.saturated(w_nu);
-    r.pressure = p.discrete_gradient(u_nu_old, u_nu) +
-                 (damping ? q.value(w_nu) : 0.);
+    r.pressure =
+      p.discrete_gradient(u_nu_old, u_nu) + (damping ? q.value(w_nu) : 0.);
     // d u_n/d w_n = theta k, d w_e/d w_n = theta.
     r.dpressure_dw =
       scheme.displacement_derivative() *
@@ -56,7 +56,7 @@ namespace DynamicContact
   {
     const ResponseLaw &p = foundation.compliance();
     const ResponseLaw &q = foundation.damping();
-    NormalResponse    r;
+    NormalResponse     r;
     r.u_nu                 = u_nu;
     r.w_nu                 = w_nu;
     r.compliance_active    = p.active(u_nu);
@@ -75,15 +75,15 @@ namespace DynamicContact
   Tensor<1, dim>
   projected_friction_force(const ContactNode<dim> &node,
                            const double            threshold,
-                           const Tensor<1, dim> &  w,
-                           const Tensor<1, dim> &  lambda,
+                           const Tensor<1, dim>   &w,
+                           const Tensor<1, dim>   &lambda,
                            const double            c)
   {
     if (threshold <= 0 || !node.unconstrained)
       return Tensor<1, dim>();
     const Tensor<1, dim> z =
       node.tangential(lambda) + (c * node.weight) * node.tangential(w);
-    const double         norm = z.norm();
+    const double norm = z.norm();
     return norm <= threshold ? z : (threshold / norm) * z;
   }
 
@@ -91,9 +91,9 @@ namespace DynamicContact
   template <int dim>
   FrictionResponse<dim>
   friction_response(const ContactNode<dim> &node,
-                    const NormalResponse &  normal,
-                    const Tensor<1, dim> &  w,
-                    const Tensor<1, dim> &  lambda,
+                    const NormalResponse   &normal,
+                    const Tensor<1, dim>   &w,
+                    const Tensor<1, dim>   &lambda,
                     const double            mu,
                     const double            c,
                     const double            effective_derivative)
@@ -142,10 +142,9 @@ namespace DynamicContact
         // orthogonal to t:
         //   lambda' = t (g + dg.dw) + beta P dw_tau - alpha/(1-alpha) P lambda,
         //   beta = alpha c m_i/(1-alpha).
-        const double   alpha = r.threshold / norm;
-        const double   beta =
-          effective_derivative * alpha * c_node / (1 - alpha);
-        Tensor<2, dim> P     = unit_symmetric_tensor<dim>();
+        const double alpha = r.threshold / norm;
+        const double beta = effective_derivative * alpha * c_node / (1 - alpha);
+        Tensor<2, dim> P  = unit_symmetric_tensor<dim>();
         P -= outer_product(node.normal, node.normal);
         P -= outer_product(r.direction, r.direction);
         r.value -= (alpha / (1 - alpha)) * (P * lambda_tau);

@@ -27,22 +27,20 @@ namespace DynamicContact
 
   EnergyBalanceTerms
   bathe_terms(const EnergyBalanceTerms &first,
-              const Energy &            extrapolated,
+              const Energy             &extrapolated,
               const EnergyBalanceTerms &second,
               const double              extrapolation_work,
               const double              previous_energy)
   {
     EnergyBalanceTerms t;
-    t.energy = second.energy;
-    t.load_work =
-      first.load_work + second.load_work + extrapolation_work;
+    t.energy    = second.energy;
+    t.load_work = first.load_work + second.load_work + extrapolation_work;
     const Energy &half = first.energy;
-    t.inertia = first.inertia + first.elastic + second.inertia +
-                second.elastic -
-                ((extrapolated.kinetic - half.kinetic) +
-                 (extrapolated.elastic - half.elastic) +
-                 (extrapolated.foundation - half.foundation) -
-                 extrapolation_work);
+    t.inertia =
+      first.inertia + first.elastic + second.inertia + second.elastic -
+      ((extrapolated.kinetic - half.kinetic) +
+       (extrapolated.elastic - half.elastic) +
+       (extrapolated.foundation - half.foundation) - extrapolation_work);
     t.elastic    = 0;
     t.viscous    = first.viscous + second.viscous;
     t.compliance = first.compliance + second.compliance;
@@ -55,9 +53,9 @@ namespace DynamicContact
 
 
   template <int dim>
-  EnergyBalance<dim>::EnergyBalance(const BulkOperator<dim> &    bulk,
+  EnergyBalance<dim>::EnergyBalance(const BulkOperator<dim>    &bulk,
                                     const ContactBoundary<dim> &boundary,
-                                    const Foundation &          foundation,
+                                    const Foundation           &foundation,
                                     const double                density,
                                     const MPI_Comm              comm)
     : bulk(bulk)
@@ -73,8 +71,8 @@ namespace DynamicContact
   EnergyBalance<dim>::energy(const Vector_t &u, const Vector_t &w) const
   {
     Energy e;
-    e.kinetic = 0.5 * density * bulk.mass_product(w, w);
-    e.elastic = 0.5 * bulk.elastic_product(u, u);
+    e.kinetic                = 0.5 * density * bulk.mass_product(w, w);
+    e.elastic                = 0.5 * bulk.elastic_product(u, u);
     double foundation_energy = 0;
     for (const auto &node : contact_boundary.nodes())
       foundation_energy +=
@@ -88,16 +86,16 @@ namespace DynamicContact
   template <int dim>
   EnergyBalanceTerms
   EnergyBalance<dim>::step_terms(
-    const Vector_t &                          u_old,
-    const Vector_t &                          w_old,
-    const Vector_t &                          u,
-    const Vector_t &                          w,
-    const Vector_t &                          load,
-    const TimeScheme &                        scheme,
+    const Vector_t                           &u_old,
+    const Vector_t                           &w_old,
+    const Vector_t                           &u,
+    const Vector_t                           &w,
+    const Vector_t                           &load,
+    const TimeScheme                         &scheme,
     const std::vector<ContactNodeState<dim>> &states,
     const double                              previous_energy) const
   {
-    const double k = scheme.time_step();
+    const double       k = scheme.time_step();
     EnergyBalanceTerms t;
     t.energy = energy(u, w);
 
@@ -109,7 +107,7 @@ namespace DynamicContact
     t.load_work = load * difference;
     t.elastic   = scheme.numerical_dissipation_factor() *
                 bulk.elastic_product(difference, difference);
-    difference  = w;
+    difference = w;
     difference -= w_old;
     t.inertia = scheme.numerical_dissipation_factor() * density *
                 bulk.mass_product(difference, difference);
@@ -126,15 +124,15 @@ namespace DynamicContact
     double      compliance = 0, damping = 0, friction = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        const double m          = nodes[i].weight;
-        const double u_nu       = states[i].normal.u_nu;
-        const double u_nu_old   = nodes[i].value(u_old) * nodes[i].normal -
-                                nodes[i].gap;
-        const double w_nu       = states[i].normal.w_nu; // w_e . nu
-        const double P = scheme.is_backward_euler() ?
-                           p.value(u_nu) :
-                           p.discrete_gradient(u_nu_old, u_nu);
-        const double q = states[i].normal.pressure - P;
+        const double m    = nodes[i].weight;
+        const double u_nu = states[i].normal.u_nu;
+        const double u_nu_old =
+          nodes[i].value(u_old) * nodes[i].normal - nodes[i].gap;
+        const double w_nu = states[i].normal.w_nu; // w_e . nu
+        const double P    = scheme.is_backward_euler() ?
+                              p.value(u_nu) :
+                              p.discrete_gradient(u_nu_old, u_nu);
+        const double q    = states[i].normal.pressure - P;
         // The compliance force's work minus the change of Pi: >= 0 for
         // p(u_n) (evaluated without cancellation), 0 for the discrete
         // gradient.
@@ -145,8 +143,7 @@ namespace DynamicContact
         damping += k * m * q * w_nu;
         const Tensor<1, dim> w_e =
           scheme.weighted(nodes[i].value(w), nodes[i].value(w_old));
-        friction +=
-          k * (states[i].friction_force * nodes[i].tangential(w_e));
+        friction += k * (states[i].friction_force * nodes[i].tangential(w_e));
       }
     t.compliance = Utilities::MPI::sum(compliance, comm);
     t.damping    = Utilities::MPI::sum(damping, comm);

@@ -89,7 +89,8 @@ namespace DynamicContact
   scientific(const double x, const unsigned int decimals)
   {
     char buffer[48];
-    std::snprintf(buffer, sizeof(buffer), "%.*e", static_cast<int>(decimals), x);
+    std::snprintf(
+      buffer, sizeof(buffer), "%.*e", static_cast<int>(decimals), x);
     return buffer;
   }
 } // namespace DynamicContact

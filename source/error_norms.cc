@@ -11,12 +11,12 @@ namespace DynamicContact
 {
   template <int dim>
   Errors
-  compute_errors(const Discretization<dim> &      d,
+  compute_errors(const Discretization<dim>      &d,
                  const KelvinVoigtMaterial<dim> &material,
-                 const Scene<dim> &               scene,
-                 const double                     t,
-                 const Vector_t &                 u,
-                 const Vector_t &                 w)
+                 const Scene<dim>               &scene,
+                 const double                    t,
+                 const Vector_t                 &u,
+                 const Vector_t                 &w)
   {
     Function<dim> &u_exact = scene.exact_displacement();
     Function<dim> &w_exact = scene.exact_velocity();
@@ -34,7 +34,7 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>>          w_h(quadrature.size());
     std::vector<Tensor<1, dim>>          grad_u(dim);
     Vector<double>                       w_value(dim);
-    double strain = 0, velocity = 0, elastic = 0;
+    double                               strain = 0, velocity = 0, elastic = 0;
     for (const auto &cell : d.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {

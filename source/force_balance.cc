@@ -11,9 +11,9 @@ namespace DynamicContact
 {
   template <int dim>
   ForceBalanceEvaluator<dim>::ForceBalanceEvaluator(
-    const Discretization<dim> &      discretization,
+    const Discretization<dim>      &discretization,
     const KelvinVoigtMaterial<dim> &material,
-    const Scene<dim> &               scene)
+    const Scene<dim>               &scene)
     : discretization(discretization)
     , material(material)
     , scene(scene)
@@ -67,17 +67,17 @@ namespace DynamicContact
   template <int dim>
   ForceBalance<dim>
   ForceBalanceEvaluator<dim>::compute(
-    const ContactBoundary<dim> &              boundary,
+    const ContactBoundary<dim>               &boundary,
     const std::vector<ContactNodeState<dim>> &states,
     const double                              t,
-    const TimeScheme &                        scheme,
-    const Vector_t &                          u,
-    const Vector_t &                          w_theta,
-    const Vector_t &                          w,
-    const Vector_t &                          w_old) const
+    const TimeScheme                         &scheme,
+    const Vector_t                           &u,
+    const Vector_t                           &w_theta,
+    const Vector_t                           &w,
+    const Vector_t                           &w_old) const
   {
-    const auto &d = discretization;
-    const double k = scheme.time_step();
+    const auto       &d = discretization;
+    const double      k = scheme.time_step();
     ForceBalance<dim> b;
     // Inertia: rho/k sum_i (int phi_i) (w - w_old)_i, per component.
     {
@@ -94,28 +94,28 @@ namespace DynamicContact
     auto load = [&](Function<dim> &f, const Point<dim> &p, Vector<double> &v) {
       scene.step_load(f, p, t, scheme, v);
     };
-    const auto &       fe = d.fe;
-    const unsigned int n  = fe.n_dofs_per_cell();
-    const QGauss<dim>     quadrature(fe.degree + 2);
-    const QGauss<dim - 1> face_quadrature(fe.degree + 2);
-    FEValues<dim>         fe_values(d.mapping,
+    const auto                      &fe = d.fe;
+    const unsigned int               n  = fe.n_dofs_per_cell();
+    const QGauss<dim>                quadrature(fe.degree + 2);
+    const QGauss<dim - 1>            face_quadrature(fe.degree + 2);
+    FEValues<dim>                    fe_values(d.mapping,
                             fe,
                             quadrature,
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
-    FEFaceValues<dim>     fe_face(d.mapping,
+    FEFaceValues<dim>                fe_face(d.mapping,
                               fe,
                               face_quadrature,
                               update_values | update_quadrature_points |
                                 update_JxW_values);
-    const FEValuesExtractors::Vector     displacement(0);
-    std::vector<Tensor<1, dim>>          w_q(quadrature.size()),
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<1, dim>>      w_q(quadrature.size()),
       w_old_q(quadrature.size());
     std::vector<SymmetricTensor<2, dim>> eps_u(quadrature.size()),
       eps_w(quadrature.size());
     std::vector<types::global_dof_index> dofs(n);
     Vector<double>                       value(dim), residual(n);
-    const bool body_force = scene.has_body_force();
+    const bool                           body_force = scene.has_body_force();
 
     // Constrained by a clamped or roller condition (not a hanging node).
     auto supported = [&](const types::global_dof_index dof) {
@@ -159,7 +159,8 @@ namespace DynamicContact
                     material.stress(eps_u[q], eps_w[q]);
                   for (unsigned int i = 0; i < n; ++i)
                     {
-                      const unsigned int c = fe.system_to_component_index(i).first;
+                      const unsigned int c =
+                        fe.system_to_component_index(i).first;
                       residual(i) +=
                         ((a[c] - value(c)) * fe_values.shape_value(i, q) +
                          scalar_product(
@@ -191,7 +192,8 @@ namespace DynamicContact
           if (has_support)
             for (unsigned int i = 0; i < n; ++i)
               if (supported(dofs[i]))
-                b.reaction[fe.system_to_component_index(i).first] += residual(i);
+                b.reaction[fe.system_to_component_index(i).first] +=
+                  residual(i);
         }
 
     // The foundation's force, and its part at supported components.

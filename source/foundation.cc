@@ -19,20 +19,22 @@ namespace DynamicContact
 
     /** Declare a capped ramp's slope entry @p slope and its cap. */
     void
-    declare_ramp(ParameterHandler & prm,
+    declare_ramp(ParameterHandler  &prm,
                  const std::string &slope,
                  const std::string &slope_default,
                  const std::string &slope_documentation,
                  const std::string &cap_documentation)
     {
-      prm.declare_entry(slope, slope_default, Patterns::Double(),
+      prm.declare_entry(slope,
+                        slope_default,
+                        Patterns::Double(),
                         slope_documentation);
       prm.declare_entry("Cap", "1e17", Patterns::Double(), cap_documentation);
     }
 
     /** The capped ramp of the entries (@p path names them in errors). */
     CappedRamp
-    parse_ramp(ParameterHandler & prm,
+    parse_ramp(ParameterHandler  &prm,
                const std::string &slope_entry,
                const std::string &path)
     {
@@ -65,9 +67,8 @@ namespace DynamicContact
   void
   CappedRampLaw<NormalLaw>::parse_parameters(ParameterHandler &prm)
   {
-    ramp = parse_ramp(prm,
-                      "Stiffness",
-                      "Foundation/Normal compliance/Capped ramp/");
+    ramp =
+      parse_ramp(prm, "Stiffness", "Foundation/Normal compliance/Capped ramp/");
   }
 
   template <>
@@ -104,13 +105,13 @@ namespace DynamicContact
   Foundation::declare_parameters(ParameterHandler &prm)
   {
     {
-    const ScopedSubsection section(prm, "Normal compliance");
-    PluginRegistry<NormalLaw>::instance().declare_parameters(
-      prm,
-      "Law",
-      "capped ramp",
-      "The normal compliance p(u_nu) of the penetration u_nu, with its "
-      "parameters in the subsection of the law's name:");
+      const ScopedSubsection section(prm, "Normal compliance");
+      PluginRegistry<NormalLaw>::instance().declare_parameters(
+        prm,
+        "Law",
+        "capped ramp",
+        "The normal compliance p(u_nu) of the penetration u_nu, with its "
+        "parameters in the subsection of the law's name:");
     }
 
     const ScopedSubsection section(prm, "Normal damping");
@@ -138,7 +139,7 @@ namespace DynamicContact
       const ScopedSubsection section(prm, "Normal compliance");
       p = PluginRegistry<NormalLaw>::instance().create(prm.get("Law"), prm);
     }
-    const ScopedSubsection section(prm, "Normal damping");
+    const ScopedSubsection            section(prm, "Normal damping");
     std::shared_ptr<const DampingLaw> q =
       PluginRegistry<DampingLaw>::instance().create(prm.get("Law"), prm);
     return Foundation(p, q, prm.get_bool("Only in contact"));

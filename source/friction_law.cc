@@ -47,8 +47,8 @@ namespace DynamicContact
         AssertThrow(std::isfinite(mu) && mu >= 0,
                     ExcMessage("Friction: the friction coefficient must be "
                                "finite and >= 0, but mu(" +
-                               std::to_string(s) + ") = " +
-                               std::to_string(mu) + "."));
+                               std::to_string(s) + ") = " + std::to_string(mu) +
+                               "."));
       }
   }
 
@@ -150,8 +150,9 @@ namespace DynamicContact
                            "the dynamic coefficient (a >= b), got a = " +
                            str(a) + "."));
     AssertThrow(std::isfinite(alpha) && alpha >= 0,
-                ExcMessage("Friction/Exponential/Decay rate must be >= 0, got " +
-                           str(alpha) + "."));
+                ExcMessage(
+                  "Friction/Exponential/Decay rate must be >= 0, got " +
+                  str(alpha) + "."));
   }
 
   DYNAMIC_CONTACT_REGISTER(FrictionLaw,
@@ -242,8 +243,8 @@ namespace DynamicContact
       {
         const auto terms = Utilities::split_string_list(pair, '=');
         AssertThrow(terms.size() == 2,
-                    ExcMessage("Friction/Expression/Function constants: '" + pair +
-                               "' is not of the form name=value."));
+                    ExcMessage("Friction/Expression/Function constants: '" +
+                               pair + "' is not of the form name=value."));
         try
           {
             constant_map[terms[0]] = Utilities::string_to_double(terms[1]);
@@ -263,9 +264,10 @@ namespace DynamicContact
       }
     catch (const std::exception &e)
       {
-        AssertThrow(false,
-                    ExcMessage("Friction/Expression/Function expression: cannot parse '" +
-                               expression + "': " + expression_error_message(e)));
+        AssertThrow(
+          false,
+          ExcMessage("Friction/Expression/Function expression: cannot parse '" +
+                     expression + "': " + expression_error_message(e)));
       }
   }
 

@@ -123,14 +123,13 @@ namespace DynamicContact
     std::ifstream in(file, std::ios::binary);
     if (!in)
       fail(where(file) + ": cannot open the file.");
-    GmshFileInfo info;
-    std::string  line;
+    GmshFileInfo       info;
+    std::string        line;
     unsigned long long line_number = 0;
-    auto next = [&](const std::string &section) -> std::string & {
+    auto               next = [&](const std::string &section) -> std::string               &{
       if (!std::getline(in, line))
-        fail(where(file) + " ends inside its " + section +
-             " section (line " + std::to_string(line_number) +
-             "): the file is incomplete.");
+        fail(where(file) + " ends inside its " + section + " section (line " +
+             std::to_string(line_number) + "): the file is incomplete.");
       ++line_number;
       if (!line.empty() && line.back() == '\r')
         line.pop_back();
@@ -189,7 +188,7 @@ namespace DynamicContact
               malformed(section);
             for (unsigned long i = 0; i < n; ++i)
               {
-                std::istringstream  entry(next(section));
+                std::istringstream         entry(next(section));
                 GmshFileInfo::PhysicalName name;
                 if (!(entry >> name.dimension >> name.tag))
                   malformed(section);
@@ -233,7 +232,7 @@ namespace DynamicContact
                     // 4.1: entityDim entityTag elementType count;
                     // 4.0: entityTag entityDim elementType count.
                     long long          a = 0, c = 0;
-                    int                type = 0;
+                    int                type  = 0;
                     unsigned long long count = 0;
                     if (!(e >> a >> c >> type >> count))
                       malformed(section);
@@ -257,7 +256,7 @@ namespace DynamicContact
 
   void
   check_gmsh_cells(const GmshFileInfo &info,
-                   const std::string & file,
+                   const std::string  &file,
                    const unsigned int  dim)
   {
     const std::string cells = dim == 2 ? "quadrilaterals" : "hexahedra";
@@ -311,8 +310,7 @@ namespace DynamicContact
     for (const auto &[type, n] : info.element_types)
       if (n > 0 && is_first_order_simplex_or_wedge(type) &&
           element_dimension(type) >= static_cast<int>(dim) - 1 &&
-          (simplex < 0 ||
-           element_dimension(type) > element_dimension(simplex)))
+          (simplex < 0 || element_dimension(type) > element_dimension(simplex)))
         simplex = type;
     if (simplex >= 0)
       {

@@ -15,8 +15,8 @@ main(int argc, char *argv[])
 {
   using namespace DynamicContact;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm comm = MPI_COMM_WORLD;
-  const bool     root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  const MPI_Comm                           comm = MPI_COMM_WORLD;
+  const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
   // No error leaves a process waiting, and a signal stops the run after a
   // step with a checkpoint (README, "What can go wrong").
   initialize_error_handling(comm);
@@ -26,8 +26,7 @@ main(int argc, char *argv[])
   if (!command_line.error.empty())
     {
       if (root)
-        std::cerr << "dynamic-contact: error: " << command_line.error
-                  << "\n\n"
+        std::cerr << "dynamic-contact: error: " << command_line.error << "\n\n"
                   << CommandLine::usage();
       return 2;
     }
@@ -99,10 +98,9 @@ main(int argc, char *argv[])
     }
   catch (const std::exception &e)
     {
-      const std::string message =
-        dynamic_cast<const std::bad_alloc *>(&e) ?
-          "out of memory (std::bad_alloc)" :
-          error_message(e);
+      const std::string message = dynamic_cast<const std::bad_alloc *>(&e) ?
+                                    "out of memory (std::bad_alloc)" :
+                                    error_message(e);
       if (!every_process_failed())
         abort_run(message);
       if (root)

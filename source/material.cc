@@ -33,19 +33,18 @@ namespace DynamicContact
 
 
   template <int dim>
-  KelvinVoigtMaterial<dim>::KelvinVoigtMaterial(
-    const Parameters::Material &p)
+  KelvinVoigtMaterial<dim>::KelvinVoigtMaterial(const Parameters::Material &p)
     : rho(p.density)
-    , plane_strain(dim == 2 &&
-                   p.plane_model == Parameters::Material::PlaneModel::plane_strain)
+    , plane_strain(dim == 2 && p.plane_model ==
+                                 Parameters::Material::PlaneModel::plane_strain)
   {
     const double E     = p.young_modulus;
     const double kappa = p.poisson_ratio;
     // Eq. (87): lambda = E kappa/((1+kappa)(1-2 kappa)), 2 mu = E/(1+kappa).
     const double lambda = E * kappa / ((1 + kappa) * (1 - 2 * kappa));
     lame_mu             = E / (2 * (1 + kappa));
-    lame_lambda = effective_lambda(lambda, lame_mu, p.plane_model, dim);
-    elasticity_tensor = isotropic_tensor<dim>(lame_lambda, lame_mu);
+    lame_lambda         = effective_lambda(lambda, lame_mu, p.plane_model, dim);
+    elasticity_tensor   = isotropic_tensor<dim>(lame_lambda, lame_mu);
 
     viscous = (p.viscosity_lambda != 0 || p.viscosity_mu != 0);
     viscous_lambda =

@@ -17,9 +17,9 @@ namespace DynamicContact
   template <int dim>
   MeshAdaptation<dim>::MeshAdaptation(
     const Parameters::MeshRefinement &parameters,
-    const Scene<dim> &                 scene,
-    Discretization<dim> &              discretization,
-    ParameterHandler &                 prm)
+    const Scene<dim>                 &scene,
+    Discretization<dim>              &discretization,
+    ParameterHandler                 &prm)
     : parameters(parameters)
     , scene(scene)
     , discretization(discretization)
@@ -55,10 +55,10 @@ namespace DynamicContact
                                   const double                   t1,
                                   const double                   k,
                                   const std::vector<Point<dim>> &contact_points,
-                                  const Vector_t &               u,
-                                  const Vector_t &               w)
+                                  const Vector_t                &u,
+                                  const Vector_t                &w)
   {
-    auto &             tria = discretization.triangulation;
+    auto              &tria      = discretization.triangulation;
     const unsigned int min_level = parameters.minimum_level;
 
     // The levels each strategy asks for (collective, once per cycle).
@@ -81,12 +81,12 @@ namespace DynamicContact
               int level = min_level;
               for (const auto &asked : levels)
                 level = std::max(level, asked(cell, max_level));
-              level = std::clamp(level,
+              level                              = std::clamp(level,
                                  static_cast<int>(min_level),
                                  static_cast<int>(max_level));
               desired[cell->active_cell_index()] = level;
-              estimate += std::pow(2., dim * (level - static_cast<int>(
-                                                        cell->level())));
+              estimate +=
+                std::pow(2., dim * (level - static_cast<int>(cell->level())));
             }
         estimate = Utilities::MPI::sum(estimate, discretization.comm);
         if (parameters.cell_budget == 0 || estimate <= parameters.cell_budget ||
@@ -119,7 +119,8 @@ namespace DynamicContact
   MeshAdaptation<dim>::fingerprint() const
   {
     double levels = 0;
-    for (const auto &cell : discretization.triangulation.active_cell_iterators())
+    for (const auto &cell :
+         discretization.triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         levels += cell->level();
     return {discretization.triangulation.n_global_active_cells(),
@@ -129,9 +130,9 @@ namespace DynamicContact
 
   template <int dim>
   void
-  refine_and_transfer(Discretization<dim> &          d,
+  refine_and_transfer(Discretization<dim>           &d,
                       const std::vector<Vector_t *> &fields,
-                      const std::function<void()> &  after_refinement)
+                      const std::function<void()>   &after_refinement)
   {
     FieldTransfer<dim, Vector_t> transfer(d, fields);
     transfer.prepare();

@@ -16,9 +16,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <iomanip>
 #include <map>
 #include <set>
-#include <iomanip>
 #include <sstream>
 
 namespace DynamicContact
@@ -99,24 +99,24 @@ namespace DynamicContact
   // ----------------------------------------------------------- contact csv
   template <int dim>
   void
-  write_contact_csv(OutputDirectory &                         directory,
-                    const std::string &                       name,
+  write_contact_csv(OutputDirectory                          &directory,
+                    const std::string                        &name,
                     const double                              time,
-                    const ContactBoundary<dim> &              boundary,
+                    const ContactBoundary<dim>               &boundary,
                     const std::vector<ContactNodeState<dim>> &states,
-                    const Vector_t &                          u,
-                    const Vector_t &                          w,
+                    const Vector_t                           &u,
+                    const Vector_t                           &w,
                     const bool                                friction,
                     const MPI_Comm                            comm)
   {
-    const auto &                     nodes = boundary.nodes();
+    const auto                      &nodes = boundary.nodes();
     std::vector<std::vector<double>> rows;
     rows.reserve(nodes.size());
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        const auto &         node = nodes[i];
-        const auto &         s    = states[i];
-        std::vector<double>  row;
+        const auto         &node = nodes[i];
+        const auto         &s    = states[i];
+        std::vector<double> row;
         for (unsigned int d = 0; d < dim; ++d)
           row.push_back(node.position[d]);
         row.push_back(s.normal.u_nu);
@@ -178,8 +178,9 @@ namespace DynamicContact
           for (unsigned int c = 0; c < n_numbers; ++c)
             out += "," + scientific(row[c], 10);
           if (friction)
-            out += std::string(",") + to_string(static_cast<ContactState>(
-                           static_cast<unsigned char>(row.back())));
+            out +=
+              std::string(",") + to_string(static_cast<ContactState>(
+                                   static_cast<unsigned char>(row.back())));
           out += '\n';
         }
       directory.claim(name);
@@ -224,9 +225,9 @@ namespace DynamicContact
     std::string
     empty_piece(const Out &out, const DataOutBase::VtkFlags &flags)
     {
-      const auto          names = out.get_dataset_names();
-      std::vector<bool>   in_range(names.size(), false);
-      std::ostringstream  s;
+      const auto         names = out.get_dataset_names();
+      std::vector<bool>  in_range(names.size(), false);
+      std::ostringstream s;
       s << std::setprecision(9)
         << "<?xml version=\"1.0\"?>\n"
            "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
@@ -349,7 +350,7 @@ namespace DynamicContact
 
 
   template <int dim>
-  VtuWriter<dim>::VtuWriter(OutputDirectory &                      directory,
+  VtuWriter<dim>::VtuWriter(OutputDirectory                       &directory,
                             const MPI_Comm                         comm,
                             const std::vector<types::boundary_id> &contact_ids,
                             const unsigned int                     subdivisions)
@@ -362,13 +363,13 @@ namespace DynamicContact
 
   template <int dim>
   std::vector<std::string>
-  VtuWriter<dim>::file_names(const std::string & base,
-                             const unsigned int  step,
-                             const unsigned int  n_processes)
+  VtuWriter<dim>::file_names(const std::string &base,
+                             const unsigned int step,
+                             const unsigned int n_processes)
   {
     char number[32];
     std::snprintf(number, sizeof(number), "_%05u", step);
-    const std::string        stem = base + number;
+    const std::string        stem  = base + number;
     std::vector<std::string> names = {stem + ".pvtu"};
     for (unsigned int p = 0; p < n_processes; ++p)
       names.push_back(stem + "." + std::to_string(p) + ".vtu");
@@ -412,12 +413,12 @@ namespace DynamicContact
   void
   VtuWriter<dim>::write(const unsigned int                        step,
                         const double                              time,
-                        const Discretization<dim> &               d,
-                        const KelvinVoigtMaterial<dim> &          material,
-                        const ContactBoundary<dim> &              boundary,
+                        const Discretization<dim>                &d,
+                        const KelvinVoigtMaterial<dim>           &material,
+                        const ContactBoundary<dim>               &boundary,
                         const std::vector<ContactNodeState<dim>> &states,
-                        const Vector_t &                          u,
-                        const Vector_t &                          w,
+                        const Vector_t                           &u,
+                        const Vector_t                           &w,
                         const bool                                friction)
   {
     const Vector_t u_ghosted = d.expanded(u), w_ghosted = d.expanded(w);
@@ -443,8 +444,8 @@ namespace DynamicContact
       s_slip_rate,
       n_scalar
     };
-    std::array<Vector_t, n_vectorial>                      vectorial;
-    std::array<TrilinosWrappers::MPI::Vector, n_scalar>    scalar;
+    std::array<Vector_t, n_vectorial>                   vectorial;
+    std::array<TrilinosWrappers::MPI::Vector, n_scalar> scalar;
     {
       std::array<Vector_t, n_vectorial>                   owned_v;
       std::array<TrilinosWrappers::MPI::Vector, n_scalar> owned_s;
@@ -453,13 +454,13 @@ namespace DynamicContact
       for (auto &v : owned_s)
         v.reinit(d.scalar_locally_owned, d.comm);
 
-      const auto &                         nodes = boundary.nodes();
-      std::vector<types::global_dof_index> vi, si;
+      const auto                                  &nodes = boundary.nodes();
+      std::vector<types::global_dof_index>         vi, si;
       std::array<std::vector<double>, n_vectorial> vv;
       std::array<std::vector<double>, n_scalar>    sv;
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
-          const auto &         s        = states[i];
+          const auto          &s = states[i];
           const Tensor<1, dim> friction_traction =
             -s.friction_force / nodes[i].weight;
           const Tensor<1, dim> traction =
@@ -507,8 +508,8 @@ namespace DynamicContact
     // Stress: the cell averages of sigma = E eps(u) + C eps(w), as a
     // piecewise constant (DG0) tensor field, and the von Mises stress (and
     // in 2D sigma_zz) as cell data.
-    const FESystem<dim>   stress_fe(FE_DGQ<dim>(0), dim * dim);
-    DoFHandler<dim>       stress_dofs(d.triangulation);
+    const FESystem<dim> stress_fe(FE_DGQ<dim>(0), dim * dim);
+    DoFHandler<dim>     stress_dofs(d.triangulation);
     stress_dofs.distribute_dofs(stress_fe);
     TrilinosWrappers::MPI::Vector stress_owned, stress;
     stress_owned.reinit(stress_dofs.locally_owned_dofs(), d.comm);
@@ -545,9 +546,9 @@ namespace DynamicContact
             sigma /= volume;
             sigma_zz /= volume;
             const unsigned int index = cell->active_cell_index();
-            von_mises(index) = von_mises_stress(sigma, sigma_zz);
-            stress_zz(index) = sigma_zz;
-            subdomain(index) = cell->subdomain_id();
+            von_mises(index)         = von_mises_stress(sigma, sigma_zz);
+            stress_zz(index)         = sigma_zz;
+            subdomain(index)         = cell->subdomain_id();
 
             typename DoFHandler<dim>::active_cell_iterator stress_cell(
               &d.triangulation, cell->level(), cell->index(), &stress_dofs);
@@ -668,8 +669,8 @@ namespace DynamicContact
 
     // The pieces of each process and the records of rank 0 (the names of
     // DataOut::write_vtu_with_pvtu_record), each write checked.
-    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-    const unsigned int n    = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank           = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int n              = Utilities::MPI::n_mpi_processes(comm);
     const auto         solution_names = file_names("solution", step, n);
     const auto         surface_names  = file_names("contact_surface", step, n);
     collectively(comm, [&]() {

@@ -41,7 +41,7 @@ namespace DynamicContact
       return t;
     }();
     std::uint32_t c     = crc ^ 0xFFFFFFFFu;
-    const auto *  bytes = static_cast<const unsigned char *>(data);
+    const auto   *bytes = static_cast<const unsigned char *>(data);
     for (std::size_t i = 0; i < n; ++i)
       c = table[(c ^ bytes[i]) & 0xFFu] ^ (c >> 8);
     return c ^ 0xFFFFFFFFu;
@@ -86,7 +86,7 @@ namespace DynamicContact
     /** DYNAMIC_CONTACT_DISK_FULL, see the header. */
     struct DiskFullInjection
     {
-      bool           active = false;
+      bool           active      = false;
       bool           budget_mode = false;
       std::uintmax_t budget      = 0;
       std::string    name;
@@ -187,7 +187,7 @@ namespace DynamicContact
     /** Write all of @p n bytes (or fail: partly written, as a full disk). */
     void
     write_all(const int          fd,
-              const char *       data,
+              const char        *data,
               const std::size_t  n,
               const std::string &file)
     {
@@ -290,9 +290,9 @@ namespace DynamicContact
 
 
   void
-  reserve_space(const std::string &  directory,
+  reserve_space(const std::string   &directory,
                 const std::uintmax_t bytes,
-                const std::string &  file_for_message)
+                const std::string   &file_for_message)
   {
     if (!injection().fits(file_for_message, bytes))
       fail(file_for_message, ENOSPC);
@@ -302,15 +302,18 @@ namespace DynamicContact
     if (fd < 0)
       fail(file_for_message, errno);
     const int error =
-      ::posix_fallocate(fd, 0, static_cast<off_t>(std::max<std::uintmax_t>(bytes, 1)));
+      ::posix_fallocate(fd,
+                        0,
+                        static_cast<off_t>(std::max<std::uintmax_t>(bytes, 1)));
     ::close(fd);
     ::unlink(scratch.c_str());
     // EINVAL/EOPNOTSUPP: the file system cannot reserve; go on unchecked.
     if (error == ENOSPC || error == EDQUOT || error == EFBIG || error == EIO)
-      throw std::runtime_error(cannot_write(
-        file_for_message,
-        std::string(std::strerror(error)) + " (the checkpoint needs about " +
-          std::to_string(bytes / 1024 + 1) + " kB)"));
+      throw std::runtime_error(cannot_write(file_for_message,
+                                            std::string(std::strerror(error)) +
+                                              " (the checkpoint needs about " +
+                                              std::to_string(bytes / 1024 + 1) +
+                                              " kB)"));
   }
 
 
@@ -328,10 +331,10 @@ namespace DynamicContact
     if (fd >= 0)
       ::close(fd);
     name = file;
-    fd   = ::open(file.c_str(),
-                O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC |
-                  (append ? 0 : O_TRUNC),
-                0644);
+    fd =
+      ::open(file.c_str(),
+             O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (append ? 0 : O_TRUNC),
+             0644);
     if (fd < 0)
       fail(file, errno);
     struct stat s;
@@ -472,8 +475,7 @@ namespace DynamicContact
   } // namespace
 
 
-  OutputDirectory::OutputDirectory(const std::string &path,
-                                   const MPI_Comm     comm)
+  OutputDirectory::OutputDirectory(const std::string &path, const MPI_Comm comm)
     : directory(path)
     , comm(comm)
     , root(Utilities::MPI::this_mpi_process(comm) == 0)
@@ -581,15 +583,14 @@ namespace DynamicContact
               "another Output/Directory.");
 
           // One run at a time.
-          lock_fd = ::open(file(lock_name).c_str(),
-                           O_RDWR | O_CREAT | O_CLOEXEC,
-                           0644);
+          lock_fd =
+            ::open(file(lock_name).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
           if (lock_fd < 0)
             throw std::runtime_error(
               cannot_write(file(lock_name), std::strerror(errno)));
           if (::flock(lock_fd, LOCK_EX | LOCK_NB) != 0)
             {
-              const int  lock_error = errno;
+              const int   lock_error = errno;
               std::string holder;
               {
                 std::ifstream in(file(lock_name));
@@ -604,13 +605,11 @@ namespace DynamicContact
                   (holder.empty() ? "" : " (" + holder + ")") +
                   ": two runs must not write into one directory; wait for "
                   "it to end, or choose another Output/Directory.");
-              throw std::runtime_error(
-                "cannot lock " + file(lock_name) + ": " +
-                std::strerror(lock_error));
+              throw std::runtime_error("cannot lock " + file(lock_name) + ": " +
+                                       std::strerror(lock_error));
             }
           {
-            const std::string holder = "process " +
-                                       std::to_string(::getpid()) +
+            const std::string holder = "process " + std::to_string(::getpid()) +
                                        " on host " + host_name() + "\n";
             if (::ftruncate(lock_fd, 0) != 0 ||
                 ::pwrite(lock_fd, holder.data(), holder.size(), 0) !=

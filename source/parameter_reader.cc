@@ -8,8 +8,8 @@
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/gmsh_file.h>
-#include <dynamic_contact/plugins.h>
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/plugins.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -60,21 +60,20 @@ namespace DynamicContact
           "The parameter file '" + file + "'" :
           "The file '" + file + "' (included by '" + included_by + "')";
       const std::string cannot_open =
-        included_by.empty() ?
-          "Cannot open the parameter file '" + file + "'." :
-          "Cannot open the file '" + file + "' (included by '" +
-            included_by + "').";
+        included_by.empty() ? "Cannot open the parameter file '" + file + "'." :
+                              "Cannot open the file '" + file +
+                                "' (included by '" + included_by + "').";
       std::error_code ec;
       const auto      status = fs::status(file, ec);
       AssertThrow(!ec && fs::exists(status), ExcMessage(cannot_open));
       AssertThrow(!fs::is_directory(status),
                   ExcMessage(what + " is a directory, not a parameter file."));
-      const std::string kind =
-        fs::is_fifo(status)            ? "a named pipe" :
-        fs::is_socket(status)          ? "a socket" :
-        fs::is_character_file(status)  ? "a character device" :
-        fs::is_block_file(status)      ? "a block device" :
-                                         "not a regular file";
+      const std::string kind = fs::is_fifo(status)   ? "a named pipe" :
+                               fs::is_socket(status) ? "a socket" :
+                               fs::is_character_file(status) ?
+                                                       "a character device" :
+                               fs::is_block_file(status) ? "a block device" :
+                                                           "not a regular file";
       AssertThrow(fs::is_regular_file(status),
                   ExcMessage(what + " is " + kind +
                              ", not a regular file: the program reads its "
@@ -91,7 +90,7 @@ namespace DynamicContact
      * would recurse without end).
      */
     void
-    check_includes(const std::string &       file,
+    check_includes(const std::string        &file,
                    std::vector<std::string> &chain,
                    std::vector<std::string> &shown)
     {
@@ -118,9 +117,9 @@ namespace DynamicContact
                 path += (path.empty() ? "" : " -> ") + s;
               AssertThrow(false,
                           ExcMessage("The parameter file '" + shown[0] +
-                                     "' includes itself (" + path +
-                                     ", line " + std::to_string(number) +
-                                     " of '" + file + "')."));
+                                     "' includes itself (" + path + ", line " +
+                                     std::to_string(number) + " of '" + file +
+                                     "')."));
             }
           AssertThrow(chain.size() < 32,
                       ExcMessage("The parameter file '" + shown[0] +
@@ -139,8 +138,8 @@ namespace DynamicContact
      * XML.
      */
     unsigned int
-    count_structured_values(const std::string &parameter_file,
-                            const std::string &text,
+    count_structured_values(const std::string    &parameter_file,
+                            const std::string    &text,
                             const ParameterFormat format)
     {
       namespace pt = boost::property_tree;
@@ -155,13 +154,12 @@ namespace DynamicContact
         }
       catch (const pt::file_parser_error &e)
         {
-          AssertThrow(false,
-                      ExcMessage("The parameter file '" + parameter_file +
-                                 "' is not valid " +
-                                 (format == ParameterFormat::json ? "JSON" :
-                                                                    "XML") +
-                                 " (line " + std::to_string(e.line()) +
-                                 ": " + e.message() + ")."));
+          AssertThrow(
+            false,
+            ExcMessage(
+              "The parameter file '" + parameter_file + "' is not valid " +
+              (format == ParameterFormat::json ? "JSON" : "XML") + " (line " +
+              std::to_string(e.line()) + ": " + e.message() + ")."));
         }
       const std::function<unsigned int(const pt::ptree &)> leaves =
         [&](const pt::ptree &t) -> unsigned int {
@@ -203,8 +201,7 @@ namespace DynamicContact
           while (std::getline(lines, line))
             {
               line = Utilities::trim(line.substr(0, line.find('#')));
-              if (line.rfind("set ", 0) == 0 ||
-                  line.rfind("include ", 0) == 0)
+              if (line.rfind("set ", 0) == 0 || line.rfind("include ", 0) == 0)
                 sets_something = true;
             }
         }
@@ -347,24 +344,26 @@ namespace DynamicContact
       std::smatch line_match;
       if (!std::regex_search(message,
                              line_match,
-                             std::regex(R"(Line <(\d+)> of file <[^:>]*>?:\s*)")))
+                             std::regex(
+                               R"(Line <(\d+)> of file <[^:>]*>?:\s*)")))
         return "'" + file + "': " + message;
-      const unsigned int line  = std::stoi(line_match[1].str());
-      const std::string  rest  = line_match.suffix().str();
-      const std::string  where = "'" + file + "', line " +
-                                std::to_string(line) + ": ";
-      const std::string  path  = subsection_path(file, line);
-      std::smatch        m;
-      if (std::regex_search(
-            rest,
-            m,
-            std::regex(R"(No entry with name <([^>]*)> was declared)")))
+      const unsigned int line = std::stoi(line_match[1].str());
+      const std::string  rest = line_match.suffix().str();
+      const std::string  where =
+        "'" + file + "', line " + std::to_string(line) + ": ";
+      const std::string path = subsection_path(file, line);
+      std::smatch       m;
+      if (std::regex_search(rest,
+                            m,
+                            std::regex(
+                              R"(No entry with name <([^>]*)> was declared)")))
         return where + unknown_entry(path + m[1].str(), file);
-      if (std::regex_search(
-            rest,
-            m,
-            std::regex(
-              R"(The entry value (.*) for the entry named (.*) does not match the given pattern: (.*))")))
+      if (
+        std::regex_search(
+          rest,
+          m,
+          std::regex(
+            R"(The entry value (.*) for the entry named (.*) does not match the given pattern: (.*))")))
         return where + path + Utilities::trim(m[2].str()) + " = '" +
                Utilities::trim(m[1].str()) + "' is not " +
                readable_pattern(Utilities::trim(m[3].str())) + ".";
@@ -372,7 +371,7 @@ namespace DynamicContact
             rest, m, std::regex(R"(no such subsection to be entered: (.*))")))
         {
           // deal.II names the whole path, its sections joined by '.'.
-          std::string name = Utilities::trim(m[1].str());
+          std::string name        = Utilities::trim(m[1].str());
           std::string dotted_path = path;
           std::replace(dotted_path.begin(), dotted_path.end(), '/', '.');
           if (!dotted_path.empty() && name.rfind(dotted_path, 0) == 0)
@@ -396,11 +395,11 @@ namespace DynamicContact
      * @p reason says why, naming the entry as Section/Entry.
      */
     SetResult
-    set_entry(ParameterHandler &              prm,
+    set_entry(ParameterHandler               &prm,
               const std::vector<std::string> &sections,
-              const std::string &             entry,
-              const std::string &             value,
-              std::string &                   reason)
+              const std::string              &entry,
+              const std::string              &value,
+              std::string                    &reason)
     {
       unsigned int entered = 0;
       try
@@ -451,9 +450,8 @@ namespace DynamicContact
             std::isxdigit(static_cast<unsigned char>(name[i + 1])) &&
             std::isxdigit(static_cast<unsigned char>(name[i + 2])))
           {
-            result += static_cast<char>(std::stoi(name.substr(i + 1, 2),
-                                                  nullptr,
-                                                  16));
+            result +=
+              static_cast<char>(std::stoi(name.substr(i + 1, 2), nullptr, 16));
             i += 2;
           }
         else
@@ -470,18 +468,18 @@ namespace DynamicContact
      * set one by one so that an error names the entry as Section/Entry.
      */
     void
-    set_entries(ParameterHandler &                  prm,
+    set_entries(ParameterHandler                  &prm,
                 const boost::property_tree::ptree &node,
-                std::vector<std::string> &          path,
-                const std::string &                 file,
-                const bool                          xml,
-                const bool                          skip_undefined)
+                std::vector<std::string>          &path,
+                const std::string                 &file,
+                const bool                         xml,
+                const bool                         skip_undefined)
     {
       for (const auto &[key, child] : node)
         {
           if (key == "<xmlattr>" || key == "<xmlcomment>")
             continue;
-          const std::string name = xml ? demangle(key) : key;
+          const std::string name       = xml ? demangle(key) : key;
           const auto        value_node = child.find("value");
           if (value_node == child.not_found() && !child.empty())
             {
@@ -505,7 +503,7 @@ namespace DynamicContact
     }
 
     void
-    parse_structured_file(ParameterHandler & prm,
+    parse_structured_file(ParameterHandler  &prm,
                           const std::string &parameter_file,
                           const bool         xml,
                           const bool         skip_undefined)
@@ -535,7 +533,7 @@ namespace DynamicContact
     }
 
     void
-    parse_file(ParameterHandler & prm,
+    parse_file(ParameterHandler  &prm,
                const std::string &parameter_file,
                const bool         skip_undefined)
     {
@@ -609,7 +607,7 @@ namespace DynamicContact
 
 
   unsigned int
-  read_dimension(const std::string &             parameter_file,
+  read_dimension(const std::string              &parameter_file,
                  const std::vector<std::string> &overrides)
   {
     check_readable(parameter_file);
@@ -624,9 +622,9 @@ namespace DynamicContact
 
 
   RunParameters
-  read_parameters(const std::string &             parameter_file,
+  read_parameters(const std::string              &parameter_file,
                   const std::vector<std::string> &overrides,
-                  ParameterHandler &              prm)
+                  ParameterHandler               &prm)
   {
     const unsigned int dim = read_dimension(parameter_file, overrides);
     RunParameters::declare_parameters(prm, dim);

@@ -34,10 +34,10 @@ namespace DynamicContact
      * from the mesh file when the first name is met).
      */
     std::vector<types::boundary_id>
-    parse_ids(const std::string &                                        text,
-              const std::string &                                        list,
-              const Parameters::Geometry &                               geometry,
-              const unsigned int                                         dim,
+    parse_ids(const std::string          &text,
+              const std::string          &list,
+              const Parameters::Geometry &geometry,
+              const unsigned int          dim,
               std::optional<std::map<std::string, types::boundary_id>> &names);
 
     /**
@@ -45,7 +45,7 @@ namespace DynamicContact
      * the format of Functions::ParsedFunction.
      */
     void
-    declare_function(ParameterHandler & prm,
+    declare_function(ParameterHandler  &prm,
                      const std::string &name,
                      const unsigned int dim,
                      const std::string &default_expression,

@@ -5,8 +5,8 @@
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/gmsh_file.h>
-#include <dynamic_contact/plugins.h>
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/plugins.h>
 
 #include "parameter_tools.h"
 
@@ -47,10 +47,10 @@ namespace DynamicContact
      * @p mesh_file when the first name is met).
      */
     std::vector<types::boundary_id>
-    parse_ids(const std::string &                         text,
-              const std::string &                         list,
-              const Parameters::Geometry &                geometry,
-              const unsigned int                          dim,
+    parse_ids(const std::string          &text,
+              const std::string          &list,
+              const Parameters::Geometry &geometry,
+              const unsigned int          dim,
               std::optional<std::map<std::string, types::boundary_id>> &names)
     {
       std::vector<types::boundary_id> ids;
@@ -67,8 +67,8 @@ namespace DynamicContact
               ids.push_back(static_cast<types::boundary_id>(id));
               continue;
             }
-          require(!item.empty(), entry + " = '" + text +
-                                   "': an empty item in the list.");
+          require(!item.empty(),
+                  entry + " = '" + text + "': an empty item in the list.");
           require(geometry.type == Parameters::Geometry::Type::gmsh,
                   entry + ": '" + item +
                     "' is not a boundary id (a number from 0 to 255); names "
@@ -116,7 +116,7 @@ namespace DynamicContact
      * "Function expression", "Variable names").
      */
     void
-    declare_function(ParameterHandler & prm,
+    declare_function(ParameterHandler  &prm,
                      const std::string &name,
                      const unsigned int dim,
                      const std::string &default_expression,
@@ -201,14 +201,14 @@ namespace DynamicContact
     }
 
     void
-    Geometry::parse_parameters(ParameterHandler & prm,
+    Geometry::parse_parameters(ParameterHandler  &prm,
                                const unsigned int dim,
                                const std::string &prm_directory)
     {
       prm.enter_subsection("Geometry");
       {
-        type = (prm.get("Type") == "gmsh" ? Type::gmsh : Type::rectangle);
-        lower_left  = Utilities::string_to_double(
+        type       = (prm.get("Type") == "gmsh" ? Type::gmsh : Type::rectangle);
+        lower_left = Utilities::string_to_double(
           Utilities::split_string_list(prm.get("Lower left")));
         upper_right = Utilities::string_to_double(
           Utilities::split_string_list(prm.get("Upper right")));
@@ -266,7 +266,7 @@ namespace DynamicContact
 
     // -------------------------------------------------- BoundaryConditions
     void
-    BoundaryConditions::declare_parameters(ParameterHandler & prm,
+    BoundaryConditions::declare_parameters(ParameterHandler  &prm,
                                            const unsigned int dim)
     {
       // Numbers 0 to 255 or names of Gmsh physical groups: checked by
@@ -320,8 +320,8 @@ namespace DynamicContact
     }
 
     void
-    BoundaryConditions::parse_parameters(ParameterHandler &prm,
-                                         const Geometry &  geometry,
+    BoundaryConditions::parse_parameters(ParameterHandler  &prm,
+                                         const Geometry    &geometry,
                                          const unsigned int dim)
     {
       std::optional<std::map<std::string, types::boundary_id>> names;
@@ -358,12 +358,11 @@ namespace DynamicContact
     BoundaryConditions::all_ids() const
     {
       std::vector<std::pair<types::boundary_id, std::string>> result;
-      for (const auto &[list, name] :
-           {std::make_pair(&clamped, "Clamped"),
-            std::make_pair(&roller, "Roller"),
-            std::make_pair(&traction, "Traction"),
-            std::make_pair(&contact, "Contact"),
-            std::make_pair(&free, "Free")})
+      for (const auto &[list, name] : {std::make_pair(&clamped, "Clamped"),
+                                       std::make_pair(&roller, "Roller"),
+                                       std::make_pair(&traction, "Traction"),
+                                       std::make_pair(&contact, "Contact"),
+                                       std::make_pair(&free, "Free")})
         for (const auto id : *list)
           result.emplace_back(id, name);
       return result;
@@ -417,12 +416,12 @@ namespace DynamicContact
     Material::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
-      density          = prm.get_double("Density");
-      young_modulus    = prm.get_double("Young modulus");
-      poisson_ratio    = prm.get_double("Poisson ratio");
-      plane_model      = (prm.get("Plane model") == "plane stress" ?
-                            PlaneModel::plane_stress :
-                            PlaneModel::plane_strain);
+      density       = prm.get_double("Density");
+      young_modulus = prm.get_double("Young modulus");
+      poisson_ratio = prm.get_double("Poisson ratio");
+      plane_model =
+        (prm.get("Plane model") == "plane stress" ? PlaneModel::plane_stress :
+                                                    PlaneModel::plane_strain);
       viscosity_lambda = prm.get_double("Viscosity lambda");
       viscosity_mu     = prm.get_double("Viscosity mu");
       prm.leave_subsection();
@@ -449,7 +448,7 @@ namespace DynamicContact
 
     // ---------------------------------------------------------- Foundation
     void
-    Foundation::declare_parameters(ParameterHandler &prm,
+    Foundation::declare_parameters(ParameterHandler  &prm,
                                    const unsigned int dim)
     {
       prm.enter_subsection("Foundation");
@@ -547,14 +546,13 @@ namespace DynamicContact
     {
       {
         const ScopedSubsection section(prm, "Friction");
-        law      = FrictionLaw::create(prm);
-        law_name = prm.get("Law");
-        maximum_slip_rate    = prm.get_double("Maximum slip rate");
-        convexification_tolerance =
-          prm.get_double("Convexification tolerance");
-        coefficient_tolerance = prm.get_double("Coefficient tolerance");
-        relaxation            = prm.get_double("Relaxation");
-        acceleration_depth    = prm.get_integer("Acceleration depth");
+        law                       = FrictionLaw::create(prm);
+        law_name                  = prm.get("Law");
+        maximum_slip_rate         = prm.get_double("Maximum slip rate");
+        convexification_tolerance = prm.get_double("Convexification tolerance");
+        coefficient_tolerance     = prm.get_double("Coefficient tolerance");
+        relaxation                = prm.get_double("Relaxation");
+        acceleration_depth        = prm.get_integer("Acceleration depth");
         max_convexification_iterations =
           prm.get_integer("Maximum convexification iterations");
         complementarity_constant = prm.get_double("Complementarity constant");
@@ -567,12 +565,11 @@ namespace DynamicContact
       require(std::isfinite(convexification_tolerance) &&
                 convexification_tolerance > 0,
               "Friction/Convexification tolerance must be positive.");
-      require(std::isfinite(coefficient_tolerance) &&
-                coefficient_tolerance > 0,
+      require(std::isfinite(coefficient_tolerance) && coefficient_tolerance > 0,
               "Friction/Coefficient tolerance must be positive.");
       require(std::isfinite(relaxation) && relaxation > 0 && relaxation <= 1,
-              "Friction/Relaxation must lie in (0, 1], got " +
-                str(relaxation) + ".");
+              "Friction/Relaxation must lie in (0, 1], got " + str(relaxation) +
+                ".");
       require(std::isfinite(complementarity_constant) &&
                 complementarity_constant >= 0,
               "Friction/Complementarity constant must be >= 0 (0: automatic).");
@@ -609,7 +606,7 @@ namespace DynamicContact
     }
 
     void
-    MeshRefinement::parse_parameters(ParameterHandler & prm,
+    MeshRefinement::parse_parameters(ParameterHandler  &prm,
                                      const unsigned int global_refinements)
     {
       prm.enter_subsection("Mesh refinement");
@@ -622,11 +619,11 @@ namespace DynamicContact
                 "other strategies.");
         if (strategies.size() == 1 && strategies[0] == "none")
           strategies.clear();
-        refine_every     = prm.get_integer("Refine every");
-        minimum_level    = std::max<unsigned int>(prm.get_integer("Minimum level"),
+        refine_every  = prm.get_integer("Refine every");
+        minimum_level = std::max<unsigned int>(prm.get_integer("Minimum level"),
                                                global_refinements);
-        maximum_level    = prm.get_integer("Maximum level");
-        cell_budget      = prm.get_integer("Cell budget");
+        maximum_level = prm.get_integer("Maximum level");
+        cell_budget   = prm.get_integer("Cell budget");
       }
       prm.leave_subsection();
       if (enabled())

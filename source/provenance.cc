@@ -52,7 +52,7 @@ namespace DynamicContact
 
 
   void
-  print_parameters(std::ostream &          out,
+  print_parameters(std::ostream           &out,
                    const ParameterHandler &prm,
                    const PrintFormat       format)
   {
@@ -129,12 +129,16 @@ namespace DynamicContact
         return "any text";
       if (pattern.rfind("[Bool", 0) == 0)
         return "true or false";
-      if (std::regex_match(pattern,
-                           m,
-                           std::regex(R"(\[(Double|Integer) range (\S+)\.\.\.(\S+) \(inclusive\)\])")) ||
-          std::regex_match(pattern,
-                           m,
-                           std::regex(R"(\[(Double|Integer) (\S+)\.\.\.(\S+) \(inclusive\)\])")))
+      if (
+        std::regex_match(
+          pattern,
+          m,
+          std::regex(
+            R"(\[(Double|Integer) range (\S+)\.\.\.(\S+) \(inclusive\)\])")) ||
+        std::regex_match(
+          pattern,
+          m,
+          std::regex(R"(\[(Double|Integer) (\S+)\.\.\.(\S+) \(inclusive\)\])")))
         {
           const std::string what =
             m[1].str() == "Double" ? "a number" : "an integer";
@@ -147,9 +151,7 @@ namespace DynamicContact
             return what + " <= " + hi;
           return what + " from " + lo + " to " + hi;
         }
-      if (std::regex_match(pattern,
-                           m,
-                           std::regex(R"(\[Selection (.*) \])")))
+      if (std::regex_match(pattern, m, std::regex(R"(\[Selection (.*) \])")))
         {
           std::string list;
           for (const auto &option :
@@ -157,9 +159,12 @@ namespace DynamicContact
             list += (list.empty() ? "" : ", ") + code(option);
           return "one of " + list;
         }
-      if (std::regex_match(pattern,
-                           m,
-                           std::regex(R"(\[List of <(.*)> of length (\S+)\.\.\.(\S+) \(inclusive\)(?: separated by <(.*)>)?\])")))
+      if (
+        std::regex_match(
+          pattern,
+          m,
+          std::regex(
+            R"(\[List of <(.*)> of length (\S+)\.\.\.(\S+) \(inclusive\)(?: separated by <(.*)>)?\])")))
         {
           const std::string lo = bound(m[2].str()), hi = bound(m[3].str());
           const std::string separator =
@@ -171,16 +176,16 @@ namespace DynamicContact
             length = lo + " to " + hi + " ";
           else if (lo != "0")
             length = "at least " + lo + " ";
-          return "a list of " + length + "values separated by '" +
-                 separator + "', each " + allowed(m[1].str());
+          return "a list of " + length + "values separated by '" + separator +
+                 "', each " + allowed(m[1].str());
         }
       return code(pattern);
     }
 
     void
-    write_section(std::ostream &     out,
-                  const pt::ptree &  node2,
-                  const pt::ptree *  node3,
+    write_section(std::ostream      &out,
+                  const pt::ptree   &node2,
+                  const pt::ptree   *node3,
                   const std::string &path,
                   const unsigned int level)
     {
@@ -188,9 +193,10 @@ namespace DynamicContact
       for (const auto &[name, child] : node2)
         if (is_entry(child))
           {
-            const std::string default2 = child.get<std::string>("default_value");
-            const std::string pattern2 = Utilities::trim(
-              child.get<std::string>("pattern_description"));
+            const std::string default2 =
+              child.get<std::string>("default_value");
+            const std::string pattern2 =
+              Utilities::trim(child.get<std::string>("pattern_description"));
             std::string default3 = default2, pattern3 = pattern2;
             if (node3 != nullptr)
               {
@@ -217,8 +223,8 @@ namespace DynamicContact
       for (const auto &[name, child] : node2)
         if (!is_entry(child))
           {
-            const std::string sub = path.empty() ? name : path + "/" + name;
-            const pt::ptree *child3 = nullptr;
+            const std::string sub    = path.empty() ? name : path + "/" + name;
+            const pt::ptree  *child3 = nullptr;
             if (node3 != nullptr)
               {
                 const auto it = node3->find(name);
@@ -270,7 +276,7 @@ namespace DynamicContact
 
 
   // ------------------------------------------------------ parameter files
-  ParameterFiles::ParameterFiles(ParameterHandler &   prm,
+  ParameterFiles::ParameterFiles(ParameterHandler    &prm,
                                  const RunParameters &parameters)
   {
     // A relative mesh file is relative to the parameter file; the copy
@@ -278,9 +284,9 @@ namespace DynamicContact
     std::string original_mesh_file;
     prm.enter_subsection("Geometry");
     original_mesh_file = prm.get("Mesh file");
-    const bool gmsh = parameters.geometry.type ==
-                        Parameters::Geometry::Type::gmsh &&
-                      !parameters.geometry.mesh_file.empty();
+    const bool gmsh =
+      parameters.geometry.type == Parameters::Geometry::Type::gmsh &&
+      !parameters.geometry.mesh_file.empty();
     if (gmsh)
       prm.set("Mesh file",
               std::filesystem::absolute(parameters.geometry.mesh_file)
@@ -363,10 +369,9 @@ namespace DynamicContact
   ScreenLog::open(OutputDirectory &directory, const bool append)
   {
     directory.claim("log.txt");
-    const std::string name = directory.file("log.txt");
-    const bool        continued =
-      append && std::filesystem::exists(name) &&
-      std::filesystem::file_size(name) > 0;
+    const std::string name      = directory.file("log.txt");
+    const bool        continued = append && std::filesystem::exists(name) &&
+                           std::filesystem::file_size(name) > 0;
     file.open(name, append);
     if (continued)
       file.append("\n==== --resume ====\n");

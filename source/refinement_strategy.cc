@@ -18,7 +18,7 @@ namespace DynamicContact
   template <int dim>
   bool
   cell_near(const typename Triangulation<dim>::active_cell_iterator &cell,
-            const std::vector<Point<dim>> &                          points,
+            const std::vector<Point<dim>>                           &points,
             const double                                             window)
   {
     const Point<dim> c = cell->center();
@@ -39,7 +39,8 @@ namespace DynamicContact
     for (const auto &name : Utilities::split_string_list(prm.get("Strategy")))
       if (name != "none")
         strategies.push_back(
-          PluginRegistry<RefinementStrategy<dim>>::instance().create(name, prm));
+          PluginRegistry<RefinementStrategy<dim>>::instance().create(name,
+                                                                     prm));
     return strategies;
   }
 
@@ -73,10 +74,10 @@ namespace DynamicContact
     std::vector<Point<dim>>
     large_load_points(const AdaptationContext<dim> &c, const double threshold)
     {
-      const auto &d     = c.discretization;
-      const auto &scene = c.scene;
+      const auto  &d     = c.discretization;
+      const auto  &scene = c.scene;
       const double t0 = c.t0, t1 = c.t1, k = c.k;
-      const bool body_force = scene.has_body_force();
+      const bool   body_force = scene.has_body_force();
 
       std::vector<double> times;
       for (double t = t0; t <= t1 * (1 + 1e-12) + 1e-300; t += k)
@@ -86,13 +87,13 @@ namespace DynamicContact
 
       // Sample the load magnitude at face (traction) and cell (body force)
       // quadrature points, at every time; keep each point's largest value.
-      const QGauss<dim - 1> face_quadrature(2);
-      const QGauss<dim>     quadrature(2);
-      FEFaceValues<dim>     fe_face(d.mapping,
+      const QGauss<dim - 1>   face_quadrature(2);
+      const QGauss<dim>       quadrature(2);
+      FEFaceValues<dim>       fe_face(d.mapping,
                                 d.fe,
                                 face_quadrature,
                                 update_quadrature_points);
-      FEValues<dim>         fe_values(d.mapping,
+      FEValues<dim>           fe_values(d.mapping,
                               d.fe,
                               quadrature,
                               update_quadrature_points);
@@ -116,11 +117,11 @@ namespace DynamicContact
             // The traction (not the contact source of manufactured scenes).
             for (const auto f : cell->face_indices())
               if (scene.face_load(cell, f) == &scene.traction())
-                  {
-                    fe_face.reinit(cell, f);
-                    for (const auto &p : fe_face.get_quadrature_points())
-                      sample(p, scene.traction());
-                  }
+                {
+                  fe_face.reinit(cell, f);
+                  for (const auto &p : fe_face.get_quadrature_points())
+                    sample(p, scene.traction());
+                }
             if (body_force)
               {
                 fe_values.reinit(cell);
@@ -128,10 +129,12 @@ namespace DynamicContact
                   sample(p, scene.body_force());
               }
           }
-      const double largest = Utilities::MPI::max(
-        magnitude.empty() ? 0. : *std::max_element(magnitude.begin(),
-                                                   magnitude.end()),
-        d.comm);
+      const double largest =
+        Utilities::MPI::max(magnitude.empty() ?
+                              0. :
+                              *std::max_element(magnitude.begin(),
+                                                magnitude.end()),
+                            d.comm);
 
       std::vector<Point<dim>> large;
       if (largest > 0)
@@ -292,8 +295,8 @@ namespace DynamicContact
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        auto &      d    = context.discretization;
-        auto &      tria = d.triangulation;
+        auto         &d    = context.discretization;
+        auto         &tria = d.triangulation;
         Vector<float> eu(tria.n_active_cells()), ew(tria.n_active_cells());
         const QGauss<dim - 1> q(d.fe.degree + 1);
         KellyErrorEstimator<dim>::estimate(

@@ -10,8 +10,8 @@
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/gmsh_file.h>
-#include <dynamic_contact/plugins.h>
 #include <dynamic_contact/parameters.h>
+#include <dynamic_contact/plugins.h>
 
 #include "parameter_tools.h"
 
@@ -110,15 +110,15 @@ namespace DynamicContact
     Time::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Time");
-      end_time  = prm.get_double("End time");
-      time_step = prm.get_double("Time step");
+      end_time          = prm.get_double("End time");
+      time_step         = prm.get_double("Time step");
       minimum_time_step = prm.get_double("Minimum time step");
       if (minimum_time_step == 0)
         minimum_time_step = time_step / 1024;
       const std::string scheme_name = prm.get("Scheme");
-      scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
-                scheme_name == "bathe"       ? Scheme::bathe :
-                                               Scheme::backward_euler);
+      scheme             = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
+                            scheme_name == "bathe"       ? Scheme::bathe :
+                                                     Scheme::backward_euler);
       adaptive           = prm.get_bool("Adaptive");
       adaptive_tolerance = prm.get_double("Adaptive tolerance");
       maximum_time_step  = prm.get_double("Maximum time step");
@@ -232,18 +232,17 @@ namespace DynamicContact
     {
       prm.enter_subsection("Solver");
       contact_solver =
-        (prm.get("Contact solver") == "assembled" ?
-           ContactSolver::assembled :
-           prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
-                                                      ContactSolver::automatic);
+        (prm.get("Contact solver") == "assembled" ? ContactSolver::assembled :
+         prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
+                                                    ContactSolver::automatic);
       condensed_limit       = prm.get_integer("Condensed limit");
       provisional_passes    = prm.get_bool("Provisional passes");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");
-      linear_solver         = (prm.get("Linear solver") == "iterative" ?
-                                 LinearSolver::iterative :
-                                 LinearSolver::direct);
+      linear_solver =
+        (prm.get("Linear solver") == "iterative" ? LinearSolver::iterative :
+                                                   LinearSolver::direct);
       direct_solver_package = prm.get("Direct solver package");
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");
@@ -374,17 +373,17 @@ namespace DynamicContact
     Output::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
-      directory      = prm.get("Directory");
-      output_every   = prm.get_integer("Output every");
-      write_vtu      = prm.get_bool("Write VTU");
-      vtu_every      = prm.get_integer("VTU every");
+      directory        = prm.get("Directory");
+      output_every     = prm.get_integer("Output every");
+      write_vtu        = prm.get_bool("Write VTU");
+      vtu_every        = prm.get_integer("VTU every");
       vtu_subdivisions = prm.get_integer("VTU subdivisions");
-      output_times   = Utilities::string_to_double(
+      output_times     = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Output times")));
-      progress_every = prm.get_integer("Progress every");
-      print_timings  = prm.get_bool("Print timings");
+      progress_every         = prm.get_integer("Progress every");
+      print_timings          = prm.get_bool("Print timings");
       print_iteration_counts = prm.get_bool("Print iteration counts");
-      solver_details = prm.get_bool("Solver details");
+      solver_details         = prm.get_bool("Solver details");
       prm.leave_subsection();
       require(!directory.empty(), "Output/Directory must not be empty.");
     }
@@ -393,7 +392,7 @@ namespace DynamicContact
 
   // --------------------------------------------------------- RunParameters
   void
-  RunParameters::declare_parameters(ParameterHandler &prm,
+  RunParameters::declare_parameters(ParameterHandler  &prm,
                                     const unsigned int dim)
   {
     prm.declare_entry("Dimension",

@@ -22,13 +22,12 @@ namespace DynamicContact
      */
     template <int dim>
     std::unique_ptr<Functions::ParsedFunction<dim>>
-    parse_function(
-      ParameterHandler &                                               prm,
-      const std::vector<std::string> &                                 path,
-      const unsigned int                                               n_components,
-      bool &                                                           nonzero,
-      std::map<const Function<dim> *, std::pair<std::string, std::string>>
-        &expressions)
+    parse_function(ParameterHandler                              &prm,
+                   const std::vector<std::string>                &path,
+                   const unsigned int                             n_components,
+                   bool                                          &nonzero,
+                   std::map<const Function<dim> *,
+                            std::pair<std::string, std::string>> &expressions)
     {
       std::string name;
       for (const auto &s : path)
@@ -81,23 +80,26 @@ namespace DynamicContact
     , contact_ids(boundaries.contact.begin(), boundaries.contact.end())
   {
     bool unused;
-    traction_function   = parse_function<dim>(prm,
-                                            {"Boundary conditions", "Traction function"},
-                                            dim,
-                                            traction_nonzero, expressions);
-    body_force_function =
-      parse_function<dim>(prm, {"Body force"}, dim, body_force_nonzero, expressions);
+    traction_function =
+      parse_function<dim>(prm,
+                          {"Boundary conditions", "Traction function"},
+                          dim,
+                          traction_nonzero,
+                          expressions);
+    body_force_function = parse_function<dim>(
+      prm, {"Body force"}, dim, body_force_nonzero, expressions);
     initial_displacement_function = parse_function<dim>(
       prm, {"Initial conditions", "Displacement"}, dim, unused, expressions);
     initial_velocity_function = parse_function<dim>(
       prm, {"Initial conditions", "Velocity"}, dim, unused, expressions);
-    initial_gap_function =
-      parse_function<dim>(prm, {"Foundation", "Initial gap"}, 1, unused, expressions);
+    initial_gap_function = parse_function<dim>(
+      prm, {"Foundation", "Initial gap"}, 1, unused, expressions);
     contact_source_function =
       parse_function<dim>(prm,
                           {"Boundary conditions", "Contact source"},
                           dim,
-                          contact_source_nonzero, expressions);
+                          contact_source_nonzero,
+                          expressions);
 
     // The exact solution is optional: an empty expression means none.
     prm.enter_subsection("Exact solution");
@@ -109,15 +111,15 @@ namespace DynamicContact
       {
         exact_displacement_function = parse_function<dim>(
           prm, {"Exact solution", "Displacement"}, dim, unused, expressions);
-        exact_velocity_function =
-          parse_function<dim>(prm, {"Exact solution", "Velocity"}, dim, unused, expressions);
+        exact_velocity_function = parse_function<dim>(
+          prm, {"Exact solution", "Velocity"}, dim, unused, expressions);
       }
   }
 
 
   template <int dim>
   std::string
-  Scene<dim>::non_finite_value(const Triangulation<dim> & tria,
+  Scene<dim>::non_finite_value(const Triangulation<dim>  &tria,
                                const std::vector<double> &times,
                                const bool                 initial) const
   {
@@ -146,9 +148,9 @@ namespace DynamicContact
               }
         }
 
-    const auto check = [&](Function<dim> &                f,
+    const auto check = [&](Function<dim>                 &f,
                            const std::vector<Point<dim>> &points,
-                           const std::vector<double> &    at,
+                           const std::vector<double>     &at,
                            const bool                     time_dependent) {
       Vector<double> values(f.n_components);
       for (const double t : at)
@@ -186,12 +188,12 @@ namespace DynamicContact
       return std::string();
     };
 
-    std::string problem;
+    std::string               problem;
     const std::vector<double> zero = {0.};
-    const auto                run  = [&](Function<dim> &                f,
-                          const std::vector<Point<dim>> &points,
-                          const std::vector<double> &    at,
-                          const bool                     time_dependent) {
+    const auto                run  = [&](Function<dim>                 &f,
+                         const std::vector<Point<dim>> &points,
+                         const std::vector<double>     &at,
+                         const bool                     time_dependent) {
       if (problem.empty())
         problem = check(f, points, at, time_dependent);
     };
@@ -261,8 +263,7 @@ namespace DynamicContact
           {
             AssertThrow(false,
                         ExcMessage("Geometry/Mesh file: cannot read '" +
-                                   geometry.mesh_file +
-                                   "' as a Gmsh mesh in " +
+                                   geometry.mesh_file + "' as a Gmsh mesh in " +
                                    std::to_string(dim) +
                                    "D: " + error_message(e)));
           }
@@ -292,18 +293,18 @@ namespace DynamicContact
     std::string ids;
     for (const auto id : mesh_ids)
       ids += (ids.empty() ? "" : ", ") + std::to_string(id);
-    const std::string mesh =
-      geometry.type == Parameters::Geometry::Type::gmsh ?
-        "the mesh of Geometry/Mesh file '" + geometry.mesh_file +
-          "' (its boundary ids: " + ids + ")" :
-        "the mesh (its boundary ids: " + ids + ")";
+    const std::string mesh = geometry.type == Parameters::Geometry::Type::gmsh ?
+                               "the mesh of Geometry/Mesh file '" +
+                                 geometry.mesh_file +
+                                 "' (its boundary ids: " + ids + ")" :
+                               "the mesh (its boundary ids: " + ids + ")";
 
     // First what the prm names, then what it leaves out.
     for (const auto &[id, list] : assigned)
       AssertThrow(mesh_ids.count(id) == 1,
-                  ExcMessage("Boundary conditions/" + list +
-                             ": boundary id " + std::to_string(id) +
-                             " does not exist in " + mesh + "."));
+                  ExcMessage("Boundary conditions/" + list + ": boundary id " +
+                             std::to_string(id) + " does not exist in " + mesh +
+                             "."));
     for (const auto id : mesh_ids)
       AssertThrow(assigned.count(id) == 1,
                   ExcMessage("Boundary conditions: boundary id " +
@@ -345,11 +346,11 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Scene<dim>::step_load(Function<dim> &   f,
+  Scene<dim>::step_load(Function<dim>    &f,
                         const Point<dim> &p,
                         const double      t,
                         const TimeScheme &scheme,
-                        Vector<double> &  value) const
+                        Vector<double>   &value) const
   {
     set_time(t);
     f.vector_value(p, value);

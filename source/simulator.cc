@@ -13,8 +13,8 @@
 
 #include <cmath>
 #include <csignal>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -53,7 +53,7 @@ namespace DynamicContact
 
   template <int dim>
   Simulator<dim>::Simulator(const RunParameters &parameters,
-                            ParameterHandler &   prm,
+                            ParameterHandler    &prm,
                             const MPI_Comm       comm)
     : parameters(parameters)
     , comm(comm)
@@ -93,14 +93,14 @@ namespace DynamicContact
     , mesh_adaptation(parameters.mesh_refinement, scene, discretization, prm)
     , k_current(parameters.time.time_step)
   {
-    output_directory = std::make_unique<OutputDirectory>(
-      parameters.output.directory, comm);
+    output_directory =
+      std::make_unique<OutputDirectory>(parameters.output.directory, comm);
     parameter_files   = ParameterFiles(prm, parameters);
-    parameters_of_run = parameters_text(
-      prm,
-      parameters.geometry.type == Parameters::Geometry::Type::gmsh ?
-        parameters.geometry.mesh_file :
-        std::string());
+    parameters_of_run = parameters_text(prm,
+                                        parameters.geometry.type ==
+                                            Parameters::Geometry::Type::gmsh ?
+                                          parameters.geometry.mesh_file :
+                                          std::string());
 
     // Fault injection (tests): see the members.
     if (const char *kill = std::getenv("DYNAMIC_CONTACT_KILL"))
@@ -165,7 +165,8 @@ namespace DynamicContact
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
-    for (auto *v : {&u, &w, &u_old, &w_old, &u_bar, &w_bar, &load, &rhs, &scratch})
+    for (auto *v :
+         {&u, &w, &u_old, &w_old, &u_bar, &w_bar, &load, &rhs, &scratch})
       discretization.reinit_owned(*v);
     energy_of_state.reset();
   }
@@ -189,11 +190,10 @@ namespace DynamicContact
     bulk.reinit();
     force_balance.reinit();
     // c_t of the friction complementarity function, like E/h.
-    const double c_t =
-      parameters.friction.complementarity_constant > 0 ?
-        parameters.friction.complementarity_constant :
-        parameters.material.young_modulus /
-          discretization.minimal_cell_diameter();
+    const double c_t = parameters.friction.complementarity_constant > 0 ?
+                         parameters.friction.complementarity_constant :
+                         parameters.material.young_modulus /
+                           discretization.minimal_cell_diameter();
     step_solver.reinit(c_t);
   }
 
@@ -241,8 +241,8 @@ namespace DynamicContact
   {
     Vector_t field;
     discretization.reinit_owned(field);
-    const auto &                         nodes  = contact_boundary.nodes();
-    const auto &                         lambda = step_solver.friction_forces();
+    const auto                          &nodes  = contact_boundary.nodes();
+    const auto                          &lambda = step_solver.friction_forces();
     std::vector<types::global_dof_index> indices;
     std::vector<double>                  values;
     for (unsigned int i = 0; i < nodes.size(); ++i)
@@ -265,7 +265,7 @@ namespace DynamicContact
   Simulator<dim>::set_friction_from_field(const Vector_t &field,
                                           const bool      per_weight)
   {
-    const auto &                nodes = contact_boundary.nodes();
+    const auto                 &nodes = contact_boundary.nodes();
     std::vector<Tensor<1, dim>> lambda(nodes.size());
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
@@ -286,7 +286,7 @@ namespace DynamicContact
   Simulator<dim>::checkpoint()
   {
     TimerSection scope(timer, "Checkpoint");
-    RunState           state;
+    RunState     state;
     state.step                     = step;
     state.time                     = current_time;
     state.time_step                = k_current;
@@ -320,9 +320,9 @@ namespace DynamicContact
   {
     // Refine towards the load of the first steps, with the initial
     // conditions interpolated anew on each mesh (no transfer needed).
-    const double k  = parameters.time.time_step;
-    const double t1 = std::min(parameters.time.end_time,
-                               mesh_adaptation.lookahead_steps() * k);
+    const double k = parameters.time.time_step;
+    const double t1 =
+      std::min(parameters.time.end_time, mesh_adaptation.lookahead_steps() * k);
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
       {
         set_initial_conditions();
@@ -345,8 +345,8 @@ namespace DynamicContact
   Simulator<dim>::adapt_mesh(const double t0, const double t1, const double k)
   {
     TimerSection scope(timer, "Mesh adaptation");
-    const double       energy_before = energy_now();
-    bool               changed       = false;
+    const double energy_before = energy_now();
+    bool         changed       = false;
     for (unsigned int cycle = 0; cycle < mesh_adaptation.max_cycles(); ++cycle)
       {
         const Vector_t u_ghosted = discretization.expanded(u),
@@ -432,8 +432,7 @@ namespace DynamicContact
     // (output that differs from run to run), in log.txt always.
     const std::string provenance =
       "  " +
-      provenance_line(Utilities::MPI::n_mpi_processes(comm), start_time) +
-      "\n";
+      provenance_line(Utilities::MPI::n_mpi_processes(comm), start_time) + "\n";
     if (parameters.output.print_timings)
       pcout << provenance;
     else if (Utilities::MPI::this_mpi_process(comm) == 0)
@@ -463,14 +462,14 @@ namespace DynamicContact
   template <int dim>
   void
   Simulator<dim>::solve_substep(
-    const TimeScheme &                    scheme,
+    const TimeScheme                     &scheme,
     const double                          t,
-    const Vector_t &                      u_start,
-    const Vector_t &                      w_start,
+    const Vector_t                       &u_start,
+    const Vector_t                       &w_start,
     const double                          start_energy,
     const bool                            accept_unconverged_loop,
     typename StepSolver<dim>::Statistics &statistics,
-    EnergyBalanceTerms &                  terms)
+    EnergyBalanceTerms                   &terms)
   {
     const double k = scheme.time_step();
     {
@@ -508,13 +507,11 @@ namespace DynamicContact
           times.push_back(t - k);
         std::string where = collective_message(
           comm,
-          scene.non_finite_value(discretization.triangulation,
-                                 times,
-                                 false));
-        throw NonFiniteValue(
-          where.empty() ? "the load vector at t = " + sig6(t) +
-                            " s is not finite (the loads overflow)" :
-                          where);
+          scene.non_finite_value(discretization.triangulation, times, false));
+        throw NonFiniteValue(where.empty() ?
+                               "the load vector at t = " + sig6(t) +
+                                 " s is not finite (the loads overflow)" :
+                               where);
       }
 
     w = w_start; // initial guess
@@ -571,10 +568,10 @@ namespace DynamicContact
         e *= k / 2;
       }
     const double density = material.density();
-    const double scale   = std::max(
-      density * bulk.mass_product(w, w) + bulk.elastic_product(u, u),
-      density * bulk.mass_product(w_old, w_old) +
-        bulk.elastic_product(u_old, u_old));
+    const double scale =
+      std::max(density * bulk.mass_product(w, w) + bulk.elastic_product(u, u),
+               density * bulk.mass_product(w_old, w_old) +
+                 bulk.elastic_product(u_old, u_old));
     const double error = bulk.elastic_product(e, e);
     return scale > 0 ? std::sqrt(error / scale) : (error > 0 ? 1e300 : 0.);
   }
@@ -598,7 +595,7 @@ namespace DynamicContact
     // column: E_{n-1} below is that of the transferred fields.
     record.remesh_energy_change = remesh_energy_change;
     record.cutbacks             = cutbacks;
-    record.previous_energy = energy_now(); // of u_old = u, w_old = w
+    record.previous_energy      = energy_now(); // of u_old = u, w_old = w
 
     const bool accept_unconverged_loop = !can_cut_back(k);
     // The (sub-)step that ends at t and the state it starts from: the force
@@ -649,7 +646,7 @@ namespace DynamicContact
         scratch = u_bar;
         scratch -= u_old;
         const double extrapolation_work = 0.25 * (load * scratch);
-        record.terms = bathe_terms(first_terms,
+        record.terms                    = bathe_terms(first_terms,
                                    bar_energy,
                                    second_terms,
                                    extrapolation_work,
@@ -670,11 +667,12 @@ namespace DynamicContact
         record.adaptive_time = true;
         record.time_error    = time_error_estimate(k);
         record.rejected      = rejected_this_step;
-        last_time_error = record.time_error / parameters.time.adaptive_tolerance;
+        last_time_error =
+          record.time_error / parameters.time.adaptive_tolerance;
       }
 
     TimerSection scope(timer, "Step: energy and force balance");
-    const auto &nodes = contact_boundary.nodes();
+    const auto  &nodes = contact_boundary.nodes();
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         record.normal_force +=
@@ -693,10 +691,10 @@ namespace DynamicContact
       scratch = u;
       last.weigh(scratch, *u_start);
       const Vector_t u_theta = discretization.expanded(scratch);
-      scratch = w;
+      scratch                = w;
       last.weigh(scratch, *w_start);
       const Vector_t w_theta = discretization.expanded(scratch);
-      record.forces = force_balance.compute(contact_boundary,
+      record.forces          = force_balance.compute(contact_boundary,
                                             step_solver.node_states(),
                                             t,
                                             last,
@@ -711,8 +709,8 @@ namespace DynamicContact
             discretization, material, scene, t, u_ghosted, w_ghosted);
         }
     }
-    record.dofs  = discretization.dof_handler.n_dofs();
-    record.cells = discretization.triangulation.n_global_active_cells();
+    record.dofs     = discretization.dof_handler.n_dofs();
+    record.cells    = discretization.triangulation.n_global_active_cells();
     energy_of_state = record.terms.energy.total(); // the step succeeded
     return record;
   }
@@ -730,7 +728,7 @@ namespace DynamicContact
     const auto &node_states =
       states != nullptr ? *states : step_solver.node_states();
     TimerSection scope(timer, "Output");
-    char               name[64];
+    char         name[64];
     std::snprintf(name, sizeof(name), "contact_%05u.csv", n);
     if (contact_csv)
       write_contact_csv(*output_directory,
@@ -794,8 +792,8 @@ namespace DynamicContact
   Simulator<dim>::vtu_files_left() const
   {
     // The schedule of the steps to come at the nominal time step.
-    const unsigned int last = step + remaining_steps();
-    const double       k0   = parameters.time.time_step;
+    const unsigned int last    = step + remaining_steps();
+    const double       k0      = parameters.time.time_step;
     unsigned int       n_files = 0;
     for (unsigned int n = step + 1; n <= last; ++n)
       n_files += vtu_due(n, current_time + (n - step) * k0, k0, n == last);
@@ -833,7 +831,7 @@ namespace DynamicContact
           << "  E = " << sig6(record.terms.energy.total());
     if (parameters.output.print_timings)
       {
-        const auto   now     = std::chrono::steady_clock::now();
+        const auto   now = std::chrono::steady_clock::now();
         const double elapsed =
           std::chrono::duration<double>(now - wall_start).count();
         pcout << "  (" << seconds(elapsed);
@@ -874,11 +872,9 @@ namespace DynamicContact
     // (value and column index): a lower bound, so that no scene that fits
     // is refused.
     const double refinements = parameters.geometry.global_refinements;
-    const double cells =
-      n_coarse_cells * std::pow(2., dim * refinements);
-    const double p = parameters.finite_element.degree;
-    const double dofs =
-      dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
+    const double cells       = n_coarse_cells * std::pow(2., dim * refinements);
+    const double p           = parameters.finite_element.degree;
+    const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
     const double entries_per_row = dim * std::pow(2 * p + 1, dim);
     const double bytes           = 5 * 12 * entries_per_row * dofs;
 
@@ -917,10 +913,10 @@ namespace DynamicContact
     };
     const std::string estimate =
       "about " + scientific(cells, 1) + " cells and " + scientific(dofs, 1) +
-      " DoFs (Geometry: " + scientific(n_coarse_cells, 1) +
-      " coarse cells, " + std::to_string(parameters.geometry.global_refinements) +
-      " global refinements; Q" + std::to_string(parameters.finite_element.degree) +
-      ")";
+      " DoFs (Geometry: " + scientific(n_coarse_cells, 1) + " coarse cells, " +
+      std::to_string(parameters.geometry.global_refinements) +
+      " global refinements; Q" +
+      std::to_string(parameters.finite_element.degree) + ")";
     const std::string fix =
       " Reduce Geometry/Repetitions, Geometry/Global refinements or Finite "
       "element/Polynomial degree.";
@@ -933,10 +929,10 @@ namespace DynamicContact
                             fix);
     if (bytes > total)
       throw CollectiveError(
-        "The scene does not fit into memory: " + estimate +
-        " need at least " + giga(bytes) + " for the matrices alone, and " +
-        giga(total) + " are available on the " + std::to_string(hosts.size()) +
-        " host" + (hosts.size() > 1 ? "s" : "") + " of this run." + fix);
+        "The scene does not fit into memory: " + estimate + " need at least " +
+        giga(bytes) + " for the matrices alone, and " + giga(total) +
+        " are available on the " + std::to_string(hosts.size()) + " host" +
+        (hosts.size() > 1 ? "s" : "") + " of this run." + fix);
   }
 
 
@@ -949,20 +945,20 @@ namespace DynamicContact
     // increasing mu: README, "What can go wrong").
     if (friction_law)
       {
-        const double s_max = parameters.friction.maximum_slip_rate;
-        const std::string name =
-          "Friction/" +
-          PluginRegistry<FrictionLaw>::subsection(parameters.friction.law_name) +
-          ": " + friction_law->description();
+        const double      s_max = parameters.friction.maximum_slip_rate;
+        const std::string name  = "Friction/" +
+                                 PluginRegistry<FrictionLaw>::subsection(
+                                   parameters.friction.law_name) +
+                                 ": " + friction_law->description();
         const std::vector<double> s = FrictionLaw::sample_points(s_max);
         std::vector<double>       mu(s.size());
         for (unsigned int i = 0; i < s.size(); ++i)
           {
             mu[i] = friction_law->value(s[i]);
             if (!std::isfinite(mu[i]))
-              throw CollectiveError(name + " is not finite at s = " +
-                                    sig6(s[i]) + " m/s (" +
-                                    scientific(mu[i]) + ").");
+              throw CollectiveError(name +
+                                    " is not finite at s = " + sig6(s[i]) +
+                                    " m/s (" + scientific(mu[i]) + ").");
           }
         friction_law->check_nonnegative(s_max);
         double mu_max = 0; // the largest |mu| so far
@@ -972,9 +968,9 @@ namespace DynamicContact
               mu_max = std::max(mu_max, std::abs(mu[i - 1]));
               if (mu[i] - mu[i - 1] > 1e-9 * std::max(1., mu_max))
                 throw CollectiveError(
-                  name + " increases with the slip rate (mu(" +
-                  sig6(s[i - 1]) + ") = " + sig6(mu[i - 1]) + ", mu(" +
-                  sig6(s[i]) + ") = " + sig6(mu[i]) +
+                  name + " increases with the slip rate (mu(" + sig6(s[i - 1]) +
+                  ") = " + sig6(mu[i - 1]) + ", mu(" + sig6(s[i]) +
+                  ") = " + sig6(mu[i]) +
                   "): a velocity-strengthening law. The convexification "
                   "loop (doc/theory.md section 4) freezes mu at the last "
                   "slip rate; with an increasing mu a node then alternates "
@@ -987,8 +983,8 @@ namespace DynamicContact
       }
 
     // The functions of the scene, sampled where and when the run uses them.
-    const double        T = parameters.time.end_time;
-    const double        k = parameters.time.time_step;
+    const double        T     = parameters.time.end_time;
+    const double        k     = parameters.time.time_step;
     std::vector<double> times = {0., std::min(k, T), T};
     for (unsigned int i = 1; i < 16; ++i)
       times.push_back(T * i / 16.);
@@ -1075,11 +1071,11 @@ namespace DynamicContact
     write_provenance(false);
     time_series_writer =
       std::make_unique<TimeSeriesWriter>(*output_directory, comm);
-    vtu_writer = std::make_unique<VtuWriter<dim>>(
-      *output_directory,
-      comm,
-      parameters.boundary_conditions.contact,
-      parameters.output.vtu_subdivisions);
+    vtu_writer =
+      std::make_unique<VtuWriter<dim>>(*output_directory,
+                                       comm,
+                                       parameters.boundary_conditions.contact,
+                                       parameters.output.vtu_subdivisions);
 
     print_header();
 
@@ -1088,15 +1084,15 @@ namespace DynamicContact
       {
         const Vector_t u_ghosted = discretization.expanded(u),
                        w_ghosted = discretization.expanded(w);
-        record.has_errors = true;
-        record.errors =
-          compute_errors(discretization, material, scene, 0., u_ghosted, w_ghosted);
+        record.has_errors        = true;
+        record.errors            = compute_errors(
+          discretization, material, scene, 0., u_ghosted, w_ghosted);
       }
     record.terms.energy    = energy_balance.energy(u, w);
     record.previous_energy = record.terms.energy.total();
     energy_of_state        = record.previous_energy;
     record.dofs            = discretization.dof_handler.n_dofs();
-    record.cells = discretization.triangulation.n_global_active_cells();
+    record.cells         = discretization.triangulation.n_global_active_cells();
     record.adaptive_time = parameters.time.adaptive; // the columns, 0
     time_series_writer->write(record.row());
     rows.push_back(record);
@@ -1145,8 +1141,7 @@ namespace DynamicContact
           }
         damaged += (damaged.empty() ? "" : "; ") + name + ": " + problem;
         pcout << "Warning: the checkpoint " << directory << "/" << name
-              << " is damaged: " << problem << "; it is not used."
-              << std::endl;
+              << " is damaged: " << problem << "; it is not used." << std::endl;
       }
     if (checkpoints.empty())
       throw CollectiveError("--resume: there is no complete checkpoint in "
@@ -1155,46 +1150,45 @@ namespace DynamicContact
                             "' (the interrupted run needs Checkpoint/Every "
                             "> 0).");
     if (latest.empty())
-      throw CollectiveError("--resume: no checkpoint in Output/Directory '" +
-                            directory + "' can be used, every one is "
-                            "damaged (" + damaged +
-                            "). Nothing was changed; start a new run.");
+      throw CollectiveError(
+        "--resume: no checkpoint in Output/Directory '" + directory +
+        "' can be used, every one is "
+        "damaged (" +
+        damaged + "). Nothing was changed; start a new run.");
 
     // The same problem, or a refusal that says what differs.
-    const auto differences = scene_differences(
-      read_checkpoint_parameters(latest, comm), parameters_of_run);
+    const auto differences =
+      scene_differences(read_checkpoint_parameters(latest, comm),
+                        parameters_of_run);
     if (!differences.empty())
       {
         std::string list;
         for (const auto &d : differences)
           list += (list.empty() ? "" : "; ") + d;
         throw CollectiveError(
-          "--resume: the scene differs from that of the checkpoint '" +
-          latest + "' in " + std::to_string(differences.size()) +
+          "--resume: the scene differs from that of the checkpoint '" + latest +
+          "' in " + std::to_string(differences.size()) +
           (differences.size() == 1 ? " entry: " : " entries: ") + list +
           ". A resumed run continues the same problem; only Time/End time "
           "(later), Time/Time step, Time/Minimum time step, Solver, Output, "
           "Checkpoint and the convexification loop's settings may change "
           "(README, 'What can go wrong'). Nothing was changed.");
       }
-    const std::string old_parameters =
-      read_checkpoint_parameters(latest, comm);
-    const RunState state = read_run_state(latest, comm);
-    const double   T     = parameters.time.end_time;
-    const double   k0    = parameters.time.time_step;
+    const std::string old_parameters = read_checkpoint_parameters(latest, comm);
+    const RunState    state          = read_run_state(latest, comm);
+    const double      T              = parameters.time.end_time;
+    const double      k0             = parameters.time.time_step;
     if (T < state.time - 1e-9 * k0)
-      throw CollectiveError(
-        "--resume: Time/End time = " + sig6(T) +
-        " s is before the time of the checkpoint '" + latest +
-        "' (t = " + sig6(state.time) + " s). Nothing was changed.");
-    const std::string series = directory + "/time_series.csv";
-    const TimeSeriesOnDisk on_disk =
-      read_time_series(series, state.step, comm);
+      throw CollectiveError("--resume: Time/End time = " + sig6(T) +
+                            " s is before the time of the checkpoint '" +
+                            latest + "' (t = " + sig6(state.time) +
+                            " s). Nothing was changed.");
+    const std::string      series  = directory + "/time_series.csv";
+    const TimeSeriesOnDisk on_disk = read_time_series(series, state.step, comm);
     // The end summary covers the steps before the checkpoint too (rank 0
     // holds the rows; only rank 0 prints).
     {
-      const auto               lines  = Utilities::split_string_list(
-        on_disk.kept, '\n');
+      const auto lines = Utilities::split_string_list(on_disk.kept, '\n');
       std::vector<std::string> header;
       for (const auto &line : lines)
         {
@@ -1222,20 +1216,19 @@ namespace DynamicContact
     if (T < on_disk.last_time - 1e-9 * k0)
       throw CollectiveError(
         "--resume: Time/End time = " + sig6(T) +
-        " s is before the last row already written to " + series +
-        " (step " + std::to_string(on_disk.last_step) + ", t = " +
-        sig6(on_disk.last_time) +
+        " s is before the last row already written to " + series + " (step " +
+        std::to_string(on_disk.last_step) + ", t = " + sig6(on_disk.last_time) +
         " s): a resumed run does not delete results. Give an end time of at "
         "least " +
-        sig6(on_disk.last_time) + " s, or start a new run. Nothing was "
-                                  "changed.");
+        sig6(on_disk.last_time) +
+        " s, or start a new run. Nothing was "
+        "changed.");
 
     // Load the mesh and the fields.
     Vector_t friction;
-    load_checkpoint<dim>(latest,
-                         discretization,
-                         {&u, &w, &friction},
-                         [this]() { setup_dofs(); });
+    load_checkpoint<dim>(latest, discretization, {&u, &w, &friction}, [this]() {
+      setup_dofs();
+    });
     setup_operators();
     set_friction_from_field(friction, false);
     step                     = state.step;
@@ -1251,7 +1244,8 @@ namespace DynamicContact
 
     // A new Time/Time step is honoured from the checkpoint on; otherwise
     // the cut-back state goes on (within the new minimum).
-    const std::string old_step = parameter_value(old_parameters, "Time/Time step");
+    const std::string old_step =
+      parameter_value(old_parameters, "Time/Time step");
     const bool step_changed =
       !old_step.empty() && std::strtod(old_step.c_str(), nullptr) != k0;
     if (step_changed)
@@ -1288,11 +1282,11 @@ namespace DynamicContact
     });
     time_series_writer =
       std::make_unique<TimeSeriesWriter>(*output_directory, comm, true);
-    vtu_writer = std::make_unique<VtuWriter<dim>>(
-      *output_directory,
-      comm,
-      parameters.boundary_conditions.contact,
-      parameters.output.vtu_subdivisions);
+    vtu_writer =
+      std::make_unique<VtuWriter<dim>>(*output_directory,
+                                       comm,
+                                       parameters.boundary_conditions.contact,
+                                       parameters.output.vtu_subdivisions);
     vtu_writer->set_records(state.vtu_records);
     // The indexes list the VTU files up to the checkpoint only (none: they
     // are removed).
@@ -1351,12 +1345,12 @@ namespace DynamicContact
     // state, do_time_step keeps u and w as u_old and w_old (its first
     // statements; it throws only after them); the friction forces are kept
     // here.
-    const auto          lambda_good = step_solver.friction_forces();
-    last_good_states                = step_solver.node_states();
-    unsigned int        cutbacks    = 0;
-    double              k           = 0;
-    StepRecord<dim>     record;
-    const bool          adaptive    = parameters.time.adaptive;
+    const auto lambda_good   = step_solver.friction_forces();
+    last_good_states         = step_solver.node_states();
+    unsigned int    cutbacks = 0;
+    double          k        = 0;
+    StepRecord<dim> record;
+    const bool      adaptive = parameters.time.adaptive;
     // Time/Adaptive: the k after this step, from its error estimate.
     double k_next      = k_current;
     rejected_this_step = 0;
@@ -1368,8 +1362,8 @@ namespace DynamicContact
             // Steps end exactly at the Output times and at T; a target
             // less than two steps away is reached in two equal ones (no
             // sliver of a step).
-            const double k_wanted = k_current;
-            std::vector<double> targets = parameters.output.output_times;
+            const double        k_wanted = k_current;
+            std::vector<double> targets  = parameters.output.output_times;
             targets.push_back(T);
             for (const double target : targets)
               {
@@ -1409,9 +1403,10 @@ namespace DynamicContact
                     2;
                 const double factor =
                   last_time_error > 0 ?
-                    std::min(2., std::max(0.2,
-                                          0.9 * std::pow(last_time_error,
-                                                         -1. / order))) :
+                    std::min(2.,
+                             std::max(0.2,
+                                      0.9 * std::pow(last_time_error,
+                                                     -1. / order))) :
                     2.;
                 const double k_min = parameters.time.minimum_time_step;
                 // k on the grid Time step * 2^j (rounded down): a new k
@@ -1434,9 +1429,8 @@ namespace DynamicContact
                   }
                 // A step shortened to end at an Output time does not shrink
                 // the next one.
-                k_next = (k < k_current && factor >= 1) ?
-                           k_current :
-                           on_grid(k * factor);
+                k_next = (k < k_current && factor >= 1) ? k_current :
+                                                          on_grid(k * factor);
                 k_next = std::min(parameters.time.maximum_time_step,
                                   std::max(k_min, k_next));
               }
@@ -1456,8 +1450,8 @@ namespace DynamicContact
               // Stop, with the last good state written out (fields and a
               // checkpoint to continue from with other settings).
               stop_with_last_good_state(
-                "step " + std::to_string(step + 1) + " (from t = " +
-                sig6(current_time) +
+                "step " + std::to_string(step + 1) +
+                " (from t = " + sig6(current_time) +
                 " s) could not be solved even with the minimum time step "
                 "(Time/Minimum time step = " +
                 sig6(parameters.time.minimum_time_step) +
@@ -1466,8 +1460,8 @@ namespace DynamicContact
             ++cutbacks;
             good_steps_since_cutback = 0;
             pcout << "  step " << step + 1 << " (t = " << sig6(current_time)
-                  << " s): " << failure.what() << "; retrying with k = "
-                  << sig6(k_current) << std::endl;
+                  << " s): " << failure.what()
+                  << "; retrying with k = " << sig6(k_current) << std::endl;
           }
       }
     ++step;
@@ -1482,8 +1476,7 @@ namespace DynamicContact
     // the error estimate).
     if (adaptive)
       k_current = k_next;
-    else if (cutbacks == 0 && k_current < k0 &&
-             ++good_steps_since_cutback >= 3)
+    else if (cutbacks == 0 && k_current < k0 && ++good_steps_since_cutback >= 3)
       {
         k_current                = std::min(2 * k_current, k0);
         good_steps_since_cutback = 0;
@@ -1493,8 +1486,7 @@ namespace DynamicContact
     // run (whose one-off work would inflate it).
     if (!stepping_start)
       {
-        stepping_start.emplace(std::chrono::steady_clock::now(),
-                               current_time);
+        stepping_start.emplace(std::chrono::steady_clock::now(), current_time);
         vtu_seconds_at_start = vtu_seconds;
       }
 
@@ -1588,9 +1580,8 @@ namespace DynamicContact
           pcout << ", " << total_convexification << " convexification passes";
       }
     pcout << ".\n";
-    const bool balance = max_relative_defect < 1e-8;
-    const bool dissipation =
-      min_dissipation >= -EnergyBalanceTerms::roundoff;
+    const bool balance     = max_relative_defect < 1e-8;
+    const bool dissipation = min_dissipation >= -EnergyBalanceTerms::roundoff;
     pcout << "  energy balance: max relative defect "
           << (balance ? "below 1e-8" :
                         "ABOVE 1e-8 (" + sig6(max_relative_defect) + ")")
@@ -1637,15 +1628,13 @@ namespace DynamicContact
         for (unsigned int i = 0; i < warnings.size(); ++i)
           status += (i ? "; " : "") + warnings[i];
         pcout << "Warning: the run " << status
-              << ". The results do not meet the tolerances there."
-              << std::endl;
+              << ". The results do not meet the tolerances there." << std::endl;
       }
     if (parameters.output.print_timings)
       {
-        const double wall =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                        wall_start)
-            .count();
+        const double wall = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - wall_start)
+                              .count();
         // Peak resident memory, summed over the processes.
         Utilities::System::MemoryStats memory;
         Utilities::System::get_memory_stats(memory);
@@ -1653,9 +1642,9 @@ namespace DynamicContact
           Utilities::MPI::sum(static_cast<double>(memory.VmHWM), comm) / 1024.;
         pcout << "  contact solver: " << step_solver.solver_name()
               << ", peak memory: " << std::fixed << std::setprecision(0)
-              << peak_mb << " MB (all processes), wall time: "
-              << std::setprecision(1) << wall << " s" << std::defaultfloat
-              << std::endl;
+              << peak_mb
+              << " MB (all processes), wall time: " << std::setprecision(1)
+              << wall << " s" << std::defaultfloat << std::endl;
         pcout << timing_table(timer, wall);
       }
     write_log(true);
@@ -1717,8 +1706,10 @@ namespace DynamicContact
     double         found = 0;
     try
       {
-        const auto cell = GridTools::find_active_cell_around_point(
-          discretization.mapping, discretization.dof_handler, point);
+        const auto cell =
+          GridTools::find_active_cell_around_point(discretization.mapping,
+                                                   discretization.dof_handler,
+                                                   point);
         if (cell.first->is_locally_owned())
           {
             VectorTools::point_value(discretization.mapping,
@@ -1811,7 +1802,7 @@ namespace DynamicContact
   template <int dim>
   int
   run_dimension(const RunParameters &parameters,
-                ParameterHandler &   prm,
+                ParameterHandler    &prm,
                 const MPI_Comm       comm,
                 const bool           resume,
                 const bool           validate)
@@ -1861,7 +1852,7 @@ namespace DynamicContact
 
 
   int
-  run_simulation(const std::string &             parameter_file,
+  run_simulation(const std::string              &parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
                  bool                            resume,
@@ -1873,8 +1864,7 @@ namespace DynamicContact
       read_parameters(parameter_file, overrides, prm);
     if (resume_auto)
       {
-        resume =
-          !list_checkpoints(parameters.output.directory, comm).empty();
+        resume = !list_checkpoints(parameters.output.directory, comm).empty();
         if (!resume && Utilities::MPI::this_mpi_process(comm) == 0)
           std::cout << "--resume=auto: no checkpoint in Output/Directory '"
                     << parameters.output.directory << "': a new run."

@@ -28,8 +28,8 @@ namespace DynamicContact
     template <int dim>
     void
     set_raw_values(const ContactNode<dim> &node,
-                   const Tensor<1, dim> &  r,
-                   Vector_t &              v)
+                   const Tensor<1, dim>   &r,
+                   Vector_t               &v)
     {
       for (unsigned int c = 0; c < dim; ++c)
         v(node.dofs[c]) = r[c];
@@ -73,16 +73,16 @@ namespace DynamicContact
 
   template <int dim>
   typename SparseNewton<dim>::Result
-  SparseNewton<dim>::solve(const Vector_t &                    rhs,
+  SparseNewton<dim>::solve(const Vector_t                    &rhs,
                            const std::vector<Tensor<1, dim>> &u_old,
                            const std::vector<Tensor<1, dim>> &w_old,
-                           const std::vector<double> &         mu,
-                           std::vector<Tensor<1, dim>> &       lambda,
-                           Vector_t &                          w)
+                           const std::vector<double>         &mu,
+                           std::vector<Tensor<1, dim>>       &lambda,
+                           Vector_t                          &w)
   {
-    Result                 result;
-    SystemNewton<dim>      system(problem, rhs, u_old, w_old, mu, *this, result);
-    SystemIterate<dim>     x;
+    Result             result;
+    SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
+    SystemIterate<dim> x;
     x.w      = w;
     x.lambda = lambda;
     // The active sets are found here, on the whole system: full steps first
@@ -107,14 +107,14 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::newton_step(const SystemNewton<dim> & newton,
+  SparseNewton<dim>::newton_step(const SystemNewton<dim>  &newton,
                                  const SystemIterate<dim> &x,
-                                 SystemIterate<dim> &      full,
-                                 Result &                  result)
+                                 SystemIterate<dim>       &full,
+                                 Result                   &result)
   {
-    const auto &       nodes = problem.boundary.nodes();
+    const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
-    const Matrix_t &   K0    = problem.bulk.newton_matrix();
+    const Matrix_t    &K0    = problem.bulk.newton_matrix();
 
     NodalSystem system;
     system.blocks.resize(n);
@@ -124,9 +124,8 @@ namespace DynamicContact
       {
         const Tensor<2, dim> &P = nodes[i].constraint_map;
         system.blocks[i]        = transpose(P) * x.lin[i].block * P;
-        system.stick[i] =
-          (x.lin[i].friction.state == ContactState::stick);
-        double d = 0;
+        system.stick[i] = (x.lin[i].friction.state == ContactState::stick);
+        double d        = 0;
         for (unsigned int c = 0; c < dim; ++c)
           d += K0.diag_element(nodes[i].dofs[c]);
         system.diagonal[i] = d / dim;
@@ -160,7 +159,7 @@ namespace DynamicContact
     for (unsigned int i = 0; i < n; ++i)
       {
         const Tensor<1, dim> dw = nodes[i].value(increment);
-        const auto &         l  = x.lin[i];
+        const auto          &l  = x.lin[i];
         new_base[i] = l.normal.pressure * nodes[i].weight * nodes[i].normal +
                       (l.block - l.friction.jacobian) * dw;
         if (l.friction.state == ContactState::slip)
@@ -179,13 +178,13 @@ namespace DynamicContact
   template <int dim>
   void
   SparseNewton<dim>::apply_jacobian(const NodalSystem &system,
-                                    const Vector_t &   x,
-                                    Vector_t &         y) const
+                                    const Vector_t    &x,
+                                    Vector_t          &y) const
   {
-    const auto &    nodes = problem.boundary.nodes();
+    const auto     &nodes = problem.boundary.nodes();
     const IndexSet &owned = problem.discretization.locally_owned;
     problem.bulk.newton_matrix().vmult(y, x);
-    double *      yy = y.trilinos_vector()[0];
+    double       *yy = y.trilinos_vector()[0];
     const double *xx = x.trilinos_vector()[0];
     for (unsigned int i = 0; i < nodes.size(); ++i)
       if (system.blocks[i].norm_square() > 0)
@@ -206,13 +205,13 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::solve_iterative(const NodalSystem &       system,
-                                     const SystemNewton<dim> & newton,
+  SparseNewton<dim>::solve_iterative(const NodalSystem        &system,
+                                     const SystemNewton<dim>  &newton,
                                      const SystemIterate<dim> &x,
-                                     Vector_t &                dw,
-                                     Result &                  result)
+                                     Vector_t                 &dw,
+                                     Result                   &result)
   {
-    const auto & nodes = problem.boundary.nodes();
+    const auto  &nodes = problem.boundary.nodes();
     const double k     = problem.bulk.time_step();
     const double theta = problem.bulk.scheme().effective_derivative();
     if (!amg || amg_scheme != problem.bulk.scheme())
@@ -266,9 +265,8 @@ namespace DynamicContact
       {
         StickNode n;
         for (unsigned int c = 0; c < dim; ++c)
-          n.local[c] =
-            problem.discretization.locally_owned.index_within_set(
-              nodes[i].dofs[c]);
+          n.local[c] = problem.discretization.locally_owned.index_within_set(
+            nodes[i].dofs[c]);
         n.normal   = nodes[i].normal;
         n.diagonal = system.diagonal[i];
         sticks.push_back(n);
@@ -279,16 +277,17 @@ namespace DynamicContact
         t[c] = v[n.local[c]];
       return t;
     };
-    auto set_nodal = [](double *v, const StickNode &n, const Tensor<1, dim> &t) {
-      for (unsigned int c = 0; c < dim; ++c)
-        v[n.local[c]] = t[c];
-    };
+    auto set_nodal =
+      [](double *v, const StickNode &n, const Tensor<1, dim> &t) {
+        for (unsigned int c = 0; c < dim; ++c)
+          v[n.local[c]] = t[c];
+      };
     Vector_t projected;
     problem.discretization.reinit_owned(projected);
     // projected = v without the stick nodes' tangential components.
     auto project = [&](const Vector_t &v) {
       projected        = v;
-      double *      p  = projected.trilinos_vector()[0];
+      double       *p  = projected.trilinos_vector()[0];
       const double *vv = v.trilinos_vector()[0];
       for (const auto &n : sticks)
         {
@@ -297,19 +296,20 @@ namespace DynamicContact
         }
     };
     // y = projection of y, plus diagonal^power times v's tangential part.
-    auto add_tangential = [&](const Vector_t &v, const double power, Vector_t &y) {
-      double *      yy = y.trilinos_vector()[0];
-      const double *vv = v.trilinos_vector()[0];
-      for (const auto &n : sticks)
-        {
-          const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
-          set_nodal(yy,
-                    n,
-                    (yi * n.normal) * n.normal +
-                      std::pow(n.diagonal, power) *
-                        (vi - (vi * n.normal) * n.normal));
-        }
-    };
+    auto add_tangential =
+      [&](const Vector_t &v, const double power, Vector_t &y) {
+        double       *yy = y.trilinos_vector()[0];
+        const double *vv = v.trilinos_vector()[0];
+        for (const auto &n : sticks)
+          {
+            const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
+            set_nodal(yy,
+                      n,
+                      (yi * n.normal) * n.normal +
+                        std::pow(n.diagonal, power) *
+                          (vi - (vi * n.normal) * n.normal));
+          }
+      };
     struct Operator
     {
       std::function<void(Vector_t &, const Vector_t &)> apply;
@@ -334,13 +334,13 @@ namespace DynamicContact
     // 1e-2 far from the solution, 0.1 r near it (superlinear convergence),
     // but no tighter than what takes r below the Newton tolerance in one
     // step (tol/(2 r)), nor than Solver/Linear tolerance.
-    const double r       = std::max(x.relative_residual, 1e-300);
-    const double forcing = std::min(
-      1e-2,
-      std::max({problem.parameters.linear_tolerance,
-                0.1 * r,
-                0.5 * problem.parameters.newton_tolerance / r}));
-    SolverControl control(problem.parameters.max_linear_iterations,
+    const double r = std::max(x.relative_residual, 1e-300);
+    const double forcing =
+      std::min(1e-2,
+               std::max({problem.parameters.linear_tolerance,
+                         0.1 * r,
+                         0.5 * problem.parameters.newton_tolerance / r}));
+    SolverControl         control(problem.parameters.max_linear_iterations,
                           forcing * f.l2_norm());
     SolverGMRES<Vector_t> gmres(
       control, typename SolverGMRES<Vector_t>::AdditionalData(100, true));
@@ -366,22 +366,21 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::solve_direct(const NodalSystem &       system,
-                                  const SystemNewton<dim> & newton,
+  SparseNewton<dim>::solve_direct(const NodalSystem        &system,
+                                  const SystemNewton<dim>  &newton,
                                   const SystemIterate<dim> &x,
-                                  Vector_t &                dw,
-                                  Result &                  result)
+                                  Vector_t                 &dw,
+                                  Result                   &result)
   {
-    const auto & nodes = problem.boundary.nodes();
+    const auto  &nodes = problem.boundary.nodes();
     const double k     = problem.bulk.time_step();
 
     // The Newton matrix changes only through the nodal blocks, the stick
     // set and K0's k: reuse the factorization if none of them changed.
-    bool same = (factorized_scheme == problem.bulk.scheme() &&
-                 factorized_blocks == system.blocks &&
-                 factorized_stick == system.stick);
-    same      = Utilities::MPI::min(same ? 1 : 0,
-                               problem.discretization.comm) == 1;
+    bool same =
+      (factorized_scheme == problem.bulk.scheme() &&
+       factorized_blocks == system.blocks && factorized_stick == system.stick);
+    same = Utilities::MPI::min(same ? 1 : 0, problem.discretization.comm) == 1;
 
     // The host row of each stick node's normal equation: the component
     // with the largest normal entry; the others carry t_s . w = 0.
@@ -453,12 +452,12 @@ namespace DynamicContact
     for (unsigned int i = 0; i < nodes.size(); ++i)
       if (system.stick[i])
         {
-          const auto &         node = nodes[i];
+          const auto          &node = nodes[i];
           const Tensor<1, dim> r    = raw_values(node, scratch2);
           // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
           const Tensor<1, dim> w_e =
             newton.effective_velocity(i, node.value(x.w));
-          const unsigned int host = host_component(node);
+          const unsigned int host   = host_component(node);
           scratch2(node.dofs[host]) = node.normal * r;
           unsigned int s            = 0;
           for (unsigned int c = 0; c < dim; ++c)

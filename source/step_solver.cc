@@ -28,15 +28,15 @@ namespace DynamicContact
 
 
   template <int dim>
-  StepSolver<dim>::StepSolver(const Discretization<dim> &  discretization,
-                              const BulkOperator<dim> &    bulk,
-                              const ContactBoundary<dim> & contact_boundary,
-                              const Foundation &           foundation,
-                              const FrictionLaw *          friction_law,
-                              const Parameters::Solver &   solver_parameters,
-                              const Parameters::Friction & friction_parameters,
-                              TimerOutput &                timer,
-                              const ConditionalOStream &   details)
+  StepSolver<dim>::StepSolver(const Discretization<dim>  &discretization,
+                              const BulkOperator<dim>    &bulk,
+                              const ContactBoundary<dim> &contact_boundary,
+                              const Foundation           &foundation,
+                              const FrictionLaw          *friction_law,
+                              const Parameters::Solver   &solver_parameters,
+                              const Parameters::Friction &friction_parameters,
+                              TimerOutput                &timer,
+                              const ConditionalOStream   &details)
     : discretization(discretization)
     , bulk(bulk)
     , contact_boundary(contact_boundary)
@@ -58,12 +58,12 @@ namespace DynamicContact
   void
   StepSolver<dim>::reinit(const double complementarity_constant)
   {
-    c_t = complementarity_constant;
-    using CS   = Parameters::Solver::ContactSolver;
-    condensed  = (parameters.contact_solver == CS::condensed ||
-                 (parameters.contact_solver == CS::automatic &&
-                  dim * contact_boundary.n_global_nodes() <=
-                    parameters.condensed_limit));
+    c_t      = complementarity_constant;
+    using CS = Parameters::Solver::ContactSolver;
+    condensed =
+      (parameters.contact_solver == CS::condensed ||
+       (parameters.contact_solver == CS::automatic &&
+        dim * contact_boundary.n_global_nodes() <= parameters.condensed_limit));
     if (!condensed)
       {
         // auto: the scalable solver is the iterative one.
@@ -125,23 +125,22 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::update_states(
-    const std::vector<Tensor<1, dim>> &u_old_nodes,
-    const std::vector<Tensor<1, dim>> &w_old_nodes,
-    const Vector_t &                   w,
-    Statistics &                       statistics)
+  StepSolver<dim>::update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
+                                 const std::vector<Tensor<1, dim>> &w_old_nodes,
+                                 const Vector_t                    &w,
+                                 Statistics                        &statistics)
   {
-    const auto &       nodes  = contact_boundary.nodes();
-    const TimeScheme & scheme = bulk.scheme();
-    const double       k      = scheme.time_step();
-    unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
+    const auto       &nodes     = contact_boundary.nodes();
+    const TimeScheme &scheme    = bulk.scheme();
+    const double      k         = scheme.time_step();
+    unsigned int      n_contact = 0, n_stick = 0, n_slip = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const unsigned int   g   = i;
         const Tensor<1, dim> wi  = nodes[i].value(w);
         const Tensor<1, dim> w_e = scheme.weighted(wi, w_old_nodes[g]);
-        auto &               s   = states[i];
-        s.normal         = normal_response(
+        auto                &s   = states[i];
+        s.normal                 = normal_response(
           foundation, nodes[i], u_old_nodes[g], w_old_nodes[g], wi, scheme);
         s.friction_force = lambda[g];
         s.mu             = mu[g];
@@ -162,10 +161,10 @@ namespace DynamicContact
         n_stick += (s.state == ContactState::stick);
         n_slip += (s.state == ContactState::slip);
       }
-    const MPI_Comm comm     = discretization.comm;
-    statistics.n_contact    = Utilities::MPI::sum(n_contact, comm);
-    statistics.n_stick      = Utilities::MPI::sum(n_stick, comm);
-    statistics.n_slip       = Utilities::MPI::sum(n_slip, comm);
+    const MPI_Comm comm  = discretization.comm;
+    statistics.n_contact = Utilities::MPI::sum(n_contact, comm);
+    statistics.n_stick   = Utilities::MPI::sum(n_stick, comm);
+    statistics.n_slip    = Utilities::MPI::sum(n_slip, comm);
   }
 
 
@@ -259,9 +258,9 @@ namespace DynamicContact
                           MPI_DOUBLE,
                           MPI_SUM,
                           comm);
-            FullMatrix<double>        A(m, m);
-            Vector<double>            rhs(m), gamma(m);
-            double                    trace = 0;
+            FullMatrix<double> A(m, m);
+            Vector<double>     rhs(m), gamma(m);
+            double             trace = 0;
             for (unsigned int a = 0; a < m; ++a)
               {
                 for (unsigned int b = 0; b < m; ++b)
@@ -314,17 +313,17 @@ namespace DynamicContact
   StepSolver<dim>::solve(const Vector_t &rhs,
                          const Vector_t &u_old,
                          const Vector_t &w_old,
-                         Vector_t &      w,
+                         Vector_t       &w,
                          const bool      accept_unconverged_loop)
   {
     Statistics          statistics;
-    ContactNewton<dim> &newton    = newton_for_scheme();
-    const TimeScheme &  scheme    = bulk.scheme();
-    const double       k         = scheme.time_step();
-    const auto   u_old_nodes = contact_boundary.values(u_old);
-    const auto   w_old_nodes = contact_boundary.values(w_old);
-    const auto & all         = contact_boundary.nodes();
-    const MPI_Comm comm      = discretization.comm;
+    ContactNewton<dim> &newton      = newton_for_scheme();
+    const TimeScheme   &scheme      = bulk.scheme();
+    const double        k           = scheme.time_step();
+    const auto          u_old_nodes = contact_boundary.values(u_old);
+    const auto          w_old_nodes = contact_boundary.values(w_old);
+    const auto         &all         = contact_boundary.nodes();
+    const MPI_Comm      comm        = discretization.comm;
 
     // Convexification loop (doc/theory.md section 4): mu frozen from the
     // previous iterate, starting from w^(0) = w_{n-1}.
@@ -359,7 +358,7 @@ namespace DynamicContact
     // xi_i = lambda_i / (m_i S_i): the selection of the subdifferential in
     // eq. (52).
     auto friction_density = [&](const std::vector<Tensor<1, dim>> &forces,
-                                const NodalIterate &               n) {
+                                const NodalIterate                &n) {
       std::vector<Tensor<1, dim>> xi(all.size());
       for (unsigned int i = 0; i < all.size(); ++i)
         if (n.pressure[i] > 0)
@@ -381,7 +380,7 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>> xi_previous;
     if (loop)
       {
-        TimerSection t(timer, "Friction: convexification update");
+        TimerSection       t(timer, "Friction: convexification update");
         const NodalIterate start = nodal_iterate(w);
         for (unsigned int i = 0; i < all.size(); ++i)
           mu[i] = checked_coefficient(*friction_law, start.slip_rate[i]);
@@ -452,8 +451,9 @@ namespace DynamicContact
             m.coefficient_residual =
               std::max(m.coefficient_residual, std::abs(mu[i] - m.mu_new[i]));
           }
-      m.coefficient_residual = Utilities::MPI::max(m.coefficient_residual, comm);
-      m.converged            = rule_85 && m.coefficient_residual <=
+      m.coefficient_residual =
+        Utilities::MPI::max(m.coefficient_residual, comm);
+      m.converged = rule_85 && m.coefficient_residual <=
                                  friction_parameters.coefficient_tolerance;
       details << "  convexification pass " << pass + 1
               << (provisional ? " (provisional)" : "") << ": |du|_V/|u|_V "
@@ -482,9 +482,8 @@ namespace DynamicContact
           break;
 
         Measures m = measure(pass);
-        if (provisional &&
-            (m.converged || pass + 1 == max_passes ||
-             m.coefficient_residual >= best_residual))
+        if (provisional && (m.converged || pass + 1 == max_passes ||
+                            m.coefficient_residual >= best_residual))
           {
             add_statistics(newton.finalize(w, lambda));
             provisional       = false;
@@ -505,12 +504,11 @@ namespace DynamicContact
             break;
           }
         if (pass + 1 == max_passes)
-          throw StepFailure(
-            "the convexification loop did not converge in "
-            "Friction/Maximum convexification iterations = " +
-            std::to_string(max_passes) +
-            " passes (max |mu_i - mu(|w_tau,i|)| = " +
-            scientific(m.coefficient_residual) + ")");
+          throw StepFailure("the convexification loop did not converge in "
+                            "Friction/Maximum convexification iterations = " +
+                            std::to_string(max_passes) +
+                            " passes (max |mu_i - mu(|w_tau,i|)| = " +
+                            scientific(m.coefficient_residual) + ")");
         // The next frozen coefficients: the relaxed update, accelerated.
         TimerSection t(timer, "Friction: convexification update");
         for (unsigned int i = 0; i < all.size(); ++i)

@@ -8,13 +8,13 @@
 namespace DynamicContact
 {
   template <int dim>
-  SystemNewton<dim>::SystemNewton(const ContactProblem<dim> &         problem,
-                                  const Vector_t &                    rhs,
+  SystemNewton<dim>::SystemNewton(const ContactProblem<dim>         &problem,
+                                  const Vector_t                    &rhs,
                                   const std::vector<Tensor<1, dim>> &u_old,
                                   const std::vector<Tensor<1, dim>> &w_old,
-                                  const std::vector<double> &         mu,
-                                  LinearBackend<dim> &                backend,
-                                  ContactNewtonResult &               result)
+                                  const std::vector<double>         &mu,
+                                  LinearBackend<dim>                &backend,
+                                  ContactNewtonResult               &result)
     : problem(problem)
     , rhs(rhs)
     , u_old(u_old)
@@ -27,7 +27,7 @@ namespace DynamicContact
 
   template <int dim>
   double
-  SystemNewton<dim>::residual_of(const Vector_t &                    w,
+  SystemNewton<dim>::residual_of(const Vector_t                    &w,
                                  const std::vector<Tensor<1, dim>> &forces,
                                  Vector_t &residual) const
   {
@@ -45,7 +45,7 @@ namespace DynamicContact
   NewtonMeasure
   SystemNewton<dim>::evaluate(Iterate &x) const
   {
-    const auto &       nodes = problem.boundary.nodes();
+    const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
     x.lin.resize(n);
     x.forces.resize(n);
@@ -61,11 +61,11 @@ namespace DynamicContact
                                                     nodes[i].value(x.w),
                                                     x.lambda[i],
                                                     mu.empty() ? 0. : mu[i]);
-        x.lin[i]    = e.lin;
-        x.forces[i] = e.force;
-        x.base[i]   = e.base;
-        f_scale     = std::max(f_scale, e.force.norm());
-        law_residual = std::max(law_residual, e.law_residual);
+        x.lin[i]                    = e.lin;
+        x.forces[i]                 = e.force;
+        x.base[i]                   = e.base;
+        f_scale                     = std::max(f_scale, e.force.norm());
+        law_residual                = std::max(law_residual, e.law_residual);
         law_squares += e.law_residual * e.law_residual;
         signature += e.signature;
       }
@@ -74,8 +74,7 @@ namespace DynamicContact
       problem.discretization.reinit_owned(x.residual);
     problem.bulk.newton_matrix().vmult(x.residual, x.w);
     const MPI_Comm comm = problem.discretization.comm;
-    x.scale =
-      std::max({rhs.l2_norm(), x.residual.l2_norm(), 1e-300});
+    x.scale = std::max({rhs.l2_norm(), x.residual.l2_norm(), 1e-300});
     x.residual -= rhs;
     problem.boundary.add_nodal_forces(
       [&](const unsigned int i) { return x.forces[i]; }, 1., x.residual);
@@ -84,11 +83,11 @@ namespace DynamicContact
     x.f_scale      = Utilities::MPI::max(f_scale, comm);
 
     NewtonMeasure m;
-    x.residual_norm     = x.residual.l2_norm();
-    x.relative_residual = std::max(x.residual_norm / x.scale,
-                                   x.law_residual / x.f_scale);
-    m.residual          = x.relative_residual;
-    m.merit             = merit(x, x);
+    x.residual_norm = x.residual.l2_norm();
+    x.relative_residual =
+      std::max(x.residual_norm / x.scale, x.law_residual / x.f_scale);
+    m.residual                     = x.relative_residual;
+    m.merit                        = merit(x, x);
     std::uint64_t global_signature = 0;
     MPI_Allreduce(
       &signature, &global_signature, 1, MPI_UINT64_T, MPI_SUM, comm);
@@ -102,7 +101,7 @@ namespace DynamicContact
   SystemNewton<dim>::combine(const Iterate &x,
                              const Iterate &full,
                              const double   alpha,
-                             Iterate &      trial) const
+                             Iterate       &trial) const
   {
     trial.w = full.w;
     trial.w.sadd(alpha, 1 - alpha, x.w);

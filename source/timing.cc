@@ -60,10 +60,10 @@ namespace DynamicContact
   std::string
   timing_table(const TimerOutput &timer, const double total_wall_time)
   {
-    const auto times = timer.get_summary_data(TimerOutput::total_wall_time);
-    const auto it    = bookkeeping().find(&timer);
-    double     in_sections = 0;
-    std::size_t width      = 24;
+    const auto  times = timer.get_summary_data(TimerOutput::total_wall_time);
+    const auto  it    = bookkeeping().find(&timer);
+    double      in_sections = 0;
+    std::size_t width       = 24;
     for (const auto &[name, t] : times)
       {
         in_sections += t;
@@ -76,19 +76,19 @@ namespace DynamicContact
     const double total   = in_sections + outside;
 
     std::ostringstream out;
-    const auto row = [&](const std::string &name,
-                         const std::string &calls,
-                         const double       t) {
-      out << "  " << std::left << std::setw(width) << name << std::right
-          << std::setw(9) << calls << std::fixed << std::setprecision(2)
-          << std::setw(11) << t << " s" << std::setprecision(1)
-          << std::setw(8) << (total > 0 ? 100 * t / total : 0.) << " %\n";
-    };
+    const auto         row =
+      [&](const std::string &name, const std::string &calls, const double t) {
+        out << "  " << std::left << std::setw(width) << name << std::right
+            << std::setw(9) << calls << std::fixed << std::setprecision(2)
+            << std::setw(11) << t << " s" << std::setprecision(1)
+            << std::setw(8) << (total > 0 ? 100 * t / total : 0.) << " %\n";
+      };
     out << "Timings (wall clock; each section excludes the sections opened "
            "inside it, the rows add up to the total):\n";
     out << "  " << std::left << std::setw(width) << "section" << std::right
-        << std::setw(9) << "calls" << std::setw(13) << "time"
-        << std::setw(10) << "share" << "\n";
+        << std::setw(9) << "calls" << std::setw(13) << "time" << std::setw(10)
+        << "share"
+        << "\n";
     for (const auto &[name, t] : times)
       {
         unsigned int calls = 0;

@@ -24,19 +24,18 @@ main(int argc, char *argv[])
     {
       auto o = overrides;
       o.push_back("Output/Directory=output-one");
-      serial = test_tools::run<2>(
-                 test_tools::scene("barboteu_danan_2016_adaptive_small.prm"),
-                 o,
-                 MPI_COMM_SELF)
+      serial = test_tools::run<2>(test_tools::scene(
+                                    "barboteu_danan_2016_adaptive_small.prm"),
+                                  o,
+                                  MPI_COMM_SELF)
                  ->time_series();
     }
   MPI_Barrier(MPI_COMM_WORLD);
   auto o = overrides;
   o.push_back("Output/Directory=output-all");
   const auto parallel =
-    test_tools::run<2>(test_tools::scene(
-                         "barboteu_danan_2016_adaptive_small.prm"),
-                       o)
+    test_tools::run<2>(
+      test_tools::scene("barboteu_danan_2016_adaptive_small.prm"), o)
       ->time_series();
   if (rank != 0)
     return 0;
@@ -50,8 +49,7 @@ main(int argc, char *argv[])
   double worst     = 0;
   for (unsigned int n = 0; n < serial.size(); ++n)
     {
-      same_mesh = same_mesh &&
-                  serial[n].cells == parallel[n].cells &&
+      same_mesh = same_mesh && serial[n].cells == parallel[n].cells &&
                   serial[n].dofs == parallel[n].dofs;
       for (const char *column : {"normal_force",
                                  "tangential_force",
@@ -65,10 +63,10 @@ main(int argc, char *argv[])
         {
           const auto   q = test_tools::quantity<2>(column);
           const double a = q.of(serial[n]), b = q.of(parallel[n]);
-          const double scale =
-            q.force ? std::max(std::abs(a), 1e3) :
-                      std::max(serial[n].terms.energy.total(), 1.);
-          worst = std::max(worst, std::abs(a - b) / scale);
+          const double scale = q.force ?
+                                 std::max(std::abs(a), 1e3) :
+                                 std::max(serial[n].terms.energy.total(), 1.);
+          worst              = std::max(worst, std::abs(a - b) / scale);
         }
     }
   test_tools::check(same_mesh, "the same adaptive meshes at every step");

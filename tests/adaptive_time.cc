@@ -26,18 +26,19 @@ adaptive_run(const std::string &scheme, const double tolerance)
 {
   const std::string name =
     (scheme == "backward Euler" ? std::string("euler") : scheme);
-  auto simulator = test_tools::run<2>(
-    test_tools::scene("manufactured_2d.prm"),
-    {"Output/Directory=output-adaptive-time-" + name + "-" +
-       test_tools::digits(tolerance, 1),
-     "Geometry/Global refinements=3",
-     "Finite element/Polynomial degree=2",
-     "Time/Scheme=" + scheme,
-     "Time/Time step=0.4",
-     "Time/Minimum time step=1e-4",
-     "Time/Adaptive=true",
-     "Time/Adaptive tolerance=" + test_tools::digits(tolerance, 2),
-     "Output/Output times=0.3, 0.5"});
+  auto simulator =
+    test_tools::run<2>(test_tools::scene("manufactured_2d.prm"),
+                       {"Output/Directory=output-adaptive-time-" + name + "-" +
+                          test_tools::digits(tolerance, 1),
+                        "Geometry/Global refinements=3",
+                        "Finite element/Polynomial degree=2",
+                        "Time/Scheme=" + scheme,
+                        "Time/Time step=0.4",
+                        "Time/Minimum time step=1e-4",
+                        "Time/Adaptive=true",
+                        "Time/Adaptive tolerance=" +
+                          test_tools::digits(tolerance, 2),
+                        "Output/Output times=0.3, 0.5"});
   Result r;
   bool   hit_03 = false, hit_05 = false;
   for (const auto &row : simulator->time_series())
@@ -50,8 +51,7 @@ adaptive_run(const std::string &scheme, const double tolerance)
         r.k_min        = std::min(r.k_min, k);
         r.k_max        = std::max(r.k_max, k);
         if (k > 1e-4 * (1 + 1e-9))
-          r.worst_estimate =
-            std::max(r.worst_estimate, row.time_error);
+          r.worst_estimate = std::max(r.worst_estimate, row.time_error);
         hit_03 = hit_03 || std::abs(row.time - 0.3) < 1e-12;
         hit_05 = hit_05 || std::abs(row.time - 0.5) < 1e-12;
       }
@@ -71,8 +71,8 @@ study(const std::string &scheme, const double tolerance)
         test_tools::digits(r == &coarse ? tolerance : tolerance / 10, 1);
       test_tools::check(r->rejected > 0,
                         "tolerance " + tol + ": steps were rejected");
-      test_tools::check(r->worst_estimate <= (r == &coarse ? tolerance :
-                                                             tolerance / 10),
+      test_tools::check(r->worst_estimate <=
+                          (r == &coarse ? tolerance : tolerance / 10),
                         "tolerance " + tol +
                           ": every accepted step meets the tolerance");
       test_tools::check(r->output_times_hit,

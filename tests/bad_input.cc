@@ -79,7 +79,8 @@ namespace
     return result;
   }
 
-  /** @p text with @p from replaced by @p to; the case is void if it is absent. */
+  /** @p text with @p from replaced by @p to; the case is void if it is absent.
+   */
   std::string
   changed(const std::string &text,
           const std::string &from,
@@ -90,8 +91,7 @@ namespace
       test_tools::check(false,
                         "prm/pressed_block.prm contains '" + from +
                           "' (the test changes it)");
-    return text.substr(0, position) + to +
-           text.substr(position + from.size());
+    return text.substr(0, position) + to + text.substr(position + from.size());
   }
 
   struct Case
@@ -170,8 +170,8 @@ namespace
       o.stderr_only_message = o.err.empty();
     else if (!lines.empty() && lines[0].rfind(error_prefix, 0) == 0)
       {
-        const std::string rest = o.err.substr(
-          std::min(lines[0].size() + 1, o.err.size()));
+        const std::string rest =
+          o.err.substr(std::min(lines[0].size() + 1, o.err.size()));
         o.stderr_only_message =
           rest.empty() ||
           (c.expected_code == 2 && rest.rfind("\nUsage: ", 0) == 0);
@@ -223,17 +223,17 @@ main(int argc, char **argv)
     garbage += static_cast<char>(i % 256);
 
   const std::vector<std::string> file = {"scene.prm"};
-  auto with = [&file](std::vector<std::string> more) {
+  auto                           with = [&file](std::vector<std::string> more) {
     more.insert(more.begin(), file.begin(), file.end());
     return more;
   };
 
   std::vector<Case> cases;
-  auto add = [&cases](const std::string &             name,
+  auto              add = [&cases](const std::string               &name,
                       const std::optional<std::string> prm,
-                      const std::vector<std::string> &arguments,
-                      const int                       expected_code,
-                      const std::vector<std::string> &names) -> Case & {
+                      const std::vector<std::string>  &arguments,
+                      const int                        expected_code,
+                      const std::vector<std::string>  &names) -> Case              &{
     cases.push_back(Case{name, prm, arguments, expected_code, names});
     return cases.back();
   };
@@ -243,11 +243,11 @@ main(int argc, char **argv)
     return changed(scene, from, to);
   };
 
-  const std::string density = "set Density       = 1000";
-  const std::string young   = "set Young modulus = 1e9";
-  const std::string poisson = "set Poisson ratio = 0.3";
-  const std::string step    = "set Time step = 1";
-  const std::string end     = "set End time  = 8";
+  const std::string density             = "set Density       = 1000";
+  const std::string young               = "set Young modulus = 1e9";
+  const std::string poisson             = "set Poisson ratio = 0.3";
+  const std::string step                = "set Time step = 1";
+  const std::string end                 = "set End time  = 8";
   const std::string traction_expression = "set Function expression = 0; -P";
 
   // Controls: valid input runs to completion.
@@ -258,78 +258,139 @@ main(int argc, char **argv)
   add("only_comments", "# nothing set\n\n", file, 1, {"scene.prm", "empty"});
   add("missing_file", std::nullopt, {"missing.prm"}, 1, {"missing.prm"});
   add("binary_garbage_file", garbage, file, 1, {"scene.prm"});
-  add("unknown_entry_top_level", scene + "\nset Foo = 1\n", file, 1,
+  add("unknown_entry_top_level",
+      scene + "\nset Foo = 1\n",
+      file,
+      1,
       {"scene.prm", "Foo"})
     .line_of = "set Foo = 1";
   add("unknown_entry_in_subsection",
-      change(density, density + "\n  set Foo = 1"), file, 1,
+      change(density, density + "\n  set Foo = 1"),
+      file,
+      1,
       {"scene.prm", "Material/Foo"})
     .line_of = "set Foo = 1";
   add("unknown_subsection",
-      change("subsection Foundation", "subsection Fundation"), file, 1,
+      change("subsection Foundation", "subsection Fundation"),
+      file,
+      1,
       {"scene.prm", "Fundation"})
     .line_of = "subsection Fundation";
-  add("misspelt_entry", change(young, "set Youngs modulus = 1e9"), file, 1,
+  add("misspelt_entry",
+      change(young, "set Youngs modulus = 1e9"),
+      file,
+      1,
       {"scene.prm", "Material/Youngs modulus"})
     .line_of = "set Youngs modulus = 1e9";
-  add("malformed_value", change(density, "set Density = abc"), file, 1,
+  add("malformed_value",
+      change(density, "set Density = abc"),
+      file,
+      1,
       {"scene.prm", "Material/Density", "abc"})
     .line_of = "set Density = abc";
-  add("nan_value", change(density, "set Density = nan"), file, 1,
+  add("nan_value",
+      change(density, "set Density = nan"),
+      file,
+      1,
       {"scene.prm", "Material/Density", "nan"})
     .line_of = "set Density = nan";
-  add("dimension_4", change("set Dimension = 2", "set Dimension = 4"), file,
-      1, {"scene.prm", "Dimension", "4"})
+  add("dimension_4",
+      change("set Dimension = 2", "set Dimension = 4"),
+      file,
+      1,
+      {"scene.prm", "Dimension", "4"})
     .line_of = "set Dimension = 4";
 
   // Values out of range.
-  add("density_zero", change(density, "set Density = 0"), file, 1,
+  add("density_zero",
+      change(density, "set Density = 0"),
+      file,
+      1,
       {"Material/Density"});
-  add("density_negative", change(density, "set Density = -1000"), file, 1,
+  add("density_negative",
+      change(density, "set Density = -1000"),
+      file,
+      1,
       {"Material/Density"});
-  add("young_modulus_zero", change(young, "set Young modulus = 0"), file, 1,
+  add("young_modulus_zero",
+      change(young, "set Young modulus = 0"),
+      file,
+      1,
       {"Material/Young modulus"});
-  add("young_modulus_negative", change(young, "set Young modulus = -1e9"),
-      file, 1, {"Material/Young modulus"});
-  add("poisson_ratio_0.5", change(poisson, "set Poisson ratio = 0.5"), file,
-      1, {"Material/Poisson ratio"});
-  add("poisson_ratio_-1", change(poisson, "set Poisson ratio = -1"), file, 1,
+  add("young_modulus_negative",
+      change(young, "set Young modulus = -1e9"),
+      file,
+      1,
+      {"Material/Young modulus"});
+  add("poisson_ratio_0.5",
+      change(poisson, "set Poisson ratio = 0.5"),
+      file,
+      1,
       {"Material/Poisson ratio"});
-  add("time_step_zero", change(step, "set Time step = 0"), file, 1,
+  add("poisson_ratio_-1",
+      change(poisson, "set Poisson ratio = -1"),
+      file,
+      1,
+      {"Material/Poisson ratio"});
+  add("time_step_zero",
+      change(step, "set Time step = 0"),
+      file,
+      1,
       {"Time/Time step"});
-  add("time_step_negative", change(step, "set Time step = -1"), file, 1,
+  add("time_step_negative",
+      change(step, "set Time step = -1"),
+      file,
+      1,
       {"Time/Time step"});
-  add("end_time_zero", change(end, "set End time = 0"), file, 1,
+  add("end_time_zero",
+      change(end, "set End time = 0"),
+      file,
+      1,
       {"Time/End time"});
-  add("end_time_negative", change(end, "set End time = -8"), file, 1,
+  add("end_time_negative",
+      change(end, "set End time = -8"),
+      file,
+      1,
       {"Time/End time"});
 
   // Boundary conditions against the mesh (ids 0..3 of the rectangle).
-  add("boundary_id_twice", change("set Clamped  =", "set Clamped  = 2"), file,
+  add("boundary_id_twice",
+      change("set Clamped  =", "set Clamped  = 2"),
+      file,
       1,
       {"boundary id 2",
        "Boundary conditions/Clamped",
        "Boundary conditions/Contact"});
   add("boundary_id_unassigned",
-      change("set Roller   = 0, 1", "set Roller   = 0"), file, 1,
+      change("set Roller   = 0, 1", "set Roller   = 0"),
+      file,
+      1,
       {"Boundary conditions", "boundary id 1"});
   add("boundary_id_not_in_mesh",
-      change("set Contact  = 2", "set Contact  = 2\n  set Free = 7"), file, 1,
+      change("set Contact  = 2", "set Contact  = 2\n  set Free = 7"),
+      file,
+      1,
       {"Boundary conditions/Free", "boundary id 7"});
 
   // Functions.
   add("function_does_not_parse",
       change(traction_expression, "set Function expression = 0; -P*("),
-      file, 1, {"Boundary conditions/Traction function/Function expression"});
+      file,
+      1,
+      {"Boundary conditions/Traction function/Function expression"});
   add("function_wrong_number_of_components",
-      change(traction_expression, "set Function expression = -P"), file, 1,
+      change(traction_expression, "set Function expression = -P"),
+      file,
+      1,
       {"Boundary conditions/Traction function/Function expression"});
 
   // Geometry and output.
   add("gmsh_mesh_file_missing",
       change("set Type        = rectangle",
              "set Type        = gmsh\n  set Mesh file = missing.msh"),
-      file, 1, {"Geometry/Mesh file", "missing.msh"});
+      file,
+      1,
+      {"Geometry/Mesh file", "missing.msh"});
   // A Gmsh mesh of the block (1 x 0.5, two quadrilaterals): the control
   // tags the right, bottom and top edges 1, 2, 3 and leaves the left one
   // untagged (deal.II gives it id 0), as the rectangle's ids; the other tags
@@ -346,21 +407,29 @@ main(int argc, char **argv)
            side_tag + " " + side_tag +
            " 3 6\n"
            "4 1 2 3 3 6 5\n5 1 2 3 3 5 4\n" +
-           left_line +
-           "7 3 2 5 5 1 2 5 4\n8 3 2 5 5 2 3 6 5\n$EndElements\n";
+           left_line + "7 3 2 5 5 1 2 5 4\n8 3 2 5 5 2 3 6 5\n$EndElements\n";
   };
   const std::string gmsh_scene =
     change("set Type        = rectangle",
            "set Type        = gmsh\n  set Mesh file = block.msh");
   add("control_gmsh_scene", gmsh_scene, file, 0, {}).extra_files = {
     {"block.msh", msh("1", "")}};
-  add("gmsh_mesh_lacks_boundary_ids", gmsh_scene, file, 1,
+  add("gmsh_mesh_lacks_boundary_ids",
+      gmsh_scene,
+      file,
+      1,
       {"Boundary conditions/Roller", "boundary id 0", "block.msh"})
     .extra_files = {{"block.msh", msh("10", "6 1 2 10 10 4 1\n")}};
-  add("gmsh_mesh_file_garbage", gmsh_scene, file, 1,
+  add("gmsh_mesh_file_garbage",
+      gmsh_scene,
+      file,
+      1,
       {"Geometry/Mesh file", "block.msh"})
     .extra_files = {{"block.msh", garbage}};
-  add("gmsh_mesh_file_truncated", gmsh_scene, file, 1,
+  add("gmsh_mesh_file_truncated",
+      gmsh_scene,
+      file,
+      1,
       {"Geometry/Mesh file", "block.msh"})
     .extra_files = {{"block.msh", msh("1", "").substr(0, 120)}};
   // Issue 12: Gmsh meshes this program cannot use are refused before
@@ -373,30 +442,45 @@ main(int argc, char **argv)
     std::string m = msh("1", "");
     return m.insert(m.find("$Nodes"), names);
   };
-  const std::string names_scene = changed(
-    changed(changed(gmsh_scene, "set Roller   = 0, 1", "set Roller   = 0, right"),
-            "set Contact  = 2",
-            "set Contact  = bottom"),
-    "set Traction = 3",
-    "set Traction = top");
+  const std::string names_scene =
+    changed(changed(changed(gmsh_scene,
+                            "set Roller   = 0, 1",
+                            "set Roller   = 0, right"),
+                    "set Contact  = 2",
+                    "set Contact  = bottom"),
+            "set Traction = 3",
+            "set Traction = top");
   add("control_gmsh_physical_names", names_scene, file, 0, {}).extra_files = {
     {"block.msh", named_msh()}};
   add("gmsh_unknown_physical_name",
       changed(names_scene, "set Contact  = bottom", "set Contact  = bottm"),
-      file, 1,
-      {"Boundary conditions/Contact", "'bottm'", "block.msh",
+      file,
+      1,
+      {"Boundary conditions/Contact",
+       "'bottm'",
+       "block.msh",
        "'bottom' (2), 'right' (1), 'top' (3)"})
     .extra_files = {{"block.msh", named_msh()}};
   add("boundary_name_with_rectangle",
-      change("set Contact  = 2", "set Contact  = bottom"), file, 1,
+      change("set Contact  = 2", "set Contact  = bottom"),
+      file,
+      1,
       {"Boundary conditions/Contact", "'bottom'", "Geometry/Type = gmsh"});
   add("boundary_id_out_of_range",
-      change("set Contact  = 2", "set Contact  = 2, 256"), file, 1,
+      change("set Contact  = 2", "set Contact  = 2, 256"),
+      file,
+      1,
       {"Boundary conditions/Contact", "256", "0 to 255"});
   // Gmsh's default: triangles (2D), tetrahedra (3D).
-  add("gmsh_triangles", gmsh_scene, file, 1,
-      {"Geometry/Mesh file", "block.msh", "2 3-node triangles",
-       "Gmsh element type 2", "Mesh.RecombineAll = 1",
+  add("gmsh_triangles",
+      gmsh_scene,
+      file,
+      1,
+      {"Geometry/Mesh file",
+       "block.msh",
+       "2 3-node triangles",
+       "Gmsh element type 2",
+       "Mesh.RecombineAll = 1",
        "Mesh.SubdivisionAlgorithm = 1"})
     .extra_files = {
     {"block.msh",
@@ -411,9 +495,13 @@ main(int argc, char **argv)
         changed(scene_3d,
                 "set Type        = rectangle",
                 "set Type        = gmsh\n  set Mesh file = block.msh"),
-        file, 1,
-        {"Geometry/Mesh file", "block.msh", "1 4-node tetrahedron",
-         "Gmsh element type 4", "Mesh.SubdivisionAlgorithm = 2"})
+        file,
+        1,
+        {"Geometry/Mesh file",
+         "block.msh",
+         "1 4-node tetrahedron",
+         "Gmsh element type 4",
+         "Mesh.SubdivisionAlgorithm = 2"})
       .extra_files = {
       {"block.msh",
        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n"
@@ -422,108 +510,172 @@ main(int argc, char **argv)
        "$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n"
        "$EndElements\n"}};
   }
-  add("gmsh_binary", gmsh_scene, file, 1,
+  add("gmsh_binary",
+      gmsh_scene,
+      file,
+      1,
       {"Geometry/Mesh file", "block.msh", "binary", "ASCII"})
     .extra_files = {{"block.msh", "$MeshFormat\n4.1 1 8\n" + garbage}};
   add("output_directory_not_creatable",
       change("set Directory = output-pressed-block",
              "set Directory = scene.prm/results"),
-      file, 1, {"Output/Directory", "scene.prm/results"});
+      file,
+      1,
+      {"Output/Directory", "scene.prm/results"});
 
   // Found only while running: the run must end as failed, not completed.
   add("newton_iterations_exhausted",
-      change("subsection Output", "subsection Solver\n  set Maximum Newton "
-                                  "iterations = 1\nend\n\nsubsection Output"),
-      file, 1, {"Solver/Maximum Newton iterations"})
+      change("subsection Output",
+             "subsection Solver\n  set Maximum Newton "
+             "iterations = 1\nend\n\nsubsection Output"),
+      file,
+      1,
+      {"Solver/Maximum Newton iterations"})
     .runtime = true;
 
   // Values that are not finite: named before anything is written.
   add("traction_not_finite",
-      change(traction_expression, "set Function expression = 0; -P/0"), file,
-      1, {"Boundary conditions/Traction function", "-P/0", "-inf"});
+      change(traction_expression, "set Function expression = 0; -P/0"),
+      file,
+      1,
+      {"Boundary conditions/Traction function", "-P/0", "-inf"});
   add("initial_velocity_not_finite",
       scene + "\nsubsection Initial conditions\n  subsection Velocity\n"
               "    set Function expression = 1/0; 0\n  end\nend\n",
-      file, 1, {"Initial conditions/Velocity", "1/0"});
+      file,
+      1,
+      {"Initial conditions/Velocity", "1/0"});
   add("body_force_not_finite",
       scene + "\nsubsection Body force\n  set Function expression = 0; "
               "sqrt(-1)\nend\n",
-      file, 1, {"Body force", "sqrt(-1)"});
+      file,
+      1,
+      {"Body force", "sqrt(-1)"});
   add("initial_gap_not_finite",
       change("subsection Foundation",
              "subsection Foundation\n  subsection Initial gap\n    set "
              "Function expression = log(x-2)\n  end"),
-      file, 1, {"Foundation/Initial gap", "log(x-2)"});
+      file,
+      1,
+      {"Foundation/Initial gap", "log(x-2)"});
   add("friction_not_finite",
-      scene + "\nsubsection Friction\n  set Law = expression\n  subsection "
-              "Expression\n    set Function expression = 0.5/(s-1)\n  end\nend\n",
-      file, 1, {"Friction/Expression", "0.5/(s-1)", "not finite"});
+      scene +
+        "\nsubsection Friction\n  set Law = expression\n  subsection "
+        "Expression\n    set Function expression = 0.5/(s-1)\n  end\nend\n",
+      file,
+      1,
+      {"Friction/Expression", "0.5/(s-1)", "not finite"});
   // NaN only near t = 2.1, between the sampled times (0, 1, 8 and every
   // 0.5 s), reached by the steps of k = 0.3: the run stops after step 6.
   add("traction_not_finite_at_step_7",
       changed(change(step, "set Time step = 0.3"),
               traction_expression,
               "set Function expression = 0; -P*(1+0*sqrt(abs(t-2.1)-0.05))"),
-      file, 1,
-      {"Boundary conditions/Traction function", "t = 2.1",
+      file,
+      1,
+      {"Boundary conditions/Traction function",
+       "t = 2.1",
        "last good state (step 6)"})
     .runtime = true;
   // An entry of the flat layout of earlier versions: its new place named.
   add("old_layout_entry",
       scene + "\nsubsection Friction\n  set Decay rate = 3\nend\n",
-      file, 1, {"Friction/Decay rate", "Friction/Exponential/Decay rate",
-                "scripts/update-prm"});
+      file,
+      1,
+      {"Friction/Decay rate",
+       "Friction/Exponential/Decay rate",
+       "scripts/update-prm"});
   add("velocity_strengthening",
-      scene + "\nsubsection Friction\n  set Law = expression\n  subsection "
-              "Expression\n    set Function expression = 1 - 0.5*exp(-2000*s)\n  "
-              "end\nend\n",
-      file, 1, {"Friction/Expression", "increases with the slip rate",
-                "Friction/Velocity strengthening"});
+      scene +
+        "\nsubsection Friction\n  set Law = expression\n  subsection "
+        "Expression\n    set Function expression = 1 - 0.5*exp(-2000*s)\n  "
+        "end\nend\n",
+      file,
+      1,
+      {"Friction/Expression",
+       "increases with the slip rate",
+       "Friction/Velocity strengthening"});
 
   // Scenes that cannot fit: refused with the estimate, before allocating.
   const std::string repetitions = "set Repetitions = 4, 2";
   add("repetitions_huge",
       change(repetitions, "set Repetitions = 100000, 100000"),
-      file, 1, {"too large", "1.0e+10 cells", "Geometry/Repetitions"});
+      file,
+      1,
+      {"too large", "1.0e+10 cells", "Geometry/Repetitions"});
   add("refinements_20",
       change(repetitions, repetitions + "\n  set Global refinements = 20"),
-      file, 1, {"too large", "Geometry/Global refinements"});
+      file,
+      1,
+      {"too large", "Geometry/Global refinements"});
   add("memory_too_small",
       change(repetitions, repetitions + "\n  set Global refinements = 13"),
-      file, 1, {"does not fit into memory", "5.4e+08 cells", "GB"});
+      file,
+      1,
+      {"does not fit into memory", "5.4e+08 cells", "GB"});
 
   // The parameter file itself.
-  add("includes_itself", "include scene.prm\n" + scene, file, 1,
+  add("includes_itself",
+      "include scene.prm\n" + scene,
+      file,
+      1,
       {"scene.prm", "includes itself"});
-  add("includes_itself_indirectly", "include other.prm\n" + scene, file, 1,
+  add("includes_itself_indirectly",
+      "include other.prm\n" + scene,
+      file,
+      1,
       {"scene.prm -> other.prm -> scene.prm", "includes itself"})
     .extra_files = {{"other.prm", "include scene.prm\n"}};
-  add("includes_missing_file", "include missing.prm\n" + scene, file, 1,
+  add("includes_missing_file",
+      "include missing.prm\n" + scene,
+      file,
+      1,
       {"missing.prm", "scene.prm"});
-  add("directory_as_parameter_file", scene, {"."}, 1,
-      {"'.'", "is a directory"});
-  add("named_pipe_as_parameter_file", std::nullopt, {"pipe.prm"}, 1,
+  add(
+    "directory_as_parameter_file", scene, {"."}, 1, {"'.'", "is a directory"});
+  add("named_pipe_as_parameter_file",
+      std::nullopt,
+      {"pipe.prm"},
+      1,
       {"pipe.prm", "named pipe"})
     .fifo = "pipe.prm";
   add("control_byte_order_mark", "\xEF\xBB\xBF" + scene, file, 0, {});
 
   // --set.
-  add("set_unknown_entry", scene, with({"--set", "Material/Foo=1"}), 1,
+  add("set_unknown_entry",
+      scene,
+      with({"--set", "Material/Foo=1"}),
+      1,
       {"--set", "Material/Foo"});
-  add("set_unknown_subsection", scene, with({"--set", "Foo/Bar=1"}), 1,
+  add("set_unknown_subsection",
+      scene,
+      with({"--set", "Foo/Bar=1"}),
+      1,
       {"--set", "Foo/Bar"});
-  add("set_value_out_of_range", scene, with({"--set", "Material/Density=-1"}),
-      1, {"Material/Density"});
-  add("set_malformed_value", scene, with({"--set", "Time/Time step=abc"}), 1,
+  add("set_value_out_of_range",
+      scene,
+      with({"--set", "Material/Density=-1"}),
+      1,
+      {"Material/Density"});
+  add("set_malformed_value",
+      scene,
+      with({"--set", "Time/Time step=abc"}),
+      1,
       {"Time/Time step", "abc"});
 
   // The command line (usage errors, exit code 2). --set without '=' cannot
   // be read at all, like --set without an argument: a usage error.
-  add("set_without_equals", scene, with({"--set", "Material/Density"}), 2,
+  add("set_without_equals",
+      scene,
+      with({"--set", "Material/Density"}),
+      2,
       {"--set", "Material/Density"});
   add("set_without_argument", scene, with({"--set"}), 2, {"--set"});
   add("unknown_option", scene, with({"--frobnicate"}), 2, {"--frobnicate"});
-  add("two_parameter_files", scene, with({"other.prm"}), 2,
+  add("two_parameter_files",
+      scene,
+      with({"other.prm"}),
+      2,
       {"scene.prm", "other.prm"})
     .extra_files = {{"other.prm", scene}};
   add("no_parameter_file", scene, {}, 2, {"parameter file"});
@@ -545,17 +697,17 @@ main(int argc, char **argv)
   Checks checks;
   for (unsigned int i = 0; i < cases.size(); ++i)
     {
-      const Case &       c    = cases[i];
-      const Result &     o    = outcomes[i];
+      const Case        &c    = cases[i];
+      const Result      &o    = outcomes[i];
       const unsigned int line = c.line_number();
 
       // One line per case, the same on every machine.
       std::string summary = c.name + " | ";
       if (c.expected_code == 0)
-        summary += "control, exit code zero: " +
-                   yes_no(o.exited && o.code == 0) +
-                   " | run_status completed: " +
-                   yes_no(o.completed_status_files.size() == 1);
+        summary +=
+          "control, exit code zero: " + yes_no(o.exited && o.code == 0) +
+          " | run_status completed: " +
+          yes_no(o.completed_status_files.size() == 1);
       else
         {
           summary += "exit code nonzero: " + yes_no(o.exited && o.code != 0) +
@@ -591,7 +743,8 @@ main(int argc, char **argv)
         }
 
       checks.add(o.error_lines.size() == 1,
-                 name + "exactly one line '" + error_prefix + " ...' on stderr");
+                 name + "exactly one line '" + error_prefix +
+                   " ...' on stderr");
       for (const auto &n : c.names)
         checks.add(o.error_lines.size() == 1 &&
                      o.error_lines[0].find(n) != std::string::npos,

@@ -46,22 +46,24 @@ namespace
   using namespace program_tools;
 
   /** Steps run and the checkpoint interval (see the header). */
-  const std::vector<std::string> settings = {"--set",
-                                             "Time/End time=0.375",
-                                             "--set",
-                                             "Checkpoint/Every=10",
-                                             "--set",
-                                             "Checkpoint/Keep=2",
-                                             "--set",
-                                             "Output/Write VTU=true",
-                                             "--set",
-                                             "Output/VTU every=8",
-                                             "--set",
-                                             "Output/Progress every=0",
-                                             "--set",
-                                             "Output/Print timings=false",
-    "--set", "Output/Print iteration counts=false"};
-  const unsigned int             n_steps  = 48;
+  const std::vector<std::string> settings = {
+    "--set",
+    "Time/End time=0.375",
+    "--set",
+    "Checkpoint/Every=10",
+    "--set",
+    "Checkpoint/Keep=2",
+    "--set",
+    "Output/Write VTU=true",
+    "--set",
+    "Output/VTU every=8",
+    "--set",
+    "Output/Progress every=0",
+    "--set",
+    "Output/Print timings=false",
+    "--set",
+    "Output/Print iteration counts=false"};
+  const unsigned int n_steps = 48;
 
   /**
    * Run the uniform or the adaptive scene into @p directory (with the Bathe
@@ -73,9 +75,9 @@ namespace
             const bool         resume = false,
             const bool         bathe  = false)
   {
-    std::vector<std::string> a = {test_tools::scene(
-      adaptive ? "barboteu_danan_2016_adaptive_small.prm" :
-                 "barboteu_danan_2016_small.prm")};
+    std::vector<std::string> a = {
+      test_tools::scene(adaptive ? "barboteu_danan_2016_adaptive_small.prm" :
+                                   "barboteu_danan_2016_small.prm")};
     if (resume)
       a.insert(a.begin(), "--resume");
     a.insert(a.end(), settings.begin(), settings.end());
@@ -90,10 +92,10 @@ namespace
   }
 
   Outcome
-  run(const std::string &             name,
+  run(const std::string              &name,
       const std::vector<std::string> &args,
       const unsigned int              processes,
-      const std::string &             kill = "")
+      const std::string              &kill = "")
   {
     Launch launch;
     launch.name      = name;
@@ -139,8 +141,7 @@ namespace
       {
         const std::string n = e.path().filename().string();
         if (e.is_regular_file() && n != "run_status" && n[0] != '.' &&
-            n != "log.txt" && n != "parameters.prm" &&
-            n != "parameters.json")
+            n != "log.txt" && n != "parameters.prm" && n != "parameters.json")
           names.push_back(n);
       }
     std::sort(names.begin(), names.end());
@@ -178,15 +179,15 @@ namespace
    * differ ("shape" if the header or the number of rows differs).
    */
   std::set<std::string>
-  differing_columns(const fs::path &             a_file,
-                    const fs::path &             b_file,
+  differing_columns(const fs::path              &a_file,
+                    const fs::path              &b_file,
                     const double                 tolerance,
                     const std::set<std::string> &skipped = {})
   {
     const auto a = read_csv(a_file), b = read_csv(b_file);
     if (a.empty() || a.size() != b.size() || a[0] != b[0])
       return {"shape"};
-    const auto &          header = a[0];
+    const auto           &header = a[0];
     std::set<std::string> differ;
     for (unsigned int c = 0; c < header.size(); ++c)
       {
@@ -266,8 +267,8 @@ namespace
                                                 "energy_balance_defect",
                                                 "relative_energy_defect",
                                                 "relative_min_dissipation"};
-    const double tolerance = exact ? 0 : 1e-8;
-    Comparison   result;
+    const double                tolerance    = exact ? 0 : 1e-8;
+    Comparison                  result;
     result.time_series =
       differing_columns(fs::path(full) / "time_series.csv",
                         fs::path(resumed) / "time_series.csv",
@@ -302,11 +303,10 @@ namespace
   double
   max_relative_defect(const std::string &directory)
   {
-    const auto rows   = read_csv(fs::path(directory) / "time_series.csv");
-    const auto column = std::find(rows[0].begin(),
-                                  rows[0].end(),
-                                  "relative_energy_defect") -
-                        rows[0].begin();
+    const auto rows = read_csv(fs::path(directory) / "time_series.csv");
+    const auto column =
+      std::find(rows[0].begin(), rows[0].end(), "relative_energy_defect") -
+      rows[0].begin();
     double max = 0;
     for (unsigned int r = 1; r < rows.size(); ++r)
       max = std::max(max, std::abs(std::stod(rows[r][column])));
@@ -333,7 +333,7 @@ main()
     Outcome      killed;
     bool         bathe = false;
   };
-  const std::string two = "checkpoint_00010 checkpoint_00020";
+  const std::string two   = "checkpoint_00010 checkpoint_00020";
   std::vector<Case> cases = {
     {"after_step", false, "after-step 25", 0, 0, two, 25, {}},
     {"in_checkpoint",
@@ -361,12 +361,10 @@ main()
   {
     std::vector<std::thread> threads;
     threads.emplace_back([&]() {
-      full_uniform =
-        run("full_uniform", arguments(false, "full_uniform"), 0);
+      full_uniform = run("full_uniform", arguments(false, "full_uniform"), 0);
     });
     threads.emplace_back([&]() {
-      full_adaptive =
-        run("full_adaptive", arguments(true, "full_adaptive"), 0);
+      full_adaptive = run("full_adaptive", arguments(true, "full_adaptive"), 0);
     });
     threads.emplace_back([&]() {
       full_bathe =
@@ -390,10 +388,9 @@ main()
                        c.kill);
   }
 
-  for (const auto &[name, o] :
-       {std::make_pair("full_uniform", &full_uniform),
-        std::make_pair("full_adaptive", &full_adaptive),
-        std::make_pair("full_bathe", &full_bathe)})
+  for (const auto &[name, o] : {std::make_pair("full_uniform", &full_uniform),
+                                std::make_pair("full_adaptive", &full_adaptive),
+                                std::make_pair("full_bathe", &full_bathe)})
     {
       out << name << " (uninterrupted): exit code " << o->code << ", "
           << status_of(name) << ", " << steps_of(name).size() - 1 << " steps"
@@ -430,22 +427,20 @@ main()
   // Resume each.
   for (const auto &c : cases)
     {
-      const Outcome o = run(c.directory + ".2",
+      const Outcome     o       = run(c.directory + ".2",
                             arguments(c.adaptive, c.directory, true, c.bathe),
                             c.processes_resumed);
-      const bool said_so =
-        o.out.find("resumed from " + c.directory + "/checkpoint_00020") !=
-        std::string::npos;
-      const bool        exact = !c.adaptive;
-      const std::string full  = c.adaptive ? "full_adaptive" :
-                                c.bathe    ? "full_bathe" :
-                                             "full_uniform";
-      const auto        steps = steps_of(c.directory);
-      const auto        diff  = compare(full, c.directory, exact);
-      out << c.directory << ", resumed on "
-          << std::max(c.processes_resumed, 1u) << " process"
-          << (c.processes_resumed > 1 ? "es" : "") << ": exit code " << o.code
-          << ", " << status_of(c.directory)
+      const bool        said_so = o.out.find("resumed from " + c.directory +
+                                      "/checkpoint_00020") != std::string::npos;
+      const bool        exact   = !c.adaptive;
+      const std::string full    = c.adaptive ? "full_adaptive" :
+                                  c.bathe    ? "full_bathe" :
+                                               "full_uniform";
+      const auto        steps   = steps_of(c.directory);
+      const auto        diff    = compare(full, c.directory, exact);
+      out << c.directory << ", resumed on " << std::max(c.processes_resumed, 1u)
+          << " process" << (c.processes_resumed > 1 ? "es" : "")
+          << ": exit code " << o.code << ", " << status_of(c.directory)
           << ", from checkpoint_00020: " << yes_no(said_so)
           << ", each step once: " << yes_no(each_step_once(steps))
           << ", checkpoints: " << checkpoints_in(c.directory) << std::endl;
@@ -459,7 +454,8 @@ main()
 
       checks.add(o.succeeded() && o.err.empty() &&
                    status_of(c.directory) == "completed",
-                 c.directory + ": the resumed run completes, nothing on stderr");
+                 c.directory +
+                   ": the resumed run completes, nothing on stderr");
       checks.add(said_so,
                  c.directory + ": resumed from the newest complete "
                                "checkpoint (step 20)");
@@ -518,8 +514,8 @@ main()
 
   // Misuse 2: --resume with another mesh than the checkpoint's.
   {
-    const std::string before = read_text("full_uniform/time_series.csv");
-    std::vector<std::string> args = arguments(false, "full_uniform", true);
+    const std::string        before = read_text("full_uniform/time_series.csv");
+    std::vector<std::string> args   = arguments(false, "full_uniform", true);
     args.push_back("--set");
     args.push_back("Geometry/Repetitions=16, 4");
     const Outcome o     = run("other_mesh", args, 0);

@@ -105,7 +105,7 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  std::ostream &                           out = test_tools::out();
+  std::ostream                            &out = test_tools::out();
 
 
   const std::string scene = test_tools::scene("pressed_block.prm");
@@ -139,7 +139,7 @@ main(int argc, char **argv)
                                              "Output/Directory=auto",
                                              "--set",
                                              "Checkpoint/Every=1"};
-  Run auto_new(auto_run, "resume_auto_new");
+  Run                            auto_new(auto_run, "resume_auto_new");
   auto_new.arguments.insert(auto_new.arguments.end(),
                             {"--set", "Time/End time=2"});
   execute_all({&auto_new});
@@ -204,24 +204,25 @@ main(int argc, char **argv)
                  "--print-parameters: prints subsection " + s);
 
     // One entry of each part, nested function subsections included.
-    for (const std::string e : {"Dimension",
-                                "Geometry/Lower left",
-                                "Geometry/Mesh file",
-                                "Finite element/Polynomial degree",
-                                "Boundary conditions/Clamped",
-                                "Boundary conditions/Traction",
-                                "Boundary conditions/Traction function/Function expression",
-                                "Boundary conditions/Traction function/Function constants",
-                                "Material/Density",
-                                "Foundation/Normal damping/Capped ramp/Coefficient",
-                                "Foundation/Initial gap/Function expression",
-                                "Friction/Law",
-                                "Time/Time step",
-                                "Solver/Contact solver",
-                                "Output/Directory",
-                                "Body force/Function expression",
-                                "Initial conditions/Displacement/Function expression",
-                                "Initial conditions/Velocity/Function expression"})
+    for (const std::string e :
+         {"Dimension",
+          "Geometry/Lower left",
+          "Geometry/Mesh file",
+          "Finite element/Polynomial degree",
+          "Boundary conditions/Clamped",
+          "Boundary conditions/Traction",
+          "Boundary conditions/Traction function/Function expression",
+          "Boundary conditions/Traction function/Function constants",
+          "Material/Density",
+          "Foundation/Normal damping/Capped ramp/Coefficient",
+          "Foundation/Initial gap/Function expression",
+          "Friction/Law",
+          "Time/Time step",
+          "Solver/Contact solver",
+          "Output/Directory",
+          "Body force/Function expression",
+          "Initial conditions/Displacement/Function expression",
+          "Initial conditions/Velocity/Function expression"})
       {
         const bool found = listing.values.count(e) == 1;
         out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
@@ -241,8 +242,7 @@ main(int argc, char **argv)
                "--print-parameters: prints more than 40 entries");
     checks.add(undocumented.empty(),
                "--print-parameters: every entry has a documentation comment");
-    checks.add(print_defaults.out.find("Mass density rho") !=
-                 std::string::npos,
+    checks.add(print_defaults.out.find("Mass density rho") != std::string::npos,
                "--print-parameters: documents Material/Density");
 
     // The 2D defaults, for comparison with the 3D ones.
@@ -264,13 +264,14 @@ main(int argc, char **argv)
       out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
     checks.add(listing.get("Dimension") == "3",
                "--set 'Dimension=3': Dimension = 3");
-    for (const std::string e :
-         {"Geometry/Lower left", "Geometry/Upper right", "Geometry/Repetitions"})
+    for (const std::string e : {"Geometry/Lower left",
+                                "Geometry/Upper right",
+                                "Geometry/Repetitions"})
       checks.add(split(listing.get(e), ',').size() == 3,
                  "--set 'Dimension=3': " + e + " has three coordinates");
-    checks.add(split(listing.get("Body force/Function expression"), ';')
-                   .size() == 3,
-               "--set 'Dimension=3': the body force has three components");
+    checks.add(
+      split(listing.get("Body force/Function expression"), ';').size() == 3,
+      "--set 'Dimension=3': the body force has three components");
     checks.add(listing.get("Body force/Variable names") == "x,y,z,t",
                "--set 'Dimension=3': the variables are x,y,z,t");
   }
@@ -313,7 +314,7 @@ main(int argc, char **argv)
     out << "  run_status: " << status << std::endl;
     checks.add(status == "completed", "run: run_status reads 'completed'");
 
-    const auto series = read_csv("run/time_series.csv");
+    const auto                     series = read_csv("run/time_series.csv");
     const std::vector<std::string> header =
       series.empty() ? std::vector<std::string>() : series[0];
     for (const std::string column : {"step",
@@ -351,7 +352,7 @@ main(int argc, char **argv)
         const std::string step = row[column("step")];
         const double      time = std::atof(row[column("time")].c_str());
         const double normal    = std::atof(row[column("normal_force")].c_str());
-        steps_match = steps_match && step == std::to_string(r - 1) &&
+        steps_match            = steps_match && step == std::to_string(r - 1) &&
                       time == static_cast<double>(r - 1);
         out << "  step " << step << "  time " << test_tools::digits(time)
             << "  normal_force " << test_tools::digits(normal) << std::endl;
@@ -361,21 +362,21 @@ main(int argc, char **argv)
     checks.add(steps_match && n_rows == 3,
                "run: the rows are the steps 0, 1, 2 at times 0, 1, 2");
 
-    const auto contact = read_csv("run/contact_00002.csv");
+    const auto        contact = read_csv("run/contact_00002.csv");
     const std::string contact_header =
       lines_of(read_text("run/contact_00002.csv")).empty() ?
         "<missing>" :
         lines_of(read_text("run/contact_00002.csv"))[0];
     out << "  contact_00002.csv: " << contact_header << ", "
         << (contact.empty() ? 0 : contact.size() - 1) << " rows" << std::endl;
-    checks.add(contact_header.rfind("time,x,y,u_nu,w_nu,normal_pressure",
-                                    0) == 0,
+    checks.add(contact_header.rfind("time,x,y,u_nu,w_nu,normal_pressure", 0) ==
+                 0,
                "run: contact_00002.csv has the columns "
                "time,x,y,u_nu,w_nu,normal_pressure first");
     bool time_of_step = contact.size() > 1;
     for (std::size_t r = 1; r < contact.size(); ++r)
-      time_of_step = time_of_step && !contact[r].empty() &&
-                     std::stod(contact[r][0]) == 2.;
+      time_of_step =
+        time_of_step && !contact[r].empty() && std::stod(contact[r][0]) == 2.;
     checks.add(time_of_step,
                "run: every row of contact_00002.csv has the time 2 of step 2");
     checks.add(contact.size() == 6,
@@ -384,10 +385,9 @@ main(int argc, char **argv)
 
   // ------------------------------------------------------------ --version
   {
-    const bool names =
-      version.out.rfind("dynamic-contact ", 0) == 0 &&
-      version.out.find("(git ") != std::string::npos &&
-      version.out.find("deal.II 9.") != std::string::npos;
+    const bool names = version.out.rfind("dynamic-contact ", 0) == 0 &&
+                       version.out.find("(git ") != std::string::npos &&
+                       version.out.find("deal.II 9.") != std::string::npos;
     out << "--version: names dynamic-contact, its git revision and deal.II: "
         << yes_no(names) << std::endl;
     checks.add(names,
@@ -401,7 +401,7 @@ main(int argc, char **argv)
       auto_new.out.find("--resume=auto: no checkpoint") != std::string::npos;
     const bool resumed =
       auto_resumed.out.find("resumed from") != std::string::npos;
-    const auto   series = read_csv("auto/time_series.csv");
+    const auto        series = read_csv("auto/time_series.csv");
     const std::string status = trim(read_text("auto/run_status"));
     out << "--resume=auto: first a new run: " << yes_no(new_run)
         << ", then a resumed one: " << yes_no(resumed)

@@ -49,7 +49,8 @@ namespace
   Foundation
   make_foundation(const bool only_in_contact = false)
   {
-    return Foundation(CappedRamp(2., 3.), CappedRamp(0.5, 0.25),
+    return Foundation(CappedRamp(2., 3.),
+                      CappedRamp(0.5, 0.25),
                       only_in_contact);
   }
 
@@ -114,7 +115,7 @@ namespace
   template <int dim>
   std::string
   in_frame(const ContactNode<dim> &node,
-           const Tensor<2, dim> &  J,
+           const Tensor<2, dim>   &J,
            const double            zero_below = 1e-13)
   {
     std::vector<Tensor<1, dim>> basis = {node.normal};
@@ -152,18 +153,14 @@ namespace
   template <int dim>
   FrictionResponse<dim>
   respond(const ContactNode<dim> &node,
-          const Tensor<1, dim> &  u_old,
-          const Tensor<1, dim> &  w,
-          const Tensor<1, dim> &  lambda,
-          const double            mu_i = mu,
-          const Foundation &      foundation = make_foundation())
+          const Tensor<1, dim>   &u_old,
+          const Tensor<1, dim>   &w,
+          const Tensor<1, dim>   &lambda,
+          const double            mu_i       = mu,
+          const Foundation       &foundation = make_foundation())
   {
-    return friction_response(node,
-                             normal_response(foundation, node, u_old, w, k),
-                             w,
-                             lambda,
-                             mu_i,
-                             c);
+    return friction_response(
+      node, normal_response(foundation, node, u_old, w, k), w, lambda, mu_i, c);
   }
 
   /** d f/d w by central differences, f a vector function of w. */
@@ -208,7 +205,8 @@ namespace
     for (const Row &row : rows)
       {
         const NormalResponse r = normal_response(f, row.u, row.w, k);
-        out() << "u_nu = " << digits(row.u, 6) << "  w_nu = " << digits(row.w, 6)
+        out() << "u_nu = " << digits(row.u, 6)
+              << "  w_nu = " << digits(row.w, 6)
               << "  pressure = " << digits(r.pressure, 6)
               << "  dpressure/dw = " << digits(r.dpressure_dw, 6)
               << "  sets = " << r.set_signature() << std::endl;
@@ -221,12 +219,12 @@ namespace
       }
     {
       const NormalResponse r = normal_response(f, 2., 0.2, k);
-      check(r.compliance_active && r.compliance_saturated &&
-              r.damping_active && !r.damping_saturated,
+      check(r.compliance_active && r.compliance_saturated && r.damping_active &&
+              !r.damping_saturated,
             "u_nu = 2, w_nu = 0.2: compliance saturated, damping active");
     }
 
-    const Foundation g = make_foundation(true);
+    const Foundation     g              = make_foundation(true);
     const NormalResponse out_of_contact = normal_response(g, -0.1, 0.2, k);
     check(out_of_contact.pressure == 0 && out_of_contact.dpressure_dw == 0 &&
             out_of_contact.set_signature() == 0,
@@ -245,12 +243,13 @@ namespace
     out() << "2D node: u_nu = " << digits(r2.u_nu, 6)
           << "  w_nu = " << digits(r2.w_nu, 6)
           << "  pressure = " << digits(r2.pressure, 6) << std::endl;
-    check(std::abs(r2.u_nu - 1.) <= 1e-14 && std::abs(r2.w_nu - 0.22) <= 1e-14 &&
+    check(std::abs(r2.u_nu - 1.) <= 1e-14 &&
+            std::abs(r2.w_nu - 0.22) <= 1e-14 &&
             std::abs(r2.pressure - 2.11) <= 1e-14 &&
             std::abs(r2.dpressure_dw - 0.7) <= 1e-14,
           "2D node: u_nu = 1, w_nu = 0.22, pressure 2.11, k p' + q' = 0.7");
-    ContactNode<2> gapped = n2;
-    gapped.gap            = 0.5;
+    ContactNode<2> gapped   = n2;
+    gapped.gap              = 0.5;
     const NormalResponse rg = normal_response(
       f, gapped, frame(n2, 0.978, 0.3), frame(n2, 0.22, 0.6), k);
     check(std::abs(rg.u_nu - 0.5) <= 1e-14 &&
@@ -259,7 +258,8 @@ namespace
     const ContactNode<3> n3 = node_3d();
     const NormalResponse r3 = normal_response(
       f, n3, frame(n3, 0.978, 0.3, -0.2), frame(n3, 0.22, 0.6, 0.4), k);
-    check(std::abs(r3.u_nu - 1.) <= 1e-14 && std::abs(r3.w_nu - 0.22) <= 1e-14 &&
+    check(std::abs(r3.u_nu - 1.) <= 1e-14 &&
+            std::abs(r3.w_nu - 0.22) <= 1e-14 &&
             std::abs(r3.pressure - 2.11) <= 1e-14,
           "3D node: u_nu = 1, w_nu = 0.22, pressure 2.11");
   }
@@ -338,8 +338,10 @@ namespace
           "2D: same |z|, lambda . w_tau > 0: slip, value g t");
 
     // Free: no contact, no friction coefficient, constrained node.
-    const auto free = respond(
-      node, frame(node, -0.5, 0.), frame(node, -0.1, 0.6), frame(node, 0., 1.));
+    const auto free = respond(node,
+                              frame(node, -0.5, 0.),
+                              frame(node, -0.1, 0.6),
+                              frame(node, 0., 1.));
     out() << "free, u_nu = -0.51, w_nu = -0.1:" << std::endl;
     print(node, free);
     check(free.state == ContactState::free && free.threshold == 0 &&
@@ -375,10 +377,10 @@ namespace
     out() << "slip jacobian vs. finite differences:" << std::endl;
     for (const double u_old_nu : {0.978, 1.978})
       {
-        const Tensor<1, 2> u0 = frame(node, u_old_nu, 0.3);
-        const Tensor<1, 2> w  = frame(node, 0.22, 0.8);
-        const auto         r  = respond(node, u0, w, zero);
-        const auto lambda_of = [&](const Tensor<1, 2> &v) {
+        const Tensor<1, 2> u0        = frame(node, u_old_nu, 0.3);
+        const Tensor<1, 2> w         = frame(node, 0.22, 0.8);
+        const auto         r         = respond(node, u0, w, zero);
+        const auto         lambda_of = [&](const Tensor<1, 2> &v) {
           return respond(node, u0, v, zero).value;
         };
         const Tensor<2, 2> fd = finite_difference<2>(lambda_of, w);
@@ -400,19 +402,18 @@ namespace
    */
   std::vector<double>
   slip_residuals(const ContactNode<3> &node,
-                 const Tensor<1, 3> &  u_old,
-                 const Tensor<1, 3> &  w,
-                 const Tensor<1, 3> &  lambda,
-                 const Tensor<1, 3> &  dw,
+                 const Tensor<1, 3>   &u_old,
+                 const Tensor<1, 3>   &w,
+                 const Tensor<1, 3>   &lambda,
+                 const Tensor<1, 3>   &dw,
                  const bool            direction_term)
   {
     const Foundation f = make_foundation();
     const auto       r = respond(node, u_old, w, lambda);
     // Without the 3D term: lambda' = g' t with t frozen, the 2D law.
     const Tensor<2, 3> J =
-      direction_term ?
-        r.jacobian :
-        outer_product(r.direction, (mu * m * 0.7) * node.normal);
+      direction_term ? r.jacobian :
+                       outer_product(r.direction, (mu * m * 0.7) * node.normal);
     std::vector<double> residuals;
     for (const double eps : {1e-2, 5e-3, 2.5e-3, 1.25e-3})
       {
@@ -441,7 +442,8 @@ namespace
             near(node.tangents[1], vec(0., 0.8, 0.6), 1e-15),
           "3D: t2 = t1 x n = (0, 0.8, 0.6)");
 
-    const auto along_t2 = respond(node, u_old, frame(node, 0.22, 0., 0.6), zero);
+    const auto along_t2 =
+      respond(node, u_old, frame(node, 0.22, 0., 0.6), zero);
     check(along_t2.state == ContactState::slip &&
             near(along_t2.value, frame(node, 0., 0., 0.422), 1e-14),
           "3D: slip with w_tau = 0.6 t2: value g t2");
@@ -465,9 +467,10 @@ namespace
           "3D: slip, t = (t1 + t2)/sqrt(2)");
     check(near(slip.value, frame(node, 0., 0.151550486, 0.445247637), 1e-8),
           "3D: value g t - alpha/(1-alpha) P lambda by hand");
-    Tensor<2, 3> J = outer_product(frame(node, 0., s, s), frame(node, 0.14, 0., 0.));
-    J += 1.468485757 * outer_product(frame(node, 0., 1., -1.),
-                                     frame(node, 0., 1., -1.));
+    Tensor<2, 3> J =
+      outer_product(frame(node, 0., s, s), frame(node, 0.14, 0., 0.));
+    J += 1.468485757 *
+         outer_product(frame(node, 0., 1., -1.), frame(node, 0., 1., -1.));
     check(near(slip.jacobian, J, 1e-8),
           "3D: jacobian t (x) dg + beta P by hand");
 
@@ -495,8 +498,7 @@ namespace
     // On the slip manifold: w_tau = 0.6 t, lambda = g t, t = cos 0.7 t1 +
     // sin 0.7 t2, so z = (g + 0.6) t.
     out() << "on the slip manifold:" << std::endl;
-    const Tensor<1, 3> t =
-      frame(node, 0., std::cos(0.7), std::sin(0.7));
+    const Tensor<1, 3> t      = frame(node, 0., std::cos(0.7), std::sin(0.7));
     const Tensor<1, 3> w      = 0.22 * node.normal + 0.6 * t;
     const Tensor<1, 3> lambda = 0.422 * t;
     const auto         r      = respond(node, u_old, w, lambda);
@@ -531,8 +533,8 @@ namespace
     bool quadratic = true, linear = true;
     for (unsigned int i = 0; i + 1 < linearized.size(); ++i)
       {
-        const double ratio = linearized[i] / linearized[i + 1];
-        quadratic          = quadratic && ratio > 3.5 && ratio < 4.5;
+        const double ratio        = linearized[i] / linearized[i + 1];
+        quadratic                 = quadratic && ratio > 3.5 && ratio < 4.5;
         const double frozen_ratio = frozen[i] / frozen[i + 1];
         linear = linear && frozen_ratio > 1.8 && frozen_ratio < 2.2;
       }
@@ -556,17 +558,31 @@ namespace
       Tensor<1, 2> w, lambda, expected;
       bool         solution;
     };
-    const std::vector<Case> cases = {
-      {"stick solution", frame(node, 0.22, 0.), frame(node, 0., 0.3),
-       frame(node, 0., 0.3), true},
-      {"slip solution", frame(node, 0.22, 0.6), frame(node, 0., 0.422),
-       frame(node, 0., 0.422), true},
-      {"lambda = 0, w_tau = 0.6 t", frame(node, 0.22, 0.6), Tensor<1, 2>(),
-       frame(node, 0., 0.422), false},
-      {"lambda = 0.3 t, w_tau = 0.05 t", frame(node, 0.22, 0.05),
-       frame(node, 0., 0.3), frame(node, 0., 0.35), false},
-      {"lambda = g t, w_tau = -0.6 t", frame(node, 0.22, -0.6),
-       frame(node, 0., 0.422), frame(node, 0., -0.178), false}};
+    const std::vector<Case> cases = {{"stick solution",
+                                      frame(node, 0.22, 0.),
+                                      frame(node, 0., 0.3),
+                                      frame(node, 0., 0.3),
+                                      true},
+                                     {"slip solution",
+                                      frame(node, 0.22, 0.6),
+                                      frame(node, 0., 0.422),
+                                      frame(node, 0., 0.422),
+                                      true},
+                                     {"lambda = 0, w_tau = 0.6 t",
+                                      frame(node, 0.22, 0.6),
+                                      Tensor<1, 2>(),
+                                      frame(node, 0., 0.422),
+                                      false},
+                                     {"lambda = 0.3 t, w_tau = 0.05 t",
+                                      frame(node, 0.22, 0.05),
+                                      frame(node, 0., 0.3),
+                                      frame(node, 0., 0.35),
+                                      false},
+                                     {"lambda = g t, w_tau = -0.6 t",
+                                      frame(node, 0.22, -0.6),
+                                      frame(node, 0., 0.422),
+                                      frame(node, 0., -0.178),
+                                      false}};
     for (const Case &x : cases)
       {
         const Tensor<1, 2> p =
@@ -576,20 +592,14 @@ namespace
                 (near(p, x.lambda, 1e-14) == x.solution),
               x.name + (x.solution ? ": equals lambda" : ": differs"));
       }
-    check(projected_friction_force(node,
-                                   0.,
-                                   frame(node, 0.22, 0.6),
-                                   frame(node, 0., 0.3),
-                                   c)
+    check(projected_friction_force(
+            node, 0., frame(node, 0.22, 0.6), frame(node, 0., 0.3), c)
               .norm() == 0,
           "threshold 0: zero");
     ContactNode<2> constrained = node;
     constrained.unconstrained  = false;
-    check(projected_friction_force(constrained,
-                                   g,
-                                   frame(node, 0.22, 0.6),
-                                   frame(node, 0., 0.3),
-                                   c)
+    check(projected_friction_force(
+            constrained, g, frame(node, 0.22, 0.6), frame(node, 0., 0.3), c)
               .norm() == 0,
           "constrained node: zero");
 
@@ -603,7 +613,9 @@ namespace
     const Tensor<1, 3> off = frame(n3, 0., 0.1, 0.);
     const Tensor<1, 3> p3 =
       projected_friction_force(n3, g, frame(n3, 0.22, 0.3, 0.4), off, c);
-    check(near(p3, frame(n3, 0., g / std::sqrt(2.), g / std::sqrt(2.)), 1e-14) &&
+    check(near(p3,
+               frame(n3, 0., g / std::sqrt(2.), g / std::sqrt(2.)),
+               1e-14) &&
             !near(p3, off, 1e-3),
           "3D lambda = 0.1 t1, w_tau = 0.3 t1 + 0.4 t2: g (t1 + t2)/sqrt(2), "
           "differs");
@@ -629,8 +641,8 @@ namespace
       check(l.friction.state == ContactState::slip && l.active() &&
               near(l.force, frame(node, 1.055, 0.422), 1e-14),
             "2D slip: force 1.055 n + 0.422 t");
-      Tensor<2, 2> block = outer_product(frame(node, 0.35, 0.),
-                                         frame(node, 1., 0.));
+      Tensor<2, 2> block =
+        outer_product(frame(node, 0.35, 0.), frame(node, 1., 0.));
       block += outer_product(frame(node, 0., 1.), frame(node, 0.14, 0.));
       check(near(l.block, block, 1e-14),
             "2D slip: block 0.35 n (x) n + 0.14 t (x) n");
@@ -657,8 +669,8 @@ namespace
       const auto l = linearize_node(f, node, u0, w, k, true, zero, mu, c);
       out() << "saturated slip: force = " << in_frame(node, l.force)
             << "  block = " << in_frame(node, l.block) << std::endl;
-      Tensor<2, 2> block = outer_product(frame(node, 0.25, 0.),
-                                         frame(node, 1., 0.));
+      Tensor<2, 2> block =
+        outer_product(frame(node, 0.25, 0.), frame(node, 1., 0.));
       block += outer_product(frame(node, 0., 1.), frame(node, 0.1, 0.));
       check(l.friction.state == ContactState::slip &&
               near(l.force, frame(node, 1.555, 0.622), 1e-14) &&
@@ -714,7 +726,7 @@ namespace
               near(l.force, Tensor<1, 3>(1.055 * n3.normal + lam), 1e-14),
             "3D slip: force 1.055 n + g t");
       const auto force_of = [&](const Tensor<1, 3> &v) {
-        const NormalResponse r = normal_response(f, n3, u0, v, k);
+        const NormalResponse r     = normal_response(f, n3, u0, v, k);
         const Tensor<1, 3>   v_tau = n3.tangential(v);
         return Tensor<1, 3>(m * r.pressure * n3.normal +
                             (mu * m * r.pressure / v_tau.norm()) * v_tau);

@@ -91,10 +91,10 @@ main(int argc, char *argv[])
   };
   test_tools::check(status("output-cut-back") == "completed",
                     "cut-back: run_status 'completed'");
-  const std::string kept = "completed with warnings: " +
-                           std::to_string(b.unconverged) +
-                           " steps kept with an unconverged "
-                           "convexification loop";
+  const std::string kept =
+    "completed with warnings: " + std::to_string(b.unconverged) +
+    " steps kept with an unconverged "
+    "convexification loop";
   test_tools::check(status("output-kept").rfind(kept, 0) == 0,
                     "no cut-back: run_status 'completed with warnings: N "
                     "steps kept with an unconverged convexification loop "
@@ -131,8 +131,8 @@ main(int argc, char *argv[])
   test_tools::check(c.unconverged > 0 && c.worst_unconverged > tolerance,
                     "velocity strengthening allowed: steps kept with an "
                     "unconverged loop, reported");
-  test_tools::check(status("output-strengthening")
-                        .rfind("completed with warnings: ", 0) == 0,
-                    "velocity strengthening allowed: run_status 'completed "
-                    "with warnings: ...'");
+  test_tools::check(
+    status("output-strengthening").rfind("completed with warnings: ", 0) == 0,
+    "velocity strengthening allowed: run_status 'completed "
+    "with warnings: ...'");
 }

@@ -20,14 +20,15 @@ void
 check_balance(const std::string &scheme)
 {
   test_tools::out() << "--- Time/Scheme = " << scheme << std::endl;
-  auto simulator = test_tools::run<2>(
-    test_tools::scene("barboteu_danan_2016_small.prm"),
-    {"Output/Directory=output-energy-" +
-       std::string(scheme == "backward Euler" ? "euler" : scheme),
-     "Time/Scheme=" + scheme,
-     "Material/Viscosity lambda=1e7",
-     "Material/Viscosity mu=5e6",
-     "Foundation/Initial gap/Function expression=0.01*x"});
+  auto simulator =
+    test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
+                       {"Output/Directory=output-energy-" +
+                          std::string(scheme == "backward Euler" ? "euler" :
+                                                                   scheme),
+                        "Time/Scheme=" + scheme,
+                        "Material/Viscosity lambda=1e7",
+                        "Material/Viscosity mu=5e6",
+                        "Foundation/Initial gap/Function expression=0.01*x"});
 
   const char *terms[] = {"dissipation_inertia",
                          "dissipation_elastic",
@@ -36,39 +37,37 @@ check_balance(const std::string &scheme)
                          "dissipation_damping",
                          "friction_dissipation"};
   // The same terms, as fields of the step's EnergyBalanceTerms.
-  double EnergyBalanceTerms::*const members[] = {&EnergyBalanceTerms::inertia,
-                                                 &EnergyBalanceTerms::elastic,
-                                                 &EnergyBalanceTerms::viscous,
-                                                 &EnergyBalanceTerms::compliance,
-                                                 &EnergyBalanceTerms::damping,
-                                                 &EnergyBalanceTerms::friction};
+  double EnergyBalanceTerms::*const members[] = {
+    &EnergyBalanceTerms::inertia,
+    &EnergyBalanceTerms::elastic,
+    &EnergyBalanceTerms::viscous,
+    &EnergyBalanceTerms::compliance,
+    &EnergyBalanceTerms::damping,
+    &EnergyBalanceTerms::friction};
   // Which terms the scheme has: all for backward Euler; for the
   // trapezoidal rule not the first two nor the compliance term; for the
   // Bathe scheme all but the elastic one (booked with the inertia).
   const bool trapezoidal = (scheme == "trapezoidal");
   const bool bathe       = (scheme == "bathe");
-  const bool present[]   = {!trapezoidal, !trapezoidal && !bathe, true,
-                            !trapezoidal, true,                   true};
+  const bool present[]   = {
+      !trapezoidal, !trapezoidal && !bathe, true, !trapezoidal, true, true};
   double              worst_defect = 0, most_negative = 0, worst_column = 0;
   std::vector<double> largest(6, 0.), largest_relative(6, 0.);
-  const auto &        rows = simulator->time_series();
+  const auto         &rows = simulator->time_series();
   for (unsigned int n = 1; n < rows.size(); ++n)
     {
-      const auto & row = rows[n];
-      const double scale =
-        std::max({std::abs(row.terms.energy.total()),
-                  std::abs(rows[n - 1].terms.energy.total()),
-                  std::abs(row.terms.load_work),
-                  std::abs(row.terms.dissipation())});
+      const auto  &row    = rows[n];
+      const double scale  = std::max({std::abs(row.terms.energy.total()),
+                                      std::abs(rows[n - 1].terms.energy.total()),
+                                      std::abs(row.terms.load_work),
+                                      std::abs(row.terms.dissipation())});
       const double defect = row.terms.energy.total() -
                             rows[n - 1].terms.energy.total() +
                             row.terms.dissipation() - row.terms.load_work;
       worst_column =
-        std::max(worst_column,
-                 std::abs(defect - row.terms.defect) / scale);
-      worst_defect = std::max(worst_defect, std::abs(defect) / scale);
-      most_negative =
-        std::min(most_negative, row.relative_min_dissipation());
+        std::max(worst_column, std::abs(defect - row.terms.defect) / scale);
+      worst_defect  = std::max(worst_defect, std::abs(defect) / scale);
+      most_negative = std::min(most_negative, row.relative_min_dissipation());
       for (unsigned int t = 0; t < 6; ++t)
         {
           const double term = row.terms.*members[t];

@@ -41,7 +41,8 @@ namespace
                         const double c4,
                         const bool   only_in_contact)
   {
-    return Foundation(CappedRamp(c_nu, c3), CappedRamp(d_nu, c4),
+    return Foundation(CappedRamp(c_nu, c3),
+                      CappedRamp(d_nu, c4),
                       only_in_contact);
   }
 
@@ -82,8 +83,7 @@ namespace
               "derivative" + at);
         check(p.active(row.r) == row.active, "active" + at);
         check(p.saturated(row.r) == row.saturated, "saturated" + at);
-        check(near(p.primitive(row.r), row.primitive, 1e-13),
-              "primitive" + at);
+        check(near(p.primitive(row.r), row.primitive, 1e-13), "primitive" + at);
       }
 
     out() << "--- q(r) = min(0.5 r_+, 0.25)" << std::endl;
@@ -110,8 +110,7 @@ namespace
         const double h     = 1e-6;
         for (const double r : {-0.7, 0.1, 0.3, 0.45, 1.2, 2.5, 7.})
           {
-            const double fd =
-              (ramp.value(r + h) - ramp.value(r - h)) / (2 * h);
+            const double fd = (ramp.value(r + h) - ramp.value(r - h)) / (2 * h);
             worst = std::max(worst, std::abs(fd - ramp.derivative(r)));
           }
         check(worst <= 1e-7,
@@ -128,16 +127,18 @@ namespace
         out() << "r = " << digits(r, 6)
               << "  Pi = " << digits(p.primitive(r), 6)
               << "  Simpson = " << digits(quadrature + 0., 6) << std::endl;
-        check(near(p.primitive(r), quadrature, 1e-6 * (1 + std::abs(quadrature))),
+        check(near(p.primitive(r),
+                   quadrature,
+                   1e-6 * (1 + std::abs(quadrature))),
               "Pi(" + digits(r, 3) + ") = Simpson to 1e-6");
       }
     double       worst = 0;
     const double h     = 1e-6;
     for (const double r : {-0.5, 0., 0.7, 1.5, 2., 10.})
-      worst = std::max(worst,
-                       std::abs((p.primitive(r + h) - p.primitive(r - h)) /
-                                  (2 * h) -
-                                p.value(r)));
+      worst =
+        std::max(worst,
+                 std::abs((p.primitive(r + h) - p.primitive(r - h)) / (2 * h) -
+                          p.value(r)));
     check(worst <= 1e-5,
           "(Pi(r+h) - Pi(r-h))/2h = p(r) to 1e-5, kink and 0 included");
     // Pi is convex (p nondecreasing): midpoint below the chord.
@@ -190,10 +191,10 @@ namespace
     bool             nothing = true;
     for (const double r : {-1., 0., 0.5, 1e3})
       nothing = nothing && zero.value(r) == 0 && zero.derivative(r) == 0 &&
-                !zero.active(r) && !zero.saturated(r) &&
-                zero.primitive(r) == 0;
-    check(nothing, "CappedRamp(0, 3): value, derivative, primitive 0, never "
-                   "active or saturated");
+                !zero.active(r) && !zero.saturated(r) && zero.primitive(r) == 0;
+    check(nothing,
+          "CappedRamp(0, 3): value, derivative, primitive 0, never "
+          "active or saturated");
 
     const Foundation none(foundation_parameters(0., 3., 0., 0.25, false));
     check(!none.has_damping(), "c_nu = d_nu = 0: no damping");
@@ -226,7 +227,8 @@ namespace
                                    {0., 0.2, 0.1}};
     for (const Row &row : rows)
       {
-        out() << "u_nu = " << digits(row.u, 6) << "  w_nu = " << digits(row.w, 6)
+        out() << "u_nu = " << digits(row.u, 6)
+              << "  w_nu = " << digits(row.w, 6)
               << "  pressure = " << digits(f.pressure(row.u, row.w), 6)
               << std::endl;
         check(near(f.pressure(row.u, row.w), row.pressure, 1e-14) &&
@@ -249,7 +251,8 @@ namespace
                                            {1., 1., 2.25},
                                            {0.1, -0.2, 0.2}})
       {
-        out() << "u_nu = " << digits(row.u, 6) << "  w_nu = " << digits(row.w, 6)
+        out() << "u_nu = " << digits(row.u, 6)
+              << "  w_nu = " << digits(row.w, 6)
               << "  pressure = " << digits(g.pressure(row.u, row.w), 6)
               << std::endl;
         check(near(g.pressure(row.u, row.w), row.pressure, 1e-14),

@@ -22,14 +22,16 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::string directory = "output-friction";
+  const std::string                directory = "output-friction";
   test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
                      {"Output/Directory=" + directory,
                       "Output/Output every=1"});
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
     return 0;
 
-  const auto mu = [](const double s) { return 0.5 * std::exp(-2000 * s) + 0.5; };
+  const auto mu = [](const double s) {
+    return 0.5 * std::exp(-2000 * s) + 0.5;
+  };
   std::map<std::string, unsigned int> count;
   double slip_law = 0, slip_coefficient = 0, stick_excess = 0,
          stick_velocity = 0, free_traction = 0, p_max = 0, slip_max = 0;
@@ -43,12 +45,11 @@ main(int argc, char *argv[])
       if (rows.empty())
         test_tools::check(false, std::string("read ") + name);
       if (step == 1)
-        test_tools::check(rows[0] ==
-                            test_tools::split("time,x,y,u_nu,w_nu,"
-                                              "normal_pressure,w_tau,"
-                                              "tangential_traction,mu,"
-                                              "u_x,u_y,state",
-                                              ','),
+        test_tools::check(rows[0] == test_tools::split("time,x,y,u_nu,w_nu,"
+                                                       "normal_pressure,w_tau,"
+                                                       "tangential_traction,mu,"
+                                                       "u_x,u_y,state",
+                                                       ','),
                           "contact CSV header");
       // The time of the step, in every row.
       const double time = rows.size() > 1 ? std::stod(rows[1][0]) : 0;
@@ -73,7 +74,7 @@ main(int argc, char *argv[])
             }
           else if (state == "stick")
             {
-              stick_excess = std::max(stick_excess, std::abs(t) - mu(0) * p);
+              stick_excess   = std::max(stick_excess, std::abs(t) - mu(0) * p);
               stick_velocity = std::max(stick_velocity, std::abs(w_tau));
             }
           else

@@ -24,7 +24,7 @@ namespace
    * on top.
    */
   std::unique_ptr<FrictionLaw>
-  create(const std::string &                                       law,
+  create(const std::string                                      &law,
          const std::vector<std::pair<std::string, std::string>> &entries = {})
   {
     dealii::ParameterHandler prm;
@@ -102,16 +102,14 @@ namespace
     check(law->value(0.) == 0.4 && law->value(1.) == 0.4 &&
             law->value(1e3) == 0.4,
           "mu(0) = mu(1) = mu(1000) = 0.4");
-    check(law->derivative(0.) == 0 && law->derivative(2.) == 0,
-          "mu' = 0");
+    check(law->derivative(0.) == 0 && law->derivative(2.) == 0, "mu' = 0");
     check(law->is_constant(), "is_constant");
     check(law->one_sided_lipschitz_constant(1.) == 0,
           "one-sided Lipschitz constant 0");
     check(law->FrictionLaw::one_sided_lipschitz_constant(1.) == 0,
           "sampled one-sided Lipschitz constant 0");
     bool deal_ii;
-    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii)
-            .empty(),
+    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii).empty(),
           "check_nonnegative passes");
     out() << law->description() << std::endl;
     check(law->description() == "mu = 0.4", "description");
@@ -145,8 +143,7 @@ namespace
                 std::abs(law->derivative(row.s) - row.derivative) <= 1e-6,
               "mu and mu' at s = " + digits(row.s, 3));
       }
-    check(derivative_error(*law, {1e-5, 1e-4, 5e-4, 1e-3, 3e-3, 0.01}) <=
-            1e-6,
+    check(derivative_error(*law, {1e-5, 1e-4, 5e-4, 1e-3, 3e-3, 0.01}) <= 1e-6,
           "mu' = central difference to 1e-6 at 6 points");
     check(!law->is_constant(), "not is_constant");
     check(ExponentialFriction(0.5, 0.5, 2000.).is_constant() &&
@@ -166,8 +163,7 @@ namespace
                   1e-4),
           "a = 0.6, b = 0.2, alpha = 3: one-sided Lipschitz constant 1.2");
     bool deal_ii;
-    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii)
-            .empty(),
+    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii).empty(),
           "check_nonnegative passes");
   }
 
@@ -205,8 +201,7 @@ namespace
     check(close(lipschitz, 5., 1e-4),
           "one-sided Lipschitz constant -mu'(0) = 5 (sampled) to 1e-4");
     bool deal_ii;
-    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii)
-            .empty(),
+    check(thrown_message([&] { law->check_nonnegative(10.); }, deal_ii).empty(),
           "check_nonnegative passes");
     out() << law->description() << std::endl;
 
@@ -239,9 +234,9 @@ namespace
     const ExpressionFriction negative("0.5 - s", "");
     check(close(negative.one_sided_lipschitz_constant(1.), 1., 1e-4),
           "0.5 - s: one-sided Lipschitz constant 1");
-    check(thrown_message([&] { negative.check_nonnegative(0.4); }, deal_ii)
-            .empty(),
-          "0.5 - s: check_nonnegative(0.4) passes");
+    check(
+      thrown_message([&] { negative.check_nonnegative(0.4); }, deal_ii).empty(),
+      "0.5 - s: check_nonnegative(0.4) passes");
     const std::string message =
       thrown_message([&] { negative.check_nonnegative(1.); }, deal_ii);
     check(!message.empty() && deal_ii,
@@ -260,8 +255,7 @@ namespace
   test_create_and_errors()
   {
     out() << "--- create and errors" << std::endl;
-    check(create("none") == nullptr,
-          "create(none) = nullptr");
+    check(create("none") == nullptr, "create(none) = nullptr");
 
     bool deal_ii;
     for (const std::string expression : {"0.5 +* s", "0.5 + x", "exp(-s"})

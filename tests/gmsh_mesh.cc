@@ -20,16 +20,19 @@ using namespace program_tools;
 
 namespace
 {
-  const std::vector<std::string> few_steps = {
-    "--set", "Time/End time=0.0625", "--set", "Output/Output every=0"};
+  const std::vector<std::string> few_steps = {"--set",
+                                              "Time/End time=0.0625",
+                                              "--set",
+                                              "Output/Output every=0"};
 
   Outcome
-  run(const std::string &             prm,
-      const std::string &             directory,
-      std::vector<std::string>        more,
-      const unsigned int              processes = 0)
+  run(const std::string       &prm,
+      const std::string       &directory,
+      std::vector<std::string> more,
+      const unsigned int       processes = 0)
   {
-    std::vector<std::string> arguments = {prm, "--set",
+    std::vector<std::string> arguments = {prm,
+                                          "--set",
                                           "Output/Directory=" + directory};
     arguments.insert(arguments.end(), few_steps.begin(), few_steps.end());
     arguments.insert(arguments.end(), more.begin(), more.end());
@@ -51,11 +54,20 @@ namespace
   {
     if (a.empty() || a.size() != b.size() || a[0] != b[0])
       return 1;
-    const std::vector<std::string> physical = {
-      "time", "normal_force", "tangential_force", "reaction_force_y",
-      "kinetic_energy", "elastic_energy", "foundation_energy",
-      "total_energy", "n_contact", "n_stick", "n_slip", "dofs", "cells"};
-    double worst = 0;
+    const std::vector<std::string> physical = {"time",
+                                               "normal_force",
+                                               "tangential_force",
+                                               "reaction_force_y",
+                                               "kinetic_energy",
+                                               "elastic_energy",
+                                               "foundation_energy",
+                                               "total_energy",
+                                               "n_contact",
+                                               "n_stick",
+                                               "n_slip",
+                                               "dofs",
+                                               "cells"};
+    double                         worst    = 0;
     for (const auto &name : physical)
       {
         const auto c = std::find(a[0].begin(), a[0].end(), name) - a[0].begin();
@@ -83,14 +95,17 @@ main()
   Checks checks;
 
   const std::string example = test_tools::scene("gmsh_rail.prm");
-  const auto msh41 = run(example, "msh41", {});
-  const auto msh22 = run(example, "msh22",
-                         {"--set", "Geometry/Mesh file=gmsh_rail_msh22.msh"});
-  const auto numbers =
-    run(example, "numbers",
-        {"--set", "Boundary conditions/Clamped=1", "--set",
-         "Boundary conditions/Contact=2", "--set",
-         "Boundary conditions/Traction=3"});
+  const auto        msh41   = run(example, "msh41", {});
+  const auto        msh22 =
+    run(example, "msh22", {"--set", "Geometry/Mesh file=gmsh_rail_msh22.msh"});
+  const auto numbers = run(example,
+                           "numbers",
+                           {"--set",
+                            "Boundary conditions/Clamped=1",
+                            "--set",
+                            "Boundary conditions/Contact=2",
+                            "--set",
+                            "Boundary conditions/Traction=3"});
   const auto rectangle =
     run(test_tools::scene("barboteu_danan_2016_small.prm"), "rectangle", {});
 
@@ -102,8 +117,8 @@ main()
          {"rectangle", &rectangle}})
     {
       const bool ok = o->succeeded() && error_lines(*o).empty();
-      test_tools::out() << name << ": exit code zero, no error: "
-                        << yes_no(ok) << std::endl;
+      test_tools::out() << name << ": exit code zero, no error: " << yes_no(ok)
+                        << std::endl;
       if (!ok)
         std::cerr << name << ": " << o->err << std::endl;
       checks.add(ok, name + ": runs");
@@ -132,11 +147,10 @@ main()
                        "1e-8 of their scale: "
                     << yes_no(d <= 1e-8) << std::endl;
   checks.add(d <= 1e-8, "the Gmsh mesh and the rectangle agree");
-  const bool contact = !s41.empty() && s41.size() > 1 &&
-                       std::stod(s41.back()[std::find(s41[0].begin(),
-                                                      s41[0].end(),
-                                                      "n_contact") -
-                                            s41[0].begin()]) > 0;
+  const bool contact =
+    !s41.empty() && s41.size() > 1 &&
+    std::stod(s41.back()[std::find(s41[0].begin(), s41[0].end(), "n_contact") -
+                         s41[0].begin()]) > 0;
   test_tools::out() << "the rail is in contact at the last step: "
                     << yes_no(contact) << std::endl;
   checks.add(contact, "contact at the last step (the names reached Contact)");
@@ -150,23 +164,27 @@ main()
     "$EndNodes\n"
     "$Elements\n1 2 1 2\n2 1 2 2\n1 1 2 3\n2 1 3 4\n$EndElements\n");
   const auto triangles =
-    run(example, "triangles",
-        {"--set", "Geometry/Mesh file=" + (fs::current_path() /
-                                           "triangles.msh").string()},
+    run(example,
+        "triangles",
+        {"--set",
+         "Geometry/Mesh file=" +
+           (fs::current_path() / "triangles.msh").string()},
         2);
   const auto errors = error_lines(triangles);
-  const bool one_error = triangles.exited && triangles.code == 1 &&
-                         errors.size() == 1;
+  const bool one_error =
+    triangles.exited && triangles.code == 1 && errors.size() == 1;
   test_tools::out() << "triangles on 2 processes: exit code 1, one error "
                        "line: "
                     << yes_no(one_error) << std::endl;
   if (!one_error)
     std::cerr << "triangles: " << triangles.err << std::endl;
   checks.add(one_error, "triangles: exit code 1 and one error line");
-  for (const std::string word :
-       {"Geometry/Mesh file", "triangles.msh", "3-node triangle",
-        "Gmsh element type 2", "Mesh.RecombineAll = 1",
-        "Mesh.SubdivisionAlgorithm = 1"})
+  for (const std::string word : {"Geometry/Mesh file",
+                                 "triangles.msh",
+                                 "3-node triangle",
+                                 "Gmsh element type 2",
+                                 "Mesh.RecombineAll = 1",
+                                 "Mesh.SubdivisionAlgorithm = 1"})
     {
       const bool named =
         errors.size() == 1 && errors[0].find(word) != std::string::npos;

@@ -33,9 +33,10 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  auto simulator = test_tools::make<2>(
-    test_tools::scene("barboteu_danan_2016_adaptive_small.prm"),
-    {"Output/Directory=output-following"});
+  auto                             simulator =
+    test_tools::make<2>(test_tools::scene(
+                          "barboteu_danan_2016_adaptive_small.prm"),
+                        {"Output/Directory=output-following"});
   simulator->initialize();
   const unsigned int min_level = 1, max_level = 2;
   const double       c = 2., uniform_cells = 8 * 8 * 16;
@@ -46,13 +47,13 @@ main(int argc, char *argv[])
         most_cells =
           std::max(most_cells,
                    static_cast<double>(simulator->time_series().back().cells));
-      const double t = simulator->time();
-      const double x = c * t;
+      const double t               = simulator->time();
+      const double x               = c * t;
       bool         fine_under_load = true;
       for (const double y : {0.001, 0.05, 0.099})
-        fine_under_load = fine_under_load &&
-                          level_at(*simulator, Point<2>(x, y)) ==
-                            static_cast<int>(max_level);
+        fine_under_load =
+          fine_under_load &&
+          level_at(*simulator, Point<2>(x, y)) == static_cast<int>(max_level);
       test_tools::check(fine_under_load,
                         "t = " + test_tools::digits(t, 3) +
                           ": the finest level under the load");

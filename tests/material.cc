@@ -133,8 +133,7 @@ namespace
       material_parameters(2.6, 0.3, model));
     out() << "lambda = " << digits(material.lambda(), 6)
           << "  mu = " << digits(material.mu(), 6)
-          << "  M = " << digits(material.constrained_modulus(), 6)
-          << std::endl;
+          << "  M = " << digits(material.constrained_modulus(), 6) << std::endl;
     check(test_tools::close(material.lambda(), lambda_expected, 1e-14) &&
             test_tools::close(material.mu(), 1., 1e-14),
           name + ": Lame constants");
@@ -144,9 +143,8 @@ namespace
 
     const SymmetricTensor<4, dim> &C = material.elasticity();
     check(major_and_minor_symmetric(C), name + ": major and minor symmetry");
-    check(max_difference(C,
-                         isotropic_tensor<dim>(material.lambda(),
-                                               material.mu())) == 0,
+    check(max_difference(
+            C, isotropic_tensor<dim>(material.lambda(), material.mu())) == 0,
           name + ": E = isotropic_tensor(lambda, mu)");
 
     const auto values = eigenvalues(C);
@@ -188,7 +186,8 @@ namespace
     out() << "uniaxial strain: sigma_xx = " << digits(sigma[0][0], 6)
           << "  sigma_yy = " << digits(sigma[1][1], 6)
           << "  sigma_xy = " << digits(sigma[0][1], 6) << std::endl;
-    check(test_tools::close(sigma[1][1], material.constrained_modulus() * eps,
+    check(test_tools::close(sigma[1][1],
+                            material.constrained_modulus() * eps,
                             1e-14) &&
             test_tools::close(sigma[1][1], M_expected * eps, 1e-14),
           name + ": uniaxial strain sigma_yy = M eps");
@@ -198,7 +197,7 @@ namespace
 
     // Shear eps_xy = gamma/2: sigma_xy = mu gamma, no normal stress.
     SymmetricTensor<2, dim> shear;
-    shear[0][1]                        = 0.5e-3;
+    shear[0][1]                       = 0.5e-3;
     const SymmetricTensor<2, dim> tau = material.stress(shear, shear);
     check(test_tools::close(tau[0][1], 1e-3, 1e-14) && tau[0][0] == 0 &&
             tau[1][1] == 0,
@@ -214,9 +213,9 @@ namespace
   test_plane_stress_is_condensed_3d()
   {
     out() << "--- plane stress = 3D with sigma_zz = 0 eliminated" << std::endl;
-    const double                  lambda = 1.5, mu = 1.;
-    const SymmetricTensor<4, 3>   C3     = isotropic_tensor<3>(lambda, mu);
-    const KelvinVoigtMaterial<2>  plane_stress(
+    const double                 lambda = 1.5, mu = 1.;
+    const SymmetricTensor<4, 3>  C3 = isotropic_tensor<3>(lambda, mu);
+    const KelvinVoigtMaterial<2> plane_stress(
       material_parameters(2.6, 0.3, PlaneModel::plane_stress));
     const SymmetricTensor<4, 2> &C2 = plane_stress.elasticity();
 
@@ -243,9 +242,8 @@ namespace
     const SymmetricTensor<2, 2> s2 = plane_stress.stress(e2, e2);
     out() << "3D: sigma_xx = " << digits(s3[0][0], 6)
           << "  sigma_yy = " << digits(s3[1][1], 6)
-          << "  sigma_xy = " << digits(s3[0][1], 6)
-          << "  sigma_zz = " << digits(std::abs(s3[2][2]) < 1e-15 ? 0. : s3[2][2], 6)
-          << std::endl;
+          << "  sigma_xy = " << digits(s3[0][1], 6) << "  sigma_zz = "
+          << digits(std::abs(s3[2][2]) < 1e-15 ? 0. : s3[2][2], 6) << std::endl;
     out() << "plane stress: sigma_xx = " << digits(s2[0][0], 6)
           << "  sigma_yy = " << digits(s2[1][1], 6)
           << "  sigma_xy = " << digits(s2[0][1], 6) << std::endl;
@@ -324,8 +322,7 @@ namespace
     out() << "--- viscosity, " << name << std::endl;
     const KelvinVoigtMaterial<dim> elastic(
       material_parameters(2.6, 0.3, model));
-    check(!elastic.has_viscosity() &&
-            elastic.viscosity().norm() == 0,
+    check(!elastic.has_viscosity() && elastic.viscosity().norm() == 0,
           name + ": (0, 0): no viscosity, C = 0");
     SymmetricTensor<2, dim> zero, rate;
     rate[0][0] = 1.;
@@ -368,13 +365,14 @@ namespace
       SymmetricTensor<2, 3> shear;
       shear[0][1] = tau;
       SymmetricTensor<2, 3> uniaxial;
-      uniaxial[0][0] = s;
+      uniaxial[0][0]                = s;
       SymmetricTensor<2, 3> shifted = uniaxial;
       shifted += 5. * unit_symmetric_tensor<3>();
       out() << "3D: pure shear " << digits(von_mises_stress(shear), 6)
             << "  uniaxial " << digits(von_mises_stress(uniaxial), 6)
             << std::endl;
-      check(test_tools::close(von_mises_stress(shear), std::sqrt(3.) * tau,
+      check(test_tools::close(von_mises_stress(shear),
+                              std::sqrt(3.) * tau,
                               1e-14),
             "3D: pure shear tau gives sqrt(3) tau");
       check(test_tools::close(von_mises_stress(uniaxial), s, 1e-14),
@@ -387,7 +385,8 @@ namespace
       shear[0][1] = tau;
       out() << "2D: pure shear " << digits(von_mises_stress(shear), 6)
             << std::endl;
-      check(test_tools::close(von_mises_stress(shear), std::sqrt(3.) * tau,
+      check(test_tools::close(von_mises_stress(shear),
+                              std::sqrt(3.) * tau,
                               1e-14),
             "2D: pure shear tau gives sqrt(3) tau");
 

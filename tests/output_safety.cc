@@ -28,8 +28,8 @@
 
 #include "program_tools.h"
 
-#include <sys/file.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -46,11 +46,13 @@ namespace
 {
   using namespace program_tools;
 
-  const std::vector<std::string> quiet = {"--set",
-                                          "Output/Progress every=0",
-                                          "--set",
-                                          "Output/Print timings=false",
-    "--set", "Output/Print iteration counts=false"};
+  const std::vector<std::string> quiet = {
+    "--set",
+    "Output/Progress every=0",
+    "--set",
+    "Output/Print timings=false",
+    "--set",
+    "Output/Print iteration counts=false"};
 
   std::vector<std::string>
   with(std::vector<std::string> a, const std::vector<std::string> &more)
@@ -107,8 +109,8 @@ namespace
 int
 main()
 {
-  std::ostream &out = test_tools::out();
-  Checks        checks;
+  std::ostream     &out = test_tools::out();
+  Checks            checks;
   const std::string block = test_tools::scene("pressed_block.prm");
   const std::string paper = test_tools::scene("barboteu_danan_2016_small.prm");
 
@@ -125,30 +127,34 @@ main()
     const auto user = snapshot(dir);
 
     Launch launch;
-    launch.directory = dir;
-    const std::vector<std::string> here = {block, "--set", "Output/Directory=."};
-    const Outcome first = execute(with(here, quiet), launch);
-    const Outcome second =
-      execute(with(here,
-                   with(quiet,
-                        {"--set", "Output/Write VTU=true", "--set",
-                         "Output/VTU every=4", "--set",
-                         "Checkpoint/Every=2"})),
-              launch);
-    const bool second_wrote =
-      fs::exists(dir / "solution_00004.pvtu") &&
-      fs::exists(dir / "checkpoint_00006");
-    const Outcome third = execute(with(here, quiet), launch);
-    auto after = snapshot(dir);
-    bool user_files_intact = true;
+    launch.directory                      = dir;
+    const std::vector<std::string> here   = {block,
+                                             "--set",
+                                             "Output/Directory=."};
+    const Outcome                  first  = execute(with(here, quiet), launch);
+    const Outcome                  second = execute(with(here,
+                                        with(quiet,
+                                             {"--set",
+                                                               "Output/Write VTU=true",
+                                                               "--set",
+                                                               "Output/VTU every=4",
+                                                               "--set",
+                                                               "Checkpoint/Every=2"})),
+                                   launch);
+    const bool second_wrote = fs::exists(dir / "solution_00004.pvtu") &&
+                              fs::exists(dir / "checkpoint_00006");
+    const Outcome third             = execute(with(here, quiet), launch);
+    auto          after             = snapshot(dir);
+    bool          user_files_intact = true;
     for (const auto &[name, text] : user)
       user_files_intact =
         user_files_intact && after.count(name) == 1 && after[name] == text;
-    const bool earlier_results_gone = !fs::exists(dir / "solution_00004.pvtu") &&
-                                      !fs::exists(dir / "checkpoint_00006") &&
-                                      !fs::exists(dir / "solution.pvd");
-    out << "  user_directory: exit codes " << first.code << ", "
-        << second.code << ", " << third.code
+    const bool earlier_results_gone =
+      !fs::exists(dir / "solution_00004.pvtu") &&
+      !fs::exists(dir / "checkpoint_00006") &&
+      !fs::exists(dir / "solution.pvd");
+    out << "  user_directory: exit codes " << first.code << ", " << second.code
+        << ", " << third.code
         << "; the user's contact_law.cc, solution_notes/, checkpoint_old/ "
            "unchanged: "
         << yes_no(user_files_intact)
@@ -164,14 +170,14 @@ main()
                "the earlier one");
   }
 
-  auto refused = [&](const std::string &name,
-                     const fs::path &   dir,
-                     const Outcome &    o,
+  auto refused = [&](const std::string                        &name,
+                     const fs::path                           &dir,
+                     const Outcome                            &o,
                      const std::map<std::string, std::string> &before,
-                     const std::string &must_name) {
-    const auto lines = error_lines(o);
-    const bool one   = lines.size() == 1;
-    const bool names = one && lines[0].find(must_name) != std::string::npos;
+                     const std::string                        &must_name) {
+    const auto lines     = error_lines(o);
+    const bool one       = lines.size() == 1;
+    const bool names     = one && lines[0].find(must_name) != std::string::npos;
     const bool untouched = snapshot(dir) == before;
     out << "  " << name << ": exit code " << o.code
         << ", one error line naming '" << must_name << "': " << yes_no(names)
@@ -215,9 +221,9 @@ main()
     fs::create_directories(dir);
     write_text(dir / ".dynamic-contact", "my notes\n");
     const auto    before = snapshot(dir);
-    const Outcome o      = execute(
-      with({block, "--set", "Output/Directory=not_a_manifest"}, quiet),
-      {"", "not_a_manifest"});
+    const Outcome o =
+      execute(with({block, "--set", "Output/Directory=not_a_manifest"}, quiet),
+              {"", "not_a_manifest"});
     refused("not_a_manifest", dir, o, before, ".dynamic-contact");
   }
   {
@@ -226,10 +232,10 @@ main()
     const auto args = with({block, "--set", "Output/Directory=locked"}, quiet);
     const Outcome first = execute(args, {"", "locked.1"});
     // Hold the lock as a running run does.
-    const int fd = ::open((dir / ".dynamic-contact.lock").c_str(), O_RDWR);
-    const bool held = fd >= 0 && ::flock(fd, LOCK_EX | LOCK_NB) == 0;
-    const auto before = snapshot(dir);
-    const Outcome o   = execute(args, {"", "locked.2"});
+    const int     fd = ::open((dir / ".dynamic-contact.lock").c_str(), O_RDWR);
+    const bool    held   = fd >= 0 && ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+    const auto    before = snapshot(dir);
+    const Outcome o      = execute(args, {"", "locked.2"});
     checks.add(first.succeeded() && held,
                "locked: the first run completes, the test holds its lock");
     refused("locked", dir, o, before, "in use by another run");
@@ -244,15 +250,21 @@ main()
 
   // ------------------------------------------------------------ full disk
   out << "Full disk" << std::endl;
-  const std::vector<std::string> paper_settings = {
-    "--set", "Time/End time=0.0625", "--set", "Output/Write VTU=true",
-    "--set", "Output/VTU every=4",
-    "--set", "Checkpoint/Every=4", "--set", "Checkpoint/Keep=10"};
-  auto full_disk = [&](const std::string &             name,
-                       const std::string &             injection,
+  const std::vector<std::string> paper_settings = {"--set",
+                                                   "Time/End time=0.0625",
+                                                   "--set",
+                                                   "Output/Write VTU=true",
+                                                   "--set",
+                                                   "Output/VTU every=4",
+                                                   "--set",
+                                                   "Checkpoint/Every=4",
+                                                   "--set",
+                                                   "Checkpoint/Keep=10"};
+  auto                           full_disk = [&](const std::string              &name,
+                       const std::string              &injection,
                        const unsigned int              processes,
-                       const fs::path &                output = "",
-                       const std::vector<std::string> &more   = {}) {
+                       const fs::path                 &output = "",
+                       const std::vector<std::string> &more = {}) {
     const fs::path dir = output.empty() ? fs::path(name) : output;
     fs::remove_all(dir);
     Launch launch;
@@ -269,29 +281,31 @@ main()
       launch);
     const std::string status = status_of(dir);
     const std::string prefix = "failed: cannot write " + dir.string() + "/";
-    const bool says_why =
+    const bool        says_why =
       status.rfind(prefix, 0) == 0 &&
       status.find(": No space left on device") != std::string::npos;
     // The file the status names (up to ": "), relative to the directory.
     const std::string file =
       says_why ? status.substr(prefix.size(),
                                status.find(": No space") - prefix.size()) :
-                 "?";
+                                           "?";
     const bool whole = rows_whole(dir / "time_series.csv");
     const bool clean = no_debris(dir);
     out << "  " << name << " on " << std::max(processes, 1u) << " process"
         << (processes > 1 ? "es" : "") << ": exit code nonzero: "
         << yes_no(o.exited && o.code != 0 && o.code != 124)
         << ", run_status 'failed: cannot write <file>: No space left on "
-           "device': "
-        << yes_no(says_why) << ", every row of time_series.csv whole: "
-        << yes_no(whole) << ", no empty file or temporary checkpoint: "
-        << yes_no(clean) << std::endl;
+                                     "device': "
+        << yes_no(says_why)
+        << ", every row of time_series.csv whole: " << yes_no(whole)
+        << ", no empty file or temporary checkpoint: " << yes_no(clean)
+        << std::endl;
     checks.add(o.exited && o.code != 0 && o.code != 124 && o.code != 134,
                name + ": a non-zero exit (no signal, abort or hang)");
     checks.add(says_why,
-               name + ": run_status says which file could not be written "
-                      "and why" +
+               name +
+                 ": run_status says which file could not be written "
+                                           "and why" +
                  (says_why ? std::string() : " [" + status + "]"));
     checks.add(o.err.find("dynamic-contact: error: cannot write ") !=
                  std::string::npos,
@@ -307,8 +321,7 @@ main()
   };
   named(full_disk("disk_time_series", "time_series.csv:5", 0));
   out << "    rows left in time_series.csv: "
-      << read_csv("disk_time_series/time_series.csv").size() - 1
-      << std::endl;
+      << read_csv("disk_time_series/time_series.csv").size() - 1 << std::endl;
   checks.add(read_csv("disk_time_series/time_series.csv").size() == 5,
              "disk_time_series: the rows of steps 0 to 3 stay, the fifth "
              "is taken back");
@@ -328,10 +341,11 @@ main()
     Launch launch;
     launch.name = "disk_status";
     launch.environment.push_back("DYNAMIC_CONTACT_DISK_FULL=run_status:2");
-    const Outcome o = execute(
-      with(with({paper, "--set", "Output/Directory=disk_status"}, quiet),
-           paper_settings),
-      launch);
+    const Outcome o =
+      execute(with(with({paper, "--set", "Output/Directory=disk_status"},
+                        quiet),
+                   paper_settings),
+              launch);
     out << "  disk_status (run_status cannot be rewritten at the end): exit "
            "code "
         << o.code << ", run_status: " << status_of("disk_status")
@@ -350,8 +364,7 @@ main()
     fs::create_directories("tmpfs");
     const bool mounted =
       ::geteuid() == 0 &&
-      std::system("mount -t tmpfs -o size=300k tmpfs tmpfs 2>/dev/null") ==
-        0;
+      std::system("mount -t tmpfs -o size=300k tmpfs tmpfs 2>/dev/null") == 0;
     full_disk("disk_300k",
               mounted ? "" : "300000",
               0,
@@ -374,18 +387,18 @@ main()
       launch.environment.push_back("DYNAMIC_CONTACT_FAIL=after-step 2 rank " +
                                    std::to_string(rank));
       const auto    start = std::chrono::steady_clock::now();
-      const Outcome o     = execute(
-        with(with({paper, "--set", "Output/Directory=" + name}, quiet),
-             paper_settings),
-        launch);
+      const Outcome o =
+        execute(with(with({paper, "--set", "Output/Directory=" + name}, quiet),
+                     paper_settings),
+                launch);
       const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
       const std::string expected =
         "failed: injected failure after step 2 (DYNAMIC_CONTACT_FAIL)";
-      const bool message = o.err.find("dynamic-contact: error: injected "
-                                      "failure after step 2") !=
-                           std::string::npos;
+      const bool message =
+        o.err.find("dynamic-contact: error: injected "
+                   "failure after step 2") != std::string::npos;
       out << "  failure on rank " << rank
           << ": every process ended with a non-zero exit code: "
           << yes_no(o.exited && o.code != 0 && o.code != 124)
@@ -404,11 +417,11 @@ main()
     launch.name      = name + ".1";
     launch.processes = 2;
     launch.timeout   = 120;
-    const auto args  = with(
-      with({paper, "--set", "Output/Directory=" + name}, quiet),
-      paper_settings);
+    const auto args =
+      with(with({paper, "--set", "Output/Directory=" + name}, quiet),
+           paper_settings);
     const Outcome first = execute(args, launch);
-    auto lines = lines_of(read_text(fs::path(name) / "time_series.csv"));
+    auto        lines = lines_of(read_text(fs::path(name) / "time_series.csv"));
     std::string text;
     for (unsigned int i = 0; i < lines.size(); ++i)
       text += (i == 3 ? std::string("3,garbage") : lines[i]) + "\n";

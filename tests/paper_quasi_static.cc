@@ -14,9 +14,10 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  auto simulator = test_tools::run<2>(
-    test_tools::scene("barboteu_danan_2016_small.prm"),
-    {"Output/Directory=output-quasi-static", "Friction/Law=none"});
+  auto                             simulator =
+    test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
+                       {"Output/Directory=output-quasi-static",
+                        "Friction/Law=none"});
 
   double worst_balance = 0;
   for (const auto &row : simulator->time_series())

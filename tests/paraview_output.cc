@@ -8,8 +8,8 @@
 //             Output times are honoured without a cadence), two pieces per
 //             record;
 //   block_3d  prm/pressed_block_3d.prm (2 x 2 x 1 cells, no friction) on 2
-//             processes, 2 steps of 1 s: the second process has no face of Gamma_3
-//             and writes an empty surface piece (with its time);
+//             processes, 2 steps of 1 s: the second process has no face of
+//             Gamma_3 and writes an empty surface piece (with its time);
 //   none      Write VTU = false: no VTU file and no index, the contact CSVs
 //             as before.
 // For each VTU step the reader checks the time in every piece, the stress
@@ -25,20 +25,26 @@ using namespace program_tools;
 namespace
 {
   const std::vector<std::string> common = {
-    "--set", "Time/End time=0.25",         "--set",
-    "Output/Output every=0",               "--set",
-    "Output/Output times=0.1, 0.2",        "--set",
-    "Output/Progress every=0",             "--set",
+    "--set",
+    "Time/End time=0.25",
+    "--set",
+    "Output/Output every=0",
+    "--set",
+    "Output/Output times=0.1, 0.2",
+    "--set",
+    "Output/Progress every=0",
+    "--set",
     "Output/Print timings=false",
-    "--set", "Output/Print iteration counts=false"};
+    "--set",
+    "Output/Print iteration counts=false"};
 
   std::vector<std::string>
   arguments(const std::string &directory, const std::vector<std::string> &more)
   {
-    std::vector<std::string> a = {
-      test_tools::scene("barboteu_danan_2016_small.prm"),
-      "--set",
-      "Output/Directory=" + directory};
+    std::vector<std::string> a = {test_tools::scene(
+                                    "barboteu_danan_2016_small.prm"),
+                                  "--set",
+                                  "Output/Directory=" + directory};
     a.insert(a.end(), common.begin(), common.end());
     a.insert(a.end(), more.begin(), more.end());
     return a;
@@ -56,7 +62,8 @@ namespace
     "Output/Progress every=0",
     "--set",
     "Output/Print timings=false",
-    "--set", "Output/Print iteration counts=false"};
+    "--set",
+    "Output/Print iteration counts=false"};
 
   /** The files of @p directory (not the manifest and the lock). */
   std::set<std::string>
@@ -84,7 +91,7 @@ namespace
 int
 main()
 {
-  auto & out = test_tools::out();
+  auto  &out = test_tools::out();
   Checks checks;
 
   for (const auto &[name, processes, args] :
@@ -106,9 +113,9 @@ main()
     {
       fs::remove_all(name);
       Launch launch;
-      launch.name      = name;
-      launch.processes = processes;
-      launch.timeout   = 300;
+      launch.name       = name;
+      launch.processes  = processes;
+      launch.timeout    = 300;
       const Outcome run = execute(args, launch);
       checks.add(run.succeeded(), name + ": the run completes");
       if (!run.succeeded())
@@ -135,15 +142,14 @@ main()
     const std::string name = "none";
     fs::remove_all(name);
     Launch launch;
-    launch.name    = name;
-    launch.timeout = 300;
-    const Outcome run =
-      execute(arguments(name,
-                        {"--set",
-                         "Output/Write VTU=false",
-                         "--set",
-                         "Output/VTU every=1"}),
-              launch);
+    launch.name       = name;
+    launch.timeout    = 300;
+    const Outcome run = execute(arguments(name,
+                                          {"--set",
+                                           "Output/Write VTU=false",
+                                           "--set",
+                                           "Output/VTU every=1"}),
+                                launch);
     checks.add(run.succeeded(), "none: the run completes");
     std::string vtu, csv;
     for (const auto &f : files_of(name))

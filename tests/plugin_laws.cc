@@ -142,11 +142,11 @@ namespace
 
   /** The largest difference of the columns over the steps (relative). */
   void
-  compare(const std::string &                what,
-          const std::vector<StepRecord<2>> & a,
-          const std::vector<StepRecord<2>> & b,
-          const std::vector<std::string> &   columns,
-          const double                       tolerance)
+  compare(const std::string                &what,
+          const std::vector<StepRecord<2>> &a,
+          const std::vector<StepRecord<2>> &b,
+          const std::vector<std::string>   &columns,
+          const double                      tolerance)
   {
     check(a.size() == b.size() && a.size() > 10, what + ": same steps");
     double worst = 0;
@@ -156,8 +156,8 @@ namespace
           const auto   q = test_tools::quantity<2>(column);
           const double x = q.of(a[n]), y = q.of(b[n]);
           worst = std::max(worst,
-                           std::abs(x - y) / std::max({std::abs(x), std::abs(y),
-                                                       1e-300}));
+                           std::abs(x - y) /
+                             std::max({std::abs(x), std::abs(y), 1e-300}));
         }
     check(worst <= tolerance,
           what + ": " + columns.front() + ", ... agree to " +
@@ -182,7 +182,7 @@ main(int argc, char *argv[])
            {"Foundation/Normal compliance/Law", "linear"},
            {"Mesh refinement/Strategy", "everywhere"}})
       {
-        const auto   sections = test_tools::split(path, '/');
+        const auto sections = test_tools::split(path, '/');
         for (unsigned int i = 0; i + 1 < sections.size(); ++i)
           prm.enter_subsection(sections[i]);
         bool accepted = true;
@@ -200,13 +200,14 @@ main(int argc, char *argv[])
       }
   }
 
-  const std::vector<std::string> columns = {
-    "normal_force", "tangential_force", "kinetic_energy", "elastic_energy",
-    "dofs"};
+  const std::vector<std::string> columns = {"normal_force",
+                                            "tangential_force",
+                                            "kinetic_energy",
+                                            "elastic_energy",
+                                            "dofs"};
 
   compare("friction law 'fixed' = 'constant'",
-          series("fixed",
-                 {"Friction/Law=fixed", "Friction/Fixed/Value=0.4"}),
+          series("fixed", {"Friction/Law=fixed", "Friction/Fixed/Value=0.4"}),
           series("constant",
                  {"Friction/Law=constant",
                   "Friction/Constant/Coefficient=0.4"}),

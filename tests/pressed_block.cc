@@ -18,23 +18,25 @@ check_block(const std::string &name, std::vector<std::string> overrides)
     std::find(overrides.begin(),
               overrides.end(),
               "Material/Plane model=plane stress") != overrides.end();
-  const double M = (dim == 2 && plane_stress) ?
-                     E / (1 - kappa * kappa) :
-                     E * (1 - kappa) / ((1 + kappa) * (1 - 2 * kappa));
+  const double M           = (dim == 2 && plane_stress) ?
+                               E / (1 - kappa * kappa) :
+                               E * (1 - kappa) / ((1 + kappa) * (1 - 2 * kappa));
   const double penetration = P / c_nu;
   const double top         = P / c_nu + P * H / M;
 
   overrides.push_back("Output/Directory=output-" + name);
-  auto simulator = test_tools::run<dim>(
-    test_tools::scene(dim == 2 ? "pressed_block.prm" : "pressed_block_3d.prm"),
-    overrides);
+  auto simulator =
+    test_tools::run<dim>(test_tools::scene(dim == 2 ? "pressed_block.prm" :
+                                                      "pressed_block_3d.prm"),
+                         overrides);
 
-  double worst = 0;
+  double      worst  = 0;
   const auto &nodes  = simulator->contact().nodes();
   const auto &states = simulator->node_states();
   for (unsigned int i = 0; i < nodes.size(); ++i)
-    worst = std::max(worst,
-                     std::abs(states[i].normal.u_nu - penetration) / penetration);
+    worst =
+      std::max(worst,
+               std::abs(states[i].normal.u_nu - penetration) / penetration);
   worst = Utilities::MPI::max(worst, MPI_COMM_WORLD);
   test_tools::check(worst <= 1e-8,
                     name + ": penetration P/c_nu at every node to 1e-8");
@@ -43,8 +45,8 @@ check_block(const std::string &name, std::vector<std::string> overrides)
   for (const double x : {0., 0.3, 0.5, 1.})
     {
       Point<dim> p;
-      p[0]       = x;
-      p[1]       = H;
+      p[0] = x;
+      p[1] = H;
       if (dim == 3)
         p[2] = 0.25;
       const double u_y = simulator->point_displacement(p)[1];

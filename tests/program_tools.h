@@ -110,8 +110,7 @@ namespace program_tools
     command += "exec ";
     if (launch.timeout > 0)
       command += "timeout -k 10 " + std::to_string(launch.timeout) + " ";
-    command +=
-      "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+    command += "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
     for (const auto &e : launch.environment)
       command += " " + quote(e);
 #ifdef DYNAMIC_CONTACT_MPIEXEC
@@ -199,10 +198,8 @@ namespace program_tools
     if (!fs::exists(directory))
       return files;
     for (const auto &e : fs::recursive_directory_iterator(directory))
-      if (e.is_regular_file() &&
-          e.path().filename() != ".dynamic-contact.lock")
-        files[fs::relative(e.path(), directory).string()] =
-          read_text(e.path());
+      if (e.is_regular_file() && e.path().filename() != ".dynamic-contact.lock")
+        files[fs::relative(e.path(), directory).string()] = read_text(e.path());
     return files;
   }
 

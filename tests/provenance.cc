@@ -57,32 +57,43 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  std::ostream &                           out = test_tools::out();
+  std::ostream                            &out = test_tools::out();
 
   const std::string scene = test_tools::scene("pressed_block.prm");
   // The directories of an earlier run of this test.
-  for (const std::string d : {"original", "again_prm", "again_json",
-                              "from_json", "from_xml", "from_short_json",
-                              "resumed", "bad", "validate_good",
-                              "validate_unassigned_id", "run_unassigned_id",
+  for (const std::string d : {"original",
+                              "again_prm",
+                              "again_json",
+                              "from_json",
+                              "from_xml",
+                              "from_short_json",
+                              "resumed",
+                              "bad",
+                              "validate_good",
+                              "validate_unassigned_id",
+                              "run_unassigned_id",
                               "validate_broken_expression",
-                              "run_broken_expression", "validate_missing_mesh",
-                              "run_missing_mesh", "validate_nan_initial",
+                              "run_broken_expression",
+                              "validate_missing_mesh",
+                              "run_missing_mesh",
+                              "validate_nan_initial",
                               "run_nan_initial"})
     fs::remove_all(d);
   for (const std::string f : {"scene.json", "scene.xml", "short.json"})
     fs::remove(f);
 
   // The scene of every comparison: pressed_block.prm with overrides.
-  const std::vector<std::string> overrides = {"--set",
-                                              "Time/End time=3",
-                                              "--set",
-                                              "Material/Density=2000",
-                                              "--set",
-                                              "Output/Print timings=false",
-    "--set", "Output/Print iteration counts=false"};
+  const std::vector<std::string> overrides = {
+    "--set",
+    "Time/End time=3",
+    "--set",
+    "Material/Density=2000",
+    "--set",
+    "Output/Print timings=false",
+    "--set",
+    "Output/Print iteration counts=false"};
   const auto with = [&](std::vector<std::string> arguments,
-                        const std::string &      directory) {
+                        const std::string       &directory) {
     arguments.insert(arguments.end(), overrides.begin(), overrides.end());
     arguments.insert(arguments.end(),
                      {"--set", "Output/Directory=" + directory});
@@ -100,9 +111,8 @@ main(int argc, char **argv)
   write_text("scene.json", print_json.out);
   write_text("scene.xml", print_xml.out);
   // A JSON scene written by hand: the values only (pressed_block.prm).
-  write_text(
-    "short.json",
-    R"({
+  write_text("short.json",
+             R"({
   "Dimension": "2",
   "Geometry": {"Lower left": "0, 0", "Upper right": "1, 0.5",
                "Repetitions": "4, 2"},
@@ -122,23 +132,28 @@ main(int argc, char **argv)
 }
 )");
 
-  Run again_prm({"original/parameters.prm", "--set", "Output/Directory=again_prm"},
+  Run again_prm({"original/parameters.prm",
+                 "--set",
+                 "Output/Directory=again_prm"},
                 "again_prm");
-  Run again_json(
-    {"original/parameters.json", "--set", "Output/Directory=again_json"},
-    "again_json");
+  Run again_json({"original/parameters.json",
+                  "--set",
+                  "Output/Directory=again_json"},
+                 "again_json");
   Run from_json({"scene.json"}, "from_json");
   Run from_xml({"scene.xml"}, "from_xml");
   Run from_short_json({"short.json"}, "from_short_json");
   // A run with checkpoints to t = 2, resumed to t = 3.
-  Run first_part(with({scene}, "resumed") , "first_part");
-  first_part.arguments.insert(first_part.arguments.end(),
-                              {"--set",
-                               "Checkpoint/Every=1",
-                               "--set",
-                               "Time/End time=2"});
-  execute_all({&again_prm, &again_json, &from_json, &from_xml,
-               &from_short_json, &first_part});
+  Run first_part(with({scene}, "resumed"), "first_part");
+  first_part.arguments.insert(
+    first_part.arguments.end(),
+    {"--set", "Checkpoint/Every=1", "--set", "Time/End time=2"});
+  execute_all({&again_prm,
+               &again_json,
+               &from_json,
+               &from_xml,
+               &from_short_json,
+               &first_part});
   Run second_part(with({scene, "--resume"}, "resumed"), "second_part");
   second_part.arguments.insert(second_part.arguments.end(),
                                {"--set", "Checkpoint/Every=1"});
@@ -151,7 +166,10 @@ main(int argc, char **argv)
   };
   const std::vector<BadFile> bad_files = {
     {"json_empty", "empty.json", "", "is empty: it sets no parameter"},
-    {"json_no_value", "nothing.json", "{ }\n", "is empty: it sets no parameter"},
+    {"json_no_value",
+     "nothing.json",
+     "{ }\n",
+     "is empty: it sets no parameter"},
     {"json_unknown",
      "unknown.json",
      R"({"Material": {"Densty": "1000"}})",
@@ -174,8 +192,7 @@ main(int argc, char **argv)
     {
       if (b.name != "json_missing")
         write_text(fs::path("bad") / b.file, b.content);
-      bad_runs.emplace_back(std::vector<std::string>{"bad/" + b.file},
-                            b.name);
+      bad_runs.emplace_back(std::vector<std::string>{"bad/" + b.file}, b.name);
     }
 
   // --validate, and the run itself, on good and bad scenes.
@@ -227,8 +244,7 @@ main(int argc, char **argv)
   {
     out << "provenance files:" << std::endl;
     const auto names = manifest("original");
-    for (const std::string f :
-         {"parameters.prm", "parameters.json", "log.txt"})
+    for (const std::string f : {"parameters.prm", "parameters.json", "log.txt"})
       {
         const bool exists = fs::is_regular_file(fs::path("original") / f);
         const bool listed = names.count(f) == 1;
@@ -279,12 +295,12 @@ main(int argc, char **argv)
       }
 
     // --resume: log.txt goes on.
-    const std::string first  = read_text("first_part.stdout");
-    const std::string log    = read_text("resumed/log.txt");
+    const std::string first = read_text("first_part.stdout");
+    const std::string log   = read_text("resumed/log.txt");
     std::string       first_screen;
     for (const auto &line : lines_of(first))
       first_screen += line + "\n";
-    std::string log_without;
+    std::string  log_without;
     unsigned int resume_marks = 0;
     for (const auto &line : lines_of(log))
       {
@@ -292,9 +308,8 @@ main(int argc, char **argv)
         if (!std::regex_match(line, provenance_line))
           log_without += line + "\n";
       }
-    const bool kept = log_without.rfind(first_screen, 0) == 0;
-    const bool goes_on =
-      log_without.find(second_part.out) != std::string::npos;
+    const bool kept    = log_without.rfind(first_screen, 0) == 0;
+    const bool goes_on = log_without.find(second_part.out) != std::string::npos;
     out << "  --resume: log.txt keeps the first part " << yes_no(kept)
         << ", one section mark " << yes_no(resume_marks == 1)
         << ", then the resumed run's screen output " << yes_no(goes_on)
@@ -323,12 +338,12 @@ main(int argc, char **argv)
       }
     for (unsigned int i = 0; i < bad_files.size(); ++i)
       {
-        const Run & r     = bad_runs[i];
-        const auto  lines = error_lines(r);
-        const bool  ok    = r.code == 1 && lines.size() == 1 &&
-                        lines[0].find(bad_files[i].file) != std::string::npos &&
-                        lines[0].find(bad_files[i].must_contain) !=
-                          std::string::npos;
+        const Run &r     = bad_runs[i];
+        const auto lines = error_lines(r);
+        const bool ok =
+          r.code == 1 && lines.size() == 1 &&
+          lines[0].find(bad_files[i].file) != std::string::npos &&
+          lines[0].find(bad_files[i].must_contain) != std::string::npos;
         out << "  " << r.name << ": exit " << r.code << ": " << first_error(r)
             << std::endl;
         checks.add(ok,
@@ -342,16 +357,16 @@ main(int argc, char **argv)
     out << "--validate:" << std::endl;
     for (unsigned int i = 0; i < validations.size(); ++i)
       {
-        const auto &v          = validations[i];
-        const Run & validate   = validate_runs[i];
-        const bool  nothing    = !fs::exists("validate_" + v.name);
+        const auto &v        = validations[i];
+        const Run  &validate = validate_runs[i];
+        const bool  nothing  = !fs::exists("validate_" + v.name);
         if (v.must_contain.empty())
           {
             const bool said =
               validate.out.find("is valid") != std::string::npos;
             out << "  " << v.name << ": exit " << validate.code
-                << ", says it is valid " << yes_no(said)
-                << ", nothing written " << yes_no(nothing) << std::endl;
+                << ", says it is valid " << yes_no(said) << ", nothing written "
+                << yes_no(nothing) << std::endl;
             checks.add(validate.succeeded() && said && nothing &&
                          validate.err.empty(),
                        "--validate " + v.name + ": exit 0, nothing written");
@@ -363,12 +378,13 @@ main(int argc, char **argv)
         const bool same       = validate_e == run_e && validate_e.size() == 1;
         out << "  " << v.name << ": exit " << validate.code
             << " (the run: " << run.code << "), the error of the run "
-            << yes_no(same) << ", nothing written " << yes_no(nothing)
-            << ": " << first_error(validate) << std::endl;
+            << yes_no(same) << ", nothing written " << yes_no(nothing) << ": "
+            << first_error(validate) << std::endl;
         checks.add(validate.code == 1 && run.code == 1,
                    "--validate " + v.name + ": exit 1 like the run");
-        checks.add(same, "--validate " + v.name +
-                           ": exactly the error line of the run");
+        checks.add(same,
+                   "--validate " + v.name +
+                     ": exactly the error line of the run");
         checks.add(validate_e.size() == 1 &&
                      validate_e[0].find(v.must_contain) != std::string::npos,
                    "--validate " + v.name + ": the error names '" +
@@ -379,8 +395,8 @@ main(int argc, char **argv)
 
   // ---------------------------------------------------- doc/parameters.md
   {
-    const fs::path    doc = fs::path(SOURCE_DIR) / ".." / "doc" / "parameters.md";
-    const bool        fresh = markdown.succeeded() && read_text(doc) == markdown.out;
+    const fs::path doc = fs::path(SOURCE_DIR) / ".." / "doc" / "parameters.md";
+    const bool fresh   = markdown.succeeded() && read_text(doc) == markdown.out;
     out << "doc/parameters.md is what --print-parameters=markdown prints: "
         << yes_no(fresh) << std::endl;
     checks.add(fresh,

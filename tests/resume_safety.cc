@@ -37,20 +37,22 @@ namespace
 {
   using namespace program_tools;
 
-  const std::vector<std::string> settings = {"--set",
-                                             "Time/End time=0.125",
-                                             "--set",
-                                             "Checkpoint/Every=4",
-                                             "--set",
-                                             "Checkpoint/Keep=3",
-                                             "--set",
-                                             "Output/Progress every=0",
-                                             "--set",
-                                             "Output/Print timings=false",
-    "--set", "Output/Print iteration counts=false"};
+  const std::vector<std::string> settings = {
+    "--set",
+    "Time/End time=0.125",
+    "--set",
+    "Checkpoint/Every=4",
+    "--set",
+    "Checkpoint/Keep=3",
+    "--set",
+    "Output/Progress every=0",
+    "--set",
+    "Output/Print timings=false",
+    "--set",
+    "Output/Print iteration counts=false"};
 
   std::vector<std::string>
-  arguments(const std::string &             directory,
+  arguments(const std::string              &directory,
             const bool                      resume,
             const std::vector<std::string> &more = {})
   {
@@ -78,22 +80,22 @@ namespace
    * largest magnitude; work counters are never compared.
    */
   std::set<std::string>
-  differing_columns(const fs::path &   a_dir,
-                    const fs::path &   b_dir,
+  differing_columns(const fs::path    &a_dir,
+                    const fs::path    &b_dir,
                     const unsigned int last_step,
                     const double       tolerance)
   {
-    const std::set<std::string> work = {"newton_iterations",
-                                        "convexification_iterations",
-                                        "factorizations",
-                                        "active_set_cycles",
-                                        "line_search_steps"};
+    const std::set<std::string> work     = {"newton_iterations",
+                                            "convexification_iterations",
+                                            "factorizations",
+                                            "active_set_cycles",
+                                            "line_search_steps"};
     const std::set<std::string> roundoff = {"coefficient_residual",
                                             "energy_balance_defect",
                                             "relative_energy_defect",
                                             "relative_min_dissipation"};
-    const auto a = read_csv(a_dir / "time_series.csv");
-    const auto b = read_csv(b_dir / "time_series.csv");
+    const auto                  a        = read_csv(a_dir / "time_series.csv");
+    const auto                  b        = read_csv(b_dir / "time_series.csv");
     if (a.size() < last_step + 2 || b.size() < last_step + 2 || a[0] != b[0])
       return {"shape"};
     std::set<std::string> differ;
@@ -143,9 +145,9 @@ main()
   out << "Damaged checkpoints" << std::endl;
   struct Damage
   {
-    std::string             name;
-    std::function<void()>   damage;
-    unsigned int            processes;
+    std::string           name;
+    std::function<void()> damage;
+    unsigned int          processes;
   };
   const auto truncate = [](const fs::path &file, const std::uintmax_t size) {
     fs::resize_file(file, size);
@@ -196,8 +198,10 @@ main()
       for (const auto &l : lines_of(o.out))
         if (l.rfind("Warning: the checkpoint", 0) == 0)
           {
-            warning = std::regex_replace(
-              l, std::regex(R"((checksum|says) [0-9a-f]{8}\b)"), "$1 X");
+            warning =
+              std::regex_replace(l,
+                                 std::regex(R"((checksum|says) [0-9a-f]{8}\b)"),
+                                 "$1 X");
             warning = std::regex_replace(warning,
                                          std::regex(R"(\b[0-9]+ bytes)"),
                                          "N bytes");
@@ -205,9 +209,9 @@ main()
                                          std::regex(R"(says [0-9]+\b)"),
                                          "says M");
           }
-      out << "  " << d.name << " (" << std::max(d.processes, 1u)
-          << " process" << (d.processes > 1 ? "es" : "")
-          << "): exit code " << o.code << ", " << status_of(d.name)
+      out << "  " << d.name << " (" << std::max(d.processes, 1u) << " process"
+          << (d.processes > 1 ? "es" : "") << "): exit code " << o.code << ", "
+          << status_of(d.name)
           << ", damaged checkpoint named: " << yes_no(named)
           << ", resumed from checkpoint_00008: " << yes_no(fell_back)
           << ", time series columns differing from the uninterrupted run: "
@@ -225,22 +229,21 @@ main()
   // Every checkpoint damaged: a clear error, nothing changed.
   {
     copy_of("full", "all_damaged");
-    for (const char *c : {"checkpoint_00004", "checkpoint_00008",
-                          "checkpoint_00012"})
+    for (const char *c :
+         {"checkpoint_00004", "checkpoint_00008", "checkpoint_00012"})
       fs::resize_file(fs::path("all_damaged") / c / "mesh", 10);
-    const auto    before = snapshot("all_damaged");
-    Launch        launch;
-    launch.name      = "all_damaged";
-    launch.processes = 2;
-    launch.timeout   = 120;
-    const Outcome o  = execute(arguments("all_damaged", true), launch);
+    const auto before = snapshot("all_damaged");
+    Launch     launch;
+    launch.name         = "all_damaged";
+    launch.processes    = 2;
+    launch.timeout      = 120;
+    const Outcome o     = execute(arguments("all_damaged", true), launch);
     const auto    lines = error_lines(o);
     const bool    names_all =
       lines.size() == 1 &&
       lines[0].find("checkpoint_00004: mesh has 10 bytes") !=
         std::string::npos &&
-      lines[0].find("checkpoint_00012: mesh has 10 bytes") !=
-        std::string::npos;
+      lines[0].find("checkpoint_00012: mesh has 10 bytes") != std::string::npos;
     out << "  all_damaged (2 processes): exit code " << o.code
         << ", one error line naming every checkpoint: " << yes_no(names_all)
         << ", directory unchanged: "
@@ -254,7 +257,7 @@ main()
 
   // ------------------------------------------------------ changed settings
   out << "Changed settings" << std::endl;
-  const auto refused = [&](const std::string &             name,
+  const auto refused = [&](const std::string              &name,
                            const std::vector<std::string> &more,
                            const std::vector<std::string> &must_name) {
     copy_of("full", name);
@@ -278,9 +281,14 @@ main()
           {"--set", "Geometry/Upper right=20, 1"},
           {"Geometry/Upper right = '20, 1' (checkpoint: '2, 0.1')"});
   refused("changed_friction",
-          {"--set", "Friction/Law=constant", "--set",
-           "Friction/Constant/Coefficient=0.3", "--set", "Material/Density=1e3"},
-          {"2 entries", "Friction/Law = 'constant'",
+          {"--set",
+           "Friction/Law=constant",
+           "--set",
+           "Friction/Constant/Coefficient=0.3",
+           "--set",
+           "Material/Density=1e3"},
+          {"2 entries",
+           "Friction/Law = 'constant'",
            "Friction/Constant/Coefficient = '0.3'"});
   refused("end_before_rows",
           {"--set", "Time/End time=0.1"},
@@ -292,13 +300,13 @@ main()
   // A new time step is honoured after the checkpoint.
   {
     copy_of("full", "new_time_step");
-    const Outcome o = execute(arguments("new_time_step",
+    const Outcome o    = execute(arguments("new_time_step",
                                         true,
                                         {"--set", "Time/Time step=0.00390625"}),
                               {"", "new_time_step"});
-    const auto rows   = read_csv("new_time_step/time_series.csv");
-    const auto column = std::find(rows[0].begin(), rows[0].end(), "time_step") -
-                        rows[0].begin();
+    const auto    rows = read_csv("new_time_step/time_series.csv");
+    const auto    column =
+      std::find(rows[0].begin(), rows[0].end(), "time_step") - rows[0].begin();
     bool before_unchanged =
       differing_columns("full", "new_time_step", 12, 0).empty();
     bool after_new = rows.size() == 1 + 13 + 8;
@@ -320,16 +328,16 @@ main()
   // A later end time (and another Newton tolerance) continues the run.
   {
     copy_of("full", "later_end");
-    const Outcome o = execute(arguments("later_end",
+    const Outcome o    = execute(arguments("later_end",
                                         true,
-                                        {"--set", "Time/End time=0.1875",
-                                         "--set",
-                                         "Solver/Newton tolerance=1e-11"}),
+                                        {"--set",
+                                            "Time/End time=0.1875",
+                                            "--set",
+                                            "Solver/Newton tolerance=1e-11"}),
                               {"", "later_end"});
-    const auto rows = read_csv("later_end/time_series.csv");
-    out << "  later_end: exit code " << o.code << ", "
-        << status_of("later_end") << ", steps: " << rows.size() - 2
-        << std::endl;
+    const auto    rows = read_csv("later_end/time_series.csv");
+    out << "  later_end: exit code " << o.code << ", " << status_of("later_end")
+        << ", steps: " << rows.size() - 2 << std::endl;
     checks.add(o.succeeded() && status_of("later_end") == "completed" &&
                  rows.size() == 2 + 24,
                "later_end: continues to step 24");

@@ -13,26 +13,25 @@ using namespace DynamicContact;
 
 template <int dim>
 std::vector<StepRecord<dim>>
-series(const std::string &             prm,
-       const std::string &             name,
-       const std::string &             solver,
-       const std::string &             linear,
-       std::vector<std::string>        overrides)
+series(const std::string       &prm,
+       const std::string       &name,
+       const std::string       &solver,
+       const std::string       &linear,
+       std::vector<std::string> overrides)
 {
   overrides.push_back("Solver/Contact solver=" + solver);
   overrides.push_back("Solver/Linear solver=" + linear);
   overrides.push_back("Output/Directory=output-" + name + "-" + solver + "-" +
                       linear);
-  return test_tools::run<dim>(test_tools::scene(prm), overrides)
-    ->time_series();
+  return test_tools::run<dim>(test_tools::scene(prm), overrides)->time_series();
 }
 
 template <int dim>
 void
-compare(const std::string &                                      prm,
-        const std::string &                                      name,
+compare(const std::string                                      &prm,
+        const std::string                                      &name,
         const std::vector<std::pair<std::string, std::string>> &paths,
-        const std::vector<std::string> &                         overrides = {})
+        const std::vector<std::string>                         &overrides = {})
 {
   const auto reference =
     series<dim>(prm, name, "condensed", "direct", overrides);
@@ -44,8 +43,8 @@ compare(const std::string &                                      prm,
                           ": same number of steps");
       if (other.size() != reference.size())
         continue;
-      double       worst          = 0;
-      unsigned int linear_its     = 0;
+      double       worst      = 0;
+      unsigned int linear_its = 0;
       for (unsigned int n = 1; n < reference.size(); ++n)
         {
           const double scale = std::max(reference[n].terms.energy.total(), 1.);
@@ -58,10 +57,10 @@ compare(const std::string &                                      prm,
             {
               const auto   q = test_tools::quantity<dim>(column);
               const double a = q.of(reference[n]), b = q.of(other[n]);
-              worst = std::max(worst,
-                               q.force ?
-                                 std::abs(a - b) / std::max(std::abs(a), 1.) :
-                                 std::abs(a - b) / scale);
+              worst =
+                std::max(worst,
+                         q.force ? std::abs(a - b) / std::max(std::abs(a), 1.) :
+                                   std::abs(a - b) / scale);
             }
           linear_its += other[n].statistics.linear_iterations;
         }
@@ -78,23 +77,28 @@ compare(const std::string &                                      prm,
 int
 main(int argc, char *argv[])
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  Utilities::MPI::MPI_InitFinalize                       mpi(argc, argv, 1);
   const std::vector<std::pair<std::string, std::string>> sparse = {
     {"assembled", "iterative"}, {"assembled", "direct"}};
   compare<2>("pressed_block.prm", "pressed_2d", sparse);
-  compare<3>("pressed_block_3d.prm", "pressed_3d", {{"assembled", "iterative"}});
-  compare<2>("sliding_block.prm",
-             "slide_2d",
-             sparse,
-             {"Boundary conditions/Traction function/Function constants=P=1e6, T=6e5"});
-  compare<2>("sliding_block.prm",
-             "stick_2d",
-             {{"assembled", "iterative"}},
-             {"Boundary conditions/Traction function/Function constants=P=1e6, T=4e5"});
-  compare<3>("sliding_block_3d.prm",
-             "slide_3d",
-             {{"assembled", "iterative"}},
-             {"Boundary conditions/Traction function/Function constants=P=1e6, T=6e5"});
+  compare<3>("pressed_block_3d.prm",
+             "pressed_3d",
+             {{"assembled", "iterative"}});
+  compare<2>(
+    "sliding_block.prm",
+    "slide_2d",
+    sparse,
+    {"Boundary conditions/Traction function/Function constants=P=1e6, T=6e5"});
+  compare<2>(
+    "sliding_block.prm",
+    "stick_2d",
+    {{"assembled", "iterative"}},
+    {"Boundary conditions/Traction function/Function constants=P=1e6, T=4e5"});
+  compare<3>(
+    "sliding_block_3d.prm",
+    "slide_3d",
+    {{"assembled", "iterative"}},
+    {"Boundary conditions/Traction function/Function constants=P=1e6, T=6e5"});
   compare<2>("barboteu_danan_2016_small.prm",
              "paper_small",
              {{"assembled", "iterative"}, {"condensed", "iterative"}});

@@ -23,7 +23,7 @@ main()
                              "--csv",
                              "scaling_quick.csv"},
                             launch);
-  Checks checks;
+  Checks        checks;
   checks.add(o.succeeded(), "benchmarks/scaling --quick succeeded");
   const auto rows = test_tools::read_csv("scaling_quick.csv");
   checks.add(!rows.empty() &&
@@ -45,12 +45,11 @@ main()
   for (std::size_t r = 1; r < rows.size(); ++r)
     {
       const auto &row = rows[r];
-      sensible = sensible && row.size() == 11 && std::stod(row[1]) > 0 &&
-                 std::stod(row[2]) > 0 && row[4] == "2" &&
-                 std::stod(row[7]) > 0 && std::stod(row[8]) >= 1 &&
-                 std::stod(row[10]) > 0 &&
-                 (row[5] == "condensed" ? row[9].empty() :
-                                          std::stod(row[9]) >= 1);
+      sensible =
+        sensible && row.size() == 11 && std::stod(row[1]) > 0 &&
+        std::stod(row[2]) > 0 && row[4] == "2" && std::stod(row[7]) > 0 &&
+        std::stod(row[8]) >= 1 && std::stod(row[10]) > 0 &&
+        (row[5] == "condensed" ? row[9].empty() : std::stod(row[9]) >= 1);
     }
   checks.add(sensible,
              "every row: DoFs, contact nodes, 2 steps, time, Newton "

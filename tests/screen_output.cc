@@ -5,9 +5,10 @@
 // time), the progress lines give an estimate of the time left, and
 // Output/Print timings = false leaves out the times only and Output/Print
 // iteration counts = false the iteration counts (both differ from run to
-// run on several processes): the summary stays. The scene: prm/stress/critical_speed.prm at the
-// size of the stress suite's quick mode (the load at the critical speed:
-// the time step is cut back several times), 1 ms of it.
+// run on several processes): the summary stays. The scene:
+// prm/stress/critical_speed.prm at the size of the stress suite's quick mode
+// (the load at the critical speed: the time step is cut back several times), 1
+// ms of it.
 //
 // Only verdicts are printed (no times, no counts): the output compares on
 // every machine.
@@ -32,15 +33,22 @@ namespace
     launch.name    = directory;
     launch.timeout = 300;
     return execute({test_tools::scene("stress/critical_speed.prm"),
-                    "--set", "Output/Directory=" + directory,
-                    "--set", "Geometry/Repetitions=32, 8",
-                    "--set", "Output/Output every=0",
-                    "--set", "Output/Progress every=50",
-                    "--set", "Output/VTU every=100",
-                    "--set", std::string("Output/Print timings=") +
-                                (timings ? "true" : "false"),
-                    "--set", std::string("Output/Print iteration counts=") +
-                                (counts ? "true" : "false")},
+                    "--set",
+                    "Output/Directory=" + directory,
+                    "--set",
+                    "Geometry/Repetitions=32, 8",
+                    "--set",
+                    "Output/Output every=0",
+                    "--set",
+                    "Output/Progress every=50",
+                    "--set",
+                    "Output/VTU every=100",
+                    "--set",
+                    std::string("Output/Print timings=") +
+                      (timings ? "true" : "false"),
+                    "--set",
+                    std::string("Output/Print iteration counts=") +
+                      (counts ? "true" : "false")},
                    launch);
   }
 
@@ -56,7 +64,7 @@ namespace
 
   double
   column_max(const std::vector<std::vector<std::string>> &csv,
-             const std::string &                          name,
+             const std::string                           &name,
              const bool                                   sum = false)
   {
     const auto c =
@@ -97,8 +105,7 @@ main()
   // The summary against time_series.csv.
   const std::string &out   = timed.out;
   const double       steps = csv.size() - 2; // header, row 0
-  say(number_after(out, "Completed ") == steps,
-      "summary: the number of steps");
+  say(number_after(out, "Completed ") == steps, "summary: the number of steps");
   const double cutbacks = column_max(csv, "cutbacks", true);
   say(cutbacks > 0 && number_after(out, "time step cut-backs: ") == cutbacks,
       "summary: the cut-backs (their sum in time_series.csv, > 0)");
@@ -123,7 +130,8 @@ main()
       "summary: the largest friction-law residual (to 3 digits)");
 
   // The table of timer sections: disjoint, adding up to the wall time.
-  static const std::regex row(R"(^  (.+?)\s+(\d*)\s+([0-9.]+) s\s+([0-9.]+) %$)");
+  static const std::regex row(
+    R"(^  (.+?)\s+(\d*)\s+([0-9.]+) s\s+([0-9.]+) %$)");
   double       sum = 0, total = -1, shares = 0;
   unsigned int sections = 0;
   bool         in_table = false;
@@ -155,7 +163,8 @@ main()
       "the total of the table is the wall time of the run");
 
   // Progress lines: the time left with timings, Newton counts in both.
-  say(std::regex_search(out, std::regex(R"(Newton \d+ .*\([0-9.]+ s, ~[0-9.]+ s left\))")),
+  say(std::regex_search(
+        out, std::regex(R"(Newton \d+ .*\([0-9.]+ s, ~[0-9.]+ s left\))")),
       "with timings: the progress lines give the time left");
   say(std::regex_search(counts.out,
                         std::regex(R"(step .* Newton \d+ .* contact \d+ )")) &&

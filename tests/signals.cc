@@ -35,25 +35,25 @@ namespace
   using namespace program_tools;
 
   std::vector<std::string>
-  arguments(const std::string &             directory,
+  arguments(const std::string              &directory,
             const std::vector<std::string> &more = {})
   {
-    std::vector<std::string> a = {
-      test_tools::scene("barboteu_danan_2016_small.prm"),
-      "--set",
-      "Time/End time=0.125",
-      "--set",
-      "Checkpoint/Every=4",
-      "--set",
-      "Checkpoint/Keep=2",
-      "--set",
-      "Output/Progress every=0",
-      "--set",
-      "Output/Print timings=false",
-      "--set",
-      "Output/Print iteration counts=false",
-      "--set",
-      "Output/Directory=" + directory};
+    std::vector<std::string> a = {test_tools::scene(
+                                    "barboteu_danan_2016_small.prm"),
+                                  "--set",
+                                  "Time/End time=0.125",
+                                  "--set",
+                                  "Checkpoint/Every=4",
+                                  "--set",
+                                  "Checkpoint/Keep=2",
+                                  "--set",
+                                  "Output/Progress every=0",
+                                  "--set",
+                                  "Output/Print timings=false",
+                                  "--set",
+                                  "Output/Print iteration counts=false",
+                                  "--set",
+                                  "Output/Directory=" + directory};
     a.insert(a.end(), more.begin(), more.end());
     return a;
   }
@@ -106,11 +106,7 @@ main()
     {"sighup", SIGHUP, 0, "", {}},
     {"sigusr1", SIGUSR1, 0, "", {}},
     {"sigterm_rank_1_of_2", SIGTERM, 2, " rank 1", {}},
-    {"sigint_no_checkpoints",
-     SIGINT,
-     0,
-     "",
-     {"--set", "Checkpoint/Every=0"}}};
+    {"sigint_no_checkpoints", SIGINT, 0, "", {"--set", "Checkpoint/Every=0"}}};
   for (const auto &c : cases)
     {
       fs::remove_all(c.name);
@@ -119,16 +115,16 @@ main()
       launch.processes = c.processes;
       launch.timeout   = 120;
       launch.environment.push_back("DYNAMIC_CONTACT_KILL=signal " +
-                                   std::to_string(c.signal) +
-                                   " after-step 5" + c.rank);
-      const Outcome     o        = execute(arguments(c.name, c.more), launch);
-      const std::string expected = "stopped: signal " +
-                                   std::to_string(c.signal) + " at step 5";
+                                   std::to_string(c.signal) + " after-step 5" +
+                                   c.rank);
+      const Outcome     o = execute(arguments(c.name, c.more), launch);
+      const std::string expected =
+        "stopped: signal " + std::to_string(c.signal) + " at step 5";
       const bool checkpoints = c.more.empty();
       out << c.name << " (" << std::max(c.processes, 1u) << " process"
           << (c.processes > 1 ? "es" : "") << "): exit code " << o.code
-          << ", run_status: " << status_of(c.name)
-          << ", last row: step " << last_row(c.name)
+          << ", run_status: " << status_of(c.name) << ", last row: step "
+          << last_row(c.name)
           << ", checkpoint_00005: " << yes_no(verified_checkpoint(c.name, 5))
           << std::endl;
       checks.add(o.exited && o.code == 128 + c.signal,
@@ -182,11 +178,9 @@ main()
   {
     const std::string name = "external_sigterm";
     fs::remove_all(name);
-    auto args = arguments(name,
-                          {"--set",
-                           "Geometry/Repetitions=128, 32",
-                           "--set",
-                           "Time/End time=1"});
+    auto args = arguments(
+      name,
+      {"--set", "Geometry/Repetitions=128, 32", "--set", "Time/End time=1"});
     std::vector<std::string> argv_strings = {"/bin/sh",
                                              "-c",
                                              "exec \"$0\" \"$@\" </dev/null "
@@ -198,13 +192,9 @@ main()
     for (auto &a : argv_strings)
       argv.push_back(a.data());
     argv.push_back(nullptr);
-    pid_t      pid     = 0;
-    const bool started = posix_spawn(&pid,
-                                     "/bin/sh",
-                                     nullptr,
-                                     nullptr,
-                                     argv.data(),
-                                     environ) == 0;
+    pid_t      pid = 0;
+    const bool started =
+      posix_spawn(&pid, "/bin/sh", nullptr, nullptr, argv.data(), environ) == 0;
     // Wait for a few steps, then stop it.
     const auto start = std::chrono::steady_clock::now();
     while (started && last_row(name) < 3 &&
@@ -216,9 +206,9 @@ main()
     int status = 0;
     if (started)
       ::waitpid(pid, &status, 0);
-    const bool exited = started && WIFEXITED(status);
-    const int  code   = exited ? WEXITSTATUS(status) : -1;
-    const unsigned int last = last_row(name);
+    const bool         exited = started && WIFEXITED(status);
+    const int          code   = exited ? WEXITSTATUS(status) : -1;
+    const unsigned int last   = last_row(name);
     const bool         stopped_there =
       status_of(name) == "stopped: signal 15 at step " + std::to_string(last);
     out << "external SIGTERM: exit code " << code

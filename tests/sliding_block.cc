@@ -13,17 +13,20 @@ using namespace DynamicContact;
 
 template <int dim>
 void
-check_block(const std::string &name, const double T,
+check_block(const std::string       &name,
+            const double             T,
             std::vector<std::string> overrides)
 {
   const double P = 1e6, mu = 0.5, rho = 1000, H = 0.2, L = 1;
   const double area = (dim == 3 ? L * L : L);
   overrides.push_back("Output/Directory=output-" + name);
-  overrides.push_back("Boundary conditions/Traction function/Function constants=P=1e6, T=" +
-                      std::to_string(T));
-  auto simulator = test_tools::run<dim>(
-    test_tools::scene(dim == 2 ? "sliding_block.prm" : "sliding_block_3d.prm"),
-    overrides);
+  overrides.push_back(
+    "Boundary conditions/Traction function/Function constants=P=1e6, T=" +
+    std::to_string(T));
+  auto simulator =
+    test_tools::run<dim>(test_tools::scene(dim == 2 ? "sliding_block.prm" :
+                                                      "sliding_block_3d.prm"),
+                         overrides);
   const auto &last = simulator->time_series().back();
 
   // The shear direction.
@@ -83,6 +86,8 @@ main(int argc, char *argv[])
   check_block<2>("slide_2d", 6e5, {});
   check_block<2>("stick_2d", 4e5, {});
   check_block<3>("slide_3d", 6e5, {});
-  check_block<3>("slide_3d_assembled", 6e5, {"Solver/Contact solver=assembled"});
+  check_block<3>("slide_3d_assembled",
+                 6e5,
+                 {"Solver/Contact solver=assembled"});
   check_block<3>("stick_3d", 4e5, {});
 }

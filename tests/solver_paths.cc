@@ -35,10 +35,9 @@ compare(const std::string &name, const std::vector<std::string> &overrides)
         const auto   q = test_tools::quantity<2>(column);
         const double a = q.of(series[0][n]), b = q.of(series[1][n]);
         const double s = std::max(series[0][n].terms.energy.total(), 1.);
-        worst = std::max(worst,
-                         q.force ?
-                           std::abs(a - b) / std::max(std::abs(a), 1.) :
-                           std::abs(a - b) / s);
+        worst          = std::max(worst,
+                         q.force ? std::abs(a - b) / std::max(std::abs(a), 1.) :
+                                            std::abs(a - b) / s);
       }
   test_tools::check(worst < 1e-8,
                     name + ": condensed and assembled agree to 1e-8");

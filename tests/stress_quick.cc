@@ -22,15 +22,14 @@ main()
   launch.program     = "python3";
   launch.environment = {std::string("DYNAMIC_CONTACT=") +
                         DYNAMIC_CONTACT_EXECUTABLE};
-  const Outcome o =
-    execute({std::string(SOURCE_DIR) + "/../benchmarks/stress",
-             "--quick",
-             "--verdicts",
-             "--work-dir",
-             "stress-runs",
-             "--csv",
-             "stress_quick.csv"},
-            launch);
+  const Outcome o = execute({std::string(SOURCE_DIR) + "/../benchmarks/stress",
+                             "--quick",
+                             "--verdicts",
+                             "--work-dir",
+                             "stress-runs",
+                             "--csv",
+                             "stress_quick.csv"},
+                            launch);
   test_tools::out() << o.out;
   if (!o.err.empty())
     test_tools::out() << "stderr:\n" << o.err;

@@ -16,9 +16,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <sstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -140,7 +140,7 @@ namespace test_tools
   template <int dim>
   struct Quantity
   {
-    std::string                                                name;
+    std::string                                                    name;
     std::function<double(const DynamicContact::StepRecord<dim> &)> of;
     /** A force (compared relative to itself), else an energy (relative
      *  to the total energy). */
@@ -156,13 +156,21 @@ namespace test_tools
     static const std::vector<Quantity<dim>> all = {
       {"normal_force", [](const R &r) { return r.normal_force; }, true},
       {"tangential_force", [](const R &r) { return r.tangential_force; }, true},
-      {"reaction_force_y", [](const R &r) { return r.forces.reaction[1]; }, true},
-      {"kinetic_energy", [](const R &r) { return r.terms.energy.kinetic; }, false},
-      {"elastic_energy", [](const R &r) { return r.terms.energy.elastic; }, false},
+      {"reaction_force_y",
+       [](const R &r) { return r.forces.reaction[1]; },
+       true},
+      {"kinetic_energy",
+       [](const R &r) { return r.terms.energy.kinetic; },
+       false},
+      {"elastic_energy",
+       [](const R &r) { return r.terms.energy.elastic; },
+       false},
       {"foundation_energy",
        [](const R &r) { return r.terms.energy.foundation; },
        false},
-      {"total_energy", [](const R &r) { return r.terms.energy.total(); }, false},
+      {"total_energy",
+       [](const R &r) { return r.terms.energy.total(); },
+       false},
       {"load_work", [](const R &r) { return r.terms.load_work; }, false},
       {"dissipation", [](const R &r) { return r.terms.dissipation(); }, false},
       {"remesh_energy_change",
@@ -182,9 +190,9 @@ namespace test_tools
    */
   template <int dim>
   std::unique_ptr<DynamicContact::Simulator<dim>>
-  make(const std::string &       file,
-       std::vector<std::string>  overrides,
-       const MPI_Comm            comm = MPI_COMM_WORLD)
+  make(const std::string       &file,
+       std::vector<std::string> overrides,
+       const MPI_Comm           comm = MPI_COMM_WORLD)
   {
     overrides.insert(overrides.begin(),
                      {"Output/Print timings=false",
@@ -200,9 +208,9 @@ namespace test_tools
 
   template <int dim>
   std::unique_ptr<DynamicContact::Simulator<dim>>
-  run(const std::string &       file,
-      std::vector<std::string>  overrides,
-      const MPI_Comm            comm = MPI_COMM_WORLD)
+  run(const std::string       &file,
+      std::vector<std::string> overrides,
+      const MPI_Comm           comm = MPI_COMM_WORLD)
   {
     auto simulator = make<dim>(file, overrides, comm);
     simulator->run();

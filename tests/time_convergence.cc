@@ -19,14 +19,14 @@ max_error(const std::string &scheme, const unsigned int steps)
 {
   const std::string name =
     (scheme == "backward Euler" ? std::string("euler") : scheme);
-  auto simulator = test_tools::run<2>(
-    test_tools::scene("manufactured_2d.prm"),
-    {"Output/Directory=output-time-convergence-" + name + "-" +
-       std::to_string(steps),
-     "Geometry/Global refinements=4",
-     "Finite element/Polynomial degree=2",
-     "Time/Time step=" + std::to_string(0.8 / steps),
-     "Time/Scheme=" + scheme});
+  auto simulator =
+    test_tools::run<2>(test_tools::scene("manufactured_2d.prm"),
+                       {"Output/Directory=output-time-convergence-" + name +
+                          "-" + std::to_string(steps),
+                        "Geometry/Global refinements=4",
+                        "Finite element/Polynomial degree=2",
+                        "Time/Time step=" + std::to_string(0.8 / steps),
+                        "Time/Scheme=" + scheme});
   double error = 0;
   for (const auto &row : simulator->time_series())
     if (row.step > 0)
@@ -47,9 +47,9 @@ study(const std::string &scheme, const double low, const double high)
       const double rate = std::log2(errors[i - 1] / errors[i]);
       test_tools::check(rate >= low && rate <= high,
                         "rate in k from " + std::to_string(steps[i - 1]) +
-                          " to " + std::to_string(steps[i]) +
-                          " steps in [" + test_tools::digits(low, 2) +
-                          ", " + test_tools::digits(high, 2) + "]");
+                          " to " + std::to_string(steps[i]) + " steps in [" +
+                          test_tools::digits(low, 2) + ", " +
+                          test_tools::digits(high, 2) + "]");
     }
 }
 

@@ -19,12 +19,12 @@ void
 check(const unsigned int degree)
 {
   Discretization<dim> d(MPI_COMM_WORLD, degree);
-  GridGenerator::subdivided_hyper_rectangle(
-    d.triangulation,
-    std::vector<unsigned int>(dim, 4),
-    Point<dim>(),
-    dim == 2 ? Point<dim>(2., 1.) : Point<dim>(2., 1., 1.),
-    true);
+  GridGenerator::subdivided_hyper_rectangle(d.triangulation,
+                                            std::vector<unsigned int>(dim, 4),
+                                            Point<dim>(),
+                                            dim == 2 ? Point<dim>(2., 1.) :
+                                                       Point<dim>(2., 1., 1.),
+                                            true);
   d.triangulation.refine_global(1);
   Parameters::BoundaryConditions bc;
   bc.clamped = {0};

@@ -31,7 +31,7 @@ namespace DynamicContact
   class BulkOperator
   {
   public:
-    BulkOperator(const Discretization<dim> &      discretization,
+    BulkOperator(const Discretization<dim>      &discretization,
                  const KelvinVoigtMaterial<dim> &material);
 
     /** Assemble M, B (and A if the material is viscous) on the current mesh. */
@@ -92,7 +92,7 @@ namespace DynamicContact
     void
     assemble_load_vector(const Scene<dim> &scene,
                          const double      t,
-                         Vector_t &        load) const;
+                         Vector_t         &load) const;
 
     /** The time step K0 was formed for (0 before the first call). */
     double
@@ -119,7 +119,7 @@ namespace DynamicContact
     }
 
   private:
-    const Discretization<dim> &      discretization;
+    const Discretization<dim>      &discretization;
     const KelvinVoigtMaterial<dim> &material;
 
     TrilinosWrappers::SparsityPattern pattern;

@@ -42,7 +42,7 @@ namespace DynamicContact
      */
     template <int dim>
     void
-    initialize(const Matrix_t &           matrix,
+    initialize(const Matrix_t            &matrix,
                const Discretization<dim> &discretization,
                const bool                 with_rotations = true);
 
@@ -70,7 +70,7 @@ namespace DynamicContact
   template <int dim>
   std::vector<double>
   rigid_body_modes(const Discretization<dim> &discretization,
-                   std::vector<double> *      coordinates = nullptr);
+                   std::vector<double>       *coordinates = nullptr);
 
   /**
    * Solves with one (symmetric positive definite) matrix, many times: a
@@ -96,7 +96,8 @@ namespace DynamicContact
      */
     template <int dim>
     void
-    initialize(const Matrix_t &matrix, const Discretization<dim> &discretization);
+    initialize(const Matrix_t            &matrix,
+               const Discretization<dim> &discretization);
 
     /** x = A^{-1} b. */
     void
@@ -112,18 +113,18 @@ namespace DynamicContact
      */
     void
     solve_columns(
-      const std::vector<SparseColumn> &                    columns,
-      const std::vector<dealii::types::global_dof_index> &rows,
-      std::vector<std::vector<double>> &                   values,
+      const std::vector<SparseColumn>                         &columns,
+      const std::vector<dealii::types::global_dof_index>      &rows,
+      std::vector<std::vector<double>>                        &values,
       const std::function<void(unsigned int, const double *)> &store = {});
 
   private:
     const Parameters::Solver parameters;
-    const Matrix_t *         matrix = nullptr;
+    const Matrix_t          *matrix = nullptr;
 
-    std::unique_ptr<Epetra_LinearProblem>                    problem;
-    std::unique_ptr<Amesos_BaseSolver>                       direct;
-    std::unique_ptr<BulkAMG>                                 amg;
+    std::unique_ptr<Epetra_LinearProblem> problem;
+    std::unique_ptr<Amesos_BaseSolver>    direct;
+    std::unique_ptr<BulkAMG>              amg;
   };
 } // namespace DynamicContact
 

@@ -3,8 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/output_directory.h>
 
 #include <functional>
@@ -27,8 +27,8 @@ namespace DynamicContact
     unsigned int total_newton             = 0;
     /** Steps kept with an unconverged convexification loop, and the worst
      *  coefficient residual among them (the run's honest ending). */
-    unsigned int unconverged_steps  = 0;
-    double       worst_unconverged  = 0;
+    unsigned int unconverged_steps = 0;
+    double       worst_unconverged = 0;
     /** The time index of the VTU files (solution.pvd). */
     std::vector<std::pair<double, std::string>> vtu_records;
 
@@ -74,13 +74,13 @@ namespace DynamicContact
    */
   template <int dim>
   void
-  write_checkpoint(OutputDirectory &              directory,
-                   Discretization<dim> &          discretization,
+  write_checkpoint(OutputDirectory               &directory,
+                   Discretization<dim>           &discretization,
                    const std::vector<Vector_t *> &fields,
-                   const RunState &               state,
-                   const std::string &            parameters,
+                   const RunState                &state,
+                   const std::string             &parameters,
                    const unsigned int             keep,
-                   const std::function<void()> &  before_commit = {});
+                   const std::function<void()>   &before_commit = {});
 
   /**
    * Collective: the checkpoints of @p output_directory that are complete
@@ -115,10 +115,10 @@ namespace DynamicContact
    */
   template <int dim>
   void
-  load_checkpoint(const std::string &            checkpoint,
-                  Discretization<dim> &          discretization,
+  load_checkpoint(const std::string             &checkpoint,
+                  Discretization<dim>           &discretization,
                   const std::vector<Vector_t *> &fields,
-                  const std::function<void()> &  after_load);
+                  const std::function<void()>   &after_load);
 
   /**
    * The parameters of a run as text (every entry, as the ParameterHandler
@@ -152,7 +152,7 @@ namespace DynamicContact
   struct TimeSeriesOnDisk
   {
     /** The header and the rows up to the checkpoint's step. */
-    std::string  kept;
+    std::string kept;
     /** The last whole row of the file (possibly after the checkpoint). */
     unsigned int last_step = 0;
     double       last_time = 0;

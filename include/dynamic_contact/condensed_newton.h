@@ -55,12 +55,12 @@ namespace DynamicContact
     reinit() override;
 
     Result
-    solve(const Vector_t &                    rhs,
+    solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double> &         mu,
-          std::vector<Tensor<1, dim>> &       lambda,
-          Vector_t &                          w) override;
+          const std::vector<double>         &mu,
+          std::vector<Tensor<1, dim>>       &lambda,
+          Vector_t                          &w) override;
 
     /**
      * Phase 1 only, and w = w_free - sum_j K0'^{-1} P_j^T g_j from the
@@ -68,12 +68,12 @@ namespace DynamicContact
      * solve().
      */
     Result
-    solve_provisional(const Vector_t &                    rhs,
+    solve_provisional(const Vector_t                    &rhs,
                       const std::vector<Tensor<1, dim>> &u_old,
                       const std::vector<Tensor<1, dim>> &w_old,
-                      const std::vector<double> &         mu,
-                      std::vector<Tensor<1, dim>> &       lambda,
-                      Vector_t &                          w) override;
+                      const std::vector<double>         &mu,
+                      std::vector<Tensor<1, dim>>       &lambda,
+                      Vector_t                          &w) override;
 
     /** Phase 2 of the last provisional solve: the solution itself. */
     Result
@@ -81,10 +81,10 @@ namespace DynamicContact
 
     /** The whole-system Newton step by condensation (phase 2). */
     void
-    newton_step(const SystemNewton<dim> & system,
+    newton_step(const SystemNewton<dim>  &system,
                 const SystemIterate<dim> &x,
-                SystemIterate<dim> &      full,
-                Result &                  result) override;
+                SystemIterate<dim>       &full,
+                Result                   &result) override;
 
   private:
     const ContactProblem<dim> problem;
@@ -119,7 +119,7 @@ namespace DynamicContact
     std::vector<std::vector<double>> full_columns;
     std::size_t                      stored_full_columns = 0;
     /** The largest number of owned DoFs of a process. */
-    types::global_dof_index max_owned_dofs = 0;
+    types::global_dof_index      max_owned_dofs     = 0;
     static constexpr std::size_t full_column_budget = std::size_t(512) << 20;
 
     /**
@@ -129,8 +129,8 @@ namespace DynamicContact
      */
     bool
     apply_full_columns(const std::vector<Tensor<1, dim>> &f,
-                       const std::vector<unsigned int> &  nodes,
-                       Vector_t &                         x) const;
+                       const std::vector<unsigned int>   &nodes,
+                       Vector_t                          &x) const;
 
 
     Vector_t solution, right_hand_side, residual, increment, scratch;
@@ -143,23 +143,23 @@ namespace DynamicContact
     /** The linearization of every node at an iterate. */
     struct Iterate
     {
-      std::vector<Tensor<1, dim>>         w; // nodal velocities w_n
+      std::vector<Tensor<1, dim>>         w;      // nodal velocities w_n
       std::vector<Tensor<1, dim>>         lambda; // friction forces
-      std::vector<Tensor<1, dim>>         w_old; // w_{n-1}
+      std::vector<Tensor<1, dim>>         w_old;  // w_{n-1}
       std::vector<NodeLinearization<dim>> lin;
       std::vector<Tensor<1, dim>>         forces; // f_i at the iterate
-      std::vector<Tensor<1, dim>>         base_true; // normal force + slip value
+      std::vector<Tensor<1, dim>> base_true;      // normal force + slip value
       // The same, minus the springs' s w_i (what condensation with K0' uses);
       // lin[i].block is likewise B_i - s I at spring nodes.
-      std::vector<Tensor<1, dim>>         g;
-      std::vector<Tensor<1, dim>>         base;
-      std::uint64_t                       signature = 0; // of the sets
-      std::vector<unsigned int>           active;
+      std::vector<Tensor<1, dim>> g;
+      std::vector<Tensor<1, dim>> base;
+      std::uint64_t               signature = 0; // of the sets
+      std::vector<unsigned int>   active;
       double equilibrium_squares = 0; // sum |w_i - (w_free - C g)_i|^2
       double equilibrium         = 0; // largest
-      double                              f_scale      = 0;
-      double                              law_residual = 0; // largest
-      double                              law_squares  = 0; // sum of squares
+      double f_scale             = 0;
+      double law_residual        = 0; // largest
+      double law_squares         = 0; // sum of squares
     };
 
     /** Linearize every node at it.w, it.lambda (the current solve's data). */
@@ -183,13 +183,13 @@ namespace DynamicContact
 
     /** solve() and solve_provisional(). */
     Result
-    solve(const Vector_t &                    rhs,
+    solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double> &         mu,
-          std::vector<Tensor<1, dim>> &       lambda,
-          Vector_t &                          w,
-          const bool                          provisional);
+          const std::vector<double>         &mu,
+          std::vector<Tensor<1, dim>>       &lambda,
+          Vector_t                          &w,
+          const bool                         provisional);
 
     /**
      * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then
@@ -197,14 +197,14 @@ namespace DynamicContact
      * @p tolerance_factor times Solver/Newton tolerance.
      */
     void
-    polish(const Iterate &                     it,
+    polish(const Iterate                     &it,
            const std::vector<Tensor<1, dim>> &u_old,
            const std::vector<Tensor<1, dim>> &w_old,
-           const std::vector<double> &         mu,
-           std::vector<Tensor<1, dim>> &       lambda,
-           Vector_t &                          w,
-           Result &                            result,
-           const double                        tolerance_factor = 1);
+           const std::vector<double>         &mu,
+           std::vector<Tensor<1, dim>>       &lambda,
+           Vector_t                          &w,
+           Result                            &result,
+           const double                       tolerance_factor = 1);
 
     /**
      * One Newton step on the active nodes for the right-hand side @p r (one
@@ -212,17 +212,17 @@ namespace DynamicContact
      * (every node) and the new linearized forces (every node).
      */
     void
-    dense_step(const Iterate &                     it,
+    dense_step(const Iterate                     &it,
                const std::vector<Tensor<1, dim>> &r,
-               std::vector<Tensor<1, dim>> &       dw,
-               std::vector<Tensor<1, dim>> &       lambda,
-               std::vector<Tensor<1, dim>> &       new_forces) const;
+               std::vector<Tensor<1, dim>>       &dw,
+               std::vector<Tensor<1, dim>>       &lambda,
+               std::vector<Tensor<1, dim>>       &new_forces) const;
 
     /** v += factor sum_i P_i^T f_i over the owned nodes (f at every node). */
     void
     add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
                      const double                       factor,
-                     Vector_t &                         v) const;
+                     Vector_t                          &v) const;
 
     /** The nodal values of a vector at every node (collective). */
     std::vector<Tensor<1, dim>>
@@ -251,8 +251,8 @@ namespace DynamicContact
     void
     compliance_response(const std::vector<Tensor<1, dim>> &w_free,
                         const std::vector<Tensor<1, dim>> &forces,
-                        const std::vector<unsigned int> &   with_force,
-                        std::vector<Tensor<1, dim>> &       w) const;
+                        const std::vector<unsigned int>   &with_force,
+                        std::vector<Tensor<1, dim>>       &w) const;
   };
 } // namespace DynamicContact
 

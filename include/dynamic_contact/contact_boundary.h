@@ -17,9 +17,9 @@ namespace DynamicContact
   using namespace dealii;
 
   /**
-   * One node of the contact boundary Gamma_3 (doc/theory.md section 3): a support
-   * point of the finite element on Gamma_3 that is not a hanging node, with
-   * its lumped weight m_i = int_Gamma3 phi_i (Gauss-Lobatto quadrature,
+   * One node of the contact boundary Gamma_3 (doc/theory.md section 3): a
+   * support point of the finite element on Gamma_3 that is not a hanging node,
+   * with its lumped weight m_i = int_Gamma3 phi_i (Gauss-Lobatto quadrature,
    * condensed through the hanging-node constraints), its averaged outward
    * normal nu_i and a tangent basis. Every contact law is evaluated node by
    * node on these data.
@@ -89,9 +89,9 @@ XX, computed once per mesh: the nodes
      * is evaluated at each node.
      */
     void
-    reinit(const Discretization<dim> &             discretization,
+    reinit(const Discretization<dim>             &discretization,
            const std::vector<types::boundary_id> &contact_ids,
-           const Function<dim> &                  initial_gap);
+           const Function<dim>                   &initial_gap);
 
     /** The nodes whose DoFs this process owns, sorted by position. */
     const std::vector<ContactNode<dim>> &
@@ -120,7 +120,7 @@ XX, computed once per mesh: the nodes
     void
     add_nodal_forces(const ForceOf &force_of,
                      const double   factor,
-                     Vector_t &     v) const
+                     Vector_t      &v) const
     {
       std::vector<types::global_dof_index> indices;
       std::vector<double>                  values;

@@ -44,8 +44,8 @@ namespace DynamicContact
     unsigned int
     set_signature() const
     {
-      return compliance_active + 2 * compliance_saturated +
-             4 * damping_active + 8 * damping_saturated;
+      return compliance_active + 2 * compliance_saturated + 4 * damping_active +
+             8 * damping_saturated;
     }
   };
 
@@ -97,10 +97,10 @@ namespace DynamicContact
   /** The normal response of @p node for the nodal u_{n-1} and w. */
   template <int dim>
   NormalResponse
-  normal_response(const Foundation &      foundation,
+  normal_response(const Foundation       &foundation,
                   const ContactNode<dim> &node,
-                  const Tensor<1, dim> &  u_old,
-                  const Tensor<1, dim> &  w,
+                  const Tensor<1, dim>   &u_old,
+                  const Tensor<1, dim>   &w,
                   const double            k)
   {
     const Tensor<1, dim> u = u_old + k * w;
@@ -113,12 +113,12 @@ namespace DynamicContact
   /** The same for the theta-scheme, given w_{n-1} at the node too. */
   template <int dim>
   NormalResponse
-  normal_response(const Foundation &      foundation,
+  normal_response(const Foundation       &foundation,
                   const ContactNode<dim> &node,
-                  const Tensor<1, dim> &  u_old,
-                  const Tensor<1, dim> &  w_old,
-                  const Tensor<1, dim> &  w,
-                  const TimeScheme &      scheme)
+                  const Tensor<1, dim>   &u_old,
+                  const Tensor<1, dim>   &w_old,
+                  const Tensor<1, dim>   &w,
+                  const TimeScheme       &scheme)
   {
     const Tensor<1, dim> w_e = scheme.weighted(w, w_old);
     const Tensor<1, dim> u   = scheme.displacement(u_old, w_e);
@@ -131,23 +131,21 @@ namespace DynamicContact
 
 
   /**
-   * Friction at one node for a frozen coefficient mu_i (doc/theory.md section 5),
-   * from the complementarity form
-   *   lambda = P_B(0, g)(lambda + c m_i w_tau),  g = mu_i N_i(u_nu, w_nu),
-   * lambda the nodal friction force and c = c_t k, c_t ~ E/h, so that
-   * c m_i w_tau is a nodal force (c_t times the slip increment k w_tau):
-   * free where g = 0, stick where |lambda + c_t w_tau| <= g, slip otherwise.
-   * On slip nodes the friction force is linearized in w (the threshold g
-   * through u_nu and w_nu, and in 3D the direction, after Hueber, Stadler &
-   * Wohlmuth 2008):
-   *   lambda(w') = value + jacobian (w' - w).
-   * On stick nodes lambda is a multiplier of the constraint w_tau = 0 and
-   * value is the lambda given.
+   * Friction at one node for a frozen coefficient mu_i (doc/theory.md section
+   * 5), from the complementarity form lambda = P_B(0, g)(lambda + c m_i w_tau),
+   * g = mu_i N_i(u_nu, w_nu), lambda the nodal friction force and c = c_t k,
+   * c_t ~ E/h, so that c m_i w_tau is a nodal force (c_t times the slip
+   * increment k w_tau): free where g = 0, stick where |lambda + c_t w_tau| <=
+   * g, slip otherwise. On slip nodes the friction force is linearized in w (the
+   * threshold g through u_nu and w_nu, and in 3D the direction, after Hueber,
+   * Stadler & Wohlmuth 2008): lambda(w') = value + jacobian (w' - w). On stick
+   * nodes lambda is a multiplier of the constraint w_tau = 0 and value is the
+   * lambda given.
    */
   template <int dim>
   struct FrictionResponse
   {
-    ContactState   state = ContactState::free;
+    ContactState   state     = ContactState::free;
     double         threshold = 0; // g
     Tensor<1, dim> direction;     // t (slip)
     Tensor<1, dim> value;
@@ -167,9 +165,9 @@ namespace DynamicContact
   template <int dim>
   FrictionResponse<dim>
   friction_response(const ContactNode<dim> &node,
-                    const NormalResponse &  normal,
-                    const Tensor<1, dim> &  w,
-                    const Tensor<1, dim> &  lambda,
+                    const NormalResponse   &normal,
+                    const Tensor<1, dim>   &w,
+                    const Tensor<1, dim>   &lambda,
                     const double            mu,
                     const double            c,
                     const double            effective_derivative = 1);
@@ -183,8 +181,8 @@ namespace DynamicContact
   Tensor<1, dim>
   projected_friction_force(const ContactNode<dim> &node,
                            const double            threshold,
-                           const Tensor<1, dim> &  w,
-                           const Tensor<1, dim> &  lambda,
+                           const Tensor<1, dim>   &w,
+                           const Tensor<1, dim>   &lambda,
                            const double            c);
 
 
@@ -216,13 +214,13 @@ namespace DynamicContact
 
   template <int dim>
   NodeLinearization<dim>
-  linearize_node(const Foundation &      foundation,
+  linearize_node(const Foundation       &foundation,
                  const ContactNode<dim> &node,
-                 const Tensor<1, dim> &  u_old,
-                 const Tensor<1, dim> &  w,
+                 const Tensor<1, dim>   &u_old,
+                 const Tensor<1, dim>   &w,
                  const double            k,
                  const bool              friction,
-                 const Tensor<1, dim> &  lambda,
+                 const Tensor<1, dim>   &lambda,
                  const double            mu,
                  const double            c)
   {
@@ -237,34 +235,28 @@ namespace DynamicContact
    */
   template <int dim>
   NodeLinearization<dim>
-  linearize_node(const Foundation &      foundation,
+  linearize_node(const Foundation       &foundation,
                  const ContactNode<dim> &node,
-                 const Tensor<1, dim> &  u_old,
-                 const Tensor<1, dim> &  w_old,
-                 const Tensor<1, dim> &  w,
-                 const TimeScheme &      scheme,
+                 const Tensor<1, dim>   &u_old,
+                 const Tensor<1, dim>   &w_old,
+                 const Tensor<1, dim>   &w,
+                 const TimeScheme       &scheme,
                  const bool              friction,
-                 const Tensor<1, dim> &  lambda,
+                 const Tensor<1, dim>   &lambda,
                  const double            mu,
                  const double            c)
   {
     NodeLinearization<dim> l;
     const Tensor<1, dim>   w_e = scheme.weighted(w, w_old);
-    l.normal = normal_response(foundation, node, u_old, w_old, w, scheme);
+    l.normal       = normal_response(foundation, node, u_old, w_old, w, scheme);
     const double N = node.weight * l.normal.pressure;
     l.force        = N * node.normal;
     l.block        = (node.weight * l.normal.dpressure_dw) *
               outer_product(node.normal, node.normal);
     if (friction)
       {
-        l.friction =
-          friction_response(node,
-                            l.normal,
-                            w_e,
-                            lambda,
-                            mu,
-                            c,
-                            scheme.effective_derivative());
+        l.friction = friction_response(
+          node, l.normal, w_e, lambda, mu, c, scheme.effective_derivative());
         l.force += l.friction.value;
         l.block += l.friction.jacobian;
       }

@@ -55,14 +55,14 @@ namespace DynamicContact
   template <int dim>
   struct ContactProblem
   {
-    const Discretization<dim> &  discretization;
-    const BulkOperator<dim> &    bulk;
-    const ContactBoundary<dim> & boundary;
-    const Foundation &           foundation;
-    const Parameters::Solver &   parameters;
-    TimerOutput &                timer;
+    const Discretization<dim>  &discretization;
+    const BulkOperator<dim>    &bulk;
+    const ContactBoundary<dim> &boundary;
+    const Foundation           &foundation;
+    const Parameters::Solver   &parameters;
+    TimerOutput                &timer;
     /** Per-iteration diagnostics (Output/Solver details), rank 0 only. */
-    const ConditionalOStream &   details;
+    const ConditionalOStream &details;
     /** Friction is on (a law other than none). */
     bool friction;
     /**
@@ -99,17 +99,16 @@ namespace DynamicContact
 
   /**
    * The primal-dual active set / semismooth Newton iteration of
-   * doc/theory.md section 5 for frozen friction coefficients: find w and the friction
-   * forces lambda with
-   *   K0 w + sum_i P_i^T (N_i(w) nu_i + lambda_i) = b,
-   *   lambda_i = P_B(0, mu_i N_i)(lambda_i + c_t w_tau,i)  at every node.
-   * Two implementations share one globalized Newton driver
-   * (globalized_newton(), newton_driver.h) and differ in the linear
-   * algebra: CondensedNewton (static condensation onto Gamma_3: K0
-   * factorized once, dense systems on the active nodes; replicates Gamma_3
-   * on every process) and SparseNewton (the sparse Newton system of the
-   * whole body, by a direct factorization or by GMRES preconditioned with
-   * algebraic multigrid of K0; O(N) per iteration, nothing replicated).
+   * doc/theory.md section 5 for frozen friction coefficients: find w and the
+   * friction forces lambda with K0 w + sum_i P_i^T (N_i(w) nu_i + lambda_i) =
+   * b, lambda_i = P_B(0, mu_i N_i)(lambda_i + c_t w_tau,i)  at every node. Two
+   * implementations share one globalized Newton driver (globalized_newton(),
+   * newton_driver.h) and differ in the linear algebra: CondensedNewton (static
+   * condensation onto Gamma_3: K0 factorized once, dense systems on the active
+   * nodes; replicates Gamma_3 on every process) and SparseNewton (the sparse
+   * Newton system of the whole body, by a direct factorization or by GMRES
+   * preconditioned with algebraic multigrid of K0; O(N) per iteration, nothing
+   * replicated).
    */
   template <int dim>
   class ContactNewton
@@ -132,12 +131,12 @@ namespace DynamicContact
      * StepFailure if the iteration does not converge.
      */
     virtual Result
-    solve(const Vector_t &                    rhs,
+    solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double> &         mu,
-          std::vector<Tensor<1, dim>> &       lambda,
-          Vector_t &                          w) = 0;
+          const std::vector<double>         &mu,
+          std::vector<Tensor<1, dim>>       &lambda,
+          Vector_t                          &w) = 0;
 
     /**
      * The same, where the caller may accept a provisional w (a pass of the
@@ -146,12 +145,12 @@ namespace DynamicContact
      * Result::provisional. The default solves.
      */
     virtual Result
-    solve_provisional(const Vector_t &                    rhs,
+    solve_provisional(const Vector_t                    &rhs,
                       const std::vector<Tensor<1, dim>> &u_old,
                       const std::vector<Tensor<1, dim>> &w_old,
-                      const std::vector<double> &         mu,
-                      std::vector<Tensor<1, dim>> &       lambda,
-                      Vector_t &                          w)
+                      const std::vector<double>         &mu,
+                      std::vector<Tensor<1, dim>>       &lambda,
+                      Vector_t                          &w)
     {
       return solve(rhs, u_old, w_old, mu, lambda, w);
     }

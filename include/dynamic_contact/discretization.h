@@ -117,7 +117,7 @@ namespace DynamicContact
   class FieldTransfer
   {
   public:
-    FieldTransfer(const Discretization<dim> &     discretization,
+    FieldTransfer(const Discretization<dim>       &discretization,
                   const std::vector<VectorType *> &fields)
       : discretization(discretization)
       , fields(fields)
@@ -161,9 +161,9 @@ namespace DynamicContact
     }
 
   private:
-    const Discretization<dim> &                                 discretization;
-    const std::vector<VectorType *>                             fields;
-    std::vector<VectorType>                                     ghosted;
+    const Discretization<dim>                               &discretization;
+    const std::vector<VectorType *>                          fields;
+    std::vector<VectorType>                                  ghosted;
     parallel::distributed::SolutionTransfer<dim, VectorType> transfer;
   };
 } // namespace DynamicContact

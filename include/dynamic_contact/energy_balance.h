@@ -3,8 +3,8 @@
 
 #include <dynamic_contact/bulk_operator.h>
 #include <dynamic_contact/contact_boundary.h>
-#include <dynamic_contact/foundation.h>
 #include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/foundation.h>
 #include <dynamic_contact/time_scheme.h>
 
 namespace DynamicContact
@@ -42,11 +42,12 @@ namespace DynamicContact
     double inertia   = 0; // (theta - 1/2) rho |w_n - w_{n-1}|^2
     double elastic   = 0; // (theta - 1/2) a_E(u_n - u_{n-1}, u_n - u_{n-1})
     double viscous   = 0; // k a_C(w_e, w_e)
-    double compliance = 0; // sum m_i [P (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))],
-                           // P = p(u_n) (theta = 1) or the discrete gradient (0)
-    double damping   = 0; // k sum m_i q(w_e,nu) w_e,nu
-    double friction  = 0; // k sum lambda_i . w_e,tau,i
-    double defect    = 0; // E_n - E_{n-1} + D_n - W_n
+    double compliance =
+      0; // sum m_i [P (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))],
+         // P = p(u_n) (theta = 1) or the discrete gradient (0)
+    double damping  = 0; // k sum m_i q(w_e,nu) w_e,nu
+    double friction = 0; // k sum lambda_i . w_e,tau,i
+    double defect   = 0; // E_n - E_{n-1} + D_n - W_n
 
     double
     dissipation() const
@@ -98,7 +99,7 @@ namespace DynamicContact
    */
   EnergyBalanceTerms
   bathe_terms(const EnergyBalanceTerms &first,
-              const Energy &            extrapolated,
+              const Energy             &extrapolated,
               const EnergyBalanceTerms &second,
               const double              extrapolation_work,
               const double              previous_energy);
@@ -108,9 +109,9 @@ namespace DynamicContact
   class EnergyBalance
   {
   public:
-    EnergyBalance(const BulkOperator<dim> &    bulk,
+    EnergyBalance(const BulkOperator<dim>    &bulk,
                   const ContactBoundary<dim> &contact_boundary,
-                  const Foundation &          foundation,
+                  const Foundation           &foundation,
                   const double                density,
                   const MPI_Comm              comm);
 
@@ -125,19 +126,19 @@ namespace DynamicContact
      * @p previous_energy is E_{n-1}.
      */
     EnergyBalanceTerms
-    step_terms(const Vector_t &                         u_old,
-               const Vector_t &                         w_old,
-               const Vector_t &                         u,
-               const Vector_t &                         w,
-               const Vector_t &                         load,
-               const TimeScheme &                       scheme,
+    step_terms(const Vector_t                           &u_old,
+               const Vector_t                           &w_old,
+               const Vector_t                           &u,
+               const Vector_t                           &w,
+               const Vector_t                           &load,
+               const TimeScheme                         &scheme,
                const std::vector<ContactNodeState<dim>> &states,
-               const double previous_energy) const;
+               const double                              previous_energy) const;
 
   private:
-    const BulkOperator<dim> &    bulk;
+    const BulkOperator<dim>    &bulk;
     const ContactBoundary<dim> &contact_boundary;
-    const Foundation &          foundation;
+    const Foundation           &foundation;
     const double                density;
     const MPI_Comm              comm;
     mutable Vector_t            difference;

@@ -1,8 +1,8 @@
 #ifndef dynamic_contact_error_norms_h
 #define dynamic_contact_error_norms_h
 
-#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
 
@@ -29,12 +29,12 @@ namespace DynamicContact
    */
   template <int dim>
   Errors
-  compute_errors(const Discretization<dim> &      discretization,
+  compute_errors(const Discretization<dim>      &discretization,
                  const KelvinVoigtMaterial<dim> &material,
-                 const Scene<dim> &               scene,
-                 const double                     t,
-                 const Vector_t &                 u,
-                 const Vector_t &                 w);
+                 const Scene<dim>               &scene,
+                 const double                    t,
+                 const Vector_t                 &u,
+                 const Vector_t                 &w);
 } // namespace DynamicContact
 
 #endif

@@ -4,10 +4,10 @@
 #include <deal.II/base/tensor.h>
 
 #include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/contact_law.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
-#include <dynamic_contact/contact_law.h>
 #include <dynamic_contact/time_scheme.h>
 
 namespace DynamicContact
@@ -42,9 +42,9 @@ namespace DynamicContact
   class ForceBalanceEvaluator
   {
   public:
-    ForceBalanceEvaluator(const Discretization<dim> &      discretization,
+    ForceBalanceEvaluator(const Discretization<dim>      &discretization,
                           const KelvinVoigtMaterial<dim> &material,
-                          const Scene<dim> &               scene);
+                          const Scene<dim>               &scene);
 
     /** After a change of the mesh. */
     void
@@ -58,19 +58,19 @@ namespace DynamicContact
      * (Discretization::expand).
      */
     ForceBalance<dim>
-    compute(const ContactBoundary<dim> &              boundary,
+    compute(const ContactBoundary<dim>               &boundary,
             const std::vector<ContactNodeState<dim>> &states,
             const double                              t,
-            const TimeScheme &                        scheme,
-            const Vector_t &                          u_theta,
-            const Vector_t &                          w_theta,
-            const Vector_t &                          w,
-            const Vector_t &                          w_old) const;
+            const TimeScheme                         &scheme,
+            const Vector_t                           &u_theta,
+            const Vector_t                           &w_theta,
+            const Vector_t                           &w,
+            const Vector_t                           &w_old) const;
 
   private:
-    const Discretization<dim> &      discretization;
+    const Discretization<dim>      &discretization;
     const KelvinVoigtMaterial<dim> &material;
-    const Scene<dim> &               scene;
+    const Scene<dim>               &scene;
     /** int_Omega phi_i for every owned DoF i. */
     Vector_t volume_weights;
     /** Component of every owned DoF. */

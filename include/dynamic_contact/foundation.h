@@ -77,9 +77,11 @@ namespace DynamicContact
       if (slope == 0 || a == b)
         return 0.;
       const double lo = std::min(a, b), hi = std::max(a, b);
-      const double pieces[4] = {lo, std::clamp(0., lo, hi),
-                                std::clamp(kink, lo, hi), hi};
-      double       sum = 0;
+      const double pieces[4] = {lo,
+                                std::clamp(0., lo, hi),
+                                std::clamp(kink, lo, hi),
+                                hi};
+      double       sum       = 0;
       for (unsigned int i = 0; i < 3; ++i)
         {
           const double s0 = pieces[i], s1 = pieces[i + 1];
@@ -90,8 +92,8 @@ namespace DynamicContact
           const double mid      = 0.5 * (s0 + s1);
           const bool   same     = (b >= s0 && b <= s1);
           const double gradient = (mid > 0 && mid < kink) ? slope : 0.;
-          const double jump =
-            same ? gradient * std::abs(b - mid) : std::abs(value(b) - value(mid));
+          const double jump     = same ? gradient * std::abs(b - mid) :
+                                         std::abs(value(b) - value(mid));
           sum += (s1 - s0) * jump;
         }
       return sum;
@@ -118,10 +120,10 @@ namespace DynamicContact
     double
     discrete_gradient_derivative(const double a, const double b) const
     {
-      const bool linear_piece =
-        (a > 0 && b > 0 && a < kink && b < kink) || (a <= 0 && b <= 0) ||
-        (a >= kink && b >= kink);
-      if (linear_piece || std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+      const bool linear_piece = (a > 0 && b > 0 && a < kink && b < kink) ||
+                                (a <= 0 && b <= 0) || (a >= kink && b >= kink);
+      if (linear_piece ||
+          std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
         return 0.5 * derivative(0.5 * (a + b));
       return dissipation(a, b) / ((b - a) * (b - a));
     }
@@ -275,8 +277,7 @@ namespace DynamicContact
       return ramp.discrete_gradient(a, b);
     }
     double
-    discrete_gradient_derivative(const double a,
-                                 const double b) const override
+    discrete_gradient_derivative(const double a, const double b) const override
     {
       return ramp.discrete_gradient_derivative(a, b);
     }

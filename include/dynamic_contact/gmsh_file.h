@@ -56,7 +56,7 @@ namespace DynamicContact
    */
   void
   check_gmsh_cells(const GmshFileInfo &info,
-                   const std::string & file,
+                   const std::string  &file,
                    const unsigned int  dim);
 
   /** The name of Gmsh element type @p type ("3-node triangle"). */

@@ -20,10 +20,10 @@ namespace DynamicContact
    * out-of-plane stress eliminated).
    */
   double
-  effective_lambda(const double                             lambda,
-                   const double                             mu,
-                   const Parameters::Material::PlaneModel   model,
-                   const unsigned int                       dim);
+  effective_lambda(const double                           lambda,
+                   const double                           mu,
+                   const Parameters::Material::PlaneModel model,
+                   const unsigned int                     dim);
 
   /**
    * The Kelvin-Voigt law sigma = C eps(u') + E eps(u), eq. (13): isotropic

@@ -3,8 +3,8 @@
 
 #include <deal.II/base/point.h>
 
-#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/refinement_strategy.h>
 #include <dynamic_contact/scene.h>
@@ -19,10 +19,10 @@ namespace DynamicContact
    * section 8: a Gaussian load of width ~1/sqrt(psi) travelling along the
    * rail). Each RefinementStrategy of Mesh refinement/Strategy (load
    * following, contact following, error indicator, or one of your own)
-   * asks for a level per cell; each cell is flagged towards the largest level asked for (the minimum
-   * level if none asks), within the cell budget. One call flags one cycle
-   * (a cell changes by at most one level); the caller repeats until nothing
-   * is flagged, transferring the fields each time.
+   * asks for a level per cell; each cell is flagged towards the largest level
+   * asked for (the minimum level if none asks), within the cell budget. One
+   * call flags one cycle (a cell changes by at most one level); the caller
+   * repeats until nothing is flagged, transferring the fields each time.
    */
   template <int dim>
   class MeshAdaptation
@@ -30,9 +30,9 @@ namespace DynamicContact
   public:
     /** The strategies are created from @p prm (Mesh refinement/Strategy). */
     MeshAdaptation(const Parameters::MeshRefinement &parameters,
-                   const Scene<dim> &                 scene,
-                   Discretization<dim> &              discretization,
-                   ParameterHandler &                 prm);
+                   const Scene<dim>                 &scene,
+                   Discretization<dim>              &discretization,
+                   ParameterHandler                 &prm);
 
     bool
     enabled() const
@@ -69,8 +69,8 @@ namespace DynamicContact
                const double                   t1,
                const double                   k,
                const std::vector<Point<dim>> &contact_points,
-               const Vector_t &               u,
-               const Vector_t &               w);
+               const Vector_t                &u,
+               const Vector_t                &w);
 
     /**
      * The most refinement cycles one adaptation needs: a cell changes by one
@@ -93,8 +93,8 @@ namespace DynamicContact
 
   private:
     const Parameters::MeshRefinement parameters;
-    const Scene<dim> &               scene;
-    Discretization<dim> &            discretization;
+    const Scene<dim>                &scene;
+    Discretization<dim>             &discretization;
     const std::vector<std::unique_ptr<const RefinementStrategy<dim>>>
       strategies;
   };
@@ -112,9 +112,9 @@ namespace DynamicContact
    */
   template <int dim>
   void
-  refine_and_transfer(Discretization<dim> &          discretization,
+  refine_and_transfer(Discretization<dim>           &discretization,
                       const std::vector<Vector_t *> &fields,
-                      const std::function<void()> &  after_refinement);
+                      const std::function<void()>   &after_refinement);
 } // namespace DynamicContact
 
 #endif

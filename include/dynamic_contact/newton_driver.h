@@ -40,9 +40,9 @@ namespace DynamicContact
      * last @p window iterates (non-monotone). A detected cycle makes the
      * rule monotone for the rest of the iteration either way.
      */
-    bool         monotone         = false;
-    unsigned int free_iterations  = 4;
-    unsigned int window           = 5;
+    bool         monotone        = false;
+    unsigned int free_iterations = 4;
+    unsigned int window          = 5;
     /**
      * Stagnation: an iterate reached by a full step, whose active sets are
      * those of the last one, whose residual fell by less than this factor,
@@ -84,21 +84,21 @@ namespace DynamicContact
    */
   template <typename Problem, typename Result>
   void
-  globalized_newton(Problem &                   problem,
-                    typename Problem::Iterate & x,
-                    const NewtonPolicy &        policy,
-                    const Parameters::Solver &  parameters,
-                    const ConditionalOStream &  details,
-                    Result &                    result)
+  globalized_newton(Problem                   &problem,
+                    typename Problem::Iterate &x,
+                    const NewtonPolicy        &policy,
+                    const Parameters::Solver  &parameters,
+                    const ConditionalOStream  &details,
+                    Result                    &result)
   {
-    using Iterate = typename Problem::Iterate;
+    using Iterate    = typename Problem::Iterate;
     const double tol = parameters.newton_tolerance;
 
     Iterate                    full, trial;
     NewtonMeasure              current = problem.evaluate(x);
     std::vector<std::uint64_t> history; // active sets of the past iterates
     std::vector<double>        merits;
-    bool                       monotone = policy.monotone;
+    bool                       monotone          = policy.monotone;
     double                     previous_residual = 0;
     bool                       last_step_full    = false;
 
@@ -137,9 +137,10 @@ namespace DynamicContact
         problem.newton_step(x, full);
         NewtonMeasure accepted   = problem.evaluate(full);
         const double  merit_full = problem.merit(full, x);
-        const double  reference  = *std::max_element(
-          merits.end() - std::min<std::size_t>(merits.size(), policy.window),
-          merits.end());
+        const double  reference =
+          *std::max_element(merits.end() - std::min<std::size_t>(merits.size(),
+                                                                 policy.window),
+                            merits.end());
         const bool backtrack =
           parameters.line_search &&
           (cycling || (monotone && merit_full > (1 - 1e-4) * merit_now) ||
@@ -161,7 +162,7 @@ namespace DynamicContact
         else
           std::swap(x, full);
         last_step_full = !backtrack;
-        current = accepted;
+        current        = accepted;
         ++result.iterations;
       }
   }
@@ -211,8 +212,8 @@ namespace DynamicContact
     Tensor<1, dim>         force;
     Tensor<1, dim>         base;
     /** |lambda_i - P(lambda_i + c w_e,tau)| (0 without friction). */
-    double                 law_residual = 0;
-    std::uint64_t          signature    = 0;
+    double        law_residual = 0;
+    std::uint64_t signature    = 0;
   };
 
   /**
@@ -224,14 +225,14 @@ namespace DynamicContact
   template <int dim>
   NodeEvaluation<dim>
   evaluate_node(const ContactProblem<dim> &problem,
-                const ContactNode<dim> &   node,
-                const Tensor<1, dim> &     u_old,
-                const Tensor<1, dim> &     w_old,
-                const Tensor<1, dim> &     w,
-                const Tensor<1, dim> &     lambda,
+                const ContactNode<dim>    &node,
+                const Tensor<1, dim>      &u_old,
+                const Tensor<1, dim>      &w_old,
+                const Tensor<1, dim>      &w,
+                const Tensor<1, dim>      &lambda,
                 const double               mu)
   {
-    const TimeScheme &  scheme = problem.bulk.scheme();
+    const TimeScheme   &scheme = problem.bulk.scheme();
     const double        c      = problem.c_t * scheme.time_step();
     NodeEvaluation<dim> e;
     e.lin = linearize_node(problem.foundation,
@@ -251,17 +252,17 @@ namespace DynamicContact
     if (e.lin.friction.state == ContactState::slip)
       e.base += e.lin.friction.value;
     if (problem.friction)
-      e.law_residual = (lambda - projected_friction_force(
-                                   node,
-                                   e.lin.friction.threshold,
-                                   scheme.weighted(w, w_old),
-                                   lambda,
-                                   c))
-                         .norm();
-    e.signature = node_set_hash(node.dofs[0],
-                                e.lin.normal.set_signature() +
-                                  16 * static_cast<unsigned int>(
-                                         e.lin.friction.state));
+      e.law_residual =
+        (lambda - projected_friction_force(node,
+                                           e.lin.friction.threshold,
+                                           scheme.weighted(w, w_old),
+                                           lambda,
+                                           c))
+          .norm();
+    e.signature =
+      node_set_hash(node.dofs[0],
+                    e.lin.normal.set_signature() +
+                      16 * static_cast<unsigned int>(e.lin.friction.state));
     return e;
   }
 } // namespace DynamicContact

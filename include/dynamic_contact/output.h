@@ -1,12 +1,12 @@
 #ifndef dynamic_contact_output_h
 #define dynamic_contact_output_h
 
-#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/contact_law.h>
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/output_directory.h>
-#include <dynamic_contact/contact_law.h>
 
 #include <string>
 #include <utility>
@@ -79,15 +79,15 @@ namespace DynamicContact
    */
   template <int dim>
   void
-  write_contact_csv(OutputDirectory &                          directory,
-                    const std::string &                        name,
-                    const double                               time,
-                    const ContactBoundary<dim> &               boundary,
+  write_contact_csv(OutputDirectory                          &directory,
+                    const std::string                        &name,
+                    const double                              time,
+                    const ContactBoundary<dim>               &boundary,
                     const std::vector<ContactNodeState<dim>> &states,
-                    const Vector_t &                           u,
-                    const Vector_t &                           w,
-                    const bool                                 friction,
-                    const MPI_Comm                             comm);
+                    const Vector_t                           &u,
+                    const Vector_t                           &w,
+                    const bool                                friction,
+                    const MPI_Comm                            comm);
 
 
   /**
@@ -119,21 +119,21 @@ namespace DynamicContact
   class VtuWriter
   {
   public:
-    VtuWriter(OutputDirectory &                      directory,
+    VtuWriter(OutputDirectory                       &directory,
               const MPI_Comm                         comm,
               const std::vector<types::boundary_id> &contact_ids,
               const unsigned int                     subdivisions = 0);
 
     void
-    write(const unsigned int                         step,
-          const double                               time,
-          const Discretization<dim> &                discretization,
-          const KelvinVoigtMaterial<dim> &           material,
-          const ContactBoundary<dim> &               boundary,
+    write(const unsigned int                        step,
+          const double                              time,
+          const Discretization<dim>                &discretization,
+          const KelvinVoigtMaterial<dim>           &material,
+          const ContactBoundary<dim>               &boundary,
           const std::vector<ContactNodeState<dim>> &states,
-          const Vector_t &                           u,
-          const Vector_t &                           w,
-          const bool                                 friction);
+          const Vector_t                           &u,
+          const Vector_t                           &w,
+          const bool                                friction);
 
     /**
      * The time index (solution.pvd): (time, pvtu file) pairs. The index of
@@ -163,12 +163,12 @@ namespace DynamicContact
      * (BASE: solution or contact_surface).
      */
     static std::vector<std::string>
-    file_names(const std::string & base,
-               const unsigned int  step,
-               const unsigned int  n_processes);
+    file_names(const std::string &base,
+               const unsigned int step,
+               const unsigned int n_processes);
 
   private:
-    OutputDirectory &                           directory;
+    OutputDirectory                            &directory;
     MPI_Comm                                    comm;
     std::vector<types::boundary_id>             contact_ids;
     unsigned int                                subdivisions;

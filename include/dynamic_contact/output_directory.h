@@ -71,9 +71,9 @@ namespace DynamicContact
    * process on a failed write).
    */
   void
-  reserve_space(const std::string &directory,
+  reserve_space(const std::string   &directory,
                 const std::uintmax_t bytes,
-                const std::string &file_for_message);
+                const std::string   &file_for_message);
 
   /** Account @p bytes written by others (p4est) to the injected disk size. */
   void

@@ -40,13 +40,13 @@ namespace DynamicContact
       std::vector<double>       upper_right;
       std::vector<unsigned int> repetitions;
       unsigned int              global_refinements;
-      std::string               mesh_file; // resolved against the prm's directory
+      std::string mesh_file; // resolved against the prm's directory
 
       static void
       declare_parameters(ParameterHandler &prm, const unsigned int dim);
       void
-      parse_parameters(ParameterHandler &  prm,
-                       const unsigned int  dim,
+      parse_parameters(ParameterHandler  &prm,
+                       const unsigned int dim,
                        const std::string &prm_directory);
     };
 
@@ -81,8 +81,8 @@ namespace DynamicContact
        * listing the names the mesh has.
        */
       void
-      parse_parameters(ParameterHandler &prm,
-                       const Geometry &  geometry,
+      parse_parameters(ParameterHandler  &prm,
+                       const Geometry    &geometry,
                        const unsigned int dim);
 
       /** All ids named in any list, with the name of the list. */
@@ -136,7 +136,7 @@ namespace DynamicContact
 
       // Convexification loop (doc/theory.md section 4).
       double       convexification_tolerance; // epsilon_conv, eq. (85)
-      double       coefficient_tolerance; // max_i |mu_i - mu(|w_tau,i|)|
+      double       coefficient_tolerance;     // max_i |mu_i - mu(|w_tau,i|)|
       double       relaxation;
       unsigned int acceleration_depth;
       unsigned int max_convexification_iterations;
@@ -182,7 +182,8 @@ namespace DynamicContact
       static void
       declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm, const unsigned int global_refinements);
+      parse_parameters(ParameterHandler  &prm,
+                       const unsigned int global_refinements);
     };
 
     struct Time
@@ -239,13 +240,13 @@ namespace DynamicContact
       ContactSolver contact_solver;
       unsigned int  condensed_limit;
       bool          provisional_passes;
-      bool         line_search;
-      double       newton_tolerance;
-      unsigned int max_newton_iterations;
-      LinearSolver linear_solver;
-      std::string  direct_solver_package;
-      double       linear_tolerance;
-      unsigned int max_linear_iterations;
+      bool          line_search;
+      double        newton_tolerance;
+      unsigned int  max_newton_iterations;
+      LinearSolver  linear_solver;
+      std::string   direct_solver_package;
+      double        linear_tolerance;
+      unsigned int  max_linear_iterations;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -272,10 +273,10 @@ namespace DynamicContact
       unsigned int        vtu_every;
       unsigned int        vtu_subdivisions;
       std::vector<double> output_times;
-      unsigned int progress_every;
-      bool         print_timings;
-      bool         print_iteration_counts;
-      bool         solver_details;
+      unsigned int        progress_every;
+      bool                print_timings;
+      bool                print_iteration_counts;
+      bool                solver_details;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -348,13 +349,13 @@ namespace DynamicContact
    * The ParameterHandler @p prm is left holding the values read.
    */
   RunParameters
-  read_parameters(const std::string &             parameter_file,
+  read_parameters(const std::string              &parameter_file,
                   const std::vector<std::string> &overrides,
-                  ParameterHandler &              prm);
+                  ParameterHandler               &prm);
 
   /** Return the dimension named by a parameter file (its "set Dimension"). */
   unsigned int
-  read_dimension(const std::string &             parameter_file,
+  read_dimension(const std::string              &parameter_file,
                  const std::vector<std::string> &overrides);
 
   /**

@@ -61,8 +61,8 @@ namespace DynamicContact
   public:
     struct Plugin
     {
-      std::string                                            description;
-      std::function<void(ParameterHandler &)>                declare;
+      std::string                                                   description;
+      std::function<void(ParameterHandler &)>                       declare;
       std::function<std::unique_ptr<Interface>(ParameterHandler &)> create;
     };
 
@@ -119,7 +119,7 @@ namespace DynamicContact
      * every implementation.
      */
     void
-    declare_parameters(ParameterHandler & prm,
+    declare_parameters(ParameterHandler  &prm,
                        const std::string &entry,
                        const std::string &default_name,
                        const std::string &intro) const
@@ -152,8 +152,8 @@ namespace DynamicContact
     {
       const auto found = plugins.find(name);
       AssertThrow(found != plugins.end(),
-                  ExcMessage("'" + name + "' is not one of " +
-                             names(", ") + "."));
+                  ExcMessage("'" + name + "' is not one of " + names(", ") +
+                             "."));
       const ScopedSubsection section(prm, subsection(name));
       return found->second.create(prm);
     }
@@ -194,16 +194,16 @@ namespace DynamicContact
  * @p interface, described by @p description (a string for the entry's
  * documentation). Use at namespace scope in the file that defines the class.
  */
-#define DYNAMIC_CONTACT_REGISTER(interface, classname, name, description)    \
-  static const ::DynamicContact::RegisterPlugin<interface, classname>        \
-    DYNAMIC_CONTACT_PLUGIN_CONCAT(dynamic_contact_plugin_, __COUNTER__)(name,   \
-                                                                 description)
+#define DYNAMIC_CONTACT_REGISTER(interface, classname, name, description) \
+  static const ::DynamicContact::RegisterPlugin<interface, classname>     \
+  DYNAMIC_CONTACT_PLUGIN_CONCAT(dynamic_contact_plugin_,                  \
+                                __COUNTER__)(name, description)
 
 /** The same for a registry with a role (PluginRegistry<interface, role>). */
-#define DYNAMIC_CONTACT_REGISTER_ROLE(interface, role, classname, name,      \
-                                      description)                           \
-  static const ::DynamicContact::RegisterPlugin<interface, classname, role>  \
-    DYNAMIC_CONTACT_PLUGIN_CONCAT(dynamic_contact_plugin_, __COUNTER__)(name,   \
-                                                                 description)
+#define DYNAMIC_CONTACT_REGISTER_ROLE(                                      \
+  interface, role, classname, name, description)                            \
+  static const ::DynamicContact::RegisterPlugin<interface, classname, role> \
+  DYNAMIC_CONTACT_PLUGIN_CONCAT(dynamic_contact_plugin_,                    \
+                                __COUNTER__)(name, description)
 
 #endif

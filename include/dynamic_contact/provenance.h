@@ -53,7 +53,7 @@ namespace DynamicContact
    * parameters_markdown().
    */
   void
-  print_parameters(std::ostream &          out,
+  print_parameters(std::ostream           &out,
                    const ParameterHandler &prm,
                    const PrintFormat       format);
 

@@ -21,7 +21,7 @@ namespace DynamicContact
   template <int dim>
   struct AdaptationContext
   {
-    const Scene<dim> &   scene;
+    const Scene<dim> &scene;
     /** Non-const: a strategy may use (and must clear) refinement flags. */
     Discretization<dim> &discretization;
     /** The times [t0, t1] until the next adaptation, sampled every k. */
@@ -103,19 +103,20 @@ namespace DynamicContact
   template <int dim>
   bool
   cell_near(const typename Triangulation<dim>::active_cell_iterator &cell,
-            const std::vector<Point<dim>> &                          points,
+            const std::vector<Point<dim>>                           &points,
             const double                                             window);
 } // namespace DynamicContact
 
-/** Register @p classname<2> and @p classname<3> as refinement strategy @p name. */
-#define DYNAMIC_CONTACT_REGISTER_STRATEGY(classname, name, description)      \
-  DYNAMIC_CONTACT_REGISTER(::DynamicContact::RefinementStrategy<2>,          \
-                           classname<2>,                                     \
-                           name,                                             \
-                           description);                                     \
-  DYNAMIC_CONTACT_REGISTER(::DynamicContact::RefinementStrategy<3>,          \
-                           classname<3>,                                     \
-                           name,                                             \
+/** Register @p classname<2> and @p classname<3> as refinement strategy @p name.
+ */
+#define DYNAMIC_CONTACT_REGISTER_STRATEGY(classname, name, description) \
+  DYNAMIC_CONTACT_REGISTER(::DynamicContact::RefinementStrategy<2>,     \
+                           classname<2>,                                \
+                           name,                                        \
+                           description);                                \
+  DYNAMIC_CONTACT_REGISTER(::DynamicContact::RefinementStrategy<3>,     \
+                           classname<3>,                                \
+                           name,                                        \
                            description)
 
 #endif

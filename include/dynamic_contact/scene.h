@@ -132,7 +132,7 @@ namespace DynamicContact
      * Local: each process samples its own cells.
      */
     std::string
-    non_finite_value(const Triangulation<dim> & tria,
+    non_finite_value(const Triangulation<dim>  &tria,
                      const std::vector<double> &times,
                      const bool                 initial) const;
 
@@ -149,7 +149,7 @@ namespace DynamicContact
      */
     Function<dim> *
     face_load(const typename Triangulation<dim>::cell_iterator &cell,
-              const unsigned int                                 f) const;
+              const unsigned int                                f) const;
 
     /** Whether @p cell carries a load: a body force or a loaded face. */
     bool
@@ -161,11 +161,11 @@ namespace DynamicContact
      * for the theta-scheme. Sets the time of the scene's functions.
      */
     void
-    step_load(Function<dim> &    f,
-              const Point<dim> & p,
-              const double       t,
-              const TimeScheme & scheme,
-              Vector<double> &   value) const;
+    step_load(Function<dim>    &f,
+              const Point<dim> &p,
+              const double      t,
+              const TimeScheme &scheme,
+              Vector<double>   &value) const;
 
     const Parameters::BoundaryConditions &
     boundary_conditions() const
@@ -179,7 +179,8 @@ namespace DynamicContact
 
     std::unique_ptr<Functions::ParsedFunction<dim>> traction_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> body_force_function;
-    std::unique_ptr<Functions::ParsedFunction<dim>> initial_displacement_function;
+    std::unique_ptr<Functions::ParsedFunction<dim>>
+      initial_displacement_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> initial_velocity_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> initial_gap_function;
     std::unique_ptr<Functions::ParsedFunction<dim>> contact_source_function;

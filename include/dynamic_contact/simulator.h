@@ -52,7 +52,7 @@ namespace DynamicContact
   {
   public:
     Simulator(const RunParameters &parameters,
-              ParameterHandler &   prm,
+              ParameterHandler    &prm,
               const MPI_Comm       comm);
     ~Simulator();
 
@@ -184,16 +184,16 @@ namespace DynamicContact
     const RunParameters parameters;
     MPI_Comm            comm;
     /** The screen output, and its copy log.txt (rank 0). */
-    mutable ScreenLog   screen_log;
+    mutable ScreenLog screen_log;
     /** When the run started (UTC, ISO 8601), for the header. */
-    std::string         start_time;
-    ConditionalOStream  pcout;
-    ConditionalOStream  details;
+    std::string        start_time;
+    ConditionalOStream pcout;
+    ConditionalOStream details;
 
     // The input is parsed (and can fail) before anything else is built.
-    Scene<dim>                   scene;
-    KelvinVoigtMaterial<dim>     material;
-    Foundation                   foundation;
+    Scene<dim>                         scene;
+    KelvinVoigtMaterial<dim>           material;
+    Foundation                         foundation;
     std::shared_ptr<const FrictionLaw> friction_law;
 
     TimerOutput timer;
@@ -212,13 +212,13 @@ namespace DynamicContact
     Vector_t u, w, u_old, w_old, u_bar, w_bar, load, rhs, scratch;
 
     /** Created in the constructor, opened (locked, checked) by initialize. */
-    std::unique_ptr<OutputDirectory>  output_directory;
+    std::unique_ptr<OutputDirectory> output_directory;
     /** Whether this run has written run_status (taken over the results). */
-    bool                              took_over = false;
+    bool took_over = false;
     /** validate(): initialize() stops before the output directory. */
-    bool                              validate_only = false;
+    bool validate_only = false;
     /** The parameters of the run as text (checkpoints, --resume). */
-    std::string                       parameters_of_run;
+    std::string parameters_of_run;
     /** parameters.prm and parameters.json of the run. */
     ParameterFiles                    parameter_files;
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
@@ -230,7 +230,7 @@ namespace DynamicContact
     double                                current_time = 0;
     double                                k_current;
     unsigned int                          good_steps_since_cutback = 0;
-    unsigned int                          step = 0;
+    unsigned int                          step                     = 0;
     std::chrono::steady_clock::time_point wall_start;
     /**
      * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
@@ -287,21 +287,21 @@ namespace DynamicContact
      * DYNAMIC_CONTACT_FAIL = "after-step N [rank R]" throws an error on
      * rank R (default 0) alone after step N.
      */
-    int          injected_signal       = 0;
-    unsigned int signal_after_step     = numbers::invalid_unsigned_int;
-    unsigned int signal_rank           = 0;
-    unsigned int fail_after_step       = numbers::invalid_unsigned_int;
-    unsigned int fail_rank             = 0;
+    int          injected_signal   = 0;
+    unsigned int signal_after_step = numbers::invalid_unsigned_int;
+    unsigned int signal_rank       = 0;
+    unsigned int fail_after_step   = numbers::invalid_unsigned_int;
+    unsigned int fail_rank         = 0;
     /** A stop signal received (on any process), and the step of the last
      *  checkpoint written. */
-    int          stopping_signal       = 0;
-    unsigned int last_checkpoint_step  = numbers::invalid_unsigned_int;
+    int          stopping_signal      = 0;
+    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
     /** Steps kept with an unconverged convexification loop. */
-    unsigned int unconverged_steps     = 0;
-    double       worst_unconverged     = 0;
-    double                                max_relative_defect = 0;
-    double                                min_dissipation     = 0;
-    unsigned int                          total_newton        = 0;
+    unsigned int unconverged_steps   = 0;
+    double       worst_unconverged   = 0;
+    double       max_relative_defect = 0;
+    double       min_dissipation     = 0;
+    unsigned int total_newton        = 0;
     /**
      * For the end summary, from the rows of time_series.csv (those before
      * a resume included): cut-backs, convexification passes, the largest
@@ -326,8 +326,8 @@ namespace DynamicContact
      * relative to Time/Adaptive tolerance (> 1: reject), and the steps
      * rejected before the current one was accepted.
      */
-    double       last_time_error     = 0;
-    unsigned int rejected_this_step  = 0;
+    double       last_time_error    = 0;
+    unsigned int rejected_this_step = 0;
     /** The error estimate of the step just solved (doc/theory.md 2.5). */
     double
     time_error_estimate(const double k) const;
@@ -417,14 +417,14 @@ namespace DynamicContact
      * energy balance terms of the (sub-)step.
      */
     void
-    solve_substep(const TimeScheme &                    scheme,
+    solve_substep(const TimeScheme                     &scheme,
                   const double                          t,
-                  const Vector_t &                      u_start,
-                  const Vector_t &                      w_start,
+                  const Vector_t                       &u_start,
+                  const Vector_t                       &w_start,
                   const double                          start_energy,
                   const bool                            accept_unconverged_loop,
                   typename StepSolver<dim>::Statistics &statistics,
-                  EnergyBalanceTerms &                  terms);
+                  EnergyBalanceTerms                   &terms);
 
     /** Steps left at the nominal time step (for progress lines). */
     unsigned int
@@ -477,7 +477,7 @@ namespace DynamicContact
    * that it is valid and return 0.
    */
   int
-  run_simulation(const std::string &             parameter_file,
+  run_simulation(const std::string              &parameter_file,
                  const std::vector<std::string> &overrides,
                  const MPI_Comm                  comm,
                  const bool                      resume      = false,

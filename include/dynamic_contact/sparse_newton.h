@@ -48,18 +48,18 @@ namespace DynamicContact
     reinit() override;
 
     Result
-    solve(const Vector_t &                    rhs,
+    solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double> &         mu,
-          std::vector<Tensor<1, dim>> &       lambda,
-          Vector_t &                          w) override;
+          const std::vector<double>         &mu,
+          std::vector<Tensor<1, dim>>       &lambda,
+          Vector_t                          &w) override;
 
     void
-    newton_step(const SystemNewton<dim> &system,
+    newton_step(const SystemNewton<dim>  &system,
                 const SystemIterate<dim> &x,
-                SystemIterate<dim> &      full,
-                Result &                  result) override;
+                SystemIterate<dim>       &full,
+                Result                   &result) override;
 
   private:
     const ContactProblem<dim> problem;
@@ -74,25 +74,25 @@ namespace DynamicContact
 
     /** Solve for dw (iterative, projected): see the class documentation. */
     void
-    solve_iterative(const NodalSystem &       system,
-                    const SystemNewton<dim> & newton,
+    solve_iterative(const NodalSystem        &system,
+                    const SystemNewton<dim>  &newton,
                     const SystemIterate<dim> &x,
-                    Vector_t &                dw,
-                    Result &                  result);
+                    Vector_t                 &dw,
+                    Result                   &result);
 
     /** Solve for dw (direct, assembled): see the class documentation. */
     void
-    solve_direct(const NodalSystem &       system,
-                 const SystemNewton<dim> & newton,
+    solve_direct(const NodalSystem        &system,
+                 const SystemNewton<dim>  &newton,
                  const SystemIterate<dim> &x,
-                 Vector_t &                dw,
-                 Result &                  result);
+                 Vector_t                 &dw,
+                 Result                   &result);
 
     /** y = (K0 + sum P^T B P) x, without the stick projection. */
     void
     apply_jacobian(const NodalSystem &system,
-                   const Vector_t &   x,
-                   Vector_t &         y) const;
+                   const Vector_t    &x,
+                   Vector_t          &y) const;
 
     // Iterative: the AMG of K0, for the time step it was built for.
     std::unique_ptr<BulkAMG> amg;

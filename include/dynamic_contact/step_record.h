@@ -15,8 +15,8 @@ namespace DynamicContact
   /** Columns name_x, name_y (, name_z) of a vector. */
   template <int dim>
   void
-  add_vector_columns(TimeSeriesRow &       row,
-                     const std::string &   name,
+  add_vector_columns(TimeSeriesRow        &row,
+                     const std::string    &name,
                      const Tensor<1, dim> &v)
   {
     const char *axes[] = {"_x", "_y", "_z"};
@@ -49,9 +49,9 @@ namespace DynamicContact
     bool                                 has_errors           = false;
     Errors                               errors;
     /** Time/Adaptive: the step's error estimate and its rejected tries. */
-    bool                                 adaptive_time        = false;
-    double                               time_error           = 0;
-    unsigned int                         rejected             = 0;
+    bool         adaptive_time = false;
+    double       time_error    = 0;
+    unsigned int rejected      = 0;
 
     /** |E_n - E_{n-1} + D_n - W_n| relative to the energy scale. */
     double

@@ -45,13 +45,13 @@ namespace DynamicContact
       unsigned int cycles                     = 0;
       unsigned int line_search_steps          = 0;
       /** Krylov iterations (Solver/Linear solver = iterative). */
-      unsigned int linear_iterations          = 0;
-      double       residual                   = 0;
+      unsigned int linear_iterations = 0;
+      double       residual          = 0;
       /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
-      double       coefficient_residual       = 0;
-      unsigned int n_contact                  = 0;
-      unsigned int n_stick                    = 0;
-      unsigned int n_slip                     = 0;
+      double       coefficient_residual = 0;
+      unsigned int n_contact            = 0;
+      unsigned int n_stick              = 0;
+      unsigned int n_slip               = 0;
 
       /**
        * Add the work of an earlier sub-step of the same step (a composite
@@ -76,15 +76,15 @@ namespace DynamicContact
       }
     };
 
-    StepSolver(const Discretization<dim> &  discretization,
-               const BulkOperator<dim> &    bulk,
-               const ContactBoundary<dim> & contact_boundary,
-               const Foundation &           foundation,
-               const FrictionLaw *          friction_law,
-               const Parameters::Solver &   solver_parameters,
-               const Parameters::Friction & friction_parameters,
-               TimerOutput &                timer,
-               const ConditionalOStream &   details);
+    StepSolver(const Discretization<dim>  &discretization,
+               const BulkOperator<dim>    &bulk,
+               const ContactBoundary<dim> &contact_boundary,
+               const Foundation           &foundation,
+               const FrictionLaw          *friction_law,
+               const Parameters::Solver   &solver_parameters,
+               const Parameters::Friction &friction_parameters,
+               TimerOutput                &timer,
+               const ConditionalOStream   &details);
     ~StepSolver();
 
     /**
@@ -105,7 +105,7 @@ namespace DynamicContact
     solve(const Vector_t &rhs,
           const Vector_t &u_old,
           const Vector_t &w_old,
-          Vector_t &      w,
+          Vector_t       &w,
           const bool      accept_unconverged_loop = false);
 
     /** Node data of the last solve, aligned with contact_boundary.nodes(). */
@@ -143,17 +143,17 @@ namespace DynamicContact
     }
 
   private:
-    const Discretization<dim> &  discretization;
-    const BulkOperator<dim> &    bulk;
-    const ContactBoundary<dim> & contact_boundary;
-    const Foundation &           foundation;
-    const FrictionLaw *          friction_law;
-    const Parameters::Solver     parameters;
-    const Parameters::Friction   friction_parameters;
-    TimerOutput &                timer;
-    const ConditionalOStream &   details;
-    const bool                   friction;
-    double                       c_t   = 0;
+    const Discretization<dim>  &discretization;
+    const BulkOperator<dim>    &bulk;
+    const ContactBoundary<dim> &contact_boundary;
+    const Foundation           &foundation;
+    const FrictionLaw          *friction_law;
+    const Parameters::Solver    parameters;
+    const Parameters::Friction  friction_parameters;
+    TimerOutput                &timer;
+    const ConditionalOStream   &details;
+    const bool                  friction;
+    double                      c_t = 0;
 
     /**
      * The Newton solver of each kind of (sub-)step: [0] theta = 1, [1]
@@ -180,8 +180,8 @@ namespace DynamicContact
     void
     update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
                   const std::vector<Tensor<1, dim>> &w_old_nodes,
-                  const Vector_t &                   w,
-                  Statistics &                       statistics);
+                  const Vector_t                    &w,
+                  Statistics                        &statistics);
   };
 } // namespace DynamicContact
 

@@ -70,10 +70,10 @@ namespace DynamicContact
      * new velocity; at stick nodes, the multiplier of w_tau = 0).
      */
     virtual void
-    newton_step(const SystemNewton<dim> &system,
+    newton_step(const SystemNewton<dim>  &system,
                 const SystemIterate<dim> &x,
-                SystemIterate<dim> &      full,
-                ContactNewtonResult &     result) = 0;
+                SystemIterate<dim>       &full,
+                ContactNewtonResult      &result) = 0;
   };
 
 
@@ -90,13 +90,13 @@ namespace DynamicContact
   public:
     using Iterate = SystemIterate<dim>;
 
-    SystemNewton(const ContactProblem<dim> &         problem,
-                 const Vector_t &                    rhs,
+    SystemNewton(const ContactProblem<dim>         &problem,
+                 const Vector_t                    &rhs,
                  const std::vector<Tensor<1, dim>> &u_old,
                  const std::vector<Tensor<1, dim>> &w_old,
-                 const std::vector<double> &         mu,
-                 LinearBackend<dim> &                backend,
-                 ContactNewtonResult &               result);
+                 const std::vector<double>         &mu,
+                 LinearBackend<dim>                &backend,
+                 ContactNewtonResult               &result);
 
     NewtonMeasure
     evaluate(Iterate &x) const;
@@ -124,16 +124,16 @@ namespace DynamicContact
     combine(const Iterate &x,
             const Iterate &full,
             const double   alpha,
-            Iterate &      trial) const;
+            Iterate       &trial) const;
 
     /**
      * residual = K0 w - b + sum_i P_i^T f_i for forces @p owned_forces of
      * the owned nodes; returns the residual's l2 norm.
      */
     double
-    residual_of(const Vector_t &                    w,
+    residual_of(const Vector_t                    &w,
                 const std::vector<Tensor<1, dim>> &owned_forces,
-                Vector_t &                          residual) const;
+                Vector_t                          &residual) const;
 
     /** w_e = theta w + (1 - theta) w_{n-1} at owned node i. */
     Tensor<1, dim>
@@ -142,14 +142,14 @@ namespace DynamicContact
       return problem.bulk.scheme().weighted(w_i, w_old[i]);
     }
 
-    const ContactProblem<dim> &        problem;
-    const Vector_t &                   rhs;
+    const ContactProblem<dim>         &problem;
+    const Vector_t                    &rhs;
     const std::vector<Tensor<1, dim>> &u_old;
     const std::vector<Tensor<1, dim>> &w_old;
-    const std::vector<double> &        mu;
+    const std::vector<double>         &mu;
 
   private:
-    LinearBackend<dim> & backend;
+    LinearBackend<dim>  &backend;
     ContactNewtonResult &result;
   };
 } // namespace DynamicContact

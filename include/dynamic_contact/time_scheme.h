@@ -82,7 +82,7 @@ namespace DynamicContact
     /** u_n = u_{n-1} + k (theta w_n + (1 - theta) w_{n-1}). */
     template <typename VectorType>
     void
-    advance_displacement(VectorType &      u,
+    advance_displacement(VectorType       &u,
                          const VectorType &u_old,
                          const VectorType &w,
                          const VectorType &w_old) const

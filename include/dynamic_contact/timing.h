@@ -30,7 +30,7 @@ namespace DynamicContact
     operator=(const TimerSection &) = delete;
 
   private:
-    TimerOutput &     timer;
+    TimerOutput      &timer;
     const std::string name;
   };
 
