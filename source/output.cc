@@ -346,6 +346,174 @@ namespace DynamicContact
         {"slip_rate", "m/s"}};
       return units;
     }
+
+    // Nodal fields of Gamma_3 (the enums index them).
+    enum Vectorial
+    {
+      v_traction,
+      v_friction,
+      v_slip,
+      n_vectorial
+    };
+    enum Scalar
+    {
+      s_pressure,
+      s_penetration,
+      s_mu,
+      s_state,
+      s_slip_rate,
+      n_scalar
+    };
+
+    // Nodal fields of Gamma_3, zero elsewhere: in the vector space (the
+    // traction, the friction traction, the slip velocity) and in the scalar
+    // space (pressure, penetration, friction data). Set by the owner of
+    // each node; a hanging point of Gamma_3 (adaptive meshes) gets the
+    // interpolation of its neighbours, as the finite element fields there.
+    template <int dim>
+    void
+    contact_fields(const Discretization<dim>                &d,
+                   const ContactBoundary<dim>               &boundary,
+                   const std::vector<ContactNodeState<dim>> &states,
+                   std::array<Vector_t, n_vectorial>        &vectorial,
+                   std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar)
+    {
+      std::array<Vector_t, n_vectorial>                   owned_v;
+      std::array<TrilinosWrappers::MPI::Vector, n_scalar> owned_s;
+      for (auto &v : owned_v)
+        d.reinit_owned(v);
+      for (auto &v : owned_s)
+        v.reinit(d.scalar_locally_owned, d.comm);
+
+      const auto                                  &nodes = boundary.nodes();
+      std::vector<types::global_dof_index>         vi, si;
+      std::array<std::vector<double>, n_vectorial> vv;
+      std::array<std::vector<double>, n_scalar>    sv;
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const auto          &s = states[i];
+          const Tensor<1, dim> friction_traction =
+            -s.friction_force / nodes[i].weight;
+          const Tensor<1, dim> traction =
+            -s.normal.pressure * nodes[i].normal + friction_traction;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              vi.push_back(nodes[i].dofs[c]);
+              vv[v_traction].push_back(traction[c]);
+              vv[v_friction].push_back(friction_traction[c]);
+              vv[v_slip].push_back(s.slip_velocity[c]);
+            }
+          si.push_back(nodes[i].scalar_dof);
+          sv[s_pressure].push_back(s.normal.pressure);
+          sv[s_penetration].push_back(s.normal.u_nu);
+          sv[s_mu].push_back(s.mu);
+          sv[s_state].push_back(contact_state_code(s));
+          sv[s_slip_rate].push_back(s.slip_rate);
+        }
+
+      AffineConstraints<double> scalar_hanging;
+      scalar_hanging.reinit(d.scalar_locally_relevant);
+      DoFTools::make_hanging_node_constraints(d.scalar_dof_handler,
+                                              scalar_hanging);
+      scalar_hanging.close();
+      for (unsigned int f = 0; f < n_vectorial; ++f)
+        {
+          owned_v[f].set(vi, vv[f]);
+          owned_v[f].compress(VectorOperation::insert);
+          d.hanging_node_constraints.distribute(owned_v[f]);
+          d.reinit_ghosted(vectorial[f]);
+          vectorial[f] = owned_v[f];
+        }
+      for (unsigned int f = 0; f < n_scalar; ++f)
+        {
+          owned_s[f].set(si, sv[f]);
+          owned_s[f].compress(VectorOperation::insert);
+          scalar_hanging.distribute(owned_s[f]);
+          scalar[f].reinit(d.scalar_locally_owned,
+                           d.scalar_locally_relevant,
+                           d.comm);
+          scalar[f] = owned_s[f];
+        }
+    }
+
+    // Stress: the cell averages of sigma = E eps(u) + C eps(w), as a
+    // piecewise constant (DG0) tensor field, and the von Mises stress (and
+    // in 2D sigma_zz) as cell data.
+    // (stress_dofs: the DG0 tensor space, distributed by the caller).
+    template <int dim>
+    void
+    cell_stress(const Discretization<dim>      &d,
+                const KelvinVoigtMaterial<dim> &material,
+                const Vector_t                 &u_ghosted,
+                const Vector_t                 &w_ghosted,
+                const DoFHandler<dim>          &stress_dofs,
+                TrilinosWrappers::MPI::Vector  &stress,
+                Vector<float>                  &von_mises,
+                Vector<float>                  &stress_zz,
+                Vector<float>                  &subdomain)
+    {
+      const FiniteElement<dim>     &stress_fe = stress_dofs.get_fe();
+      TrilinosWrappers::MPI::Vector stress_owned;
+      stress_owned.reinit(stress_dofs.locally_owned_dofs(), d.comm);
+      const unsigned int n_cells = d.triangulation.n_active_cells();
+      von_mises.reinit(n_cells);
+      stress_zz.reinit(n_cells);
+      subdomain.reinit(n_cells);
+      {
+        const QGauss<dim>                    quadrature(d.fe.degree + 1);
+        FEValues<dim>                        fe_values(d.mapping,
+                                d.fe,
+                                quadrature,
+                                update_gradients | update_JxW_values);
+        const FEValuesExtractors::Vector     displacement(0);
+        std::vector<SymmetricTensor<2, dim>> eps_u(quadrature.size()),
+          eps_w(quadrature.size());
+        std::vector<types::global_dof_index> stress_indices(
+          stress_fe.n_dofs_per_cell());
+        for (const auto &cell : d.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              fe_values[displacement].get_function_symmetric_gradients(
+                u_ghosted, eps_u);
+              fe_values[displacement].get_function_symmetric_gradients(
+                w_ghosted, eps_w);
+              SymmetricTensor<2, dim> sigma;
+              double                  sigma_zz = 0, volume = 0;
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                {
+                  sigma +=
+                    material.stress(eps_u[q], eps_w[q]) * fe_values.JxW(q);
+                  sigma_zz += material.out_of_plane_stress(eps_u[q], eps_w[q]) *
+                              fe_values.JxW(q);
+                  volume += fe_values.JxW(q);
+                }
+              sigma /= volume;
+              sigma_zz /= volume;
+              const unsigned int index = cell->active_cell_index();
+              von_mises(index)         = von_mises_stress(sigma, sigma_zz);
+              stress_zz(index)         = sigma_zz;
+              subdomain(index)         = cell->subdomain_id();
+
+              typename DoFHandler<dim>::active_cell_iterator stress_cell(
+                &d.triangulation, cell->level(), cell->index(), &stress_dofs);
+              stress_cell->get_dof_indices(stress_indices);
+              for (unsigned int i = 0; i < stress_indices.size(); ++i)
+                {
+                  const unsigned int c =
+                    stress_fe.system_to_component_index(i).first;
+                  stress_owned(stress_indices[i]) = sigma[c / dim][c % dim];
+                }
+            }
+        stress_owned.compress(VectorOperation::insert);
+        IndexSet stress_relevant;
+        DoFTools::extract_locally_relevant_dofs(stress_dofs, stress_relevant);
+        stress.reinit(stress_dofs.locally_owned_dofs(),
+                      stress_relevant,
+                      d.comm);
+        stress = stress_owned;
+      }
+    }
   } // namespace
 
 
@@ -423,149 +591,24 @@ namespace DynamicContact
   {
     const Vector_t u_ghosted = d.expanded(u), w_ghosted = d.expanded(w);
 
-    // Nodal fields of Gamma_3, zero elsewhere: in the vector space (the
-    // traction, the friction traction, the slip velocity) and in the scalar
-    // space (pressure, penetration, friction data). Set by the owner of
-    // each node; a hanging point of Gamma_3 (adaptive meshes) gets the
-    // interpolation of its neighbours, as the finite element fields there.
-    enum Vectorial
-    {
-      v_traction,
-      v_friction,
-      v_slip,
-      n_vectorial
-    };
-    enum Scalar
-    {
-      s_pressure,
-      s_penetration,
-      s_mu,
-      s_state,
-      s_slip_rate,
-      n_scalar
-    };
     std::array<Vector_t, n_vectorial>                   vectorial;
     std::array<TrilinosWrappers::MPI::Vector, n_scalar> scalar;
-    {
-      std::array<Vector_t, n_vectorial>                   owned_v;
-      std::array<TrilinosWrappers::MPI::Vector, n_scalar> owned_s;
-      for (auto &v : owned_v)
-        d.reinit_owned(v);
-      for (auto &v : owned_s)
-        v.reinit(d.scalar_locally_owned, d.comm);
+    contact_fields(d, boundary, states, vectorial, scalar);
 
-      const auto                                  &nodes = boundary.nodes();
-      std::vector<types::global_dof_index>         vi, si;
-      std::array<std::vector<double>, n_vectorial> vv;
-      std::array<std::vector<double>, n_scalar>    sv;
-      for (unsigned int i = 0; i < nodes.size(); ++i)
-        {
-          const auto          &s = states[i];
-          const Tensor<1, dim> friction_traction =
-            -s.friction_force / nodes[i].weight;
-          const Tensor<1, dim> traction =
-            -s.normal.pressure * nodes[i].normal + friction_traction;
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              vi.push_back(nodes[i].dofs[c]);
-              vv[v_traction].push_back(traction[c]);
-              vv[v_friction].push_back(friction_traction[c]);
-              vv[v_slip].push_back(s.slip_velocity[c]);
-            }
-          si.push_back(nodes[i].scalar_dof);
-          sv[s_pressure].push_back(s.normal.pressure);
-          sv[s_penetration].push_back(s.normal.u_nu);
-          sv[s_mu].push_back(s.mu);
-          sv[s_state].push_back(contact_state_code(s));
-          sv[s_slip_rate].push_back(s.slip_rate);
-        }
-
-      AffineConstraints<double> scalar_hanging;
-      scalar_hanging.reinit(d.scalar_locally_relevant);
-      DoFTools::make_hanging_node_constraints(d.scalar_dof_handler,
-                                              scalar_hanging);
-      scalar_hanging.close();
-      for (unsigned int f = 0; f < n_vectorial; ++f)
-        {
-          owned_v[f].set(vi, vv[f]);
-          owned_v[f].compress(VectorOperation::insert);
-          d.hanging_node_constraints.distribute(owned_v[f]);
-          d.reinit_ghosted(vectorial[f]);
-          vectorial[f] = owned_v[f];
-        }
-      for (unsigned int f = 0; f < n_scalar; ++f)
-        {
-          owned_s[f].set(si, sv[f]);
-          owned_s[f].compress(VectorOperation::insert);
-          scalar_hanging.distribute(owned_s[f]);
-          scalar[f].reinit(d.scalar_locally_owned,
-                           d.scalar_locally_relevant,
-                           d.comm);
-          scalar[f] = owned_s[f];
-        }
-    }
-
-    // Stress: the cell averages of sigma = E eps(u) + C eps(w), as a
-    // piecewise constant (DG0) tensor field, and the von Mises stress (and
-    // in 2D sigma_zz) as cell data.
     const FESystem<dim> stress_fe(FE_DGQ<dim>(0), dim * dim);
     DoFHandler<dim>     stress_dofs(d.triangulation);
     stress_dofs.distribute_dofs(stress_fe);
-    TrilinosWrappers::MPI::Vector stress_owned, stress;
-    stress_owned.reinit(stress_dofs.locally_owned_dofs(), d.comm);
-    const unsigned int n_cells = d.triangulation.n_active_cells();
-    Vector<float> von_mises(n_cells), stress_zz(n_cells), subdomain(n_cells);
-    {
-      const QGauss<dim>                    quadrature(d.fe.degree + 1);
-      FEValues<dim>                        fe_values(d.mapping,
-                              d.fe,
-                              quadrature,
-                              update_gradients | update_JxW_values);
-      const FEValuesExtractors::Vector     displacement(0);
-      std::vector<SymmetricTensor<2, dim>> eps_u(quadrature.size()),
-        eps_w(quadrature.size());
-      std::vector<types::global_dof_index> stress_indices(
-        stress_fe.n_dofs_per_cell());
-      for (const auto &cell : d.dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            fe_values[displacement].get_function_symmetric_gradients(u_ghosted,
-                                                                     eps_u);
-            fe_values[displacement].get_function_symmetric_gradients(w_ghosted,
-                                                                     eps_w);
-            SymmetricTensor<2, dim> sigma;
-            double                  sigma_zz = 0, volume = 0;
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              {
-                sigma += material.stress(eps_u[q], eps_w[q]) * fe_values.JxW(q);
-                sigma_zz += material.out_of_plane_stress(eps_u[q], eps_w[q]) *
-                            fe_values.JxW(q);
-                volume += fe_values.JxW(q);
-              }
-            sigma /= volume;
-            sigma_zz /= volume;
-            const unsigned int index = cell->active_cell_index();
-            von_mises(index)         = von_mises_stress(sigma, sigma_zz);
-            stress_zz(index)         = sigma_zz;
-            subdomain(index)         = cell->subdomain_id();
-
-            typename DoFHandler<dim>::active_cell_iterator stress_cell(
-              &d.triangulation, cell->level(), cell->index(), &stress_dofs);
-            stress_cell->get_dof_indices(stress_indices);
-            for (unsigned int i = 0; i < stress_indices.size(); ++i)
-              {
-                const unsigned int c =
-                  stress_fe.system_to_component_index(i).first;
-                stress_owned(stress_indices[i]) = sigma[c / dim][c % dim];
-              }
-          }
-      stress_owned.compress(VectorOperation::insert);
-      IndexSet stress_relevant;
-      DoFTools::extract_locally_relevant_dofs(stress_dofs, stress_relevant);
-      stress.reinit(stress_dofs.locally_owned_dofs(), stress_relevant, d.comm);
-      stress = stress_owned;
-    }
+    TrilinosWrappers::MPI::Vector stress;
+    Vector<float>                 von_mises, stress_zz, subdomain;
+    cell_stress(d,
+                material,
+                u_ghosted,
+                w_ghosted,
+                stress_dofs,
+                stress,
+                von_mises,
+                stress_zz,
+                subdomain);
 
     const auto vector_field = [](const unsigned int n) {
       return std::vector<
