@@ -23,10 +23,12 @@ namespace DynamicContact
             if (c.print_format == "md")
               c.print_format = "markdown";
             if (c.print_format != "prm" && c.print_format != "json" &&
-                c.print_format != "xml" && c.print_format != "markdown")
+                c.print_format != "xml" && c.print_format != "markdown" &&
+                c.print_format != "moved")
               {
                 c.error = "--print-parameters: unknown format '" +
-                          c.print_format + "' (prm, json, xml or markdown).";
+                          c.print_format +
+                          "' (prm, json, xml, markdown or moved).";
                 return c;
               }
           }
@@ -79,11 +81,13 @@ namespace DynamicContact
         c.error = "--resume and --resume=auto exclude each other.";
         return c;
       }
-    if (c.print_parameters && c.print_format == "markdown" &&
+    if (c.print_parameters &&
+        (c.print_format == "markdown" || c.print_format == "moved") &&
         (!c.parameter_file.empty() || !c.overrides.empty()))
       {
-        c.error = "--print-parameters=markdown lists the declarations: it "
-                  "takes no parameter file and no --set.";
+        c.error = "--print-parameters=" + c.print_format +
+                  " lists the declarations: it takes no parameter file and "
+                  "no --set.";
         return c;
       }
     if (c.validate && (c.resume || c.resume_auto || c.print_parameters))
@@ -122,7 +126,10 @@ namespace DynamicContact
            "                          FORMAT: prm (default), json or xml\n"
            "                          (each can be read back as a scene), or\n"
            "                          markdown (doc/parameters.md: the\n"
-           "                          declarations, for both dimensions)\n"
+           "                          declarations, for both dimensions), or\n"
+           "                          moved (the entries of older layouts\n"
+           "                          and where they are now, read by\n"
+           "                          scripts/update-prm)\n"
            "  --validate              check the scene as a run would before\n"
            "                          its first step (parameters, mesh file,\n"
            "                          boundary ids, the functions and the\n"

@@ -90,10 +90,9 @@ namespace DynamicContact
         }
       b.inertia *= material.density() / k;
     }
-    // theta f(t) + (1 - theta) f(t - k) at a point.
-    auto load = [&](Function<dim> &f, const Point<dim> &p, Vector<double> &v) {
-      scene.step_load(f, p, t, scheme, v);
-    };
+    // The load of the scheme's equation at a point: theta f(t) + (1 - theta)
+    // f(t - k) (Scene::step_load), f(t - k) computed into value_old.
+    Vector<double>                   value_old(dim);
     const auto                      &fe = d.fe;
     const unsigned int               n  = fe.n_dofs_per_cell();
     const QGauss<dim>                quadrature(fe.degree + 2);
@@ -148,7 +147,12 @@ namespace DynamicContact
             {
               value = 0;
               if (body_force)
-                load(scene.body_force(), fe_values.quadrature_point(q), value);
+                scene.step_load(scene.body_force(),
+                                fe_values.quadrature_point(q),
+                                t,
+                                scheme,
+                                value,
+                                value_old);
               for (unsigned int c = 0; c < dim; ++c)
                 b.applied[c] += value(c) * fe_values.JxW(q);
               if (has_support)
@@ -177,7 +181,12 @@ namespace DynamicContact
                 fe_face.reinit(cell, f);
                 for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                   {
-                    load(g, fe_face.quadrature_point(q), value);
+                    scene.step_load(g,
+                                    fe_face.quadrature_point(q),
+                                    t,
+                                    scheme,
+                                    value,
+                                    value_old);
                     for (unsigned int c = 0; c < dim; ++c)
                       b.applied[c] += value(c) * fe_face.JxW(q);
                     if (has_support)

@@ -49,12 +49,12 @@ main(int argc, char *argv[])
         {
           PrintFormat format = PrintFormat::prm;
           parse_print_format(command_line.print_format, format);
-          if (format == PrintFormat::markdown)
+          if (format == PrintFormat::markdown || format == PrintFormat::moved)
             {
-              // The declarations (both dimensions), not the values of a
-              // scene.
+              // The declarations (both dimensions) or the moved entries,
+              // not the values of a scene.
               if (root)
-                std::cout << parameters_markdown();
+                print_parameters(std::cout, dealii::ParameterHandler(), format);
               return 0;
             }
           dealii::ParameterHandler prm;

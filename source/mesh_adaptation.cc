@@ -23,7 +23,7 @@ namespace DynamicContact
     : parameters(parameters)
     , scene(scene)
     , discretization(discretization)
-    , strategies(RefinementStrategy<dim>::create(prm))
+    , strategies(RefinementStrategy<dim>::create(prm, parameters.strategies))
   {}
 
 

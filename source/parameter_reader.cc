@@ -275,46 +275,12 @@ namespace DynamicContact
       return pattern;
     }
 
-    /**
-     * Where an entry of the flat layout of earlier versions lives now that
-     * each law and refinement strategy has a subsection of its own (the
-     * table of scripts/update-prm); empty if @p path did not move.
-     */
+    /** Where @p path lives now if it moved (moved_entries()), else "". */
     std::string
     moved_entry(const std::string &path)
     {
-      static const std::map<std::string, std::string> moves = {
-        {"Foundation/Normal compliance stiffness",
-         "Foundation/Normal compliance/Capped ramp/Stiffness"},
-        {"Foundation/Compliance cap",
-         "Foundation/Normal compliance/Capped ramp/Cap"},
-        {"Foundation/Normal damping",
-         "Foundation/Normal damping/Capped ramp/Coefficient"},
-        {"Foundation/Damping cap", "Foundation/Normal damping/Capped ramp/Cap"},
-        {"Foundation/Damping only in contact",
-         "Foundation/Normal damping/Only in contact"},
-        {"Friction/Coefficient", "Friction/Constant/Coefficient"},
-        {"Friction/Static coefficient",
-         "Friction/Exponential/Static coefficient"},
-        {"Friction/Dynamic coefficient",
-         "Friction/Exponential/Dynamic coefficient"},
-        {"Friction/Decay rate", "Friction/Exponential/Decay rate"},
-        {"Friction/Expression", "Friction/Expression/Function expression"},
-        {"Friction/Expression constants",
-         "Friction/Expression/Function constants"},
-        {"Mesh refinement/Load window",
-         "Mesh refinement/Load following/Window"},
-        {"Mesh refinement/Load threshold",
-         "Mesh refinement/Load following/Threshold"},
-        {"Mesh refinement/Look-ahead steps",
-         "Mesh refinement/Load following/Look-ahead steps"},
-        {"Mesh refinement/Contact window",
-         "Mesh refinement/Contact following/Window"},
-        {"Mesh refinement/Refine fraction",
-         "Mesh refinement/Error indicator/Refine fraction"},
-        {"Mesh refinement/Coarsen fraction",
-         "Mesh refinement/Error indicator/Coarsen fraction"}};
-      const auto found = moves.find(path);
+      const auto &moves = moved_entries();
+      const auto  found = moves.find(path);
       return found == moves.end() ? std::string() : found->second;
     }
 
@@ -562,6 +528,43 @@ namespace DynamicContact
         }
     }
   } // namespace
+
+
+  const std::map<std::string, std::string> &
+  moved_entries()
+  {
+    static const std::map<std::string, std::string> moves = {
+      {"Foundation/Normal compliance stiffness",
+       "Foundation/Normal compliance/Capped ramp/Stiffness"},
+      {"Foundation/Compliance cap",
+       "Foundation/Normal compliance/Capped ramp/Cap"},
+      {"Foundation/Normal damping",
+       "Foundation/Normal damping/Capped ramp/Coefficient"},
+      {"Foundation/Damping cap", "Foundation/Normal damping/Capped ramp/Cap"},
+      {"Foundation/Damping only in contact",
+       "Foundation/Normal damping/Only in contact"},
+      {"Friction/Coefficient", "Friction/Constant/Coefficient"},
+      {"Friction/Static coefficient",
+       "Friction/Exponential/Static coefficient"},
+      {"Friction/Dynamic coefficient",
+       "Friction/Exponential/Dynamic coefficient"},
+      {"Friction/Decay rate", "Friction/Exponential/Decay rate"},
+      {"Friction/Expression", "Friction/Expression/Function expression"},
+      {"Friction/Expression constants",
+       "Friction/Expression/Function constants"},
+      {"Mesh refinement/Load window", "Mesh refinement/Load following/Window"},
+      {"Mesh refinement/Load threshold",
+       "Mesh refinement/Load following/Threshold"},
+      {"Mesh refinement/Look-ahead steps",
+       "Mesh refinement/Load following/Look-ahead steps"},
+      {"Mesh refinement/Contact window",
+       "Mesh refinement/Contact following/Window"},
+      {"Mesh refinement/Refine fraction",
+       "Mesh refinement/Error indicator/Refine fraction"},
+      {"Mesh refinement/Coarsen fraction",
+       "Mesh refinement/Error indicator/Coarsen fraction"}};
+    return moves;
+  }
 
 
   ParameterFormat

@@ -38,14 +38,6 @@ namespace DynamicContact
       return s;
     }
 
-    void
-    require(const bool condition, const std::string &message);
-
-    /**
-     * A list of boundary ids (Boundary conditions/@p list): numbers 0 to
-     * 255, or names of physical groups of the Gmsh mesh (@p names, read from
-     * @p mesh_file when the first name is met).
-     */
     std::vector<types::boundary_id>
     parse_ids(const std::string          &text,
               const std::string          &list,

@@ -45,6 +45,8 @@ namespace DynamicContact
       format = PrintFormat::xml;
     else if (name == "markdown" || name == "md")
       format = PrintFormat::markdown;
+    else if (name == "moved")
+      format = PrintFormat::moved;
     else
       return false;
     return true;
@@ -70,6 +72,10 @@ namespace DynamicContact
           break;
         case PrintFormat::markdown:
           out << parameters_markdown();
+          break;
+        case PrintFormat::moved:
+          for (const auto &[old_path, new_path] : moved_entries())
+            out << old_path << " = " << new_path << '\n';
           break;
       }
   }

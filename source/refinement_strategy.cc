@@ -32,15 +32,14 @@ namespace DynamicContact
 
   template <int dim>
   std::vector<std::unique_ptr<const RefinementStrategy<dim>>>
-  RefinementStrategy<dim>::create(ParameterHandler &prm)
+  RefinementStrategy<dim>::create(ParameterHandler               &prm,
+                                  const std::vector<std::string> &names)
   {
     const ScopedSubsection section(prm, "Mesh refinement");
     std::vector<std::unique_ptr<const RefinementStrategy<dim>>> strategies;
-    for (const auto &name : Utilities::split_string_list(prm.get("Strategy")))
-      if (name != "none")
-        strategies.push_back(
-          PluginRegistry<RefinementStrategy<dim>>::instance().create(name,
-                                                                     prm));
+    for (const auto &name : names)
+      strategies.push_back(
+        PluginRegistry<RefinementStrategy<dim>>::instance().create(name, prm));
     return strategies;
   }
 

@@ -350,16 +350,16 @@ namespace DynamicContact
                         const Point<dim> &p,
                         const double      t,
                         const TimeScheme &scheme,
-                        Vector<double>   &value) const
+                        Vector<double>   &value,
+                        Vector<double>   &old_value) const
   {
     set_time(t);
     f.vector_value(p, value);
     if (!scheme.is_backward_euler())
       {
-        Vector<double> old(value.size());
         set_time(t - scheme.time_step());
-        f.vector_value(p, old);
-        scheme.weigh(value, old);
+        f.vector_value(p, old_value);
+        scheme.weigh(value, old_value);
       }
   }
 

@@ -46,24 +46,18 @@ namespace
   using namespace program_tools;
 
   /** Steps run and the checkpoint interval (see the header). */
-  const std::vector<std::string> settings = {
-    "--set",
-    "Time/End time=0.375",
-    "--set",
-    "Checkpoint/Every=10",
-    "--set",
-    "Checkpoint/Keep=2",
-    "--set",
-    "Output/Write VTU=true",
-    "--set",
-    "Output/VTU every=8",
-    "--set",
-    "Output/Progress every=0",
-    "--set",
-    "Output/Print timings=false",
-    "--set",
-    "Output/Print iteration counts=false"};
-  const unsigned int n_steps = 48;
+  const std::vector<std::string> settings = with({"--set",
+                                                  "Time/End time=0.375",
+                                                  "--set",
+                                                  "Checkpoint/Every=10",
+                                                  "--set",
+                                                  "Checkpoint/Keep=2",
+                                                  "--set",
+                                                  "Output/Write VTU=true",
+                                                  "--set",
+                                                  "Output/VTU every=8"},
+                                                 quiet);
+  const unsigned int             n_steps  = 48;
 
   /**
    * Run the uniform or the adaptive scene into @p directory (with the Bathe

@@ -46,21 +46,6 @@ namespace
 {
   using namespace program_tools;
 
-  const std::vector<std::string> quiet = {
-    "--set",
-    "Output/Progress every=0",
-    "--set",
-    "Output/Print timings=false",
-    "--set",
-    "Output/Print iteration counts=false"};
-
-  std::vector<std::string>
-  with(std::vector<std::string> a, const std::vector<std::string> &more)
-  {
-    a.insert(a.end(), more.begin(), more.end());
-    return a;
-  }
-
   std::string
   status_of(const fs::path &directory)
   {

@@ -24,19 +24,13 @@ using namespace program_tools;
 
 namespace
 {
-  const std::vector<std::string> common = {
-    "--set",
-    "Time/End time=0.25",
-    "--set",
-    "Output/Output every=0",
-    "--set",
-    "Output/Output times=0.1, 0.2",
-    "--set",
-    "Output/Progress every=0",
-    "--set",
-    "Output/Print timings=false",
-    "--set",
-    "Output/Print iteration counts=false"};
+  const std::vector<std::string> common = with({"--set",
+                                                "Time/End time=0.25",
+                                                "--set",
+                                                "Output/Output every=0",
+                                                "--set",
+                                                "Output/Output times=0.1, 0.2"},
+                                               quiet);
 
   std::vector<std::string>
   arguments(const std::string &directory, const std::vector<std::string> &more)

@@ -203,6 +203,26 @@ namespace program_tools
     return files;
   }
 
+  /**
+   * The settings that keep a run's screen output deterministic (no progress
+   * lines, no timings, no iteration counts), as command-line arguments.
+   */
+  inline const std::vector<std::string> quiet = {
+    "--set",
+    "Output/Progress every=0",
+    "--set",
+    "Output/Print timings=false",
+    "--set",
+    "Output/Print iteration counts=false"};
+
+  /** @p a followed by @p more. */
+  inline std::vector<std::string>
+  with(std::vector<std::string> a, const std::vector<std::string> &more)
+  {
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  }
+
   /** The error lines of a run's stderr. */
   inline std::vector<std::string>
   error_lines(const Outcome &o)

@@ -37,19 +37,13 @@ namespace
 {
   using namespace program_tools;
 
-  const std::vector<std::string> settings = {
-    "--set",
-    "Time/End time=0.125",
-    "--set",
-    "Checkpoint/Every=4",
-    "--set",
-    "Checkpoint/Keep=3",
-    "--set",
-    "Output/Progress every=0",
-    "--set",
-    "Output/Print timings=false",
-    "--set",
-    "Output/Print iteration counts=false"};
+  const std::vector<std::string> settings = with({"--set",
+                                                  "Time/End time=0.125",
+                                                  "--set",
+                                                  "Checkpoint/Every=4",
+                                                  "--set",
+                                                  "Checkpoint/Keep=3"},
+                                                 quiet);
 
   std::vector<std::string>
   arguments(const std::string              &directory,

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -323,6 +324,16 @@ namespace DynamicContact
    */
   void
   declare_refinement_strategies(ParameterHandler &prm);
+
+  /**
+   * The entries of the flat layout of earlier versions that moved when each
+   * law and refinement strategy got a subsection of its own: old path ->
+   * new path ("Friction/Decay rate" -> "Friction/Exponential/Decay rate").
+   * The one table: the errors for old entries name the new place from it,
+   * and scripts/update-prm reads it (--print-parameters=moved).
+   */
+  const std::map<std::string, std::string> &
+  moved_entries();
 
   /** The formats of a parameter file (deal.II's ParameterHandler). */
   enum class ParameterFormat

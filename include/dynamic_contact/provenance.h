@@ -39,10 +39,13 @@ namespace DynamicContact
     prm,
     json,
     xml,
-    markdown
+    markdown,
+    /** moved_entries(): "old path = new path" lines (scripts/update-prm). */
+    moved
   };
 
-  /** "prm", "json", "xml", "markdown" (and "md"); false for anything else. */
+  /** "prm", "json", "xml", "markdown" (and "md"), "moved"; false for
+   *  anything else. */
   bool
   parse_print_format(const std::string &name, PrintFormat &format);
 

@@ -88,11 +88,12 @@ namespace DynamicContact
     }
 
     /**
-     * The strategies of Mesh refinement/Strategy, each with the parameters
-     * of its subsection (called at the top level of @p prm).
+     * The strategies @p names (Parameters::MeshRefinement::strategies, the
+     * list Mesh refinement/Strategy without 'none'), each with the
+     * parameters of its subsection (called at the top level of @p prm).
      */
     static std::vector<std::unique_ptr<const RefinementStrategy<dim>>>
-    create(ParameterHandler &prm);
+    create(ParameterHandler &prm, const std::vector<std::string> &names);
   };
 
 

@@ -158,14 +158,17 @@ namespace DynamicContact
     /**
      * The load @p f at @p p in the equation of a step of @p scheme ending
      * at @p t: f(t) for backward Euler, theta f(t) + (1 - theta) f(t - k)
-     * for the theta-scheme. Sets the time of the scene's functions.
+     * for the theta-scheme (@p old_value: room for f(t - k), sized like
+     * @p value, so that quadrature loops allocate nothing). Sets the time of
+     * the scene's functions.
      */
     void
     step_load(Function<dim>    &f,
               const Point<dim> &p,
               const double      t,
               const TimeScheme &scheme,
-              Vector<double>   &value) const;
+              Vector<double>   &value,
+              Vector<double>   &old_value) const;
 
     const Parameters::BoundaryConditions &
     boundary_conditions() const
