@@ -366,7 +366,7 @@ namespace DynamicContact
     std::vector<double>       stick_scale(n_active, 0);
     unsigned int              size = dim * n_active;
     for (unsigned int a = 0; a < n_active; ++a)
-      if (it.lin[active[a]].friction.state == ContactState::stick)
+      if (it.lin[active[a]].friction.state == FrictionState::stick)
         {
           const unsigned int j = active[a];
           stick_offset[a]      = size;
@@ -434,15 +434,15 @@ namespace DynamicContact
         for (unsigned int p = 0; p < dim; ++p)
           dw[a][p] = vector(dim * a + p);
         const auto &l = it.lin[j];
-        if (l.friction.state == ContactState::slip)
+        if (l.friction.state == FrictionState::slip)
           lambda[j] = l.friction.value + l.friction.jacobian * dw[a];
-        else if (l.friction.state == ContactState::stick)
+        else if (l.friction.state == FrictionState::stick)
           for (unsigned int s = 0; s < dim - 1; ++s)
             lambda[j] += (vector(stick_offset[a] + s) / stick_scale[a]) *
                          nodes[j].tangents[s];
         // base_j + block_j dw + T_j l_j, with the springs' part (g form).
         new_forces[j] = it.base[j] + l.block * dw[a];
-        if (l.friction.state == ContactState::stick)
+        if (l.friction.state == FrictionState::stick)
           new_forces[j] += lambda[j];
       }
   }

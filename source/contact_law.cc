@@ -3,15 +3,15 @@
 namespace DynamicContact
 {
   const char *
-  to_string(const ContactState state)
+  to_string(const FrictionState state)
   {
     switch (state)
       {
-        case ContactState::free:
+        case FrictionState::free:
           return "free";
-        case ContactState::stick:
+        case FrictionState::stick:
           return "stick";
-        case ContactState::slip:
+        case FrictionState::slip:
           return "slip";
       }
     return "?";
@@ -122,12 +122,12 @@ namespace DynamicContact
       c_node * w_tau.norm() > 1e-6 * std::max(r.threshold, lambda_tau.norm());
     if (norm <= r.threshold || reversed)
       {
-        r.state = ContactState::stick;
+        r.state = FrictionState::stick;
         r.value = lambda_tau;
         return r;
       }
 
-    r.state     = ContactState::slip;
+    r.state     = FrictionState::slip;
     r.direction = z / norm;
     // d g / d w = mu m (k p' + q') nu.
     const Tensor<1, dim> dg =

@@ -6,7 +6,7 @@
 #include <dynamic_contact/failure.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/provenance.h>
-#include <dynamic_contact/simulator.h>
+#include <dynamic_contact/time_loop.h>
 
 #include <iostream>
 

@@ -179,7 +179,7 @@ namespace DynamicContact
             out += "," + scientific(row[c], 10);
           if (friction)
             out +=
-              std::string(",") + to_string(static_cast<ContactState>(
+              std::string(",") + to_string(static_cast<FrictionState>(
                                    static_cast<unsigned char>(row.back())));
           out += '\n';
         }
@@ -194,9 +194,9 @@ namespace DynamicContact
   int
   contact_state_code(const ContactNodeState<dim> &s)
   {
-    if (s.state == ContactState::stick)
+    if (s.state == FrictionState::stick)
       return 2;
-    if (s.state == ContactState::slip)
+    if (s.state == FrictionState::slip)
       return 3;
     return s.normal.pressure > 0 ? 1 : 0;
   }

@@ -124,7 +124,7 @@ namespace DynamicContact
       {
         const Tensor<2, dim> &P = nodes[i].constraint_map;
         system.blocks[i]        = transpose(P) * x.lin[i].block * P;
-        system.stick[i] = (x.lin[i].friction.state == ContactState::stick);
+        system.stick[i] = (x.lin[i].friction.state == FrictionState::stick);
         double d        = 0;
         for (unsigned int c = 0; c < dim; ++c)
           d += K0.diag_element(nodes[i].dofs[c]);
@@ -162,7 +162,7 @@ namespace DynamicContact
         const auto          &l  = x.lin[i];
         new_base[i] = l.normal.pressure * nodes[i].weight * nodes[i].normal +
                       (l.block - l.friction.jacobian) * dw;
-        if (l.friction.state == ContactState::slip)
+        if (l.friction.state == FrictionState::slip)
           {
             full.lambda[i] = l.friction.value + l.friction.jacobian * dw;
             new_base[i] += full.lambda[i];

@@ -31,6 +31,7 @@ namespace DynamicContact
   StepSolver<dim>::StepSolver(const Discretization<dim>  &discretization,
                               const BulkOperator<dim>    &bulk,
                               const ContactBoundary<dim> &contact_boundary,
+                              ContactState<dim>          &contact_state,
                               const Foundation           &foundation,
                               const FrictionLaw          *friction_law,
                               const Parameters::Solver   &solver_parameters,
@@ -40,6 +41,7 @@ namespace DynamicContact
     : discretization(discretization)
     , bulk(bulk)
     , contact_boundary(contact_boundary)
+    , contact_state(contact_state)
     , foundation(foundation)
     , friction_law(friction_law)
     , parameters(solver_parameters)
@@ -76,10 +78,8 @@ namespace DynamicContact
     for (auto &newton : newtons)
       newton.reset();
 
-    const unsigned int n = contact_boundary.nodes().size();
-    mu.assign(n, friction ? friction_law->value(0) : 0.);
-    lambda.assign(n, Tensor<1, dim>());
-    states.assign(contact_boundary.nodes().size(), ContactNodeState<dim>());
+    contact_state.reinit(contact_boundary,
+                         friction ? friction_law->value(0) : 0.);
   }
 
 
@@ -131,6 +131,9 @@ namespace DynamicContact
                                  Statistics                        &statistics)
   {
     const auto       &nodes     = contact_boundary.nodes();
+    const auto       &mu        = contact_state.mu;
+    const auto       &lambda    = contact_state.lambda;
+    auto             &states    = contact_state.nodes;
     const TimeScheme &scheme    = bulk.scheme();
     const double      k         = scheme.time_step();
     unsigned int      n_contact = 0, n_stick = 0, n_slip = 0;
@@ -146,7 +149,7 @@ namespace DynamicContact
         s.mu             = mu[g];
         s.slip_velocity  = nodes[i].tangential(w_e);
         s.slip_rate      = s.slip_velocity.norm();
-        s.state          = ContactState::free;
+        s.state          = FrictionState::free;
         if (friction)
           s.state = friction_response(nodes[i],
                                       s.normal,
@@ -158,8 +161,8 @@ namespace DynamicContact
                       .state;
         if (s.normal.pressure > 0)
           ++n_contact;
-        n_stick += (s.state == ContactState::stick);
-        n_slip += (s.state == ContactState::slip);
+        n_stick += (s.state == FrictionState::stick);
+        n_slip += (s.state == FrictionState::slip);
       }
     const MPI_Comm comm  = discretization.comm;
     statistics.n_contact = Utilities::MPI::sum(n_contact, comm);
@@ -323,6 +326,8 @@ namespace DynamicContact
     const auto          u_old_nodes = contact_boundary.values(u_old);
     const auto          w_old_nodes = contact_boundary.values(w_old);
     const auto         &all         = contact_boundary.nodes();
+    auto               &mu          = contact_state.mu;
+    auto               &lambda      = contact_state.lambda;
     const MPI_Comm      comm        = discretization.comm;
 
     // Convexification loop (doc/theory.md section 4): mu frozen from the

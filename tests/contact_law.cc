@@ -288,7 +288,7 @@ namespace
     out() << "slip, w_tau = 0.6 t:" << std::endl;
     print(node, slip);
     out() << "  jacobian = " << in_frame(node, slip.jacobian) << std::endl;
-    check(slip.state == ContactState::slip &&
+    check(slip.state == FrictionState::slip &&
             std::abs(slip.threshold - 0.422) <= 1e-14 &&
             near(slip.direction, frame(node, 0., 1.), 1e-14) &&
             near(slip.value, frame(node, 0., 0.422), 1e-14),
@@ -299,7 +299,7 @@ namespace
           "2D: slip jacobian t (x) dg, dg = 0.14 n");
 
     const auto backwards = respond(node, u_old, frame(node, 0.22, -0.6), zero);
-    check(backwards.state == ContactState::slip &&
+    check(backwards.state == FrictionState::slip &&
             near(backwards.value, frame(node, 0., -0.422), 1e-14),
           "2D: slip with w_tau = -0.6 t: value -g t");
 
@@ -309,17 +309,17 @@ namespace
       respond(node, u_old, frame(node, 0.22, 0.), frame(node, 5., 0.3));
     out() << "stick, w_tau = 0, lambda = 5 n + 0.3 t:" << std::endl;
     print(node, stick);
-    check(stick.state == ContactState::stick &&
+    check(stick.state == FrictionState::stick &&
             near(stick.value, frame(node, 0., 0.3), 1e-14) &&
             stick.jacobian.norm() == 0,
           "2D: stick, value lambda_tau = 0.3 t, no jacobian");
     const auto small =
       respond(node, u_old, frame(node, 0.22, 0.1), frame(node, 0., 0.3));
-    check(small.state == ContactState::stick,
+    check(small.state == FrictionState::stick,
           "2D: |0.3 t + 0.1 t| = 0.4 <= g: stick");
     const auto larger =
       respond(node, u_old, frame(node, 0.22, 0.13), frame(node, 0., 0.3));
-    check(larger.state == ContactState::slip,
+    check(larger.state == FrictionState::slip,
           "2D: |0.3 t + 0.13 t| = 0.43 > g: slip");
 
     // Reversed slip velocity: |z| = |1 t - 0.3 t| = 0.7 > g, but
@@ -328,12 +328,12 @@ namespace
       respond(node, u_old, frame(node, 0.22, -0.3), frame(node, 0., 1.));
     out() << "reversed, w_tau = -0.3 t, lambda = t:" << std::endl;
     print(node, reversed);
-    check(reversed.state == ContactState::stick &&
+    check(reversed.state == FrictionState::stick &&
             near(reversed.value, frame(node, 0., 1.), 1e-14),
           "2D: lambda . w_tau < 0: stick, value lambda");
     const auto forward =
       respond(node, u_old, frame(node, 0.22, 0.3), frame(node, 0., 1.));
-    check(forward.state == ContactState::slip &&
+    check(forward.state == FrictionState::slip &&
             near(forward.value, frame(node, 0., 0.422), 1e-14),
           "2D: same |z|, lambda . w_tau > 0: slip, value g t");
 
@@ -344,23 +344,23 @@ namespace
                               frame(node, 0., 1.));
     out() << "free, u_nu = -0.51, w_nu = -0.1:" << std::endl;
     print(node, free);
-    check(free.state == ContactState::free && free.threshold == 0 &&
+    check(free.state == FrictionState::free && free.threshold == 0 &&
             free.value.norm() == 0 && free.jacobian.norm() == 0,
           "2D: out of contact: free, g = 0, value 0");
     check(respond(node, u_old, frame(node, 0.22, 0.6), zero, 0.).state ==
-            ContactState::free,
+            FrictionState::free,
           "2D: mu = 0: free");
     ContactNode<2> constrained = node;
     constrained.unconstrained  = false;
     const auto clamped =
       respond(constrained, u_old, frame(node, 0.22, 0.6), frame(node, 0., 1.));
-    check(clamped.state == ContactState::free && clamped.value.norm() == 0,
+    check(clamped.state == FrictionState::free && clamped.value.norm() == 0,
           "2D: constrained node: free, value 0");
     // q acts out of contact by default (u_nu = -0.5, w_nu = 0.22): g =
     // mu m q = 0.022; not with "damping only in contact".
     const auto damped =
       respond(node, frame(node, -0.522, 0.), frame(node, 0.22, 0.6), zero);
-    check(damped.state == ContactState::slip &&
+    check(damped.state == FrictionState::slip &&
             std::abs(damped.threshold - 0.022) <= 1e-14,
           "2D: approaching node, damping acts: slip with g = 0.022");
     const auto undamped = respond(node,
@@ -369,7 +369,7 @@ namespace
                                   zero,
                                   mu,
                                   make_foundation(true));
-    check(undamped.state == ContactState::free,
+    check(undamped.state == FrictionState::free,
           "2D: approaching node, damping only in contact: free");
 
     // The slip jacobian against central differences of lambda(w) = g(w) t,
@@ -388,7 +388,7 @@ namespace
               << "  jacobian = " << in_frame(node, r.jacobian)
               << "  finite differences = " << in_frame(node, fd, 1e-8)
               << std::endl;
-        check(r.state == ContactState::slip && near(r.jacobian, fd, 1e-8),
+        check(r.state == FrictionState::slip && near(r.jacobian, fd, 1e-8),
               "2D: slip jacobian = finite differences to 1e-8 at u_nu = " +
                 digits(u_old_nu + 0.022, 3));
       }
@@ -444,7 +444,7 @@ namespace
 
     const auto along_t2 =
       respond(node, u_old, frame(node, 0.22, 0., 0.6), zero);
-    check(along_t2.state == ContactState::slip &&
+    check(along_t2.state == FrictionState::slip &&
             near(along_t2.value, frame(node, 0., 0., 0.422), 1e-14),
           "3D: slip with w_tau = 0.6 t2: value g t2");
 
@@ -462,7 +462,7 @@ namespace
     out() << "  direction = " << in_frame(node, slip.direction) << std::endl;
     out() << "  jacobian = " << in_frame(node, slip.jacobian) << std::endl;
     const double s = 1 / std::sqrt(2.);
-    check(slip.state == ContactState::slip &&
+    check(slip.state == FrictionState::slip &&
             near(slip.direction, frame(node, 0., s, s), 1e-14),
           "3D: slip, t = (t1 + t2)/sqrt(2)");
     check(near(slip.value, frame(node, 0., 0.151550486, 0.445247637), 1e-8),
@@ -478,21 +478,21 @@ namespace
                                u_old,
                                frame(node, 0.22, 0., 0.),
                                frame(node, 0., 0.2, -0.3));
-    check(stick.state == ContactState::stick &&
+    check(stick.state == FrictionState::stick &&
             near(stick.value, frame(node, 0., 0.2, -0.3), 1e-14),
           "3D: w_tau = 0, |lambda| = 0.361 <= g: stick, value lambda");
     const auto reversed = respond(node,
                                   u_old,
                                   frame(node, 0.22, -0.1, 0.2),
                                   frame(node, 0., 1., 0.));
-    check(reversed.state == ContactState::stick &&
+    check(reversed.state == FrictionState::stick &&
             near(reversed.value, frame(node, 0., 1., 0.), 1e-14),
           "3D: |z| = 0.922 > g but lambda . w_tau = -0.1 < 0: stick");
     const auto free = respond(node,
                               frame(node, -0.5, 0., 0.),
                               frame(node, -0.1, 0.3, 0.4),
                               frame(node, 0., 1., 0.));
-    check(free.state == ContactState::free && free.value.norm() == 0,
+    check(free.state == FrictionState::free && free.value.norm() == 0,
           "3D: out of contact: free, value 0");
 
     // On the slip manifold: w_tau = 0.6 t, lambda = g t, t = cos 0.7 t1 +
@@ -502,7 +502,7 @@ namespace
     const Tensor<1, 3> w      = 0.22 * node.normal + 0.6 * t;
     const Tensor<1, 3> lambda = 0.422 * t;
     const auto         r      = respond(node, u_old, w, lambda);
-    check(r.state == ContactState::slip && near(r.direction, t, 1e-14) &&
+    check(r.state == FrictionState::slip && near(r.direction, t, 1e-14) &&
             near(r.value, lambda, 1e-14),
           "3D manifold: slip, t, value = lambda");
     check((node.normal * r.jacobian).norm() <= 1e-14,
@@ -638,7 +638,7 @@ namespace
       const auto l = linearize_node(f, node, u_old, w, k, true, zero, mu, c);
       out() << "slip: force = " << in_frame(node, l.force)
             << "  block = " << in_frame(node, l.block) << std::endl;
-      check(l.friction.state == ContactState::slip && l.active() &&
+      check(l.friction.state == FrictionState::slip && l.active() &&
               near(l.force, frame(node, 1.055, 0.422), 1e-14),
             "2D slip: force 1.055 n + 0.422 t");
       Tensor<2, 2> block =
@@ -654,7 +654,7 @@ namespace
 
       const auto normal_only =
         linearize_node(f, node, u_old, w, k, false, zero, mu, c);
-      check(normal_only.friction.state == ContactState::free &&
+      check(normal_only.friction.state == FrictionState::free &&
               near(normal_only.force, frame(node, 1.055, 0.), 1e-14) &&
               near(normal_only.block,
                    Tensor<2, 2>(0.35 * outer_product(node.normal, node.normal)),
@@ -672,7 +672,7 @@ namespace
       Tensor<2, 2> block =
         outer_product(frame(node, 0.25, 0.), frame(node, 1., 0.));
       block += outer_product(frame(node, 0., 1.), frame(node, 0.1, 0.));
-      check(l.friction.state == ContactState::slip &&
+      check(l.friction.state == FrictionState::slip &&
               near(l.force, frame(node, 1.555, 0.622), 1e-14) &&
               near(l.block, block, 1e-14),
             "2D saturated slip: force 1.555 n + 0.622 t, block by hand");
@@ -690,7 +690,7 @@ namespace
                                     c);
       out() << "stick: force = " << in_frame(node, l.force)
             << "  block = " << in_frame(node, l.block) << std::endl;
-      check(l.friction.state == ContactState::stick && l.active() &&
+      check(l.friction.state == FrictionState::stick && l.active() &&
               near(l.force, frame(node, 1.055, 0.3), 1e-14) &&
               near(l.block,
                    Tensor<2, 2>(0.35 * outer_product(node.normal, node.normal)),
@@ -708,7 +708,7 @@ namespace
                                     frame(node, 0., 0.3),
                                     mu,
                                     c);
-      check(l.friction.state == ContactState::free && !l.active() &&
+      check(l.friction.state == FrictionState::free && !l.active() &&
               l.force.norm() == 0 && l.block.norm() == 0,
             "2D out of contact: free, no force, no block, not active");
     }
@@ -722,7 +722,7 @@ namespace
       const Tensor<1, 3>   lam = 0.422 * t;
       const auto l = linearize_node(f, n3, u0, w, k, true, lam, mu, c);
       out() << "3D slip: force = " << in_frame(n3, l.force) << std::endl;
-      check(l.friction.state == ContactState::slip &&
+      check(l.friction.state == FrictionState::slip &&
               near(l.force, Tensor<1, 3>(1.055 * n3.normal + lam), 1e-14),
             "3D slip: force 1.055 n + g t");
       const auto force_of = [&](const Tensor<1, 3> &v) {

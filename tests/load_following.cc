@@ -52,13 +52,14 @@ main(int argc, char *argv[])
       bool         fine_under_load = true;
       for (const double y : {0.001, 0.05, 0.099})
         fine_under_load =
-          fine_under_load &&
-          level_at(*simulator, Point<2>(x, y)) == static_cast<int>(max_level);
+          fine_under_load && level_at(simulator->simulator(), Point<2>(x, y)) ==
+                               static_cast<int>(max_level);
       test_tools::check(fine_under_load,
                         "t = " + test_tools::digits(t, 3) +
                           ": the finest level under the load");
       if (x - 0.8 > 0.1)
-        test_tools::check(level_at(*simulator, Point<2>(x - 0.8, 0.05)) ==
+        test_tools::check(level_at(simulator->simulator(),
+                                   Point<2>(x - 0.8, 0.05)) ==
                             static_cast<int>(min_level),
                           "t = " + test_tools::digits(t, 3) +
                             ": coarse again 0.8 m behind the load");

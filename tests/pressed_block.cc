@@ -31,8 +31,8 @@ check_block(const std::string &name, std::vector<std::string> overrides)
                          overrides);
 
   double      worst  = 0;
-  const auto &nodes  = simulator->contact().nodes();
-  const auto &states = simulator->node_states();
+  const auto &nodes  = simulator->simulator().contact().nodes();
+  const auto &states = simulator->simulator().node_states();
   for (unsigned int i = 0; i < nodes.size(); ++i)
     worst =
       std::max(worst,
@@ -49,7 +49,7 @@ check_block(const std::string &name, std::vector<std::string> overrides)
       p[1] = H;
       if (dim == 3)
         p[2] = 0.25;
-      const double u_y = simulator->point_displacement(p)[1];
+      const double u_y = simulator->simulator().point_displacement(p)[1];
       worst_top        = std::max(worst_top, std::abs(-u_y - top) / top);
     }
   test_tools::check(worst_top <= 1e-8,

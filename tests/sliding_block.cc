@@ -58,7 +58,7 @@ check_block(const std::string       &name,
   else
     {
       double max_slip = 0;
-      for (const auto &s : simulator->node_states())
+      for (const auto &s : simulator->simulator().node_states())
         max_slip = std::max(max_slip, s.slip_rate);
       max_slip = Utilities::MPI::max(max_slip, MPI_COMM_WORLD);
       test_tools::check(max_slip < 1e-10, name + ": no slip velocity");
@@ -69,7 +69,7 @@ check_block(const std::string       &name,
                         name + ": every contact node sticks");
       // The friction forces (vector sum) hold the shear.
       Tensor<1, dim> friction;
-      for (const auto &s : simulator->node_states())
+      for (const auto &s : simulator->simulator().node_states())
         friction += s.friction_force;
       for (unsigned int d = 0; d < dim; ++d)
         friction[d] = Utilities::MPI::sum(friction[d], MPI_COMM_WORLD);

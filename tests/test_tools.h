@@ -9,7 +9,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <dynamic_contact/parameters.h>
-#include <dynamic_contact/simulator.h>
+#include <dynamic_contact/time_loop.h>
 
 #include <cmath>
 #include <cstdio>
@@ -189,7 +189,7 @@ namespace test_tools
    * it, and return the simulator for inspection.
    */
   template <int dim>
-  std::unique_ptr<DynamicContact::Simulator<dim>>
+  std::unique_ptr<DynamicContact::TimeLoop<dim>>
   make(const std::string       &file,
        std::vector<std::string> overrides,
        const MPI_Comm           comm = MPI_COMM_WORLD)
@@ -201,13 +201,13 @@ namespace test_tools
     dealii::ParameterHandler prm;
     const auto               parameters =
       DynamicContact::read_parameters(file, overrides, prm);
-    return std::make_unique<DynamicContact::Simulator<dim>>(parameters,
-                                                            prm,
-                                                            comm);
+    return std::make_unique<DynamicContact::TimeLoop<dim>>(parameters,
+                                                           prm,
+                                                           comm);
   }
 
   template <int dim>
-  std::unique_ptr<DynamicContact::Simulator<dim>>
+  std::unique_ptr<DynamicContact::TimeLoop<dim>>
   run(const std::string       &file,
       std::vector<std::string> overrides,
       const MPI_Comm           comm = MPI_COMM_WORLD)

@@ -12,7 +12,7 @@ namespace DynamicContact
   using namespace dealii;
 
   /** Where a node of Gamma_3 stands with respect to friction. */
-  enum class ContactState : unsigned char
+  enum class FrictionState : unsigned char
   {
     free  = 0, // no normal force: no friction
     stick = 1, // w_tau = 0, |lambda| <= mu N
@@ -20,7 +20,7 @@ namespace DynamicContact
   };
 
   const char *
-  to_string(const ContactState state);
+  to_string(const FrictionState state);
 
 
   /**
@@ -58,7 +58,7 @@ namespace DynamicContact
     Tensor<1, dim> friction_force;
     /** The frozen friction coefficient mu_i of the last iterate. */
     double       mu    = 0;
-    ContactState state = ContactState::free;
+    FrictionState state = FrictionState::free;
     /** w_e,tau, the tangential part of w_e (w_e = w_n for backward Euler). */
     Tensor<1, dim> slip_velocity;
     /** |w_e,tau|. */
@@ -145,7 +145,7 @@ namespace DynamicContact
   template <int dim>
   struct FrictionResponse
   {
-    ContactState   state     = ContactState::free;
+    FrictionState   state     = FrictionState::free;
     double         threshold = 0; // g
     Tensor<1, dim> direction;     // t (slip)
     Tensor<1, dim> value;
@@ -208,7 +208,7 @@ namespace DynamicContact
     active() const
     {
       return force.norm_square() > 0 || block.norm_square() > 0 ||
-             friction.state == ContactState::stick;
+             friction.state == FrictionState::stick;
     }
   };
 

@@ -41,6 +41,13 @@ namespace DynamicContact
    */
   std::string
   scientific(const double x, const unsigned int decimals = 3);
+
+  /** Six significant digits: what regression output compares. */
+  inline std::string
+  sig6(const double x)
+  {
+    return scientific(x, 5);
+  }
 } // namespace DynamicContact
 
 #endif

@@ -249,7 +249,7 @@ namespace DynamicContact
       e.lin.normal.pressure * node.weight * node.normal;
     e.force = normal_force + lambda;
     e.base  = normal_force;
-    if (e.lin.friction.state == ContactState::slip)
+    if (e.lin.friction.state == FrictionState::slip)
       e.base += e.lin.friction.value;
     if (problem.friction)
       e.law_residual =

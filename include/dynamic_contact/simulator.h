@@ -8,6 +8,7 @@
 #include <dynamic_contact/bulk_operator.h>
 #include <dynamic_contact/checkpoint.h>
 #include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/contact_state.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/energy_balance.h>
 #include <dynamic_contact/force_balance.h>
@@ -18,121 +19,205 @@
 #include <dynamic_contact/output.h>
 #include <dynamic_contact/output_directory.h>
 #include <dynamic_contact/parameters.h>
-#include <dynamic_contact/provenance.h>
 #include <dynamic_contact/scene.h>
 #include <dynamic_contact/step_record.h>
 #include <dynamic_contact/step_solver.h>
 
-#include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace DynamicContact
 {
   /**
-   * Owns the mesh, the DoFs and the fields, and runs the time loop: for each
-   * step, adapt the mesh if due, form K0 for k, assemble the load, solve the
-   * step (convexification loop around the active-set Newton), check the
-   * energy balance, write the outputs.
+   * A value that is not finite where a step needs it (collective): not a
+   * failure of the solver (no cut-back); the run stops with the last good
+   * state.
+   */
+  class NonFiniteValue : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+
+  /**
+   * The discrete problem and its algorithm, step-42 style: owns the scene
+   * and its laws, the mesh, the DoFs, the fields u and w, the solution on
+   * Gamma_3 (ContactState), the operators and the solver, and does the
+   * steps of the scheme in functions named after them: set up the mesh and
+   * the initial state, adapt the mesh, assemble the step's right-hand side
+   * and solve the step (do_time_step: solve_substep, one or two per step),
+   * compute the balances, write the fields.
    *
-   * run() = initialize(), then advance() until it returns false, then
-   * finish() (or stop() after a signal); tests drive them themselves to
-   * look between steps.
-   *
-   * What can go wrong around the solver is handled here (README, "What can
-   * go wrong"): the output directory is the run's own (OutputDirectory),
-   * every write is checked, the input is checked for non-finite values and
-   * for the resources it needs before anything is allocated or written, a
-   * resumed run continues exactly the problem of its checkpoint or refuses,
-   * and a signal stops the run after the current step with a checkpoint.
+   * When and how often these happen, what is kept after a failure, and
+   * where the results go is the TimeLoop's business (time_loop.h): it owns
+   * the run state, and this class never looks at the clock, the schedule or
+   * the output directory's status.
    */
   template <int dim>
   class Simulator
   {
   public:
-    Simulator(const RunParameters &parameters,
-              ParameterHandler    &prm,
-              const MPI_Comm       comm);
-    ~Simulator();
+    Simulator(const RunParameters      &parameters,
+              ParameterHandler         &prm,
+              const MPI_Comm            comm,
+              TimerOutput              &timer,
+              const ConditionalOStream &details);
+
+    /** @name Set-up */
+    /** @{ */
 
     /**
-     * Run the whole simulation; with @p resume from the newest good
-     * checkpoint in the output directory. Returns the exit code: 0, or
-     * 128 + N after a stop by signal N (stop()).
-     */
-    int
-    run(const bool resume = false);
-
-    /**
-     * Build the mesh (refined for the initial load when adaptive), check the
-     * input, prepare the output directory, set the initial state and write
-     * step 0. With @p resume: load the newest complete checkpoint of the
-     * output directory instead, and continue its time_series.csv.
+     * Create the coarse mesh of the scene, refusing a scene that cannot fit
+     * (check_resources) before anything is allocated.
      */
     void
-    initialize(const bool resume = false);
+    create_mesh();
 
     /**
-     * --validate: everything initialize() does before the first result is
-     * written (the mesh and its boundary ids, the resources, the functions
-     * of the scene and the friction law sampled, the operators set up, the
-     * initial state), and nothing more: the output directory is not
-     * touched. Throws the error the run would stop with; returns
-     * "2D, Q1 elements, N cells, M DoFs, K contact nodes".
+     * A new run: refine the coarse mesh (Geometry/Global refinements, then
+     * for the initial load if adaptive), check the input, set up DoFs and
+     * operators, interpolate the initial state (throws if not finite).
      */
-    std::string
-    validate();
+    void
+    set_up_initial_state();
 
     /**
-     * One time step; false (and nothing done) once the end time is reached
-     * or a process received a stop signal (stop_signal()).
+     * Before anything is written: the friction law (finite, >= 0, not
+     * increasing unless allowed) and the functions of the scene sampled on
+     * the mesh (loads over the time interval; initial conditions unless
+     * @p resume): a NaN or infinity is an error that names the function.
      */
+    void
+    check_input(const bool resume);
+
+    /**
+     * A resumed run: the mesh and the fields (u, w, the friction forces)
+     * of the checkpoint @p path; DoFs and operators set up for them.
+     */
+    void
+    load_checkpoint(const std::string &path);
+
+    /**
+     * Write a checkpoint of the mesh and the fields with the loop's
+     * @p state (write_checkpoint in checkpoint.h).
+     */
+    void
+    save_checkpoint(OutputDirectory             &directory,
+                    const RunState              &state,
+                    const std::string           &parameters_of_run,
+                    const unsigned int           keep,
+                    const std::function<void()> &before_commit);
+
+    /** The time series row of step 0: the initial state's energy. */
+    StepRecord<dim>
+    initial_record();
+    /** @} */
+
+    /** @name The steps of the scheme */
+    /** @{ */
+
+    /** Whether the mesh is adapted before step @p n, and how far ahead. */
     bool
-    advance();
-
-    /**
-     * Print the summary and mark the output as complete: run_status
-     * "completed", or "completed with warnings: ..." if steps were kept
-     * with an unconverged convexification loop (or the energy balance did
-     * not hold).
-     */
-    void
-    finish();
-
-    /**
-     * After a stop signal: write a checkpoint (with Checkpoint/Every > 0)
-     * and run_status "stopped: signal N at step S".
-     */
-    void
-    stop();
-
-    /** The signal that stopped the run (0: none). */
-    int
-    stop_signal() const
+    adaptation_due(const unsigned int n) const
     {
-      return stopping_signal;
+      return mesh_adaptation.due(n);
+    }
+    unsigned int
+    lookahead_steps() const
+    {
+      return mesh_adaptation.lookahead_steps();
     }
 
     /**
-     * After a failure that every process knows: mark the output as failed
-     * (if this run had taken it over) and silence the timer summary.
+     * Adapt the mesh for the times [t0, t1], transferring u, w and the
+     * friction forces; returns the change of the energy E the transfer made.
      */
-    void
-    abandon(const std::string &reason);
+    double
+    adapt_mesh(const double t0, const double t1, const double k);
 
     /**
-     * After a failure of this process alone (the others may wait in a
-     * collective operation): write run_status from this process.
+     * One step from t - k to t (Time/Scheme); returns the time series row
+     * (which records the energy change of a mesh transfer just before the
+     * step and the cut-backs and rejected tries of the loop). With
+     * @p accept_unconverged_loop (the smallest time step) a convexification
+     * loop that reaches its cap is kept rather than failing. Throws
+     * StepFailure (a cut-back may help) or NonFiniteValue (it may not).
      */
-    void
-    abandon_alone(const std::string &reason);
+    StepRecord<dim>
+    do_time_step(const unsigned int step,
+                 const double       t,
+                 const double       k,
+                 const double       remesh_energy_change,
+                 const unsigned int cutbacks,
+                 const unsigned int rejected,
+                 const bool         accept_unconverged_loop);
 
-    /** The steps written to time_series.csv so far (step 0 first). */
-    const std::vector<StepRecord<dim>> &
-    time_series() const
+    /**
+     * The final Newton residual of the last step solved (the larger of
+     * the two sub-steps of a composite scheme).
+     */
+    double
+    newton_residual() const
     {
-      return rows;
+      return last_newton_residual;
+    }
+
+    /**
+     * The state a step starts from, to go back to after a failed or
+     * rejected try: the fields, the Gamma_3 solution and their energy.
+     */
+    struct RestorePoint
+    {
+      Vector_t              u, w;
+      ContactState<dim>     contact;
+      std::optional<double> energy;
+    };
+    RestorePoint
+    restore_point() const;
+    void
+    restore(const RestorePoint &point);
+    /** @} */
+
+    /** @name Output of the fields */
+    /** @{ */
+    void
+    write_contact_csv(OutputDirectory   &directory,
+                      const unsigned int step,
+                      const double       t) const;
+    void
+    write_vtu(VtuWriter<dim>    &writer,
+              const unsigned int step,
+              const double       t) const;
+
+    /** "2D, Q1 elements, N cells, M DoFs, K contact nodes". */
+    std::string
+    summary() const;
+    /** The material and friction lines of the header. */
+    void
+    print_model(const ConditionalOStream &out) const;
+    /** @} */
+
+    /** @name What the time loop and the tests read */
+    /** @{ */
+    std::string
+    solver_name() const
+    {
+      return step_solver.solver_name();
+    }
+    bool
+    has_friction() const
+    {
+      return step_solver.has_friction();
+    }
+    bool
+    adaptive_mesh() const
+    {
+      return mesh_adaptation.enabled();
     }
 
     const ContactBoundary<dim> &
@@ -145,7 +230,7 @@ namespace DynamicContact
     const std::vector<ContactNodeState<dim>> &
     node_states() const
     {
-      return step_solver.node_states();
+      return contact_state.nodes;
     }
 
     /**
@@ -172,23 +257,12 @@ namespace DynamicContact
     {
       return discretization;
     }
-
-    /** The time and number of the last step done (0 before the first). */
-    double
-    time() const
-    {
-      return current_time;
-    }
+    /** @} */
 
   private:
-    const RunParameters parameters;
-    MPI_Comm            comm;
-    /** The screen output, and its copy log.txt (rank 0). */
-    mutable ScreenLog screen_log;
-    /** When the run started (UTC, ISO 8601), for the header. */
-    std::string        start_time;
-    ConditionalOStream pcout;
-    ConditionalOStream details;
+    const RunParameters &parameters;
+    MPI_Comm             comm;
+    TimerOutput         &timer;
 
     // The input is parsed (and can fail) before anything else is built.
     Scene<dim>                         scene;
@@ -196,10 +270,9 @@ namespace DynamicContact
     Foundation                         foundation;
     std::shared_ptr<const FrictionLaw> friction_law;
 
-    TimerOutput timer;
-
     Discretization<dim>        discretization;
     ContactBoundary<dim>       contact_boundary;
+    ContactState<dim>          contact_state;
     BulkOperator<dim>          bulk;
     StepSolver<dim>            step_solver;
     EnergyBalance<dim>         energy_balance;
@@ -207,31 +280,10 @@ namespace DynamicContact
     MeshAdaptation<dim>        mesh_adaptation;
 
     // Fields in master form (constrained entries zero). u_old, w_old: the
-    // state at the start of the step (and the cut-back's restore point);
-    // u_bar, w_bar: the start of the Bathe scheme's second sub-step.
+    // state at the start of the step; u_bar, w_bar: the start of the Bathe
+    // scheme's second sub-step.
     Vector_t u, w, u_old, w_old, u_bar, w_bar, load, rhs, scratch;
 
-    /** Created in the constructor, opened (locked, checked) by initialize. */
-    std::unique_ptr<OutputDirectory> output_directory;
-    /** Whether this run has written run_status (taken over the results). */
-    bool took_over = false;
-    /** validate(): initialize() stops before the output directory. */
-    bool validate_only = false;
-    /** The parameters of the run as text (checkpoints, --resume). */
-    std::string parameters_of_run;
-    /** parameters.prm and parameters.json of the run. */
-    ParameterFiles                    parameter_files;
-    std::unique_ptr<TimeSeriesWriter> time_series_writer;
-    std::unique_ptr<VtuWriter<dim>>   vtu_writer;
-    std::vector<StepRecord<dim>>      rows;
-
-    // The time loop: steps of the nominal Time/Time step, or shorter after a
-    // cut-back (k_current), growing back after good steps.
-    double                                current_time = 0;
-    double                                k_current;
-    unsigned int                          good_steps_since_cutback = 0;
-    unsigned int                          step                     = 0;
-    std::chrono::steady_clock::time_point wall_start;
     /**
      * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
      * the next step is E_n of the last one (reset when the DoFs change).
@@ -239,98 +291,23 @@ namespace DynamicContact
     std::optional<double> energy_of_state;
     double
     energy_now();
+
+    double last_newton_residual = 0;
+
     /**
-     * Wall clock and simulated time when the first step of this run (since
-     * its start or resume) ended: the estimate of the time left is the wall
-     * time per simulated second since then (cut-backs included) times the
-     * simulated time left; set-up and the one-off work of the first step
-     * are left out.
+     * The displacement's local error estimate of the step just solved,
+     * relative to the energy of the state (doc/theory.md 2.5).
      */
-    std::optional<std::pair<std::chrono::steady_clock::time_point, double>>
-      stepping_start;
-    /**
-     * Wall time spent writing VTU files (and how many were written), in all
-     * and when stepping_start was set: the estimate of the time left counts
-     * the VTU files still to come at their mean cost instead of spreading
-     * the bursts of the ones written so far over the steps.
-     */
-    double       vtu_seconds          = 0;
-    unsigned int vtu_files            = 0;
-    double       vtu_seconds_at_start = 0;
-    /** The VTU files the run will still write after the current step. */
-    unsigned int
-    vtu_files_left() const;
-    /**
-     * Whether an Output/Output times entry falls in the step (t - k, t]
-     * (with a round-off allowance: an output time on the time grid belongs
-     * to the step ending there).
-     */
-    bool
-    at_output_time(const double t, const double k) const;
-    /** Whether step @p n, ending at @p t after a step @p k, writes VTU. */
-    bool
-    vtu_due(const unsigned int n,
-            const double       t,
-            const double       k,
-            const bool         last) const;
-    /**
-     * Fault injection for the restart test, from the environment variable
-     * DYNAMIC_CONTACT_KILL = "after-step N" or "in-checkpoint N": the run
-     * kills itself (SIGKILL) after step N, or while writing the checkpoint
-     * of step N (everything written, not yet renamed).
-     */
-    unsigned int kill_after_step    = numbers::invalid_unsigned_int;
-    unsigned int kill_in_checkpoint = numbers::invalid_unsigned_int;
-    /**
-     * More fault injection: DYNAMIC_CONTACT_KILL = "signal S after-step N
-     * [rank R]" raises signal S on rank R (default 0) after step N;
-     * DYNAMIC_CONTACT_FAIL = "after-step N [rank R]" throws an error on
-     * rank R (default 0) alone after step N.
-     */
-    int          injected_signal   = 0;
-    unsigned int signal_after_step = numbers::invalid_unsigned_int;
-    unsigned int signal_rank       = 0;
-    unsigned int fail_after_step   = numbers::invalid_unsigned_int;
-    unsigned int fail_rank         = 0;
-    /** A stop signal received (on any process), and the step of the last
-     *  checkpoint written. */
-    int          stopping_signal      = 0;
-    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
-    /** Steps kept with an unconverged convexification loop. */
-    unsigned int unconverged_steps   = 0;
-    double       worst_unconverged   = 0;
-    double       max_relative_defect = 0;
-    double       min_dissipation     = 0;
-    unsigned int total_newton        = 0;
-    /**
-     * For the end summary, from the rows of time_series.csv (those before
-     * a resume included): cut-backs, convexification passes, the largest
-     * coefficient residual max_i |mu_i - mu(|w_tau,i|)| of a step.
-     */
-    unsigned int total_cutbacks           = 0;
-    unsigned int total_convexification    = 0;
-    double       max_coefficient_residual = 0;
-    void
-    account_for(const unsigned int cutbacks,
-                const unsigned int convexification_iterations,
-                const double       coefficient_residual);
-    /**
-     * Steps of this run (since its start or resume) whose Newton iteration
-     * ended at stagnation (residual above Solver/Newton tolerance, below
-     * its square root), and the final residual of the last step solved.
-     */
-    unsigned int stagnated_steps      = 0;
-    double       last_newton_residual = 0;
-    /**
-     * Time/Adaptive: the local error estimate of the last step solved,
-     * relative to Time/Adaptive tolerance (> 1: reject), and the steps
-     * rejected before the current one was accepted.
-     */
-    double       last_time_error    = 0;
-    unsigned int rejected_this_step = 0;
-    /** The error estimate of the step just solved (doc/theory.md 2.5). */
     double
     time_error_estimate(const double k) const;
+
+    /**
+     * Before anything is allocated: the cells, DoFs and memory the scene
+     * needs for a coarse mesh of @p n_coarse_cells; refuse (collective
+     * error) a scene that cannot fit, with the estimate.
+     */
+    void
+    check_resources(const double n_coarse_cells) const;
 
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
@@ -343,73 +320,11 @@ namespace DynamicContact
     /** Before the first step: refine for the initial load (adaptive runs). */
     void
     refine_initial_mesh();
-    /**
-     * Adapt the mesh for the times [t0, t1], transferring u, w and the
-     * friction forces; returns the change of the energy E the transfer made.
-     */
-    double
-    adapt_mesh(const double t0, const double t1, const double k);
-    /**
-     * The friction forces as a finite element field at the nodes of Gamma_3
-     * (zero elsewhere), and back: with @p per_weight the traction
-     * lambda_i/m_i, the form in which they survive a change of the mesh
-     * (interpolated); without, the nodal forces lambda_i themselves, which a
-     * checkpoint stores exactly with the mesh.
-     */
-    Vector_t
-    friction_field(const bool per_weight) const;
-    void
-    set_friction_from_field(const Vector_t &field, const bool per_weight);
-
-    /** Write a checkpoint of the current state (Checkpoint/Every). */
-    void
-    checkpoint();
-
-    /**
-     * Before anything is allocated: the cells, DoFs and memory the scene
-     * needs for a coarse mesh of @p n_coarse_cells; refuse (collective
-     * error) a scene that cannot fit, with the estimate.
-     */
-    void
-    check_resources(const double n_coarse_cells) const;
-
-    /**
-     * Before anything is written: the friction law (finite, >= 0, not
-     * increasing unless allowed) and the functions of the scene sampled on
-     * the mesh (loads over the time interval; initial conditions unless
-     * @p resume): a NaN or infinity is an error that names the function.
-     */
-    void
-    check_input(const bool resume);
-
-    /** --resume: load the newest good checkpoint, or refuse and say why. */
-    void
-    resume_from_checkpoint();
-
-    /**
-     * A step produced no good state: u, w and the friction forces are
-     * those of the last good step; write it out (contact CSV, VTU, a
-     * checkpoint) and throw @p message (collective).
-     */
-    [[noreturn]] void
-    stop_with_last_good_state(const std::string &message);
 
     /** Positions of the nodes that penetrate the foundation (all processes). */
     std::vector<Point<dim>>
     penetrating_nodes() const;
 
-    void
-    print_header() const;
-    /**
-     * One step from t - k to t; returns the time series row (which records
-     * the energy change of a mesh transfer just before the step).
-     */
-    StepRecord<dim>
-    do_time_step(const unsigned int step,
-                 const double       t,
-                 const double       k,
-                 const double       remesh_energy_change,
-                 const unsigned int cutbacks);
     /**
      * One (sub-)step of the theta-scheme @p scheme that ends at @p t, from
      * (@p u_start, @p w_start) whose energy is @p start_energy: assemble the
@@ -425,64 +340,29 @@ namespace DynamicContact
                   const bool                            accept_unconverged_loop,
                   typename StepSolver<dim>::Statistics &statistics,
                   EnergyBalanceTerms                   &terms);
-
-    /** Steps left at the nominal time step (for progress lines). */
-    unsigned int
-    remaining_steps() const;
-    /** Whether a step of size @p k that fails may be retried with k/2
-     *  (Time/Minimum time step). */
-    bool
-    can_cut_back(const double k) const;
     /**
-     * Write the contact CSV and/or the VTU fields of the current step, with
-     * the node states @p states (default: those of the last solve).
+     * b = (rho/k) M w_start - (1 - theta) A w_start
+     *     - B (u_start + theta (1 - theta) k w_start) + f_theta
+     * of the (sub-)step @p scheme ending at @p t, into rhs (and f_theta
+     * into load).
      */
     void
-    output_results(const unsigned int                        step,
-                   const double                              t,
-                   const bool                                contact_csv,
-                   const bool                                vtu,
-                   const std::vector<ContactNodeState<dim>> *states = nullptr);
-    /** The node states of the last good step (before a step is tried). */
-    std::vector<ContactNodeState<dim>> last_good_states;
-    void
-    print_progress(const StepRecord<dim> &record) const;
-    /** Collective: write run_status (a failure is a CollectiveError). */
-    void
-    write_status(const std::string &status);
+    assemble_rhs(const TimeScheme &scheme,
+                 const double      t,
+                 const Vector_t   &u_start,
+                 const Vector_t   &w_start);
     /**
-     * Collective: open log.txt (with the screen output so far) and write
-     * parameters.prm and parameters.json; with @p resume continue log.txt.
+     * The balances of the step just solved into @p record: the contact
+     * force sums, the force balance of the (sub-)step @p last from
+     * (@p u_start, @p w_start), the errors of a manufactured solution.
      */
     void
-    write_provenance(const bool resume);
-    /** Collective: write the screen output since the last call to log.txt;
-     *  with @p close close it (before the final run_status). */
-    void
-    write_log(const bool close = false);
-    /** Rank 0 after an error: the message into log.txt, and close it. */
-    void
-    close_log_after_error(const std::string &reason);
+    compute_balances(StepRecord<dim>  &record,
+                     const TimeScheme &last,
+                     const Vector_t   &u_start,
+                     const Vector_t   &w_start,
+                     const double      t);
   };
-
-
-  /**
-   * Read the parameters and run the simulation in the dimension they name;
-   * returns the exit code (0, or 128 + N after a stop by signal N). An
-   * error every process knows propagates as an AgreedError (main prints it
-   * and returns 1); an error of some processes only ends the job from
-   * there (abort_run). @p resume_auto: resume if Output/Directory holds a
-   * checkpoint (damaged or not: a damaged one is then named), else a new
-   * run. @p validate: only check the scene (Simulator::validate()), print
-   * that it is valid and return 0.
-   */
-  int
-  run_simulation(const std::string              &parameter_file,
-                 const std::vector<std::string> &overrides,
-                 const MPI_Comm                  comm,
-                 const bool                      resume      = false,
-                 const bool                      resume_auto = false,
-                 const bool                      validate    = false);
 } // namespace DynamicContact
 
 #endif

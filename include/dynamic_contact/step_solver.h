@@ -8,6 +8,7 @@
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/contact_law.h>
 #include <dynamic_contact/contact_newton.h>
+#include <dynamic_contact/contact_state.h>
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
 
@@ -79,6 +80,7 @@ namespace DynamicContact
     StepSolver(const Discretization<dim>  &discretization,
                const BulkOperator<dim>    &bulk,
                const ContactBoundary<dim> &contact_boundary,
+               ContactState<dim>          &contact_state,
                const Foundation           &foundation,
                const FrictionLaw          *friction_law,
                const Parameters::Solver   &solver_parameters,
@@ -88,16 +90,19 @@ namespace DynamicContact
     ~StepSolver();
 
     /**
-     * After a change of the mesh (or of Gamma_3): size the node data;
-     * @p c_t is the complementarity constant of friction.
+     * After a change of the mesh (or of Gamma_3): size the Gamma_3 solution
+     * (ContactState::reinit); @p c_t is the complementarity constant of
+     * friction.
      */
     void
     reinit(const double complementarity_constant);
 
     /**
      * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
-     * in master form. Throws StepFailure if Newton does not converge, and if
-     * the convexification loop reaches its cap unless
+     * in master form; the ContactState holds the friction forces of the
+     * last step (the warm start) and returns those of w_n, with the frozen
+     * coefficients and the node states. Throws StepFailure if Newton does not
+     * converge, and if the convexification loop reaches its cap unless
      * @p accept_unconverged_loop (the smallest time step: the step is then
      * kept, with Statistics::convexification_converged = false).
      */
@@ -107,29 +112,6 @@ namespace DynamicContact
           const Vector_t &w_old,
           Vector_t       &w,
           const bool      accept_unconverged_loop = false);
-
-    /** Node data of the last solve, aligned with contact_boundary.nodes(). */
-    const std::vector<ContactNodeState<dim>> &
-    node_states() const
-    {
-      return states;
-    }
-
-    /**
-     * The friction forces lambda_i of the owned nodes of Gamma_3 (aligned
-     * with contact_boundary.nodes(); the warm start of the next step), and
-     * their replacement after a change of the mesh or a restart.
-     */
-    const std::vector<Tensor<1, dim>> &
-    friction_forces() const
-    {
-      return lambda;
-    }
-    void
-    set_friction_forces(const std::vector<Tensor<1, dim>> &forces)
-    {
-      lambda = forces;
-    }
 
     /** The contact solver in use (Solver/Contact solver, auto resolved). */
     std::string
@@ -146,6 +128,7 @@ namespace DynamicContact
     const Discretization<dim>  &discretization;
     const BulkOperator<dim>    &bulk;
     const ContactBoundary<dim> &contact_boundary;
+    ContactState<dim>          &contact_state;
     const Foundation           &foundation;
     const FrictionLaw          *friction_law;
     const Parameters::Solver    parameters;
@@ -169,12 +152,6 @@ namespace DynamicContact
     /** The condensed solver is in use; else the sparse one with: */
     bool               condensed = true;
     Parameters::Solver problem_parameters;
-
-    /** The owned nodes of Gamma_3: frozen coefficients, friction forces. */
-    std::vector<double>         mu;
-    std::vector<Tensor<1, dim>> lambda;
-
-    std::vector<ContactNodeState<dim>> states;
 
     /** Evaluate the owned nodes' states at the converged (w, lambda). */
     void
