@@ -11,49 +11,6 @@
 
 namespace DynamicContact
 {
-  void
-  RunTotals::add(const unsigned int cutbacks,
-                 const unsigned int convexification_iterations,
-                 const double       coefficient_residual)
-  {
-    this->cutbacks += cutbacks;
-    convexification += convexification_iterations;
-    max_coefficient_residual =
-      std::max(max_coefficient_residual, coefficient_residual);
-  }
-
-
-  void
-  RunTotals::add_rows(const std::string &time_series)
-  {
-    // The end summary covers the steps before the checkpoint too (rank 0
-    // holds the rows; only rank 0 prints).
-    const auto lines = Utilities::split_string_list(time_series, '\n');
-    std::vector<std::string> header;
-    for (const auto &line : lines)
-      {
-        const auto values = Utilities::split_string_list(line, ',');
-        if (header.empty())
-          {
-            header = values;
-            continue;
-          }
-        if (values.size() != header.size() || values[0] == "0")
-          continue; // row 0 is the initial state
-        // The counts of the end summary, by column name.
-        const auto value = [&](const std::string &name) {
-          const auto c = std::find(header.begin(), header.end(), name);
-          return c == header.end() ?
-                   0. :
-                   std::strtod(values[c - header.begin()].c_str(), nullptr);
-        };
-        add(static_cast<unsigned int>(value("cutbacks")),
-            static_cast<unsigned int>(value("convexification_iterations")),
-            value("coefficient_residual"));
-      }
-  }
-
-
   std::string
   newest_good_checkpoint(const std::string        &directory,
                          const MPI_Comm            comm,

@@ -40,13 +40,14 @@ namespace DynamicContact
     , details(screen_log,
               Utilities::MPI::this_mpi_process(comm) == 0 &&
                 parameters.output.solver_details)
+    , model(this->parameters, prm, comm, timer, details)
     , timer(comm,
             pcout,
             // The table of the sections is printed by finish() (disjoint
             // sections, timing.h), not by TimerOutput.
             TimerOutput::never,
             TimerOutput::wall_times)
-    , model(this->parameters, prm, comm, timer, details)
+    , schedule(this->parameters)
   {
     state.time_step = parameters.time.time_step;
     output_directory =
@@ -152,47 +153,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  bool
-  TimeLoop<dim>::at_output_time(const double t, const double k) const
-  {
-    const double allowance = 1e-12 * std::max(std::abs(t), k);
-    for (const double t_out : parameters.output.output_times)
-      if (t_out <= t + allowance && t_out > t - k + allowance)
-        return true;
-    return false;
-  }
-
-
-  template <int dim>
-  bool
-  TimeLoop<dim>::vtu_due(const unsigned int n,
-                         const double       t,
-                         const double       k,
-                         const bool         last) const
-  {
-    // Output/Output times and the last step, and every N steps, unless
-    // switched off.
-    const unsigned int every = parameters.output.vtu_every;
-    return parameters.output.write_vtu &&
-           (last || at_output_time(t, k) || (every > 0 && n % every == 0));
-  }
-
-
-  template <int dim>
-  unsigned int
-  TimeLoop<dim>::vtu_files_left() const
-  {
-    // The schedule of the steps to come at the nominal time step.
-    const unsigned int last    = state.step + remaining_steps();
-    const double       k0      = parameters.time.time_step;
-    unsigned int       n_files = 0;
-    for (unsigned int n = state.step + 1; n <= last; ++n)
-      n_files += vtu_due(n, state.time + (n - state.step) * k0, k0, n == last);
-    return n_files;
-  }
-
-
-  template <int dim>
   void
   TimeLoop<dim>::print_progress(const StepRecord<dim> &record) const
   {
@@ -203,7 +163,8 @@ namespace DynamicContact
     // 2 processes differed by one Newton iteration in 3 of 16 progress
     // lines).
     pcout << "step " << std::setw(5) << state.step << '/'
-          << state.step + remaining_steps() << "  t = " << sig6(record.time);
+          << state.step + schedule.remaining_steps(state.time)
+          << "  t = " << sig6(record.time);
     if (record.time_step != parameters.time.time_step || record.cutbacks > 0)
       pcout << "  k = " << sig6(record.time_step) << " (" << record.cutbacks
             << " cut-backs)";
@@ -240,10 +201,11 @@ namespace DynamicContact
             const double simulated = state.time - stepping_start->second;
             if (simulated > 0)
               pcout << ", ~"
-                    << seconds(std::max(0., stepping) / simulated *
-                                 (parameters.time.end_time - state.time) +
-                               (vtu_files > 0 ? vtu_seconds / vtu_files : 0.) *
-                                 vtu_files_left())
+                    << seconds(
+                         std::max(0., stepping) / simulated *
+                           (parameters.time.end_time - state.time) +
+                         (vtu_files > 0 ? vtu_seconds / vtu_files : 0.) *
+                           schedule.vtu_files_left(state.step, state.time))
                     << " left";
           }
         pcout << ")";
@@ -417,16 +379,6 @@ namespace DynamicContact
       pcout << "  Time/Time step changed from " << old_step << " to "
             << sig6(k0) << " s: the run goes on with the new time step"
             << std::endl;
-  }
-
-
-  template <int dim>
-  unsigned int
-  TimeLoop<dim>::remaining_steps() const
-  {
-    const double k0 = parameters.time.time_step;
-    return static_cast<unsigned int>(
-      std::ceil((parameters.time.end_time - state.time) / k0 - 1e-9));
   }
 
 
@@ -618,7 +570,7 @@ namespace DynamicContact
                statistics.convexification_iterations,
                statistics.coefficient_residual);
     if (model.newton_residual() > parameters.solver.newton_tolerance)
-      ++stagnated_steps;
+      ++totals.stagnated_steps;
     state.max_relative_defect =
       std::max(state.max_relative_defect, record.relative_energy_defect());
     state.min_dissipation =
@@ -675,20 +627,13 @@ namespace DynamicContact
 
     const double t    = state.time;
     const bool   last = (t >= T - 1e-9 * k0);
-    // An output time is due at the first step reaching it; the VTU files
-    // on the same schedule with their own cadence, unless switched off.
-    const unsigned int csv_every = parameters.output.output_every;
     output_results(state.step,
                    t,
-                   last || at_output_time(t, k) ||
-                     (csv_every > 0 && state.step % csv_every == 0),
-                   vtu_due(state.step, t, k, last));
-
-    const unsigned int progress = parameters.output.progress_every;
-    if (progress > 0 && (state.step % progress == 0 || last))
+                   schedule.contact_csv_due(state.step, t, k, last),
+                   schedule.vtu_due(state.step, t, k, last));
+    if (schedule.progress_due(state.step, last))
       print_progress(record);
-    if (parameters.checkpoint.every > 0 &&
-        state.step % parameters.checkpoint.every == 0 && !last)
+    if (schedule.checkpoint_due(state.step, last))
       checkpoint();
     write_log();
     faults.after_step(state.step, Utilities::MPI::this_mpi_process(comm));
@@ -697,85 +642,12 @@ namespace DynamicContact
 
 
   template <int dim>
-  std::string
-  TimeLoop<dim>::print_summary() const
-  {
-    const bool friction = model.has_friction();
-    pcout << "Completed " << state.step << " steps (t = " << sig6(state.time)
-          << " s)";
-    if (parameters.output.print_iteration_counts) // see print_progress()
-      {
-        pcout << ", " << state.total_newton << " Newton iterations (mean "
-              << std::fixed << std::setprecision(2)
-              << static_cast<double>(state.total_newton) /
-                   std::max(state.step, 1u)
-              << std::defaultfloat << " per step)";
-        if (friction)
-          pcout << ", " << totals.convexification << " convexification passes";
-      }
-    pcout << ".\n";
-    const bool balance = state.max_relative_defect < 1e-8;
-    const bool dissipation =
-      state.min_dissipation >= -EnergyBalanceTerms::roundoff;
-    pcout << "  energy balance: max relative defect "
-          << (balance ? "below 1e-8" :
-                        "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
-          << ", every dissipation term >= 0: "
-          << (dissipation ?
-                "yes" :
-                "NO (" + sig6(state.min_dissipation) + " of the energy)")
-          << std::endl;
-    // The summary: what a user checks before trusting the results.
-    pcout << "Summary: results in " << parameters.output.directory << "/\n"
-          << "  time step cut-backs: " << totals.cutbacks
-          << "; steps kept with an unconverged convexification loop: "
-          << state.unconverged_steps
-          << "; steps whose Newton iteration ended at stagnation (residual "
-             "below the square root of Solver/Newton tolerance): "
-          << stagnated_steps << "\n"
-          << "  largest relative energy balance defect: "
-          << scientific(state.max_relative_defect, 2);
-    if (friction)
-      pcout << "; largest friction-law residual max |mu_i - mu(|w_tau,i|)|: "
-            << scientific(totals.max_coefficient_residual, 2)
-            << " (Friction/Coefficient tolerance "
-            << parameters.friction.coefficient_tolerance << ")";
-    pcout << std::endl;
-
-    // An honest ending: completed, or completed with what did not hold.
-    std::vector<std::string> warnings;
-    if (state.unconverged_steps > 0)
-      warnings.push_back(
-        std::to_string(state.unconverged_steps) + " step" +
-        (state.unconverged_steps > 1 ? "s" : "") +
-        " kept with an unconverged convexification loop (max |mu_i - "
-        "mu(|w_tau,i|)| = " +
-        sig6(state.worst_unconverged) + " > Friction/Coefficient tolerance)");
-    if (!balance)
-      warnings.push_back("energy balance defect " +
-                         sig6(state.max_relative_defect) + " > 1e-8");
-    if (!dissipation)
-      warnings.push_back("a dissipation term below zero (" +
-                         sig6(state.min_dissipation) + " of the energy)");
-    std::string status = "completed";
-    if (!warnings.empty())
-      {
-        status += " with warnings: ";
-        for (unsigned int i = 0; i < warnings.size(); ++i)
-          status += (i ? "; " : "") + warnings[i];
-        pcout << "Warning: the run " << status
-              << ". The results do not meet the tolerances there." << std::endl;
-      }
-    return status;
-  }
-
-
-  template <int dim>
   void
   TimeLoop<dim>::finish()
   {
     time_series_writer->close();
-    const std::string status = print_summary();
+    const std::string status =
+      totals.print_summary(pcout, state, parameters, model.has_friction());
     if (parameters.output.print_timings)
       {
         const double wall = std::chrono::duration<double>(

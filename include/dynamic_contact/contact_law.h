@@ -57,7 +57,7 @@ namespace DynamicContact
     /** Friction force lambda_i (a nodal force: m_i times the traction). */
     Tensor<1, dim> friction_force;
     /** The frozen friction coefficient mu_i of the last iterate. */
-    double       mu    = 0;
+    double        mu    = 0;
     FrictionState state = FrictionState::free;
     /** w_e,tau, the tangential part of w_e (w_e = w_n for backward Euler). */
     Tensor<1, dim> slip_velocity;
@@ -145,7 +145,7 @@ namespace DynamicContact
   template <int dim>
   struct FrictionResponse
   {
-    FrictionState   state     = FrictionState::free;
+    FrictionState  state     = FrictionState::free;
     double         threshold = 0; // g
     Tensor<1, dim> direction;     // t (slip)
     Tensor<1, dim> value;

@@ -15,30 +15,6 @@ namespace DynamicContact
   using namespace dealii;
 
   /**
-   * The counts of a run's end summary that come from the rows of
-   * time_series.csv (those before a resume included): cut-backs,
-   * convexification passes, and the largest coefficient residual
-   * max_i |mu_i - mu(|w_tau,i|)| of a step.
-   */
-  struct RunTotals
-  {
-    unsigned int cutbacks                 = 0;
-    unsigned int convexification          = 0;
-    double       max_coefficient_residual = 0;
-
-    /** Add the counts of one step. */
-    void
-    add(const unsigned int cutbacks,
-        const unsigned int convexification_iterations,
-        const double       coefficient_residual);
-
-    /** Add the steps of a time_series.csv (its text; row 0 left out). */
-    void
-    add_rows(const std::string &time_series);
-  };
-
-
-  /**
    * --resume: the newest checkpoint of @p directory whose files match its
    * manifest; damaged ones are named on @p pcout and passed over. Refuses
    * (CollectiveError) if there is none, or every one is damaged.

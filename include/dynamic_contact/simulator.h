@@ -301,14 +301,6 @@ namespace DynamicContact
     double
     time_error_estimate(const double k) const;
 
-    /**
-     * Before anything is allocated: the cells, DoFs and memory the scene
-     * needs for a coarse mesh of @p n_coarse_cells; refuse (collective
-     * error) a scene that cannot fit, with the estimate.
-     */
-    void
-    check_resources(const double n_coarse_cells) const;
-
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
     setup_dofs();

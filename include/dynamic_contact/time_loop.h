@@ -9,9 +9,11 @@
 #include <dynamic_contact/fault_injection.h>
 #include <dynamic_contact/output.h>
 #include <dynamic_contact/output_directory.h>
+#include <dynamic_contact/output_schedule.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/provenance.h>
 #include <dynamic_contact/resume.h>
+#include <dynamic_contact/run_totals.h>
 #include <dynamic_contact/simulator.h>
 #include <dynamic_contact/step_record.h>
 
@@ -155,9 +157,15 @@ namespace DynamicContact
     std::string        start_time;
     ConditionalOStream pcout;
     ConditionalOStream details;
-    TimerOutput        timer;
 
+    /**
+     * The discrete problem. Constructed before the timer it is given (it
+     * only keeps the reference until then): its scene parses the input,
+     * and an error there must leave no timer behind to complain about an
+     * exception in flight.
+     */
     Simulator<dim> model;
+    TimerOutput    timer;
 
     /** Created in the constructor, opened (locked, checked) by initialize. */
     std::unique_ptr<OutputDirectory> output_directory;
@@ -172,6 +180,8 @@ namespace DynamicContact
     std::unique_ptr<TimeSeriesWriter> time_series_writer;
     std::unique_ptr<VtuWriter<dim>>   vtu_writer;
     std::vector<StepRecord<dim>>      rows;
+    /** What each step writes. */
+    const OutputSchedule schedule;
 
     /**
      * The loop state a checkpoint carries: step, time, the current time
@@ -208,12 +218,6 @@ namespace DynamicContact
     unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
     /** The end summary's counts (those before a resume included). */
     RunTotals totals;
-    /**
-     * Steps of this run (since its start or resume) whose Newton iteration
-     * ended at stagnation (residual above Solver/Newton tolerance, below
-     * its square root).
-     */
-    unsigned int stagnated_steps = 0;
 
     /** The step k of the next try: the current one, shortened to end at
      *  the Output times and at T (Time/Adaptive), no sliver of a step. */
@@ -242,29 +246,10 @@ namespace DynamicContact
     void
     accept(const StepRecord<dim> &record, const double k, const double k_next);
 
-    /** Steps left at the nominal time step (for progress lines). */
-    unsigned int
-    remaining_steps() const;
     /** Whether a step of size @p k that fails may be retried with k/2
      *  (Time/Minimum time step). */
     bool
     can_cut_back(const double k) const;
-    /**
-     * Whether an Output/Output times entry falls in the step (t - k, t]
-     * (with a round-off allowance: an output time on the time grid belongs
-     * to the step ending there).
-     */
-    bool
-    at_output_time(const double t, const double k) const;
-    /** Whether step @p n, ending at @p t after a step @p k, writes VTU. */
-    bool
-    vtu_due(const unsigned int n,
-            const double       t,
-            const double       k,
-            const bool         last) const;
-    /** The VTU files the run will still write after the current step. */
-    unsigned int
-    vtu_files_left() const;
     /** Write the contact CSV and/or the VTU fields of the current step. */
     void
     output_results(const unsigned int step,
@@ -275,9 +260,6 @@ namespace DynamicContact
     print_header() const;
     void
     print_progress(const StepRecord<dim> &record) const;
-    /** The end summary on the screen; returns the run_status. */
-    std::string
-    print_summary() const;
 
     /** Write a checkpoint of the current state (Checkpoint/Every). */
     void
