@@ -185,27 +185,26 @@ namespace DynamicContact
   }
 
 
-  template <int dim>
-  void
-  ContactBoundary<dim>::reinit(
-    const Discretization<dim>             &discretization,
-    const std::vector<types::boundary_id> &contact_ids,
-    const Function<dim>                   &initial_gap)
+  namespace
   {
-    owned_nodes.clear();
-    const std::set<types::boundary_id> ids(contact_ids.begin(),
-                                           contact_ids.end());
-    const auto                        &fe          = discretization.fe;
-    const auto                        &dof_handler = discretization.dof_handler;
-
-    // Lumped weights int phi_i and normal moments int phi_i n, with the
-    // Gauss-Lobatto rule whose nodes are the support points, assembled into
-    // global vectors through the hanging-node constraints (a hanging node's
-    // share goes to its masters).
-    TrilinosWrappers::MPI::Vector weights, normal_moments;
-    discretization.reinit_owned(weights);
-    discretization.reinit_owned(normal_moments);
+    /**
+     * The lumped weights int phi_i and normal moments int phi_i n over the
+     * faces of @p ids, with the Gauss-Lobatto rule whose nodes are the
+     * support points, assembled into global vectors through the
+     * hanging-node constraints (a hanging node's share goes to its
+     * masters).
+     */
+    template <int dim>
+    void
+    lumped_moments(const Discretization<dim>          &discretization,
+                   const std::set<types::boundary_id> &ids,
+                   TrilinosWrappers::MPI::Vector      &weights,
+                   TrilinosWrappers::MPI::Vector      &normal_moments)
     {
+      const auto &fe          = discretization.fe;
+      const auto &dof_handler = discretization.dof_handler;
+      discretization.reinit_owned(weights);
+      discretization.reinit_owned(normal_moments);
       const QGaussLobatto<dim - 1>         quadrature(fe.degree + 1);
       FEFaceValues<dim>                    fe_face(discretization.mapping,
                                 fe,
@@ -243,9 +242,70 @@ namespace DynamicContact
                 discretization.hanging_node_constraints
                   .distribute_local_to_global(local_n, dofs, normal_moments);
               }
+      weights.compress(VectorOperation::add);
+      normal_moments.compress(VectorOperation::add);
     }
-    weights.compress(VectorOperation::add);
-    normal_moments.compress(VectorOperation::add);
+
+
+    /**
+     * The clamped/roller constraints restricted to @p node (its
+     * constraint_map, and whether it is unconstrained); false if every
+     * component of the node is fixed to zero (a clamped node feels no
+     * foundation).
+     */
+    template <int dim>
+    bool
+    restrict_constraints(ContactNode<dim>                &node,
+                         const AffineConstraints<double> &constraints)
+    {
+      node.constraint_map = 0;
+      node.unconstrained  = true;
+      bool all_zero       = true;
+      for (unsigned int c = 0; c < dim; ++c)
+        if (!constraints.is_constrained(node.dofs[c]))
+          {
+            node.constraint_map[c][c] = 1;
+            all_zero                  = false;
+          }
+        else
+          {
+            node.unconstrained = false;
+            for (const auto &[dof, coefficient] :
+                 *constraints.get_constraint_entries(node.dofs[c]))
+              {
+                const auto it =
+                  std::find(node.dofs.begin(), node.dofs.end(), dof);
+                AssertThrow(it != node.dofs.end(),
+                            ExcMessage(
+                              "A node of Gamma_3 is constrained to "
+                              "another node; contact boundaries must not "
+                              "share nodes with constraints of that "
+                              "kind."));
+                node.constraint_map[c][it - node.dofs.begin()] = coefficient;
+                all_zero                                       = false;
+              }
+          }
+      return !all_zero;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  ContactBoundary<dim>::reinit(
+    const Discretization<dim>             &discretization,
+    const std::vector<types::boundary_id> &contact_ids,
+    const Function<dim>                   &initial_gap)
+  {
+    owned_nodes.clear();
+    const std::set<types::boundary_id> ids(contact_ids.begin(),
+                                           contact_ids.end());
+    const auto                        &fe          = discretization.fe;
+    const auto                        &dof_handler = discretization.dof_handler;
+
+    // Lumped weights and normal moments at every DoF of Gamma_3.
+    TrilinosWrappers::MPI::Vector weights, normal_moments;
+    lumped_moments(discretization, ids, weights, normal_moments);
 
     // The nodes: support points on Gamma_3 faces of owned and ghost cells
     // (together they touch every owned DoF), whose DoFs this process owns
@@ -307,40 +367,7 @@ namespace DynamicContact
                                   "Foundation/Initial gap must be >= 0, but it "
                                   "is negative at a node of Gamma_3."));
 
-                    // The clamped/roller constraints restricted to the node.
-                    const auto &constraints = discretization.constraints;
-                    node.constraint_map     = 0;
-                    node.unconstrained      = true;
-                    bool all_zero           = true;
-                    for (unsigned int c = 0; c < dim; ++c)
-                      if (!constraints.is_constrained(node.dofs[c]))
-                        {
-                          node.constraint_map[c][c] = 1;
-                          all_zero                  = false;
-                        }
-                      else
-                        {
-                          node.unconstrained = false;
-                          for (const auto &[dof, coefficient] :
-                               *constraints.get_constraint_entries(
-                                 node.dofs[c]))
-                            {
-                              const auto it = std::find(node.dofs.begin(),
-                                                        node.dofs.end(),
-                                                        dof);
-                              AssertThrow(
-                                it != node.dofs.end(),
-                                ExcMessage(
-                                  "A node of Gamma_3 is constrained to "
-                                  "another node; contact boundaries must not "
-                                  "share nodes with constraints of that "
-                                  "kind."));
-                              node.constraint_map[c][it - node.dofs.begin()] =
-                                coefficient;
-                              all_zero = false;
-                            }
-                        }
-                    if (!all_zero) // a clamped node feels no foundation
+                    if (restrict_constraints(node, discretization.constraints))
                       owned_nodes.push_back(node);
                   }
               }

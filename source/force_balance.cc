@@ -9,6 +9,19 @@
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /** Constrained by a clamped or roller condition (not a hanging node). */
+    template <int dim>
+    bool
+    supported(const Discretization<dim> &d, const types::global_dof_index dof)
+    {
+      return d.constraints.is_constrained(dof) &&
+             !d.hanging_node_constraints.is_constrained(dof);
+    }
+  } // namespace
+
+
   template <int dim>
   ForceBalanceEvaluator<dim>::ForceBalanceEvaluator(
     const Discretization<dim>      &discretization,
@@ -65,31 +78,17 @@ namespace DynamicContact
 
 
   template <int dim>
-  ForceBalance<dim>
-  ForceBalanceEvaluator<dim>::compute(
-    const ContactBoundary<dim>               &boundary,
-    const std::vector<ContactNodeState<dim>> &states,
-    const double                              t,
-    const TimeScheme                         &scheme,
-    const Vector_t                           &u,
-    const Vector_t                           &w_theta,
-    const Vector_t                           &w,
-    const Vector_t                           &w_old) const
+  void
+  ForceBalanceEvaluator<dim>::body_forces(const double       t,
+                                          const TimeScheme  &scheme,
+                                          const Vector_t    &u,
+                                          const Vector_t    &w_theta,
+                                          const Vector_t    &w,
+                                          const Vector_t    &w_old,
+                                          ForceBalance<dim> &b) const
   {
-    const auto       &d = discretization;
-    const double      k = scheme.time_step();
-    ForceBalance<dim> b;
-    // Inertia: rho/k sum_i (int phi_i) (w - w_old)_i, per component.
-    {
-      unsigned int index = 0;
-      for (const auto dof : d.locally_owned)
-        {
-          b.inertia[component[index]] +=
-            volume_weights[dof] * (w[dof] - w_old[dof]);
-          ++index;
-        }
-      b.inertia *= material.density() / k;
-    }
+    const auto  &d = discretization;
+    const double k = scheme.time_step();
     // The load of the scheme's equation at a point: theta f(t) + (1 - theta)
     // f(t - k) (Scene::step_load), f(t - k) computed into value_old.
     Vector<double>                   value_old(dim);
@@ -116,19 +115,13 @@ namespace DynamicContact
     Vector<double>                       value(dim), residual(n);
     const bool                           body_force = scene.has_body_force();
 
-    // Constrained by a clamped or roller condition (not a hanging node).
-    auto supported = [&](const types::global_dof_index dof) {
-      return d.constraints.is_constrained(dof) &&
-             !d.hanging_node_constraints.is_constrained(dof);
-    };
-
     for (const auto &cell : d.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(dofs);
           bool has_support = false;
           for (const auto dof : dofs)
-            has_support = has_support || supported(dof);
+            has_support = has_support || supported(d, dof);
           if (!has_support && !scene.carries_load(cell))
             continue;
 
@@ -200,10 +193,40 @@ namespace DynamicContact
           // force (the boundary term of the weak form): it is the residual.
           if (has_support)
             for (unsigned int i = 0; i < n; ++i)
-              if (supported(dofs[i]))
+              if (supported(d, dofs[i]))
                 b.reaction[fe.system_to_component_index(i).first] +=
                   residual(i);
         }
+  }
+
+
+  template <int dim>
+  ForceBalance<dim>
+  ForceBalanceEvaluator<dim>::compute(
+    const ContactBoundary<dim>               &boundary,
+    const std::vector<ContactNodeState<dim>> &states,
+    const double                              t,
+    const TimeScheme                         &scheme,
+    const Vector_t                           &u,
+    const Vector_t                           &w_theta,
+    const Vector_t                           &w,
+    const Vector_t                           &w_old) const
+  {
+    const auto       &d = discretization;
+    const double      k = scheme.time_step();
+    ForceBalance<dim> b;
+    // Inertia: rho/k sum_i (int phi_i) (w - w_old)_i, per component.
+    {
+      unsigned int index = 0;
+      for (const auto dof : d.locally_owned)
+        {
+          b.inertia[component[index]] +=
+            volume_weights[dof] * (w[dof] - w_old[dof]);
+          ++index;
+        }
+      b.inertia *= material.density() / k;
+    }
+    body_forces(t, scheme, u, w_theta, w, w_old, b);
 
     // The foundation's force, and its part at supported components.
     const auto &nodes = boundary.nodes();
@@ -214,7 +237,7 @@ namespace DynamicContact
           states[i].friction_force;
         b.contact -= f;
         for (unsigned int c = 0; c < dim; ++c)
-          if (supported(nodes[i].dofs[c]))
+          if (supported(d, nodes[i].dofs[c]))
             b.reaction[c] += f[c];
       }
 

@@ -117,35 +117,133 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /** The lines of a Gmsh file, numbered, with the errors that name them. */
+    class GmshLines
+    {
+    public:
+      GmshLines(std::ifstream &in, const std::string &file)
+        : in(in)
+        , file(file)
+      {}
+
+      std::string        line;
+      unsigned long long line_number = 0;
+
+      /** The next line of @p section (a file that ends there is refused). */
+      std::string &
+      next(const std::string &section)
+      {
+        if (!std::getline(in, line))
+          fail(where(file) + " ends inside its " + section + " section (line " +
+               std::to_string(line_number) + "): the file is incomplete.");
+        ++line_number;
+        if (!line.empty() && line.back() == '\r')
+          line.pop_back();
+        return line;
+      }
+
+      [[noreturn]] void
+      malformed(const std::string &section) const
+      {
+        fail(where(file) + ", line " + std::to_string(line_number) +
+             ": cannot read this line of the " + section +
+             " section; the file is not a Gmsh mesh file in the MSH 2 or 4 "
+             "ASCII format.");
+      }
+
+      /** $PhysicalNames: dimension, tag and name of each group. */
+      void
+      read_physical_names(GmshFileInfo &info)
+      {
+        const std::string  section = "PhysicalNames";
+        std::istringstream s(next(section));
+        unsigned long      n = 0;
+        if (!(s >> n))
+          malformed(section);
+        for (unsigned long i = 0; i < n; ++i)
+          {
+            std::istringstream         entry(next(section));
+            GmshFileInfo::PhysicalName name;
+            if (!(entry >> name.dimension >> name.tag))
+              malformed(section);
+            std::string rest;
+            std::getline(entry, rest);
+            const auto open  = rest.find('"');
+            const auto close = rest.rfind('"');
+            if (open == std::string::npos || close == open)
+              malformed(section);
+            name.name = rest.substr(open + 1, close - open - 1);
+            info.physical_names.push_back(name);
+          }
+      }
+
+      /** $Elements: how many elements of each type (MSH 2 or 4). */
+      void
+      read_elements(GmshFileInfo &info)
+      {
+        const std::string  section = "Elements";
+        const int          major   = std::atoi(info.version.c_str());
+        std::istringstream s(next(section));
+        if (major == 2)
+          {
+            unsigned long long n = 0;
+            if (!(s >> n))
+              malformed(section);
+            for (unsigned long long i = 0; i < n; ++i)
+              {
+                std::istringstream e(next(section));
+                unsigned long long id   = 0;
+                int                type = 0;
+                if (!(e >> id >> type))
+                  malformed(section);
+                ++info.element_types[type];
+              }
+          }
+        else
+          {
+            unsigned long long blocks = 0, n = 0;
+            if (!(s >> blocks >> n))
+              malformed(section);
+            for (unsigned long long b = 0; b < blocks; ++b)
+              {
+                std::istringstream e(next(section));
+                // 4.1: entityDim entityTag elementType count;
+                // 4.0: entityTag entityDim elementType count.
+                long long          a = 0, c = 0;
+                int                type  = 0;
+                unsigned long long count = 0;
+                if (!(e >> a >> c >> type >> count))
+                  malformed(section);
+                info.element_types[type] += count;
+                for (unsigned long long i = 0; i < count; ++i)
+                  next(section);
+              }
+          }
+      }
+
+    private:
+      std::ifstream     &in;
+      const std::string &file;
+    };
+  } // namespace
+
+
   GmshFileInfo
   scan_gmsh_file(const std::string &file)
   {
     std::ifstream in(file, std::ios::binary);
     if (!in)
       fail(where(file) + ": cannot open the file.");
-    GmshFileInfo       info;
-    std::string        line;
-    unsigned long long line_number = 0;
-    auto               next = [&](const std::string &section) -> std::string               &{
-      if (!std::getline(in, line))
-        fail(where(file) + " ends inside its " + section + " section (line " +
-             std::to_string(line_number) + "): the file is incomplete.");
-      ++line_number;
-      if (!line.empty() && line.back() == '\r')
-        line.pop_back();
-      return line;
-    };
-    auto malformed = [&](const std::string &section) {
-      fail(where(file) + ", line " + std::to_string(line_number) +
-           ": cannot read this line of the " + section +
-           " section; the file is not a Gmsh mesh file in the MSH 2 or 4 "
-           "ASCII format.");
-    };
+    GmshFileInfo info;
+    GmshLines    lines(in, file);
+    std::string &line = lines.line;
 
     bool first = true;
     while (std::getline(in, line))
       {
-        ++line_number;
+        ++lines.line_number;
         if (!line.empty() && line.back() == '\r')
           line.pop_back();
         line = Utilities::trim(line);
@@ -167,11 +265,11 @@ namespace DynamicContact
         const std::string end     = "$End" + section;
         if (section == "MeshFormat")
           {
-            std::istringstream s(next(section));
+            std::istringstream s(lines.next(section));
             int                file_type = 0;
             s >> info.version >> file_type;
             if (!s)
-              malformed(section);
+              lines.malformed(section);
             info.binary = (file_type == 1);
             if (info.binary)
               return info; // the rest is not text
@@ -181,70 +279,12 @@ namespace DynamicContact
                    " format; save it in the format 2.2 or 4.1.");
           }
         else if (section == "PhysicalNames")
-          {
-            std::istringstream s(next(section));
-            unsigned long      n = 0;
-            if (!(s >> n))
-              malformed(section);
-            for (unsigned long i = 0; i < n; ++i)
-              {
-                std::istringstream         entry(next(section));
-                GmshFileInfo::PhysicalName name;
-                if (!(entry >> name.dimension >> name.tag))
-                  malformed(section);
-                std::string rest;
-                std::getline(entry, rest);
-                const auto open  = rest.find('"');
-                const auto close = rest.rfind('"');
-                if (open == std::string::npos || close == open)
-                  malformed(section);
-                name.name = rest.substr(open + 1, close - open - 1);
-                info.physical_names.push_back(name);
-              }
-          }
+          lines.read_physical_names(info);
         else if (section == "Elements")
-          {
-            const int          major = std::atoi(info.version.c_str());
-            std::istringstream s(next(section));
-            if (major == 2)
-              {
-                unsigned long long n = 0;
-                if (!(s >> n))
-                  malformed(section);
-                for (unsigned long long i = 0; i < n; ++i)
-                  {
-                    std::istringstream e(next(section));
-                    unsigned long long id   = 0;
-                    int                type = 0;
-                    if (!(e >> id >> type))
-                      malformed(section);
-                    ++info.element_types[type];
-                  }
-              }
-            else
-              {
-                unsigned long long blocks = 0, n = 0;
-                if (!(s >> blocks >> n))
-                  malformed(section);
-                for (unsigned long long b = 0; b < blocks; ++b)
-                  {
-                    std::istringstream e(next(section));
-                    // 4.1: entityDim entityTag elementType count;
-                    // 4.0: entityTag entityDim elementType count.
-                    long long          a = 0, c = 0;
-                    int                type  = 0;
-                    unsigned long long count = 0;
-                    if (!(e >> a >> c >> type >> count))
-                      malformed(section);
-                    info.element_types[type] += count;
-                    for (unsigned long long i = 0; i < count; ++i)
-                      next(section);
-                  }
-              }
-          }
+          lines.read_elements(info);
         // Skip the rest of the section (or all of one not read here).
         while (Utilities::trim(line) != end)
-          next(section);
+          lines.next(section);
       }
     if (first)
       fail(where(file) + " is empty.");

@@ -577,6 +577,112 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /** The nodal fields of the surface Gamma_3 (contact_surface files). */
+    template <int dim>
+    void
+    add_surface_fields(
+      ContactFaces<dim>                                         &faces,
+      const Discretization<dim>                                 &d,
+      const Vector_t                                            &u_ghosted,
+      const std::array<Vector_t, n_vectorial>                   &vectorial,
+      const std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar)
+    {
+      const auto vector_field = [](const unsigned int n) {
+        return std::vector<
+          DataComponentInterpretation::DataComponentInterpretation>(
+          n, DataComponentInterpretation::component_is_part_of_vector);
+      };
+      const auto names = [](const unsigned int n, const std::string &name) {
+        return std::vector<std::string>(n, name);
+      };
+      faces.add_data_vector(d.dof_handler,
+                            u_ghosted,
+                            names(dim, "displacement"),
+                            vector_field(dim));
+      faces.add_data_vector(d.scalar_dof_handler,
+                            scalar[s_pressure],
+                            "normal_pressure");
+      faces.add_data_vector(d.scalar_dof_handler,
+                            scalar[s_penetration],
+                            "penetration");
+      faces.add_data_vector(d.dof_handler,
+                            vectorial[v_friction],
+                            names(dim, "friction_traction"),
+                            vector_field(dim));
+      faces.add_data_vector(d.dof_handler,
+                            vectorial[v_slip],
+                            names(dim, "slip_velocity"),
+                            vector_field(dim));
+      faces.add_data_vector(d.scalar_dof_handler,
+                            scalar[s_mu],
+                            "friction_coefficient");
+      faces.add_data_vector(d.scalar_dof_handler,
+                            scalar[s_state],
+                            "contact_state");
+    }
+
+
+    /**
+     * Collective: the pieces of each process and the records of rank 0 (the
+     * names of DataOut::write_vtu_with_pvtu_record) of the volume and the
+     * surface output of @p step, each write checked; returns the name of
+     * the volume's record.
+     */
+    template <int dim>
+    std::string
+    write_pieces(OutputDirectory             &directory,
+                 const MPI_Comm               comm,
+                 const unsigned int           step,
+                 const FieldsOut<dim>        &data_out,
+                 const ContactFaces<dim>     &faces,
+                 const DataOutBase::VtkFlags &flags)
+    {
+      const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+      const unsigned int n    = Utilities::MPI::n_mpi_processes(comm);
+      const auto         solution_names =
+        VtuWriter<dim>::file_names("solution", step, n);
+      const auto surface_names =
+        VtuWriter<dim>::file_names("contact_surface", step, n);
+      collectively(comm, [&]() {
+        directory.claim(solution_names);
+        directory.claim(surface_names);
+      });
+      collectively(comm, [&]() {
+        // TIME is written as text (in the precision of the stream): enough
+        // digits that it reads back as the float it is declared to be.
+        const auto piece = [&](const auto &out) {
+          if (out.get_patches().empty())
+            return empty_piece(out, flags);
+          std::ostringstream s;
+          s << std::setprecision(9);
+          out.write_vtu(s);
+          return s.str();
+        };
+        write_file(directory.file(solution_names[1 + rank]), piece(data_out));
+        write_file(directory.file(surface_names[1 + rank]), piece(faces));
+        if (rank == 0)
+          {
+            std::ostringstream record;
+            data_out.write_pvtu_record(
+              record,
+              std::vector<std::string>(solution_names.begin() + 1,
+                                       solution_names.end()));
+            write_file(directory.file(solution_names[0]), record.str());
+            std::ostringstream surface_record;
+            faces.write_pvtu_record(
+              surface_record,
+              std::vector<std::string>(surface_names.begin() + 1,
+                                       surface_names.end()));
+            write_file(directory.file(surface_names[0]), surface_record.str());
+          }
+      });
+      return solution_names[0];
+    }
+  } // namespace
+
+
   template <int dim>
   void
   VtuWriter<dim>::write(const unsigned int                        step,
@@ -684,72 +790,12 @@ namespace DynamicContact
     ContactFaces<dim> faces(contact_ids);
     faces.set_flags(flags);
     faces.attach_triangulation(d.triangulation);
-    faces.add_data_vector(d.dof_handler,
-                          u_ghosted,
-                          names(dim, "displacement"),
-                          vector_field(dim));
-    faces.add_data_vector(d.scalar_dof_handler,
-                          scalar[s_pressure],
-                          "normal_pressure");
-    faces.add_data_vector(d.scalar_dof_handler,
-                          scalar[s_penetration],
-                          "penetration");
-    faces.add_data_vector(d.dof_handler,
-                          vectorial[v_friction],
-                          names(dim, "friction_traction"),
-                          vector_field(dim));
-    faces.add_data_vector(d.dof_handler,
-                          vectorial[v_slip],
-                          names(dim, "slip_velocity"),
-                          vector_field(dim));
-    faces.add_data_vector(d.scalar_dof_handler,
-                          scalar[s_mu],
-                          "friction_coefficient");
-    faces.add_data_vector(d.scalar_dof_handler,
-                          scalar[s_state],
-                          "contact_state");
+    add_surface_fields(faces, d, u_ghosted, vectorial, scalar);
     faces.build_patches(d.mapping, n_subdivisions);
 
-    // The pieces of each process and the records of rank 0 (the names of
-    // DataOut::write_vtu_with_pvtu_record), each write checked.
-    const unsigned int rank           = Utilities::MPI::this_mpi_process(comm);
-    const unsigned int n              = Utilities::MPI::n_mpi_processes(comm);
-    const auto         solution_names = file_names("solution", step, n);
-    const auto         surface_names  = file_names("contact_surface", step, n);
-    collectively(comm, [&]() {
-      directory.claim(solution_names);
-      directory.claim(surface_names);
-    });
-    collectively(comm, [&]() {
-      // TIME is written as text (in the precision of the stream): enough
-      // digits that it reads back as the float it is declared to be.
-      const auto piece = [&](const auto &out) {
-        if (out.get_patches().empty())
-          return empty_piece(out, flags);
-        std::ostringstream s;
-        s << std::setprecision(9);
-        out.write_vtu(s);
-        return s.str();
-      };
-      write_file(directory.file(solution_names[1 + rank]), piece(data_out));
-      write_file(directory.file(surface_names[1 + rank]), piece(faces));
-      if (rank == 0)
-        {
-          std::ostringstream record;
-          data_out.write_pvtu_record(
-            record,
-            std::vector<std::string>(solution_names.begin() + 1,
-                                     solution_names.end()));
-          write_file(directory.file(solution_names[0]), record.str());
-          std::ostringstream surface_record;
-          faces.write_pvtu_record(
-            surface_record,
-            std::vector<std::string>(surface_names.begin() + 1,
-                                     surface_names.end()));
-          write_file(directory.file(surface_names[0]), surface_record.str());
-        }
-    });
-    records.emplace_back(time, solution_names[0]);
+    const std::string record =
+      write_pieces(directory, comm, step, data_out, faces, flags);
+    records.emplace_back(time, record);
     write_index();
   }
 

@@ -506,6 +506,126 @@ namespace DynamicContact
   }
 
 
+  bool
+  OutputDirectory::read_manifest()
+  {
+    // What the program wrote here before.
+    const std::string manifest_path = file(manifest_name);
+    const bool        marked        = fs::exists(manifest_path);
+    names.clear();
+    if (marked)
+      {
+        std::ifstream in(manifest_path);
+        std::string   line;
+        if (!std::getline(in, line) || line != manifest_header)
+          throw std::runtime_error(
+            "Output/Directory '" + directory + "' holds a file " +
+            manifest_name +
+            " that is not the manifest of dynamic-contact: refusing "
+            "the directory (choose another Output/Directory).");
+        while (std::getline(in, line))
+          if (!line.empty())
+            names.insert(line);
+      }
+    return marked;
+  }
+
+
+  void
+  OutputDirectory::refuse_foreign_results(const bool marked) const
+  {
+    // Results not written here by the program are never touched.
+    std::vector<std::string> foreign;
+    for (const auto &entry : fs::directory_iterator(directory))
+      {
+        const std::string name = entry.path().filename().string();
+        // NAME.tmp: a replacement of NAME cut short (replace_file).
+        const bool ours =
+          names.count(name) == 1 ||
+          (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 &&
+           names.count(name.substr(0, name.size() - 4)) == 1);
+        if (is_result_name(name) && !ours)
+          foreign.push_back(name);
+      }
+    std::sort(foreign.begin(), foreign.end());
+    if (!foreign.empty())
+      throw std::runtime_error(
+        "Output/Directory '" + directory + "' holds " +
+        (foreign.size() == 1 ? "a file" : "files") +
+        " with the names of results that " +
+        (marked ? "its runs of dynamic-contact did not write" :
+                  "dynamic-contact did not write there (the directory "
+                  "has no manifest " +
+                    std::string(manifest_name) +
+                    ": they were written by another program, or by a "
+                    "version of dynamic-contact from before output "
+                    "directories were marked)") +
+        ": " + list_of(foreign, 5) +
+        ". They are not overwritten: move them away, or choose "
+        "another Output/Directory.");
+  }
+
+
+  void
+  OutputDirectory::take_lock()
+  {
+    // One run at a time.
+    lock_fd =
+      ::open(file(lock_name).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd < 0)
+      throw std::runtime_error(
+        cannot_write(file(lock_name), std::strerror(errno)));
+    if (::flock(lock_fd, LOCK_EX | LOCK_NB) != 0)
+      {
+        const int   lock_error = errno;
+        std::string holder;
+        {
+          std::ifstream in(file(lock_name));
+          std::getline(in, holder);
+        }
+        ::close(lock_fd);
+        lock_fd = -1;
+        if (lock_error == EWOULDBLOCK)
+          throw std::runtime_error(
+            "Output/Directory '" + directory +
+            "' is in use by another run of dynamic-contact" +
+            (holder.empty() ? "" : " (" + holder + ")") +
+            ": two runs must not write into one directory; wait for "
+            "it to end, or choose another Output/Directory.");
+        throw std::runtime_error("cannot lock " + file(lock_name) + ": " +
+                                 std::strerror(lock_error));
+      }
+    {
+      const std::string holder = "process " + std::to_string(::getpid()) +
+                                 " on host " + host_name() + "\n";
+      if (::ftruncate(lock_fd, 0) != 0 ||
+          ::pwrite(lock_fd, holder.data(), holder.size(), 0) !=
+            static_cast<ssize_t>(holder.size()))
+        throw std::runtime_error(
+          cannot_write(file(lock_name), std::strerror(errno)));
+    }
+  }
+
+
+  void
+  OutputDirectory::remove_earlier_results()
+  {
+    std::error_code ec;
+    // A new run: the results of the earlier one go (exactly those).
+    for (const auto &name : names)
+      {
+        fs::remove_all(file(name + ".tmp"), ec);
+        fs::remove_all(file(name), ec);
+        if (ec)
+          throw std::runtime_error("cannot remove " + file(name) +
+                                   " (a result of an earlier "
+                                   "run): " +
+                                   ec.message());
+      }
+    names.clear();
+  }
+
+
   void
   OutputDirectory::open(const bool resume)
   {
@@ -532,107 +652,11 @@ namespace DynamicContact
                   ".");
             }
 
-          // What the program wrote here before.
-          const std::string manifest_path = file(manifest_name);
-          const bool        marked        = fs::exists(manifest_path);
-          names.clear();
-          if (marked)
-            {
-              std::ifstream in(manifest_path);
-              std::string   line;
-              if (!std::getline(in, line) || line != manifest_header)
-                throw std::runtime_error(
-                  "Output/Directory '" + directory + "' holds a file " +
-                  manifest_name +
-                  " that is not the manifest of dynamic-contact: refusing "
-                  "the directory (choose another Output/Directory).");
-              while (std::getline(in, line))
-                if (!line.empty())
-                  names.insert(line);
-            }
-
-          // Results not written here by the program are never touched.
-          std::vector<std::string> foreign;
-          for (const auto &entry : fs::directory_iterator(directory))
-            {
-              const std::string name = entry.path().filename().string();
-              // NAME.tmp: a replacement of NAME cut short (replace_file).
-              const bool ours =
-                names.count(name) == 1 ||
-                (name.size() > 4 &&
-                 name.compare(name.size() - 4, 4, ".tmp") == 0 &&
-                 names.count(name.substr(0, name.size() - 4)) == 1);
-              if (is_result_name(name) && !ours)
-                foreign.push_back(name);
-            }
-          std::sort(foreign.begin(), foreign.end());
-          if (!foreign.empty())
-            throw std::runtime_error(
-              "Output/Directory '" + directory + "' holds " +
-              (foreign.size() == 1 ? "a file" : "files") +
-              " with the names of results that " +
-              (marked ? "its runs of dynamic-contact did not write" :
-                        "dynamic-contact did not write there (the directory "
-                        "has no manifest " +
-                          std::string(manifest_name) +
-                          ": they were written by another program, or by a "
-                          "version of dynamic-contact from before output "
-                          "directories were marked)") +
-              ": " + list_of(foreign, 5) +
-              ". They are not overwritten: move them away, or choose "
-              "another Output/Directory.");
-
-          // One run at a time.
-          lock_fd =
-            ::open(file(lock_name).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-          if (lock_fd < 0)
-            throw std::runtime_error(
-              cannot_write(file(lock_name), std::strerror(errno)));
-          if (::flock(lock_fd, LOCK_EX | LOCK_NB) != 0)
-            {
-              const int   lock_error = errno;
-              std::string holder;
-              {
-                std::ifstream in(file(lock_name));
-                std::getline(in, holder);
-              }
-              ::close(lock_fd);
-              lock_fd = -1;
-              if (lock_error == EWOULDBLOCK)
-                throw std::runtime_error(
-                  "Output/Directory '" + directory +
-                  "' is in use by another run of dynamic-contact" +
-                  (holder.empty() ? "" : " (" + holder + ")") +
-                  ": two runs must not write into one directory; wait for "
-                  "it to end, or choose another Output/Directory.");
-              throw std::runtime_error("cannot lock " + file(lock_name) + ": " +
-                                       std::strerror(lock_error));
-            }
-          {
-            const std::string holder = "process " + std::to_string(::getpid()) +
-                                       " on host " + host_name() + "\n";
-            if (::ftruncate(lock_fd, 0) != 0 ||
-                ::pwrite(lock_fd, holder.data(), holder.size(), 0) !=
-                  static_cast<ssize_t>(holder.size()))
-              throw std::runtime_error(
-                cannot_write(file(lock_name), std::strerror(errno)));
-          }
-
-          // A new run: the results of the earlier one go (exactly those).
+          const bool marked = read_manifest();
+          refuse_foreign_results(marked);
+          take_lock();
           if (!resume)
-            {
-              for (const auto &name : names)
-                {
-                  fs::remove_all(file(name + ".tmp"), ec);
-                  fs::remove_all(file(name), ec);
-                  if (ec)
-                    throw std::runtime_error("cannot remove " + file(name) +
-                                             " (a result of an earlier "
-                                             "run): " +
-                                             ec.message());
-                }
-              names.clear();
-            }
+            remove_earlier_results();
           if (resume && marked)
             manifest.open(file(manifest_name), true); // as it is
           else

@@ -68,6 +68,20 @@ namespace DynamicContact
             const Vector_t                           &w_old) const;
 
   private:
+    /**
+     * Into @p b: the applied forces (body force and surface loads of the
+     * scheme's equation at t) and the reactions of the supports from the
+     * cells (the weak form's residual at supported DoFs).
+     */
+    void
+    body_forces(const double       t,
+                const TimeScheme  &scheme,
+                const Vector_t    &u,
+                const Vector_t    &w_theta,
+                const Vector_t    &w,
+                const Vector_t    &w_old,
+                ForceBalance<dim> &b) const;
+
     const Discretization<dim>      &discretization;
     const KelvinVoigtMaterial<dim> &material;
     const Scene<dim>               &scene;

@@ -241,6 +241,22 @@ namespace DynamicContact
 
     void
     rewrite_manifest();
+    /** Rank 0, open(): the names the manifest lists; whether there is one. */
+    bool
+    read_manifest();
+    /**
+     * Rank 0, open(): refuse a directory holding files with the names of
+     * results that are not in the manifest (not written here by the
+     * program).
+     */
+    void
+    refuse_foreign_results(const bool marked) const;
+    /** Rank 0, open(): one run at a time (flock), or refuse. */
+    void
+    take_lock();
+    /** Rank 0, open() for a new run: remove what the manifest lists. */
+    void
+    remove_earlier_results();
   };
 } // namespace DynamicContact
 
