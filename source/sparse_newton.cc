@@ -203,6 +203,93 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * The projection of the whole-system Newton step onto the complement of
+     * the stick nodes' tangential components (their increments are
+     * prescribed): the projected operator and preconditioner act as the
+     * identity scaled by K0's diagonal there. It acts on the owned entries
+     * directly (the stick nodes' DoFs are owned).
+     */
+    template <int dim>
+    class StickProjection
+    {
+    public:
+      StickProjection(const std::vector<ContactNode<dim>> &nodes,
+                      const std::vector<unsigned int>     &stick_nodes,
+                      const std::vector<double>           &diagonal,
+                      const IndexSet                      &locally_owned)
+      {
+        for (const unsigned int i : stick_nodes)
+          {
+            StickNode n;
+            for (unsigned int c = 0; c < dim; ++c)
+              n.local[c] = locally_owned.index_within_set(nodes[i].dofs[c]);
+            n.normal   = nodes[i].normal;
+            n.diagonal = diagonal[i];
+            sticks.push_back(n);
+          }
+      }
+
+      /** @p projected = @p v without the stick nodes' tangential parts. */
+      void
+      project(const Vector_t &v, Vector_t &projected) const
+      {
+        projected        = v;
+        double       *p  = projected.trilinos_vector()[0];
+        const double *vv = v.trilinos_vector()[0];
+        for (const auto &n : sticks)
+          {
+            const Tensor<1, dim> t = nodal(vv, n);
+            set_nodal(p, n, (t * n.normal) * n.normal);
+          }
+      }
+
+      /** y = projection of y, plus diagonal^power times v's tangential part. */
+      void
+      add_tangential(const Vector_t &v, const double power, Vector_t &y) const
+      {
+        double       *yy = y.trilinos_vector()[0];
+        const double *vv = v.trilinos_vector()[0];
+        for (const auto &n : sticks)
+          {
+            const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
+            set_nodal(yy,
+                      n,
+                      (yi * n.normal) * n.normal +
+                        std::pow(n.diagonal, power) *
+                          (vi - (vi * n.normal) * n.normal));
+          }
+      }
+
+    private:
+      struct StickNode
+      {
+        std::array<unsigned int, dim> local; // indices into the owned entries
+        Tensor<1, dim>                normal;
+        double                        diagonal;
+      };
+      std::vector<StickNode> sticks;
+
+      static Tensor<1, dim>
+      nodal(const double *v, const StickNode &n)
+      {
+        Tensor<1, dim> t;
+        for (unsigned int c = 0; c < dim; ++c)
+          t[c] = v[n.local[c]];
+        return t;
+      }
+      static void
+      set_nodal(double *v, const StickNode &n, const Tensor<1, dim> &t)
+      {
+        for (unsigned int c = 0; c < dim; ++c)
+          v[n.local[c]] = t[c];
+      }
+    };
+  } // namespace
+
+
   template <int dim>
   void
   SparseNewton<dim>::solve_iterative(const NodalSystem        &system,
@@ -251,65 +338,13 @@ namespace DynamicContact
                      f);
     f.compress(VectorOperation::insert);
 
-    // The projected operator and preconditioner: on a stick node's
-    // tangential components, the identity scaled by K0's diagonal. They act
-    // on the owned entries directly (the stick nodes' DoFs are owned).
-    struct StickNode
-    {
-      std::array<unsigned int, dim> local; // indices into the owned entries
-      Tensor<1, dim>                normal;
-      double                        diagonal;
-    };
-    std::vector<StickNode> sticks;
-    for (const unsigned int i : stick_nodes)
-      {
-        StickNode n;
-        for (unsigned int c = 0; c < dim; ++c)
-          n.local[c] = problem.discretization.locally_owned.index_within_set(
-            nodes[i].dofs[c]);
-        n.normal   = nodes[i].normal;
-        n.diagonal = system.diagonal[i];
-        sticks.push_back(n);
-      }
-    auto nodal = [](const double *v, const StickNode &n) {
-      Tensor<1, dim> t;
-      for (unsigned int c = 0; c < dim; ++c)
-        t[c] = v[n.local[c]];
-      return t;
-    };
-    auto set_nodal =
-      [](double *v, const StickNode &n, const Tensor<1, dim> &t) {
-        for (unsigned int c = 0; c < dim; ++c)
-          v[n.local[c]] = t[c];
-      };
-    Vector_t projected;
+    // The projected operator and preconditioner.
+    const StickProjection<dim> sticks(nodes,
+                                      stick_nodes,
+                                      system.diagonal,
+                                      problem.discretization.locally_owned);
+    Vector_t                   projected;
     problem.discretization.reinit_owned(projected);
-    // projected = v without the stick nodes' tangential components.
-    auto project = [&](const Vector_t &v) {
-      projected        = v;
-      double       *p  = projected.trilinos_vector()[0];
-      const double *vv = v.trilinos_vector()[0];
-      for (const auto &n : sticks)
-        {
-          const Tensor<1, dim> t = nodal(vv, n);
-          set_nodal(p, n, (t * n.normal) * n.normal);
-        }
-    };
-    // y = projection of y, plus diagonal^power times v's tangential part.
-    auto add_tangential =
-      [&](const Vector_t &v, const double power, Vector_t &y) {
-        double       *yy = y.trilinos_vector()[0];
-        const double *vv = v.trilinos_vector()[0];
-        for (const auto &n : sticks)
-          {
-            const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
-            set_nodal(yy,
-                      n,
-                      (yi * n.normal) * n.normal +
-                        std::pow(n.diagonal, power) *
-                          (vi - (vi * n.normal) * n.normal));
-          }
-      };
     struct Operator
     {
       std::function<void(Vector_t &, const Vector_t &)> apply;
@@ -320,14 +355,14 @@ namespace DynamicContact
       }
     };
     const Operator A{[&](Vector_t &y, const Vector_t &v) {
-      project(v);
+      sticks.project(v, projected);
       apply_jacobian(system, projected, y);
-      add_tangential(v, 1., y);
+      sticks.add_tangential(v, 1., y);
     }};
     const Operator preconditioner{[&](Vector_t &y, const Vector_t &v) {
-      project(v);
+      sticks.project(v, projected);
       amg->vmult(y, projected);
-      add_tangential(v, -1., y);
+      sticks.add_tangential(v, -1., y);
     }};
 
     // Inexact Newton: the Krylov tolerance follows the Newton residual r:

@@ -311,6 +311,217 @@ namespace DynamicContact
   } // namespace
 
 
+  namespace
+  {
+    /**
+     * What the convexification loop measures of an iterate w of a step
+     * (doc/theory.md section 4), at the owned nodes of Gamma_3: the slip
+     * rate of the effective velocity w_e = theta w + (1 - theta) w_old and
+     * the normal pressure S = p + q, the friction density xi_i = lambda_i /
+     * (m_i S_i) (the selection of the subdifferential in eq. (52)), and the
+     * stopping rule (85) with the node-wise law.
+     */
+    template <int dim>
+    class LoopMeasures
+    {
+    public:
+      struct NodalIterate
+      {
+        std::vector<double> slip_rate, pressure;
+      };
+      /** The measures of a pass against the last one. */
+      struct Measures
+      {
+        bool                        converged;
+        double                      coefficient_residual;
+        NodalIterate                iterate;
+        std::vector<Tensor<1, dim>> xi;
+        std::vector<double>         mu_new;
+      };
+
+      LoopMeasures(const Discretization<dim>         &discretization,
+                   const ContactBoundary<dim>        &boundary,
+                   const Foundation                  &foundation,
+                   const FrictionLaw                 *friction_law,
+                   const BulkOperator<dim>           &bulk,
+                   const std::vector<Tensor<1, dim>> &u_old_nodes,
+                   const std::vector<Tensor<1, dim>> &w_old_nodes,
+                   const double                       tolerance,
+                   const double                       coefficient_tolerance,
+                   const MPI_Comm                     comm)
+        : all(boundary.nodes())
+        , boundary(boundary)
+        , foundation(foundation)
+        , friction_law(friction_law)
+        , bulk(bulk)
+        , scheme(bulk.scheme())
+        , u_old_nodes(u_old_nodes)
+        , w_old_nodes(w_old_nodes)
+        , eps(tolerance)
+        , coefficient_tolerance(coefficient_tolerance)
+        , comm(comm)
+      {
+        discretization.reinit_owned(u_previous);
+        discretization.reinit_owned(u_current);
+        discretization.reinit_owned(difference);
+      }
+
+      /**
+       * At the start of the loop: mu_i = mu(|w_tau,i|) of the initial
+       * guess @p w into @p mu; returns xi of @p lambda there.
+       */
+      std::vector<Tensor<1, dim>>
+      start(const Vector_t                    &w,
+            const std::vector<Tensor<1, dim>> &lambda,
+            std::vector<double>               &mu) const
+      {
+        const auto n = iterate(w);
+        for (unsigned int i = 0; i < all.size(); ++i)
+          mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
+        return density(lambda, n);
+      }
+
+      /** Before a pass: u^(m) = u_old + k w of the last iterate. */
+      void
+      remember(const Vector_t &u_old, const double k, const Vector_t &w)
+      {
+        u_previous = u_old;
+        u_previous.add(k, w);
+      }
+
+      /**
+       * The coefficients mu(|w_tau,i|) of @p m also at the nodes out of
+       * contact (measure() leaves them out): the next frozen ones.
+       */
+      void
+      complete_coefficients(Measures &m) const
+      {
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (!(m.iterate.pressure[i] > 0))
+            m.mu_new[i] =
+              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+      }
+
+      NodalIterate
+      iterate(const Vector_t &v) const
+      {
+        const auto   values = boundary.values(v);
+        NodalIterate n{std::vector<double>(all.size()),
+                       std::vector<double>(all.size())};
+        for (unsigned int i = 0; i < all.size(); ++i)
+          {
+            n.slip_rate[i] =
+              all[i]
+                .tangential(scheme.weighted(values[i], w_old_nodes[i]))
+                .norm();
+            n.pressure[i] = normal_response(foundation,
+                                            all[i],
+                                            u_old_nodes[i],
+                                            w_old_nodes[i],
+                                            values[i],
+                                            scheme)
+                              .pressure;
+          }
+        return n;
+      }
+
+      std::vector<Tensor<1, dim>>
+      density(const std::vector<Tensor<1, dim>> &forces,
+              const NodalIterate                &n) const
+      {
+        std::vector<Tensor<1, dim>> xi(all.size());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (n.pressure[i] > 0)
+            xi[i] = forces[i] / (all[i].weight * n.pressure[i]);
+        return xi;
+      }
+
+      double
+      l2(const std::vector<Tensor<1, dim>> &xi) const
+      {
+        double sum = 0;
+        for (unsigned int i = 0; i < all.size(); ++i)
+          sum += all[i].weight * xi[i].norm_square();
+        return std::sqrt(Utilities::MPI::sum(sum, comm));
+      }
+
+      /**
+       * Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
+       * ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law
+       * max_i |mu_i - mu(|w_tau,i|)| <= tol, of the pass @p pass that
+       * gave (@p w, @p lambda) with the frozen @p mu (u^(m+1) = u_old +
+       * k w), against the last pass (remember(), @p xi_previous).
+       */
+      Measures
+      measure(const Vector_t                    &u_old,
+              const double                       k,
+              const Vector_t                    &w,
+              const std::vector<Tensor<1, dim>> &lambda,
+              const std::vector<double>         &mu,
+              const std::vector<Tensor<1, dim>> &xi_previous,
+              const unsigned int                 pass,
+              const bool                         provisional,
+              const ConditionalOStream          &details)
+      {
+        u_current = u_old;
+        u_current.add(k, w);
+        difference = u_current;
+        difference -= u_previous;
+        const double du =
+          std::sqrt(bulk.strain_product(difference, difference));
+        const double u_norm =
+          std::sqrt(bulk.strain_product(u_previous, u_previous));
+        Measures m;
+        m.iterate = iterate(w);
+        m.xi      = density(lambda, m.iterate);
+        std::vector<Tensor<1, dim>> dxi(all.size());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          dxi[i] = m.xi[i] - xi_previous[i];
+        const bool rule_85 =
+          du <= eps * u_norm && l2(dxi) <= eps * l2(xi_previous);
+
+        // mu(|w_tau,i|), at the nodes in contact first (the others only if
+        // the loop goes on: a node out of contact does not decide it).
+        m.mu_new.resize(all.size());
+        m.coefficient_residual = 0;
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (m.iterate.pressure[i] > 0)
+            {
+              m.mu_new[i] =
+                checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+              m.coefficient_residual =
+                std::max(m.coefficient_residual, std::abs(mu[i] - m.mu_new[i]));
+            }
+        m.coefficient_residual =
+          Utilities::MPI::max(m.coefficient_residual, comm);
+        m.converged =
+          rule_85 && m.coefficient_residual <= coefficient_tolerance;
+        details << "  convexification pass " << pass + 1
+                << (provisional ? " (provisional)" : "") << ": |du|_V/|u|_V "
+                << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
+                << l2(dxi) / std::max(l2(xi_previous), 1e-300)
+                << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
+                << std::endl;
+        return m;
+      }
+
+    private:
+      const std::vector<ContactNode<dim>> &all;
+      const ContactBoundary<dim>          &boundary;
+      const Foundation                    &foundation;
+      const FrictionLaw                   *friction_law;
+      const BulkOperator<dim>             &bulk;
+      const TimeScheme                    &scheme;
+      const std::vector<Tensor<1, dim>>   &u_old_nodes;
+      const std::vector<Tensor<1, dim>>   &w_old_nodes;
+      const double                         eps;
+      const double                         coefficient_tolerance;
+      const MPI_Comm                       comm;
+      Vector_t                             u_previous, u_current, difference;
+    };
+  } // namespace
+
+
   template <int dim>
   typename StepSolver<dim>::Statistics
   StepSolver<dim>::solve(const Vector_t &rhs,
@@ -325,82 +536,32 @@ namespace DynamicContact
     const double        k           = scheme.time_step();
     const auto          u_old_nodes = contact_boundary.values(u_old);
     const auto          w_old_nodes = contact_boundary.values(w_old);
-    const auto         &all         = contact_boundary.nodes();
     auto               &mu          = contact_state.mu;
     auto               &lambda      = contact_state.lambda;
     const MPI_Comm      comm        = discretization.comm;
 
     // Convexification loop (doc/theory.md section 4): mu frozen from the
     // previous iterate, starting from w^(0) = w_{n-1}.
-    const bool loop = friction && !friction_law->is_constant();
-    // What the loop needs of an iterate w, at the owned nodes of Gamma_3:
-    // the slip rate of the effective velocity w_e = theta w +
-    // (1-theta) w_old and the normal pressure S = p + q.
-    struct NodalIterate
-    {
-      std::vector<double> slip_rate, pressure;
-    };
-    auto nodal_iterate = [&](const Vector_t &v) {
-      const auto   values = contact_boundary.values(v);
-      NodalIterate n{std::vector<double>(all.size()),
-                     std::vector<double>(all.size())};
-      for (unsigned int i = 0; i < all.size(); ++i)
-        {
-          n.slip_rate[i] =
-            all[i]
-              .tangential(scheme.weighted(values[i], w_old_nodes[i]))
-              .norm();
-          n.pressure[i] = normal_response(foundation,
-                                          all[i],
-                                          u_old_nodes[i],
-                                          w_old_nodes[i],
-                                          values[i],
-                                          scheme)
-                            .pressure;
-        }
-      return n;
-    };
-    // xi_i = lambda_i / (m_i S_i): the selection of the subdifferential in
-    // eq. (52).
-    auto friction_density = [&](const std::vector<Tensor<1, dim>> &forces,
-                                const NodalIterate                &n) {
-      std::vector<Tensor<1, dim>> xi(all.size());
-      for (unsigned int i = 0; i < all.size(); ++i)
-        if (n.pressure[i] > 0)
-          xi[i] = forces[i] / (all[i].weight * n.pressure[i]);
-      return xi;
-    };
-    auto l2_gamma = [&](const std::vector<Tensor<1, dim>> &xi) {
-      double sum = 0;
-      for (unsigned int i = 0; i < all.size(); ++i)
-        sum += all[i].weight * xi[i].norm_square();
-      return std::sqrt(Utilities::MPI::sum(sum, comm));
-    };
-
-    Vector_t u_previous, difference;
-    discretization.reinit_owned(u_previous);
-    discretization.reinit_owned(difference);
+    const bool         loop = friction && !friction_law->is_constant();
+    LoopMeasures<dim>  measures(discretization,
+                               contact_boundary,
+                               foundation,
+                               friction_law,
+                               bulk,
+                               u_old_nodes,
+                               w_old_nodes,
+                               friction_parameters.convexification_tolerance,
+                               friction_parameters.coefficient_tolerance,
+                               comm);
     const unsigned int max_passes =
       loop ? friction_parameters.max_convexification_iterations : 1;
     std::vector<Tensor<1, dim>> xi_previous;
     if (loop)
       {
-        TimerSection       t(timer, "Friction: convexification update");
-        const NodalIterate start = nodal_iterate(w);
-        for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = checked_coefficient(*friction_law, start.slip_rate[i]);
-        xi_previous = friction_density(lambda, start);
+        TimerSection t(timer, "Friction: convexification update");
+        xi_previous = measures.start(w, lambda, mu);
       }
 
-    auto add_statistics = [&](const typename ContactNewton<dim>::Result &r) {
-      statistics.newton_iterations += r.iterations;
-      statistics.factorizations += r.factorizations;
-      statistics.bulk_solves += r.bulk_solves;
-      statistics.cycles += r.cycles;
-      statistics.line_search_steps += r.line_search_steps;
-      statistics.linear_iterations += r.linear_iterations;
-      statistics.residual = r.residual;
-    };
     AndersonMixing mixing(friction_parameters.acceleration_depth,
                           friction_parameters.relaxation,
                           comm);
@@ -415,72 +576,22 @@ namespace DynamicContact
     bool   allow_provisional = loop && parameters.provisional_passes;
     bool   provisional       = false;
     double best_residual     = std::numeric_limits<double>::max();
-    // The loop's measures of the current pass against the last one.
-    struct Measures
-    {
-      bool                        converged;
-      double                      coefficient_residual;
-      NodalIterate                iterate;
-      std::vector<Tensor<1, dim>> xi;
-      std::vector<double>         mu_new;
-    };
-    auto measure = [&](const unsigned int pass) {
+    using Measures           = typename LoopMeasures<dim>::Measures;
+    auto measure             = [&](const unsigned int pass) {
       TimerSection t(timer, "Friction: convexification update");
-      // Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
-      // ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law.
-      difference = u_old;
-      difference.add(k, w);
-      difference -= u_previous;
-      const double du = std::sqrt(bulk.strain_product(difference, difference));
-      const double u_norm =
-        std::sqrt(bulk.strain_product(u_previous, u_previous));
-      Measures m;
-      m.iterate = nodal_iterate(w);
-      m.xi      = friction_density(lambda, m.iterate);
-      std::vector<Tensor<1, dim>> dxi(all.size());
-      for (unsigned int i = 0; i < all.size(); ++i)
-        dxi[i] = m.xi[i] - xi_previous[i];
-      const double eps = friction_parameters.convexification_tolerance;
-      const bool   rule_85 =
-        du <= eps * u_norm && l2_gamma(dxi) <= eps * l2_gamma(xi_previous);
-
-      // mu(|w_tau,i|), at the nodes in contact first (the others only if
-      // the loop goes on: a node out of contact does not decide it).
-      m.mu_new.resize(all.size());
-      m.coefficient_residual = 0;
-      for (unsigned int i = 0; i < all.size(); ++i)
-        if (m.iterate.pressure[i] > 0)
-          {
-            m.mu_new[i] =
-              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
-            m.coefficient_residual =
-              std::max(m.coefficient_residual, std::abs(mu[i] - m.mu_new[i]));
-          }
-      m.coefficient_residual =
-        Utilities::MPI::max(m.coefficient_residual, comm);
-      m.converged = rule_85 && m.coefficient_residual <=
-                                 friction_parameters.coefficient_tolerance;
-      details << "  convexification pass " << pass + 1
-              << (provisional ? " (provisional)" : "") << ": |du|_V/|u|_V "
-              << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
-              << l2_gamma(dxi) / std::max(l2_gamma(xi_previous), 1e-300)
-              << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
-              << std::endl;
-      return m;
+      return measures.measure(
+        u_old, k, w, lambda, mu, xi_previous, pass, provisional, details);
     };
     for (unsigned int pass = 0; pass < max_passes; ++pass)
       {
         if (loop)
-          {
-            u_previous = u_old;
-            u_previous.add(k, w);
-          }
+          measures.remember(u_old, k, w);
         const auto result =
           allow_provisional ?
             newton.solve_provisional(
               rhs, u_old_nodes, w_old_nodes, mu, lambda, w) :
             newton.solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
-        add_statistics(result);
+        statistics.add_newton(result);
         provisional = result.provisional;
         ++statistics.convexification_iterations;
         if (!loop)
@@ -490,7 +601,7 @@ namespace DynamicContact
         if (provisional && (m.converged || pass + 1 == max_passes ||
                             m.coefficient_residual >= best_residual))
           {
-            add_statistics(newton.finalize(w, lambda));
+            statistics.add_newton(newton.finalize(w, lambda));
             provisional       = false;
             allow_provisional = false;
             m                 = measure(pass);
@@ -516,15 +627,12 @@ namespace DynamicContact
                             scientific(m.coefficient_residual) + ")");
         // The next frozen coefficients: the relaxed update, accelerated.
         TimerSection t(timer, "Friction: convexification update");
-        for (unsigned int i = 0; i < all.size(); ++i)
-          if (!(m.iterate.pressure[i] > 0))
-            m.mu_new[i] =
-              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+        measures.complete_coefficients(m);
         mixing.update(mu, m.mu_new);
         xi_previous = std::move(m.xi);
       }
     if (provisional)
-      add_statistics(newton.finalize(w, lambda));
+      statistics.add_newton(newton.finalize(w, lambda));
 
     update_states(u_old_nodes, w_old_nodes, w, statistics);
     return statistics;

@@ -54,6 +54,19 @@ namespace DynamicContact
       unsigned int n_stick              = 0;
       unsigned int n_slip               = 0;
 
+      /** Add the work of a Newton solve; its residual is the last. */
+      void
+      add_newton(const ContactNewtonResult &r)
+      {
+        newton_iterations += r.iterations;
+        factorizations += r.factorizations;
+        bulk_solves += r.bulk_solves;
+        cycles += r.cycles;
+        line_search_steps += r.line_search_steps;
+        linear_iterations += r.linear_iterations;
+        residual = r.residual;
+      }
+
       /**
        * Add the work of an earlier sub-step of the same step (a composite
        * scheme): the counts add up, the loop converged only if both did,
