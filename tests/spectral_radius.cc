@@ -1,0 +1,82 @@
+// The high-frequency dissipation of Time/Scheme = bathe, measured: with
+// Time/Spectral radius at infinity = rho_inf, a mode far beyond the
+// resolution (omega k -> infinity) is multiplied by rho_inf in a step
+// (doc/theory.md section 2.4), and in the energy norm the amplification
+// of every mode has equal singular values, so that the energy of the
+// free, undamped body falls by exactly rho_inf^2 a step when every mode has
+// omega k >> 1. The scene: the small paper scene's beam (clamped at both
+// ends) on a coarse mesh, made free of contact (a gap of 1 m), of load and
+// of viscosity, from an initial bending displacement; k = 10 s is about
+// 10^4 periods of its slowest mode (omega_1 about 2e3 rad/s), so that
+// sqrt(E_n / E_{n-1}) must equal rho_inf to 1e-3 (the theory: to
+// 5/(omega_1 k) for rho_inf = 0, far less for the others). Also checked: a
+// resolved mode (the same beam with k = 1e-4 s, omega_1 k about 0.2) loses
+// less than 1e-3 of its energy a step (the scheme is second order: it
+// damps the resolved modes at O((omega k)^4) only), and the
+// energy balance closes at every step.
+
+#include "test_tools.h"
+
+#include <cmath>
+
+using namespace DynamicContact;
+
+std::vector<double>
+energies(const double rho_inf, const double k, const std::string &name)
+{
+  auto simulator = test_tools::run<2>(
+    test_tools::scene("barboteu_danan_2016_small.prm"),
+    {"Output/Directory=output-spectral-radius-" + name,
+     "Output/Output times=",
+     "Geometry/Repetitions=8, 2",
+     "Boundary conditions/Traction function/Function constants=F=0, psi=50, "
+     "c=2",
+     "Foundation/Initial gap/Function expression=1",
+     "Initial conditions/Displacement/Function expression=0; "
+     "1e-3*sin(pi*x/2)",
+     "Time/Scheme=bathe",
+     "Time/Spectral radius at infinity=" + std::to_string(rho_inf),
+     "Time/Time step=" + std::to_string(k),
+     "Time/End time=" + std::to_string(4 * k)});
+  std::vector<double> e;
+  double              worst_defect = 0;
+  for (const auto &row : simulator->time_series())
+    {
+      e.push_back(row.terms.energy.total());
+      if (row.step > 0)
+        worst_defect = std::max(worst_defect, row.relative_energy_defect());
+    }
+  test_tools::check(worst_defect < 1e-10,
+                    "energy balance at every step to 1e-10 of the energy");
+  return e;
+}
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  unsigned int                     index = 0;
+  for (const double rho_inf : {0., 0.3, 0.6, 0.9, 1.})
+    {
+      const std::string name = std::to_string(index++);
+      test_tools::out() << "--- Spectral radius at infinity = "
+                        << test_tools::digits(rho_inf, 2) << std::endl;
+      const std::vector<double> e = energies(rho_inf, 10., name);
+      test_tools::check(e.size() == 5 && e[0] > 0, "four steps from E_0 > 0");
+      // The first two steps (the energy of rho_inf = 0 is at round-off
+      // after that).
+      double worst = 0;
+      for (unsigned int n = 1; n <= 2 && n < e.size(); ++n)
+        worst = std::max(worst, std::abs(std::sqrt(e[n] / e[n - 1]) - rho_inf));
+      test_tools::check(worst <= 1e-3,
+                        "sqrt(E_n/E_{n-1}) = rho_inf to 1e-3 at omega k >> 1");
+      const std::vector<double> resolved =
+        energies(rho_inf, 1e-4, name + "-resolved");
+      double loss = 0;
+      for (unsigned int n = 1; n < resolved.size(); ++n)
+        loss = std::max(loss, 1 - resolved[n] / resolved[n - 1]);
+      test_tools::check(loss >= -1e-12 && loss < 1e-3,
+                        "a resolved mode (omega k about 0.2) loses less than "
+                        "1e-3 of its energy a step, and none is gained");
+    }
+}
