@@ -5,15 +5,15 @@
 // of every mode has equal singular values, so that the energy of the
 // free, undamped body falls by exactly rho_inf^2 a step when every mode has
 // omega k >> 1. The scene: the small paper scene's beam (clamped at both
-// ends) on a coarse mesh, made free of contact (a gap of 1 m), of load and
-// of viscosity, from an initial bending displacement; k = 10 s is about
+// ends) on a coarse mesh, made free of contact (a gap of 1 m, no normal
+// damping, which acts out of contact too), of load and of viscosity, from
+// an initial transverse displacement; k = 10 s is about
 // 10^4 periods of its slowest mode (omega_1 about 2e3 rad/s), so that
 // sqrt(E_n / E_{n-1}) must equal rho_inf to 1e-3 (the theory: to
-// 5/(omega_1 k) for rho_inf = 0, far less for the others). Also checked: a
-// resolved mode (the same beam with k = 1e-4 s, omega_1 k about 0.2) loses
-// less than 1e-3 of its energy a step (the scheme is second order: it
-// damps the resolved modes at O((omega k)^4) only), and the
-// energy balance closes at every step.
+// 5/(omega_1 k) for rho_inf = 0, far less for the others), and the energy
+// balance must close at every step. (That the resolved modes are damped
+// little, at O((omega k)^4) a step, is what second order means:
+// tests/time_convergence checks the rate for rho_inf = 0, 0.5 and 1.)
 
 #include "test_tools.h"
 
@@ -32,6 +32,8 @@ energies(const double rho_inf, const double k, const std::string &name)
      "Boundary conditions/Traction function/Function constants=F=0, psi=50, "
      "c=2",
      "Foundation/Initial gap/Function expression=1",
+     "Foundation/Normal damping/Capped ramp/Coefficient=0",
+     "Friction/Law=none",
      "Initial conditions/Displacement/Function expression=0; "
      "1e-3*sin(pi*x/2)",
      "Time/Scheme=bathe",
@@ -63,20 +65,13 @@ main(int argc, char *argv[])
                         << test_tools::digits(rho_inf, 2) << std::endl;
       const std::vector<double> e = energies(rho_inf, 10., name);
       test_tools::check(e.size() == 5 && e[0] > 0, "four steps from E_0 > 0");
-      // The first two steps (the energy of rho_inf = 0 is at round-off
-      // after that).
+      // Every step (for rho_inf = 0 the first two: the energy is at
+      // round-off after that).
       double worst = 0;
-      for (unsigned int n = 1; n <= 2 && n < e.size(); ++n)
+      for (unsigned int n = 1; n <= (rho_inf > 0 ? 4u : 2u) && n < e.size();
+           ++n)
         worst = std::max(worst, std::abs(std::sqrt(e[n] / e[n - 1]) - rho_inf));
       test_tools::check(worst <= 1e-3,
                         "sqrt(E_n/E_{n-1}) = rho_inf to 1e-3 at omega k >> 1");
-      const std::vector<double> resolved =
-        energies(rho_inf, 1e-4, name + "-resolved");
-      double loss = 0;
-      for (unsigned int n = 1; n < resolved.size(); ++n)
-        loss = std::max(loss, 1 - resolved[n] / resolved[n - 1]);
-      test_tools::check(loss >= -1e-12 && loss < 1e-3,
-                        "a resolved mode (omega k about 0.2) loses less than "
-                        "1e-3 of its energy a step, and none is gained");
     }
 }
