@@ -80,7 +80,7 @@ namespace DynamicContact
       prm.declare_entry(
         "Spectral radius at infinity",
         "0",
-        Patterns::Double(0, 1),
+        Patterns::Double(),
         "rho_inf in [0, 1] of Time/Scheme = bathe: the amplification of a "
         "mode far beyond the resolution (omega k -> infinity) in one step. "
         "0 (default): the Bathe scheme as above, such modes are removed in "

@@ -44,7 +44,8 @@ namespace DynamicContact
     double viscous   = 0; // k a_C(w_e, w_e)
     double compliance =
       0; // sum m_i [P (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))],
-         // P = p(u_n) (theta = 1) or the discrete gradient (0)
+         // P = p(u_n) (theta = 1), the discrete gradient (theta = 1/2:
+         // 0), TimeScheme::compliance_force in between
     double damping  = 0; // k sum m_i q(w_e,nu) w_e,nu
     double friction = 0; // k sum lambda_i . w_e,tau,i
     double defect   = 0; // E_n - E_{n-1} + D_n - W_n

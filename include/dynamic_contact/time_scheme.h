@@ -154,6 +154,27 @@ namespace DynamicContact
     }
 
     /**
+     * The compliance force of a step with theta < 1 from p(u_n) and the
+     * discrete gradient DG = (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}) (or
+     * from their derivatives):
+     *   P_n = (2 theta - 1) p(u_n) + 2 (1 - theta) DG,
+     * exactly DG for theta = 1/2 (energy-consistent) and p(u_n) for
+     * theta = 1. It equals p(u_theta) to O(k^2), as the composite scheme's
+     * second order needs for theta in (1/2, 1), and its dissipation
+     * P_n (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))
+     *   = (2 theta - 1) [p(u_n)(u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))]
+     * is >= 0 for a nondecreasing p.
+     */
+    double
+    compliance_force(const double end_value,
+                     const double discrete_gradient) const
+    {
+      if (th == 0.5)
+        return discrete_gradient;
+      return (2 * th - 1) * end_value + 2 * (1 - th) * discrete_gradient;
+    }
+
+    /**
      * The scheme's numerical dissipation factor (theta - 1/2) of
      * rho |w_n - w_{n-1}|^2 and a_E(u_n - u_{n-1}, u_n - u_{n-1}).
      */
