@@ -134,7 +134,7 @@ namespace DynamicContact
             p.value(u_nu) :
             scheme.compliance_force(p.value(u_nu),
                                     p.discrete_gradient(u_nu_old, u_nu));
-        const double q    = states[i].normal.pressure - P;
+        const double q = states[i].normal.pressure - P;
         // The compliance force's work minus the change of Pi: >= 0 for
         // p(u_n) (evaluated without cancellation), 0 for the discrete
         // gradient, (2 theta - 1) times the first in between.

@@ -131,9 +131,9 @@ namespace DynamicContact
       if (minimum_time_step == 0)
         minimum_time_step = time_step / 1024;
       const std::string scheme_name = prm.get("Scheme");
-      scheme             = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
-                            scheme_name == "bathe"       ? Scheme::bathe :
-                                                     Scheme::backward_euler);
+      scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
+                scheme_name == "bathe"       ? Scheme::bathe :
+                                               Scheme::backward_euler);
       const double spectral_radius =
         prm.get_double("Spectral radius at infinity");
       adaptive           = prm.get_bool("Adaptive");

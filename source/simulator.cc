@@ -602,8 +602,8 @@ namespace DynamicContact
       {
         // The Bathe composite scheme (doc/theory.md section 2.4). Sub-step
         // 1: the trapezoidal rule from t - k to t - k/2.
-        const CompositeScheme               &composite = parameters.time.composite;
-        const TimeScheme                     first = composite.first_substep(k);
+        const CompositeScheme &composite = parameters.time.composite;
+        const TimeScheme       first     = composite.first_substep(k);
         typename StepSolver<dim>::Statistics first_statistics;
         EnergyBalanceTerms                   first_terms;
         solve_substep(first,
@@ -642,7 +642,7 @@ namespace DynamicContact
         scratch -= u_old;
         const double extrapolation_work =
           composite.extrapolation_share() * (load * scratch);
-        record.terms                    = bathe_terms(first_terms,
+        record.terms = bathe_terms(first_terms,
                                    bar_energy,
                                    second_terms,
                                    extrapolation_work,

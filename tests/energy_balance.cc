@@ -28,18 +28,16 @@ check_balance(const std::string &scheme, const double rho_inf = 0)
                     << (rho_inf > 0 ? ", Spectral radius at infinity = " + rho :
                                       std::string())
                     << std::endl;
-  auto simulator =
-    test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
-                       {"Output/Directory=output-energy-" +
-                          std::string(scheme == "backward Euler" ? "euler" :
-                                                                   scheme) +
-                          (rho_inf > 0 ? "-" + rho : std::string()),
-                        "Time/Scheme=" + scheme,
-                        "Time/Spectral radius at infinity=" +
-                          std::to_string(rho_inf),
-                        "Material/Viscosity lambda=1e7",
-                        "Material/Viscosity mu=5e6",
-                        "Foundation/Initial gap/Function expression=0.01*x"});
+  auto simulator = test_tools::run<2>(
+    test_tools::scene("barboteu_danan_2016_small.prm"),
+    {"Output/Directory=output-energy-" +
+       std::string(scheme == "backward Euler" ? "euler" : scheme) +
+       (rho_inf > 0 ? "-" + rho : std::string()),
+     "Time/Scheme=" + scheme,
+     "Time/Spectral radius at infinity=" + std::to_string(rho_inf),
+     "Material/Viscosity lambda=1e7",
+     "Material/Viscosity mu=5e6",
+     "Foundation/Initial gap/Function expression=0.01*x"});
 
   const char *terms[] = {"dissipation_inertia",
                          "dissipation_elastic",
@@ -60,12 +58,8 @@ check_balance(const std::string &scheme, const double rho_inf = 0)
   // Bathe scheme all but the elastic one (booked with the inertia).
   const bool trapezoidal = (scheme == "trapezoidal");
   const bool bathe       = (scheme == "bathe");
-  const bool present[]   = {!trapezoidal,
-                            !trapezoidal && !bathe,
-                            true,
-                            !trapezoidal,
-                            true,
-                            true};
+  const bool present[]   = {
+      !trapezoidal, !trapezoidal && !bathe, true, !trapezoidal, true, true};
   double              worst_defect = 0, most_negative = 0, worst_column = 0;
   std::vector<double> largest(6, 0.), largest_relative(6, 0.);
   const auto         &rows = simulator->time_series();

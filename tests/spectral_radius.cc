@@ -13,8 +13,8 @@
 // 5/(omega_1 k) for rho_inf = 0, far less for the others), the energy
 // balance must close at every step, and the booked numerical dissipation
 // (dissipation_inertia), which for this free linear body is E_{n-1} - E_n,
-// must be >= 0 and 1 - rho_inf^2 of the energy. (That the resolved modes are damped
-// little, at O((omega k)^4) a step, is what second order means:
+// must be >= 0 and 1 - rho_inf^2 of the energy. (That the resolved modes are
+// damped little, at O((omega k)^4) a step, is what second order means:
 // tests/time_convergence checks the rate for rho_inf = 0, 0.5 and 1.)
 
 #include "test_tools.h"
@@ -94,10 +94,9 @@ main(int argc, char *argv[])
         {
           most_negative = std::min(most_negative, run.dissipation[n - 1]);
           if (n <= (rho_inf > 0 ? 4u : 2u))
-            worst_share =
-              std::max(worst_share,
-                       std::abs(run.dissipation[n - 1] -
-                                (1 - rho_inf * rho_inf)));
+            worst_share = std::max(worst_share,
+                                   std::abs(run.dissipation[n - 1] -
+                                            (1 - rho_inf * rho_inf)));
         }
       test_tools::check(most_negative >= -EnergyBalanceTerms::roundoff,
                         "the numerical dissipation is >= 0 at every step");

@@ -244,14 +244,6 @@ namespace DynamicContact
       return th;
     }
 
-    /** The extrapolation factor a: x_bar - x_{n-1/2} = a (x_{n-1/2} -
-     * x_{n-1}). */
-    double
-    extrapolation_factor() const
-    {
-      return -old_weight;
-    }
-
     /** Sub-step 1 of a step of length k: the trapezoidal rule over k/2. */
     TimeScheme
     first_substep(const double k) const
