@@ -37,12 +37,15 @@ namespace DynamicContact
     const bool damping     = foundation.damping_acts(u_nu);
     r.damping_active       = damping && q.active(w_nu);
     r.damping_saturated    = damping && q.saturated(w_nu);
-    r.pressure =
-      p.discrete_gradient(u_nu_old, u_nu) + (damping ? q.value(w_nu) : 0.);
+    r.pressure             = scheme.compliance_force(p.value(u_nu),
+                                         p.discrete_gradient(u_nu_old, u_nu)) +
+                 (damping ? q.value(w_nu) : 0.);
     // d u_n/d w_n = theta k, d w_e/d w_n = theta.
     r.dpressure_dw =
       scheme.displacement_derivative() *
-        p.discrete_gradient_derivative(u_nu_old, u_nu) +
+        scheme.compliance_force(p.derivative(u_nu),
+                                p.discrete_gradient_derivative(u_nu_old,
+                                                               u_nu)) +
       (damping ? scheme.effective_derivative() * q.derivative(w_nu) : 0.);
     return r;
   }

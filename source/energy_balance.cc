@@ -129,13 +129,15 @@ namespace DynamicContact
         const double u_nu_old =
           nodes[i].value(u_old) * nodes[i].normal - nodes[i].gap;
         const double w_nu = states[i].normal.w_nu; // w_e . nu
-        const double P    = scheme.is_backward_euler() ?
-                              p.value(u_nu) :
-                              p.discrete_gradient(u_nu_old, u_nu);
-        const double q    = states[i].normal.pressure - P;
+        const double P =
+          scheme.is_backward_euler() ?
+            p.value(u_nu) :
+            scheme.compliance_force(p.value(u_nu),
+                                    p.discrete_gradient(u_nu_old, u_nu));
+        const double q = states[i].normal.pressure - P;
         // The compliance force's work minus the change of Pi: >= 0 for
         // p(u_n) (evaluated without cancellation), 0 for the discrete
-        // gradient.
+        // gradient, (2 theta - 1) times the first in between.
         compliance += scheme.is_backward_euler() ?
                         m * p.dissipation(u_nu_old, u_nu) :
                         m * (P * (u_nu - u_nu_old) -

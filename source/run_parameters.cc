@@ -75,7 +75,22 @@ namespace DynamicContact
         "trapezoidal sub-step over k/2, then the three-point backward "
         "difference, which is a backward-Euler step of k/3 from the "
         "extrapolated state (4 x_{n-1/2} - x_{n-1})/3; two solves per step "
-        "(doc/theory.md section 2).");
+        "(doc/theory.md section 2); its high-frequency dissipation is set "
+        "by Spectral radius at infinity.");
+      prm.declare_entry(
+        "Spectral radius at infinity",
+        "0",
+        Patterns::Double(),
+        "rho_inf in [0, 1] of Time/Scheme = bathe: the amplification of a "
+        "mode far beyond the resolution (omega k -> infinity) in one step. "
+        "0 (default): the Bathe scheme as above, such modes are removed in "
+        "a step; 1: no high-frequency dissipation (two trapezoidal half "
+        "steps). In between, the step is a trapezoidal sub-step over k/2, "
+        "the linear extrapolation of u and w to t_{n-1} + s k and a "
+        "theta-step of (1 - s) k, s and theta chosen for second order and "
+        "this rho_inf (doc/theory.md section 2.4). The other schemes have "
+        "their own (backward Euler 0, trapezoidal 1): a value other than "
+        "0 needs Time/Scheme = bathe.");
       prm.declare_entry(
         "Adaptive",
         "false",
@@ -116,9 +131,11 @@ namespace DynamicContact
       if (minimum_time_step == 0)
         minimum_time_step = time_step / 1024;
       const std::string scheme_name = prm.get("Scheme");
-      scheme             = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
-                            scheme_name == "bathe"       ? Scheme::bathe :
-                                                     Scheme::backward_euler);
+      scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
+                scheme_name == "bathe"       ? Scheme::bathe :
+                                               Scheme::backward_euler);
+      const double spectral_radius =
+        prm.get_double("Spectral radius at infinity");
       adaptive           = prm.get_bool("Adaptive");
       adaptive_tolerance = prm.get_double("Adaptive tolerance");
       maximum_time_step  = prm.get_double("Maximum time step");
@@ -131,6 +148,14 @@ namespace DynamicContact
               "Time/Time step must be positive, got " + str(time_step) + ".");
       require(minimum_time_step <= time_step,
               "Time/Minimum time step must not exceed Time/Time step.");
+      require(spectral_radius >= 0 && spectral_radius <= 1,
+              "Time/Spectral radius at infinity must lie in [0, 1], got " +
+                str(spectral_radius) + ".");
+      require(spectral_radius == 0 || scheme == Scheme::bathe,
+              "Time/Spectral radius at infinity = " + str(spectral_radius) +
+                " needs Time/Scheme = bathe (backward Euler has 0, the "
+                "trapezoidal rule 1, and neither has a parameter).");
+      composite = CompositeScheme(spectral_radius);
       require(!adaptive || scheme != Scheme::trapezoidal,
               "Time/Adaptive = true needs Time/Scheme = bathe or backward "
               "Euler (the trapezoidal rule has no error estimate here).");

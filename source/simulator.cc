@@ -428,7 +428,8 @@ namespace DynamicContact
   Simulator<dim>::time_error_estimate(const double k) const
   {
     // The displacement's local error, from the step just solved (u, w from
-    // u_old, w_old; for the Bathe scheme w_{n-1/2} = (3 w_bar + w_old)/4):
+    // u_old, w_old; for the Bathe scheme w_{n-1/2} = (3 w_bar + w_old)/4
+    // at rho_inf = 0, CompositeScheme::local_error for any rho_inf):
     //   backward Euler: e = u_n - (u_{n-1} + k (w_{n-1} + w_n)/2)
     //                     = (k/2) (w_n - w_{n-1}),
     //   Bathe:          e = u_n - (u_{n-1} + k (w_{n-1} + 4 w_{n-1/2}
@@ -440,12 +441,7 @@ namespace DynamicContact
     Vector_t e;
     e.reinit(u, true);
     if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
-      {
-        e = w;
-        e.add(-1.5, w_bar);
-        e.add(0.5, w_old);
-        e *= k / 6;
-      }
+      parameters.time.composite.local_error(e, w, w_bar, w_old, k);
     else
       {
         e = w;
@@ -490,9 +486,10 @@ namespace DynamicContact
     const Vector_t *u_start = &u_old, *w_start = &w_old;
     if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
       {
-        // The Bathe composite scheme (doc/theory.md section 2). Sub-step 1:
-        // the trapezoidal rule from t - k to t - k/2.
-        const TimeScheme                     first(k / 2, 0.5);
+        // The Bathe composite scheme (doc/theory.md section 2.4). Sub-step
+        // 1: the trapezoidal rule from t - k to t - k/2.
+        const CompositeScheme &composite = parameters.time.composite;
+        const TimeScheme       first     = composite.first_substep(k);
         typename StepSolver<dim>::Statistics first_statistics;
         EnergyBalanceTerms                   first_terms;
         solve_substep(first,
@@ -503,17 +500,14 @@ namespace DynamicContact
                       accept_unconverged_loop,
                       first_statistics,
                       first_terms);
-        // Sub-step 2: the three-point backward difference
-        //   w_n = (3 u_n - 4 u_{n-1/2} + u_{n-1})/k, the same for w,
-        // is backward Euler over k/3 from x_bar = (4 x_{n-1/2} - x_{n-1})/3.
-        u_bar = u;
-        u_bar *= 4. / 3;
-        u_bar.add(-1. / 3, u_old);
-        w_bar = w;
-        w_bar *= 4. / 3;
-        w_bar.add(-1. / 3, w_old);
+        // Sub-step 2: a theta-step from the extrapolated state x_bar =
+        // (1 + a) x_{n-1/2} - a x_{n-1} to t (at rho_inf = 0 the three-point
+        // backward difference: backward Euler over k/3 from
+        // (4 x_{n-1/2} - x_{n-1})/3).
+        composite.extrapolate(u_bar, u, u_old);
+        composite.extrapolate(w_bar, w, w_old);
         const Energy bar_energy = energy_balance.energy(u_bar, w_bar);
-        last                    = TimeScheme(k / 3, 1.);
+        last                    = composite.second_substep(k);
         u_start                 = &u_bar;
         w_start                 = &w_bar;
         EnergyBalanceTerms second_terms;
@@ -528,11 +522,13 @@ namespace DynamicContact
         record.statistics.add_work(first_statistics);
         last_newton_residual =
           std::max(first_statistics.residual, record.statistics.residual);
-        // (f_n, u_bar - u_{n-1/2}) = (f_n, u_bar - u_{n-1})/4.
+        // (f, u_bar - u_{n-1/2}) = a/(1 + a) (f, u_bar - u_{n-1}) with the
+        // second sub-step's load f (f_n at rho_inf = 0).
         scratch = u_bar;
         scratch -= u_old;
-        const double extrapolation_work = 0.25 * (load * scratch);
-        record.terms                    = bathe_terms(first_terms,
+        const double extrapolation_work =
+          composite.extrapolation_share() * (load * scratch);
+        record.terms = bathe_terms(first_terms,
                                    bar_energy,
                                    second_terms,
                                    extrapolation_work,

@@ -87,7 +87,7 @@ namespace DynamicContact
   ContactNewton<dim> &
   StepSolver<dim>::newton_for_scheme()
   {
-    auto &newton = newtons[bulk.scheme().is_backward_euler() ? 0 : 1];
+    auto &newton = newtons[bulk.scheme().theta() == 0.5 ? 1 : 0];
     if (!newton)
       {
         const ContactProblem<dim> problem{discretization,

@@ -352,6 +352,19 @@ main(int argc, char **argv)
       file,
       1,
       {"Time/End time"});
+  add("spectral_radius_without_bathe",
+      scene,
+      with({"--set", "Time/Spectral radius at infinity=0.5"}),
+      1,
+      {"Time/Spectral radius at infinity", "Time/Scheme = bathe"});
+  add("spectral_radius_above_one",
+      scene,
+      with({"--set",
+            "Time/Scheme=bathe",
+            "--set",
+            "Time/Spectral radius at infinity=1.5"}),
+      1,
+      {"Time/Spectral radius at infinity"});
 
   // Boundary conditions against the mesh (ids 0..3 of the rectangle).
   add("boundary_id_twice",

@@ -10,25 +10,34 @@
 // the Bathe scheme dissipation_inertia books the scheme's whole numerical
 // dissipation, the energy jump of the extrapolation to the second
 // sub-step's start included (dissipation_elastic is 0): it must be >= 0
-// too, and at work.
+// too, and at work. With Time/Spectral radius at infinity = rho_inf > 0
+// the second sub-step is a theta-step (1/2 < theta < 1) whose numerical
+// dissipation (theta - 1/2)(...) is booked in dissipation_inertia as well,
+// and whose compliance force (2 theta - 1) p(u_n) + 2 (1 - theta) DG
+// dissipates (2 theta - 1) times backward Euler's compliance term.
 
 #include "test_tools.h"
 
 using namespace DynamicContact;
 
 void
-check_balance(const std::string &scheme)
+check_balance(const std::string &scheme, const double rho_inf = 0)
 {
-  test_tools::out() << "--- Time/Scheme = " << scheme << std::endl;
-  auto simulator =
-    test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
-                       {"Output/Directory=output-energy-" +
-                          std::string(scheme == "backward Euler" ? "euler" :
-                                                                   scheme),
-                        "Time/Scheme=" + scheme,
-                        "Material/Viscosity lambda=1e7",
-                        "Material/Viscosity mu=5e6",
-                        "Foundation/Initial gap/Function expression=0.01*x"});
+  const std::string rho = test_tools::digits(rho_inf, 2);
+  test_tools::out() << "--- Time/Scheme = " << scheme
+                    << (rho_inf > 0 ? ", Spectral radius at infinity = " + rho :
+                                      std::string())
+                    << std::endl;
+  auto simulator = test_tools::run<2>(
+    test_tools::scene("barboteu_danan_2016_small.prm"),
+    {"Output/Directory=output-energy-" +
+       std::string(scheme == "backward Euler" ? "euler" : scheme) +
+       (rho_inf > 0 ? "-" + rho : std::string()),
+     "Time/Scheme=" + scheme,
+     "Time/Spectral radius at infinity=" + std::to_string(rho_inf),
+     "Material/Viscosity lambda=1e7",
+     "Material/Viscosity mu=5e6",
+     "Foundation/Initial gap/Function expression=0.01*x"});
 
   const char *terms[] = {"dissipation_inertia",
                          "dissipation_elastic",
@@ -104,4 +113,6 @@ main(int argc, char *argv[])
   check_balance("backward Euler");
   check_balance("trapezoidal");
   check_balance("bathe");
+  check_balance("bathe", 0.5);
+  check_balance("bathe", 0.9);
 }

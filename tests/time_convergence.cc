@@ -4,7 +4,9 @@
 // displacement, on a mesh fine enough that the spatial error stays below
 // the time error, and k halved twice. The observed rate of
 // max_n error_theorem6 must be >= 1.9 for the second-order Bathe scheme
-// (Time/Scheme = bathe) and about 1 for backward Euler (so that the check
+// (Time/Scheme = bathe) at the spectral radius at infinity rho_inf = 0
+// (default), 0.5 and 1 (doc/theory.md section 2.4) and about 1 for
+// backward Euler (so that the check
 // can tell a first-order scheme). benchmarks/convergence runs the longer
 // study (time-bathe).
 
@@ -15,10 +17,13 @@
 using namespace DynamicContact;
 
 double
-max_error(const std::string &scheme, const unsigned int steps)
+max_error(const std::string &scheme,
+          const unsigned int steps,
+          const double       rho_inf)
 {
   const std::string name =
-    (scheme == "backward Euler" ? std::string("euler") : scheme);
+    (scheme == "backward Euler" ? std::string("euler") : scheme) +
+    (rho_inf > 0 ? "-" + test_tools::digits(rho_inf, 2) : std::string());
   auto simulator =
     test_tools::run<2>(test_tools::scene("manufactured_2d.prm"),
                        {"Output/Directory=output-time-convergence-" + name +
@@ -26,7 +31,9 @@ max_error(const std::string &scheme, const unsigned int steps)
                         "Geometry/Global refinements=4",
                         "Finite element/Polynomial degree=2",
                         "Time/Time step=" + std::to_string(0.8 / steps),
-                        "Time/Scheme=" + scheme});
+                        "Time/Scheme=" + scheme,
+                        "Time/Spectral radius at infinity=" +
+                          std::to_string(rho_inf)});
   double error = 0;
   for (const auto &row : simulator->time_series())
     if (row.step > 0)
@@ -35,13 +42,20 @@ max_error(const std::string &scheme, const unsigned int steps)
 }
 
 void
-study(const std::string &scheme, const double low, const double high)
+study(const std::string &scheme,
+      const double       low,
+      const double       high,
+      const double       rho_inf = 0)
 {
-  test_tools::out() << "--- Time/Scheme = " << scheme << std::endl;
+  test_tools::out() << "--- Time/Scheme = " << scheme
+                    << (rho_inf > 0 ? ", Spectral radius at infinity = " +
+                                        test_tools::digits(rho_inf, 2) :
+                                      std::string())
+                    << std::endl;
   const std::vector<unsigned int> steps = {8, 16, 32};
   std::vector<double>             errors;
   for (const unsigned int n : steps)
-    errors.push_back(max_error(scheme, n));
+    errors.push_back(max_error(scheme, n, rho_inf));
   for (unsigned int i = 1; i < steps.size(); ++i)
     {
       const double rate = std::log2(errors[i - 1] / errors[i]);
@@ -58,5 +72,7 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   study("bathe", 1.9, 2.6);
+  study("bathe", 1.9, 2.6, 0.5);
+  study("bathe", 1.9, 2.6, 1);
   study("backward Euler", 0.8, 1.2);
 }

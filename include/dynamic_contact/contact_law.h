@@ -83,8 +83,9 @@ namespace DynamicContact
    * The normal law of the theta-scheme (Time/Scheme): u_n = u_{n-1} + k w_e
    * with the effective velocity w_e = theta w_n + (1 - theta) w_{n-1}; q acts
    * on w_e,nu, and the compliance force is p(u_n) for theta = 1 (backward
-   * Euler) and the discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1})
-   * for theta < 1 (the energy-consistent trapezoidal scheme). dpressure_dw
+   * Euler), the discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1})
+   * for theta = 1/2 (the energy-consistent trapezoidal scheme) and their
+   * combination TimeScheme::compliance_force in between. dpressure_dw
    * is the derivative with respect to w_n,nu; w_nu is w_e,nu.
    */
   NormalResponse

@@ -44,7 +44,8 @@ namespace DynamicContact
     double viscous   = 0; // k a_C(w_e, w_e)
     double compliance =
       0; // sum m_i [P (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))],
-         // P = p(u_n) (theta = 1) or the discrete gradient (0)
+         // P = p(u_n) (theta = 1), the discrete gradient (theta = 1/2:
+         // 0), TimeScheme::compliance_force in between
     double damping  = 0; // k sum m_i q(w_e,nu) w_e,nu
     double friction = 0; // k sum lambda_i . w_e,tau,i
     double defect   = 0; // E_n - E_{n-1} + D_n - W_n
@@ -77,25 +78,30 @@ namespace DynamicContact
 
 
   /**
-   * The balance of one step of the Bathe scheme (Time/Scheme = bathe,
-   * doc/theory.md sections 2 and 6) from those of its sub-steps: @p first
-   * (trapezoidal, from E_{n-1} to E_{n-1/2} = first.energy), the energy
-   * @p extrapolated of x_bar = (4 x_{n-1/2} - x_{n-1})/3, @p second
-   * (backward Euler from x_bar to x_n, its load work (f_n, u_n - u_bar)),
-   * and @p extrapolation_work = (f_n, u_bar - u_{n-1/2}). The load work of
-   * the step is that along u_{n-1} -> u_{n-1/2} -> u_n,
-   *   W_n = first.load_work + second.load_work + extrapolation_work,
+   * The balance of one step of the Bathe scheme (Time/Scheme = bathe, with
+   * its spectral radius at infinity rho_inf; doc/theory.md sections 2.4
+   * and 6) from those of its sub-steps: @p first (trapezoidal, from
+   * E_{n-1} to E_{n-1/2} = first.energy), the energy @p extrapolated of
+   * x_bar = (1 + a) x_{n-1/2} - a x_{n-1} (a = 1/3 at rho_inf = 0),
+   * @p second (the theta-step from x_bar to x_n, theta = 1 at rho_inf = 0,
+   * its load work (f_theta, u_n - u_bar)), and @p extrapolation_work =
+   * (f_theta, u_bar - u_{n-1/2}). The load work of the step is that along
+   * u_{n-1} -> u_{n-1/2} -> u_bar -> u_n,
+   *   W_n = first.load_work + extrapolation_work + second.load_work,
    * the physical terms (viscous, damping, friction, compliance) add up,
    * and the extrapolation's change of the total potential energy,
-   * E(x_bar) - E(x_{n-1/2}) - (f_n, u_bar - u_{n-1/2}), which no force
-   * does, is booked against the second sub-step's numerical terms:
-   *   inertia = rho/2 |w_n - w_bar|^2 + a_E(u_n - u_bar, u_n - u_bar)/2
-   *             - (E(x_bar) - E(x_{n-1/2}) - (f_n, u_bar - u_{n-1/2})),
+   * E(x_bar) - E(x_{n-1/2}) - (f_theta, u_bar - u_{n-1/2}), which no force
+   * does, is booked against the sub-steps' numerical terms:
+   *   inertia = (theta - 1/2)(rho |w_n - w_bar|^2
+   *                           + a_E(u_n - u_bar, u_n - u_bar))
+   *             - (E(x_bar) - E(x_{n-1/2}) - (f_theta, u_bar - u_{n-1/2})),
    * the scheme's whole numerical dissipation (elastic = 0), so that
-   * E_n - E_{n-1} + D_n = W_n holds exactly. It is >= 0 for a linear
-   * system under a constant load (mode by mode, about the static state,
-   * the scheme does not increase the energy); that it is >= 0 in a run is
-   * checked, not assumed (tests/energy_balance).
+   * E_n - E_{n-1} + D_n = W_n holds exactly. It is >= 0 for an undamped
+   * linear system under a constant load (mode by mode, about the static
+   * state, the step does not increase the energy); with damping or a load
+   * that changes in time it can be < 0 (doc/theory.md section 6 shows that
+   * no consistent booking avoids that); that it is >= 0 in a run is
+   * checked, not assumed (tests/energy_balance, tests/spectral_radius).
    */
   EnergyBalanceTerms
   bathe_terms(const EnergyBalanceTerms &first,

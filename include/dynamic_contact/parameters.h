@@ -4,6 +4,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
+#include <dynamic_contact/time_scheme.h>
+
 #include <map>
 #include <memory>
 #include <string>
@@ -207,11 +209,16 @@ namespace DynamicContact
       bool   adaptive;
       double adaptive_tolerance;
       double maximum_time_step;
+      /**
+       * The composite scheme of Time/Scheme = bathe, with its spectral
+       * radius at infinity (Time/Spectral radius at infinity).
+       */
+      CompositeScheme composite;
 
       /**
        * The theta of the one-step schemes: 1 for backward Euler, 1/2 for
        * the trapezoidal scheme. (The Bathe scheme's sub-steps have their
-       * own: 1/2, then 1.)
+       * own: 1/2, then composite.theta().)
        */
       double
       theta() const

@@ -152,9 +152,11 @@ namespace DynamicContact
     double                      c_t = 0;
 
     /**
-     * The Newton solver of each kind of (sub-)step: [0] theta = 1, [1]
-     * theta < 1, made when first needed. A composite scheme
-     * (Time/Scheme = bathe) alternates the two kinds, each with its own K0;
+     * The Newton solver of each kind of (sub-)step: [0] theta > 1/2
+     * (backward Euler, the composite scheme's second sub-step), [1] theta
+     * = 1/2 (trapezoidal), made when first needed. A composite scheme
+     * (Time/Scheme = bathe) alternates the two kinds, each with its own K0
+     * (at rho_inf = 1 both sub-steps are trapezoidal over k/2: one K0);
      * one solver each keeps its factorization (and the condensed solver's
      * compliance columns) from step to step.
      */

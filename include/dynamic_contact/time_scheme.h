@@ -1,6 +1,8 @@
 #ifndef dynamic_contact_time_scheme_h
 #define dynamic_contact_time_scheme_h
 
+#include <cmath>
+
 namespace DynamicContact
 {
   /**
@@ -152,6 +154,27 @@ namespace DynamicContact
     }
 
     /**
+     * The compliance force of a step with theta < 1 from p(u_n) and the
+     * discrete gradient DG = (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}) (or
+     * from their derivatives):
+     *   P_n = (2 theta - 1) p(u_n) + 2 (1 - theta) DG,
+     * exactly DG for theta = 1/2 (energy-consistent) and p(u_n) for
+     * theta = 1. It equals p(u_theta) to O(k^2), as the composite scheme's
+     * second order needs for theta in (1/2, 1), and its dissipation
+     * P_n (u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))
+     *   = (2 theta - 1) [p(u_n)(u_n - u_{n-1}) - (Pi(u_n) - Pi(u_{n-1}))]
+     * is >= 0 for a nondecreasing p.
+     */
+    double
+    compliance_force(const double end_value,
+                     const double discrete_gradient) const
+    {
+      if (th == 0.5)
+        return discrete_gradient;
+      return (2 * th - 1) * end_value + 2 * (1 - th) * discrete_gradient;
+    }
+
+    /**
      * The scheme's numerical dissipation factor (theta - 1/2) of
      * rho |w_n - w_{n-1}|^2 and a_E(u_n - u_{n-1}, u_n - u_{n-1}).
      */
@@ -164,6 +187,134 @@ namespace DynamicContact
   private:
     double k;
     double th;
+  };
+
+  /**
+   * The composite scheme of Time/Scheme = bathe (doc/theory.md section
+   * 2.4) with a prescribed spectral radius at infinity rho_inf in [0, 1].
+   * A step of length k from (u_{n-1}, w_{n-1}):
+   *   1. the trapezoidal rule over k/2 to (u_{n-1/2}, w_{n-1/2});
+   *   2. the linear extrapolation to t_{n-1} + s k of both fields,
+   *        x_bar = (1 + a) x_{n-1/2} - a x_{n-1},   a = 2 s - 1;
+   *   3. one theta-step (TimeScheme) of length (1 - s) k from x_bar to t_n.
+   * Second order for every rho_inf; s and theta solve
+   *   (theta - 1) s^2 + (5/4 - 2 theta) s + (theta - 1/2) = 0,
+   *   rho_inf = (1 + 2 a) (1 - theta)/theta,
+   * whose solution in closed form is
+   *   s = ((5 rho + 11) + sqrt((1 - rho)(7 rho + 25)))/(8 rho + 24),
+   *   theta = (s^2 - 5 s/4 + 1/2)/(1 - s)^2.
+   * rho_inf = 0 is the Bathe scheme (s = 2/3, theta = 1: backward Euler
+   * over k/3 from (4 x_{n-1/2} - x_{n-1})/3), with exactly the constants
+   * of the hand-written code it replaced; rho_inf = 1 is two trapezoidal
+   * half steps (s = 1/2, theta = 1/2).
+   *
+   * This value type is the one place that holds these coefficients.
+   */
+  class CompositeScheme
+  {
+  public:
+    explicit CompositeScheme(const double spectral_radius_at_infinity = 0)
+      : rho(spectral_radius_at_infinity)
+    {
+      if (rho == 0)
+        return; // the defaults below: s = 2/3, theta = 1
+      const double s =
+        ((5 * rho + 11) + std::sqrt((1 - rho) * (7 * rho + 25))) /
+        (8 * rho + 24);
+      th             = (s * s - 1.25 * s + 0.5) / ((1 - s) * (1 - s));
+      half_weight    = 2 * s;
+      old_weight     = 1 - 2 * s;
+      second_divisor = 1 / (1 - s);
+      work_share     = (2 * s - 1) / (2 * s);
+      error_bar      = -1 / s;
+      error_old      = (1 - s) / s;
+      error_divisor  = 1 / ((1 - s) * th - 1. / 6);
+    }
+
+    double
+    spectral_radius_at_infinity() const
+    {
+      return rho;
+    }
+
+    /** The theta of the second sub-step. */
+    double
+    theta() const
+    {
+      return th;
+    }
+
+    /** Sub-step 1 of a step of length k: the trapezoidal rule over k/2. */
+    TimeScheme
+    first_substep(const double k) const
+    {
+      return TimeScheme(k / 2, 0.5);
+    }
+
+    /** Sub-step 3: the theta-step of length (1 - s) k that ends at t_n. */
+    TimeScheme
+    second_substep(const double k) const
+    {
+      return TimeScheme(k / second_divisor, th);
+    }
+
+    /** x_bar = (1 + a) x_{n-1/2} - a x_{n-1}. */
+    template <typename VectorType>
+    void
+    extrapolate(VectorType       &x_bar,
+                const VectorType &x_half,
+                const VectorType &x_old) const
+    {
+      x_bar = x_half;
+      x_bar *= half_weight;
+      x_bar.add(old_weight, x_old);
+    }
+
+    /**
+     * The share a/(1 + a) of u_bar - u_{n-1} that is the extrapolation's
+     * displacement u_bar - u_{n-1/2}.
+     */
+    double
+    extrapolation_share() const
+    {
+      return work_share;
+    }
+
+    /**
+     * The local error estimate of the displacement (doc/theory.md section
+     * 2.5): the scheme's u_n - u_{n-1} is a quadrature of the velocities,
+     *   k ((1 + a)/4 - (1 - s)(1 - theta) a) w_{n-1}
+     *   + k (1 + a)((1/4) + (1 - s)(1 - theta)) w_{n-1/2}
+     *   + k (1 - s) theta w_n,
+     * exact for linear velocities; its difference to Simpson's rule is
+     *   e = k ((1 - s) theta - 1/6) (w_{n-1} - 2 w_{n-1/2} + w_n),
+     * written with w_{n-1/2} = (w_bar + a w_{n-1})/(1 + a).
+     */
+    template <typename VectorType>
+    void
+    local_error(VectorType       &e,
+                const VectorType &w,
+                const VectorType &w_bar,
+                const VectorType &w_old,
+                const double      k) const
+    {
+      e = w;
+      e.add(error_bar, w_bar);
+      e.add(error_old, w_old);
+      e *= k / error_divisor;
+    }
+
+  private:
+    double rho;
+    // rho_inf = 0, in the constants of the Bathe scheme.
+    double th             = 1;
+    double half_weight    = 4. / 3;
+    double old_weight     = -1. / 3;
+    double second_divisor = 3;
+    double work_share     = 0.25;
+    double error_bar      = -1.5;
+    double error_old      = 0.5;
+    double error_divisor  = 6;
   };
 } // namespace DynamicContact
 
