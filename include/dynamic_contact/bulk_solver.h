@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -73,9 +74,27 @@ namespace DynamicContact
                    std::vector<double>       *coordinates = nullptr);
 
   /**
+   * The Trilinos Amesos package of Solver/Direct solver package ('auto':
+   * MUMPS; the condensed solver's BulkSolver uses CHOLMOD instead on one
+   * process).
+   */
+  inline std::string
+  amesos_package(const Parameters::Solver &parameters)
+  {
+    return parameters.direct_solver_package == "auto" ?
+             std::string("Amesos_Mumps") :
+             parameters.direct_solver_package;
+  }
+
+
+  /**
    * Solves with one (symmetric positive definite) matrix, many times: a
-   * sparse direct factorization (Trilinos Amesos, MUMPS or KLU) made once,
-   * or CG with algebraic multigrid built once. Unlike deal.II's
+   * sparse direct factorization made once, or CG with algebraic multigrid
+   * built once. The factorization is a supernodal Cholesky factorization
+   * (SuiteSparse CHOLMOD) on one process with Solver/Direct solver package
+   * = auto, else Trilinos Amesos (MUMPS or KLU) (benchmarks/direct_comparison.cc:
+   * on the paper's scene CHOLMOD factorizes and solves several times faster
+   * than MUMPS; README, "Choosing the contact solver"). Unlike deal.II's
    * TrilinosWrappers::SolverDirect it solves blocks of right-hand sides in
    * one call, which a direct solver does at the speed of dense matrix
    * products rather than one triangular solve after the other.
@@ -125,6 +144,9 @@ namespace DynamicContact
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    direct;
     std::unique_ptr<BulkAMG>              amg;
+    /** The CHOLMOD factorization (one process; defined in the .cc). */
+    class Cholesky;
+    std::unique_ptr<Cholesky> cholesky;
   };
 } // namespace DynamicContact
 
