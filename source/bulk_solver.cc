@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 namespace DynamicContact
 {
@@ -237,6 +238,13 @@ namespace DynamicContact
       std::memcpy(X, x->x, sizeof(double) * n * n_columns);
     }
 
+    /** The number of entries of the factor. */
+    double
+    factor_entries() const
+    {
+      return common.lnz;
+    }
+
   private:
     cholmod_common                common;
     cholmod_factor               *factor = nullptr;
@@ -260,6 +268,15 @@ namespace DynamicContact
 
 
   BulkSolver::~BulkSolver() = default;
+
+
+  double
+  BulkSolver::solve_cost() const
+  {
+    if (cholesky)
+      return 2 * cholesky->factor_entries() + 4. * matrix->m();
+    return std::numeric_limits<double>::infinity();
+  }
 
 
   template <int dim>

@@ -206,9 +206,14 @@ namespace DynamicContact
         rows.push_back(node.dofs[r]);
     std::vector<std::vector<double>> values;
     // Keep the whole columns while they fit (the same decision everywhere).
+    // Keep the whole columns while they fit, and only if a sum of all of
+    // them reads fewer numbers than a solve (the same decision everywhere):
+    // with a Cholesky factor a solve is cheaper (on the paper's scene about
+    // as fast, on the paper domain 256 x 16 ten times faster).
     const bool store =
       (stored_full_columns + rhs.size()) * max_owned_dofs * sizeof(double) <=
-      full_column_budget;
+        full_column_budget &&
+      double(dim) * all.size() * max_owned_dofs <= bulk_solver.solve_cost();
     const std::size_t n_owned =
       problem.discretization.locally_owned.n_elements();
     std::function<void(unsigned int, const double *)> keep;
@@ -670,12 +675,22 @@ namespace DynamicContact
                         result);
     }
 
-    // A provisional velocity: the columns' sum instead of a solve, and no
-    // phase 2 (the loop's next pass, or finalize(), follows).
-    if (provisional && apply_full_columns(it.g, it.active, scratch))
+    // A provisional velocity: w = w_free - X g from the stored columns, or
+    // w = K0'^{-1} (b - sum_i P_i^T g_i) by a solve, and no phase 2 (the
+    // loop's next pass, or finalize(), follows).
+    if (provisional)
       {
-        w = free_response;
-        w -= scratch;
+        if (apply_full_columns(it.g, it.active, scratch))
+          {
+            w = free_response;
+            w -= scratch;
+          }
+        else
+          {
+            right_hand_side = rhs;
+            add_nodal_forces(it.g, -1., right_hand_side);
+            solve_bulk(right_hand_side, w, result);
+          }
         lambda = gathered.owned_part(it.lambda);
         pending.emplace(Pending{u_old, w_old, mu, std::move(it)});
         result.provisional = true;
@@ -741,7 +756,7 @@ namespace DynamicContact
     it.lambda = gathered.gather(x.lambda);
     linearize(it);
 
-    // z = -K0'^{-1} (K0 w - b + sum_i P_i^T base_i); the step is
+    // z = K0'^{-1} v, v = -(K0 w - b + sum_i P_i^T base_i); the step is
     // dw = z - K0'^{-1} sum_i P_i^T (g_i^new - base_i) (g form).
     residual = x.residual;
     problem.boundary.add_nodal_forces(
@@ -751,50 +766,51 @@ namespace DynamicContact
     residual *= -1.;
     compute_columns(it.active, result);
 
-    // With the whole columns of the active nodes stored, K0'^{-1} of that
-    // vector is split exactly: its nodal part sum_j P_j^T q_j (q_j = P_j
-    // r_j, r_j its entries at node j, at the nodes whose whole columns are
-    // stored) is the sum of columns X q, with the nodal values C q; the
-    // rest is solved for unless it is below half the Newton tolerance. At
-    // an iterate that satisfies the bulk equilibrium, as the phase-1
-    // velocity and every Newton iterate do, the rest is round-off: the
-    // step leaves it as it is, so the next residual is about the rest, and
-    // a solve would only bring it down to the round-off floor of the solve
-    // (about 1e-11 on the paper's scene). The step is then K0'^{-1} rest
-    // + X (q - d), d the change of the nodal forces below. Else two
-    // solves.
+    // z is split exactly: the nodal part of v, sum_j P_j^T
+    // q_j (q_j = P_j r_j, r_j the entries of v at node j, at the nodes
+    // whose columns of C are known), gives the nodal values C q; the rest
+    // of v is solved
+    // for unless it is below half the Newton tolerance. At an iterate that
+    // satisfies the bulk equilibrium, as the phase-1 velocity and every
+    // Newton iterate do, the rest is round-off, and a solve would only
+    // bring it down to the round-off floor of the solve (about 1e-11 on the
+    // paper's scene). The step is then K0'^{-1} sum_j P_j^T (q_j - d_j), d
+    // the change of the nodal forces below: X (q - d) from the stored whole
+    // columns, or one solve. The rest is left as it is (the next residual
+    // is about the rest); it must not enter the step alone: the dense step
+    // did not see it, and its response at the nodes (amplified some 500
+    // times on the paper's scene) would stall the iteration. If the rest is
+    // larger: K0'^{-1} v and K0'^{-1} sum_j P_j^T d_j, two solves (or one and
+    // a sum).
     const auto &all    = gathered.all_nodes();
     const auto &owned  = problem.boundary.nodes();
     const auto &global = gathered.global_indices();
-    bool        by_columns =
-      std::all_of(it.active.begin(), it.active.end(), [&](const unsigned j) {
-        return !full_columns[dim * j].empty();
-      });
-    std::vector<Tensor<1, dim>> q(all.size());
-    std::vector<Tensor<1, dim>> r(it.active.size()), dw, new_forces;
-    if (by_columns)
-      {
-        std::vector<Tensor<1, dim>> q_owned(owned.size());
-        scratch                = residual;
-        double         *rest   = scratch.trilinos_vector()[0];
-        const IndexSet &locals = problem.discretization.locally_owned;
-        for (unsigned int i = 0; i < owned.size(); ++i)
-          if (!full_columns[dim * global[i]].empty())
+    std::vector<Tensor<1, dim>> q_owned(owned.size());
+    scratch                = residual;
+    double         *rest   = scratch.trilinos_vector()[0];
+    const IndexSet &locals = problem.discretization.locally_owned;
+    for (unsigned int i = 0; i < owned.size(); ++i)
+      if (!columns[global[i]].empty())
+        {
+          std::array<types::global_dof_index, dim> local;
+          Tensor<1, dim>                           raw;
+          for (unsigned int c = 0; c < dim; ++c)
             {
-              std::array<types::global_dof_index, dim> local;
-              Tensor<1, dim>                           raw;
-              for (unsigned int c = 0; c < dim; ++c)
-                {
-                  local[c] = locals.index_within_set(owned[i].dofs[c]);
-                  raw[c]   = rest[local[c]];
-                }
-              q_owned[i]                = owned[i].constraint_map * raw;
-              const Tensor<1, dim> back = transpose(owned[i].constraint_map) *
-                                          q_owned[i];
-              for (unsigned int c = 0; c < dim; ++c)
-                rest[local[c]] -= back[c];
+              local[c] = locals.index_within_set(owned[i].dofs[c]);
+              raw[c]   = rest[local[c]];
             }
-        q = gathered.gather(q_owned);
+          q_owned[i]                = owned[i].constraint_map * raw;
+          const Tensor<1, dim> back = transpose(owned[i].constraint_map) *
+                                      q_owned[i];
+          for (unsigned int c = 0; c < dim; ++c)
+            rest[local[c]] -= back[c];
+        }
+    const bool split = scratch.l2_norm() <=
+                       0.5 * problem.parameters.newton_tolerance * x.scale;
+    std::vector<Tensor<1, dim>> q = gathered.gather(q_owned);
+    std::vector<Tensor<1, dim>> r(it.active.size()), dw, new_forces;
+    if (split)
+      {
         std::vector<unsigned int> with_q;
         for (unsigned int j = 0; j < all.size(); ++j)
           if (q[j].norm_square() > 0)
@@ -804,18 +820,8 @@ namespace DynamicContact
                             q,
                             with_q,
                             minus_Cq);
-        if (scratch.l2_norm() >
-            0.5 * problem.parameters.newton_tolerance * x.scale)
-          {
-            solve_bulk(scratch, solution, result);
-            const auto z = gather_values(solution);
-            for (unsigned int a = 0; a < it.active.size(); ++a)
-              r[a] = z[it.active[a]];
-          }
-        else
-          solution = 0;
         for (unsigned int a = 0; a < it.active.size(); ++a)
-          r[a] -= minus_Cq[it.active[a]];
+          r[a] = -minus_Cq[it.active[a]];
       }
     else
       {
@@ -828,9 +834,8 @@ namespace DynamicContact
     dense_step(it, r, dw, lambda_full, new_forces);
     for (const unsigned int j : it.active)
       new_forces[j] -= it.base[j];
-    if (by_columns)
+    if (split)
       {
-        // + X (q - d).
         std::vector<unsigned int> nodes;
         for (unsigned int j = 0; j < all.size(); ++j)
           {
@@ -838,15 +843,25 @@ namespace DynamicContact
             if (q[j].norm_square() > 0)
               nodes.push_back(j);
           }
-        AssertThrow(apply_full_columns(q, nodes, increment),
-                    ExcInternalError());
-        solution += increment; // the full step
+        if (!apply_full_columns(q, nodes, solution))
+          {
+            right_hand_side = 0;
+            add_nodal_forces(q, 1., right_hand_side);
+            solve_bulk(right_hand_side, solution, result);
+          }
       }
     else
       {
-        right_hand_side = 0;
-        add_nodal_forces(new_forces, 1., right_hand_side);
-        solve_bulk(right_hand_side, increment, result);
+        std::vector<unsigned int> nodes;
+        for (unsigned int j = 0; j < all.size(); ++j)
+          if (new_forces[j].norm_square() > 0)
+            nodes.push_back(j);
+        if (!apply_full_columns(new_forces, nodes, increment))
+          {
+            right_hand_side = 0;
+            add_nodal_forces(new_forces, 1., right_hand_side);
+            solve_bulk(right_hand_side, increment, result);
+          }
         solution -= increment; // the full step
       }
     full.w = x.w;

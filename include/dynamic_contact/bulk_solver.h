@@ -137,6 +137,15 @@ namespace DynamicContact
       std::vector<std::vector<double>>                        &values,
       const std::function<void(unsigned int, const double *)> &store = {});
 
+    /**
+     * About how many numbers a solve with one right-hand side reads (the
+     * factor twice, forward and backward): what decides whether a sum of
+     * stored solutions is cheaper than a solve. Infinite where unknown
+     * (MUMPS, AMG).
+     */
+    double
+    solve_cost() const;
+
   private:
     const Parameters::Solver parameters;
     const Matrix_t          *matrix = nullptr;
