@@ -362,7 +362,8 @@ namespace DynamicContact
     const std::vector<SparseColumn>                         &columns,
     const std::vector<types::global_dof_index>              &rows,
     std::vector<std::vector<double>>                        &values,
-    const std::function<void(unsigned int, const double *)> &store)
+    const std::function<void(unsigned int, const double *)> &store,
+    const unsigned int                                       block)
   {
     Assert(matrix != nullptr, ExcNotInitialized());
     values.assign(columns.size(), std::vector<double>(rows.size()));
@@ -371,9 +372,7 @@ namespace DynamicContact
     const Epetra_Map &map = matrix->trilinos_matrix().DomainMap();
     if (cholesky)
       {
-        // Blocks of at most 64 right-hand sides bound the memory; one
-        // process: the local index of a row is the row.
-        constexpr unsigned int block = 64;
+        // One process: the local index of a row is the row.
         const std::size_t      n     = map.NumMyElements();
         std::vector<double>    B, X;
         for (unsigned int first = 0; first < columns.size(); first += block)
@@ -398,8 +397,6 @@ namespace DynamicContact
       }
     else if (direct)
       {
-        // Blocks of at most 64 right-hand sides bound the memory.
-        constexpr unsigned int block = 64;
         for (unsigned int first = 0; first < columns.size(); first += block)
           {
             const unsigned int n =

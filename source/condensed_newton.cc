@@ -177,16 +177,29 @@ namespace DynamicContact
                                         Result                          &result)
   {
     std::vector<unsigned int> missing;
+    // Whole blocks of nodes_per_block consecutive nodes, each solved as one
+    // block of right-hand sides: a block solve's round-off depends on the
+    // block's composition (BLAS 3 in CHOLMOD), which is so fixed, and a run
+    // resumed from a checkpoint gets the columns of the uninterrupted one.
+    const auto        &all             = gathered.all_nodes();
+    const unsigned int nodes_per_block = 64 / dim;
+    std::vector<bool>  wanted(all.size(), false);
     for (const unsigned int j : nodes)
       if (columns[j].empty())
-        missing.push_back(j);
+        wanted[j / nodes_per_block * nodes_per_block] = true;
+    for (unsigned int first = 0; first < all.size(); first += nodes_per_block)
+      if (wanted[first])
+        for (unsigned int j = first;
+             j < std::min<unsigned int>(first + nodes_per_block, all.size());
+             ++j)
+          if (columns[j].empty())
+            missing.push_back(j);
     if (missing.empty())
       return;
     TimerSection t(problem.timer, "Bulk: compliance columns");
 
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
-    const auto                           &all = gathered.all_nodes();
     std::vector<BulkSolver::SparseColumn> rhs;
     for (const unsigned int j : missing)
       for (unsigned int c = 0; c < dim; ++c)
@@ -222,7 +235,7 @@ namespace DynamicContact
         full_columns[dim * missing[column / dim] + column % dim].assign(
           entries, entries + n_owned);
       };
-    bulk_solver.solve_columns(rhs, rows, values, keep);
+    bulk_solver.solve_columns(rhs, rows, values, keep, dim * nodes_per_block);
     if (store)
       stored_full_columns += rhs.size();
     result.bulk_solves += rhs.size();
@@ -766,104 +779,28 @@ namespace DynamicContact
     residual *= -1.;
     compute_columns(it.active, result);
 
-    // z is split exactly: the nodal part of v, sum_j P_j^T
-    // q_j (q_j = P_j r_j, r_j the entries of v at node j, at the nodes
-    // whose columns of C are known), gives the nodal values C q; the rest
-    // of v is solved
-    // for unless it is below half the Newton tolerance. At an iterate that
-    // satisfies the bulk equilibrium, as the phase-1 velocity and every
-    // Newton iterate do, the rest is round-off, and a solve would only
-    // bring it down to the round-off floor of the solve (about 1e-11 on the
-    // paper's scene). The step is then K0'^{-1} sum_j P_j^T (q_j - d_j), d
-    // the change of the nodal forces below: X (q - d) from the stored whole
-    // columns, or one solve. The rest is left as it is (the next residual
-    // is about the rest); it must not enter the step alone: the dense step
-    // did not see it, and its response at the nodes (amplified some 500
-    // times on the paper's scene) would stall the iteration. If the rest is
-    // larger: K0'^{-1} v and K0'^{-1} sum_j P_j^T d_j, two solves (or one and
-    // a sum).
-    const auto &all    = gathered.all_nodes();
-    const auto &owned  = problem.boundary.nodes();
-    const auto &global = gathered.global_indices();
-    std::vector<Tensor<1, dim>> q_owned(owned.size());
-    scratch                = residual;
-    double         *rest   = scratch.trilinos_vector()[0];
-    const IndexSet &locals = problem.discretization.locally_owned;
-    for (unsigned int i = 0; i < owned.size(); ++i)
-      if (!columns[global[i]].empty())
-        {
-          std::array<types::global_dof_index, dim> local;
-          Tensor<1, dim>                           raw;
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              local[c] = locals.index_within_set(owned[i].dofs[c]);
-              raw[c]   = rest[local[c]];
-            }
-          q_owned[i]                = owned[i].constraint_map * raw;
-          const Tensor<1, dim> back = transpose(owned[i].constraint_map) *
-                                      q_owned[i];
-          for (unsigned int c = 0; c < dim; ++c)
-            rest[local[c]] -= back[c];
-        }
-    const bool split = scratch.l2_norm() <=
-                       0.5 * problem.parameters.newton_tolerance * x.scale;
-    std::vector<Tensor<1, dim>> q = gathered.gather(q_owned);
+    // The rest of the step, K0'^{-1} sum_i P_i^T (g_i^new - base_i), is a
+    // sum of the stored whole columns if they are kept, else a solve. (Tried:
+    // z from C times the nodal part of v alone, the rest of v, bulk
+    // round-off of about 1e-11 |b|, left out: its response at the nodes is
+    // some 500 times larger and left |w_tau| = 7.9e-8 at a stick node of
+    // the critical-speed stress scene, 2.6 times the law's tolerance.)
+    solve_bulk(residual, solution, result);
+    const auto z = gather_values(solution);
     std::vector<Tensor<1, dim>> r(it.active.size()), dw, new_forces;
-    if (split)
-      {
-        std::vector<unsigned int> with_q;
-        for (unsigned int j = 0; j < all.size(); ++j)
-          if (q[j].norm_square() > 0)
-            with_q.push_back(j);
-        std::vector<Tensor<1, dim>> minus_Cq;
-        compliance_response(std::vector<Tensor<1, dim>>(all.size()),
-                            q,
-                            with_q,
-                            minus_Cq);
-        for (unsigned int a = 0; a < it.active.size(); ++a)
-          r[a] = -minus_Cq[it.active[a]];
-      }
-    else
-      {
-        solve_bulk(residual, solution, result);
-        const auto z = gather_values(solution);
-        for (unsigned int a = 0; a < it.active.size(); ++a)
-          r[a] = z[it.active[a]];
-      }
+    for (unsigned int a = 0; a < it.active.size(); ++a)
+      r[a] = z[it.active[a]];
     std::vector<Tensor<1, dim>> lambda_full = it.lambda;
     dense_step(it, r, dw, lambda_full, new_forces);
     for (const unsigned int j : it.active)
       new_forces[j] -= it.base[j];
-    if (split)
+    if (!apply_full_columns(new_forces, it.active, increment))
       {
-        std::vector<unsigned int> nodes;
-        for (unsigned int j = 0; j < all.size(); ++j)
-          {
-            q[j] -= new_forces[j];
-            if (q[j].norm_square() > 0)
-              nodes.push_back(j);
-          }
-        if (!apply_full_columns(q, nodes, solution))
-          {
-            right_hand_side = 0;
-            add_nodal_forces(q, 1., right_hand_side);
-            solve_bulk(right_hand_side, solution, result);
-          }
+        right_hand_side = 0;
+        add_nodal_forces(new_forces, 1., right_hand_side);
+        solve_bulk(right_hand_side, increment, result);
       }
-    else
-      {
-        std::vector<unsigned int> nodes;
-        for (unsigned int j = 0; j < all.size(); ++j)
-          if (new_forces[j].norm_square() > 0)
-            nodes.push_back(j);
-        if (!apply_full_columns(new_forces, nodes, increment))
-          {
-            right_hand_side = 0;
-            add_nodal_forces(new_forces, 1., right_hand_side);
-            solve_bulk(right_hand_side, increment, result);
-          }
-        solution -= increment; // the full step
-      }
+    solution -= increment; // the full step
     full.w = x.w;
     full.w += solution;
     full.lambda = gathered.owned_part(lambda_full);

@@ -8,20 +8,12 @@
 #include <dynamic_contact/provenance.h>
 #include <dynamic_contact/simulator.h>
 
-#include <cstdlib>
 #include <iostream>
 
 int
 main(int argc, char *argv[])
 {
   using namespace DynamicContact;
-  // Started without mpirun (an MPI singleton), Open MPI 4 starts a
-  // supporting daemon (orted) in MPI_Init, a good part of the start-up of a
-  // short run; the program never spawns processes, so it does without (a
-  // setting in the environment is kept; other MPIs ignore the variable).
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr &&
-      std::getenv("PMIX_RANK") == nullptr)
-    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm                           comm = MPI_COMM_WORLD;
   const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;

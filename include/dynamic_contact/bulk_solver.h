@@ -127,15 +127,18 @@ namespace DynamicContact
      * the entries of X at @p rows (rows owned by this process):
      * values[c][i] = X(rows[i], c). If @p store is given, it is called with
      * each column's index and its owned entries (in the order of the owned
-     * rows). Collective; every process passes the same columns (each sets
-     * the entries it owns).
+     * rows). The columns are solved in blocks of @p block (bounding the
+     * memory); a block's round-off depends on its composition. Collective;
+     * every process passes the same columns (each sets the entries it
+     * owns).
      */
     void
     solve_columns(
       const std::vector<SparseColumn>                         &columns,
       const std::vector<dealii::types::global_dof_index>      &rows,
       std::vector<std::vector<double>>                        &values,
-      const std::function<void(unsigned int, const double *)> &store = {});
+      const std::function<void(unsigned int, const double *)> &store = {},
+      const unsigned int                                       block = 64);
 
     /**
      * About how many numbers a solve with one right-hand side reads (the
