@@ -10,8 +10,11 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
+#include <suitesparse/cholmod.h>
 
 #include <algorithm>
+#include <cstring>
+#include <limits>
 
 namespace DynamicContact
 {
@@ -101,12 +104,179 @@ namespace DynamicContact
   BulkAMG::initialize(const Matrix_t &, const Discretization<3> &, bool);
 
 
+  /**
+   * K0 factorized by CHOLMOD (supernodal Cholesky, fill-reducing ordering
+   * of its choice), on one process. The analysis (ordering and symbolic
+   * factorization) is kept while the sparsity pattern is unchanged, so a
+   * new time step costs the numeric factorization only.
+   */
+  class BulkSolver::Cholesky
+  {
+  public:
+    Cholesky()
+    {
+      cholmod_l_start(&common);
+      common.print      = 0; // errors are reported by the checks below
+      common.supernodal = CHOLMOD_AUTO; // supernodal unless L is very sparse
+    }
+
+    ~Cholesky()
+    {
+      free_workspace();
+      if (factor != nullptr)
+        cholmod_l_free_factor(&factor, &common);
+      cholmod_l_finish(&common);
+    }
+
+    Cholesky(const Cholesky &) = delete;
+    Cholesky &
+    operator=(const Cholesky &) = delete;
+
+    /** Factorize @p A (one process: every row is owned). */
+    void
+    factorize(const Epetra_CrsMatrix &A)
+    {
+      // The upper triangle, column by column: row r of the (symmetric)
+      // matrix read as column r, its entries with index <= r.
+      const SuiteSparse_long        n = A.NumMyRows();
+      std::vector<SuiteSparse_long> start(1, 0), index;
+      std::vector<double>           value;
+      index.reserve(A.NumMyNonzeros() / 2 + n);
+      value.reserve(A.NumMyNonzeros() / 2 + n);
+      std::vector<std::pair<SuiteSparse_long, double>> row;
+      for (int r = 0; r < n; ++r)
+        {
+          int     count;
+          double *values;
+          int    *indices;
+          A.ExtractMyRowView(r, count, values, indices);
+          row.clear();
+          for (int k = 0; k < count; ++k)
+            {
+              const SuiteSparse_long c = A.GCID(indices[k]);
+              if (c <= r)
+                row.emplace_back(c, values[k]);
+            }
+          std::sort(row.begin(), row.end());
+          for (const auto &[c, v] : row)
+            {
+              index.push_back(c);
+              value.push_back(v);
+            }
+          start.push_back(index.size());
+        }
+      const bool same_pattern =
+        factor != nullptr && start == pattern_start && index == pattern_index;
+      pattern_start = std::move(start);
+      pattern_index = std::move(index);
+      values        = std::move(value);
+
+      cholmod_sparse S;
+      S.nrow   = n;
+      S.ncol   = n;
+      S.nzmax  = values.size();
+      S.p      = pattern_start.data();
+      S.i      = pattern_index.data();
+      S.nz     = nullptr;
+      S.x      = values.data();
+      S.z      = nullptr;
+      S.stype  = 1;
+      S.itype  = CHOLMOD_LONG;
+      S.xtype  = CHOLMOD_REAL;
+      S.dtype  = CHOLMOD_DOUBLE;
+      S.sorted = 1;
+      S.packed = 1;
+      if (!same_pattern)
+        {
+          if (factor != nullptr)
+            cholmod_l_free_factor(&factor, &common);
+          factor = cholmod_l_analyze(&S, &common);
+          AssertThrow(factor != nullptr && common.status == CHOLMOD_OK,
+                      ExcMessage("The analysis of the bulk matrix for its "
+                                 "factorization (CHOLMOD) failed."));
+        }
+      AssertThrow(cholmod_l_factorize(&S, factor, &common) &&
+                    common.status == CHOLMOD_OK,
+                  ExcMessage("The factorization of the bulk matrix failed "
+                             "(CHOLMOD: it is not positive definite)."));
+    }
+
+    /**
+     * X = A^{-1} B for @p n_columns dense columns of length n, column-major
+     * (B and X may not overlap).
+     */
+    void
+    solve(const double      *B,
+          double            *X,
+          const unsigned int n_columns)
+    {
+      const std::size_t n = factor->n;
+      cholmod_dense     b;
+      b.nrow  = n;
+      b.ncol  = n_columns;
+      b.nzmax = n * n_columns;
+      b.d     = n;
+      b.x     = const_cast<double *>(B);
+      b.z     = nullptr;
+      b.xtype = CHOLMOD_REAL;
+      b.dtype = CHOLMOD_DOUBLE;
+      // The workspace (and the solution) are reused while the number of
+      // columns is the same.
+      if (x != nullptr && x->ncol != n_columns)
+        free_workspace();
+      AssertThrow(cholmod_l_solve2(CHOLMOD_A,
+                                   factor,
+                                   &b,
+                                   nullptr,
+                                   &x,
+                                   nullptr,
+                                   &y,
+                                   &e,
+                                   &common) &&
+                    common.status == CHOLMOD_OK,
+                  ExcMessage("A solve with the bulk matrix failed."));
+      std::memcpy(X, x->x, sizeof(double) * n * n_columns);
+    }
+
+    /** The number of entries of the factor. */
+    double
+    factor_entries() const
+    {
+      return common.lnz;
+    }
+
+  private:
+    cholmod_common                common;
+    cholmod_factor               *factor = nullptr;
+    cholmod_dense                *x = nullptr, *y = nullptr, *e = nullptr;
+    std::vector<SuiteSparse_long> pattern_start, pattern_index;
+    std::vector<double>           values;
+
+    void
+    free_workspace()
+    {
+      for (cholmod_dense **d : {&x, &y, &e})
+        if (*d != nullptr)
+          cholmod_l_free_dense(d, &common);
+    }
+  };
+
+
   BulkSolver::BulkSolver(const Parameters::Solver &parameters)
     : parameters(parameters)
   {}
 
 
   BulkSolver::~BulkSolver() = default;
+
+
+  double
+  BulkSolver::solve_cost() const
+  {
+    if (cholesky)
+      return 2 * cholesky->factor_entries() + 4. * matrix->m();
+    return std::numeric_limits<double>::infinity();
+  }
 
 
   template <int dim>
@@ -118,14 +288,27 @@ namespace DynamicContact
     direct.reset();
     amg.reset();
     problem.reset();
-    if (parameters.linear_solver == Parameters::Solver::LinearSolver::direct)
+    const bool one_process =
+      Utilities::MPI::n_mpi_processes(A.get_mpi_communicator()) == 1;
+    if (parameters.linear_solver ==
+          Parameters::Solver::LinearSolver::direct &&
+        one_process && parameters.direct_solver_package == "auto")
       {
+        // Keep the analysis of the last factorization (same pattern).
+        if (!cholesky)
+          cholesky = std::make_unique<Cholesky>();
+        cholesky->factorize(A.trilinos_matrix());
+      }
+    else if (parameters.linear_solver ==
+             Parameters::Solver::LinearSolver::direct)
+      {
+        cholesky.reset();
         problem = std::make_unique<Epetra_LinearProblem>();
         problem->SetOperator(
           const_cast<Epetra_CrsMatrix *>(&A.trilinos_matrix()));
         Amesos factory;
         direct.reset(
-          factory.Create(parameters.direct_solver_package.c_str(), *problem));
+          factory.Create(amesos_package(parameters).c_str(), *problem));
         AssertThrow(direct != nullptr,
                     ExcMessage("Solver/Direct solver package: '" +
                                parameters.direct_solver_package +
@@ -136,6 +319,7 @@ namespace DynamicContact
       }
     else
       {
+        cholesky.reset();
         amg = std::make_unique<BulkAMG>();
         amg->initialize(A, discretization);
       }
@@ -152,7 +336,9 @@ namespace DynamicContact
   BulkSolver::solve(const Vector_t &b, Vector_t &x)
   {
     Assert(matrix != nullptr, ExcNotInitialized());
-    if (direct)
+    if (cholesky)
+      cholesky->solve(b.trilinos_vector()[0], x.trilinos_vector()[0], 1);
+    else if (direct)
       {
         problem->SetLHS(&x.trilinos_vector());
         problem->SetRHS(const_cast<Epetra_MultiVector *>(
@@ -176,17 +362,41 @@ namespace DynamicContact
     const std::vector<SparseColumn>                         &columns,
     const std::vector<types::global_dof_index>              &rows,
     std::vector<std::vector<double>>                        &values,
-    const std::function<void(unsigned int, const double *)> &store)
+    const std::function<void(unsigned int, const double *)> &store,
+    const unsigned int                                       block)
   {
     Assert(matrix != nullptr, ExcNotInitialized());
     values.assign(columns.size(), std::vector<double>(rows.size()));
     if (columns.empty())
       return;
     const Epetra_Map &map = matrix->trilinos_matrix().DomainMap();
-    if (direct)
+    if (cholesky)
       {
-        // Blocks of at most 64 right-hand sides bound the memory.
-        constexpr unsigned int block = 64;
+        // One process: the local index of a row is the row.
+        const std::size_t      n     = map.NumMyElements();
+        std::vector<double>    B, X;
+        for (unsigned int first = 0; first < columns.size(); first += block)
+          {
+            const unsigned int m =
+              std::min<unsigned int>(block, columns.size() - first);
+            B.assign(n * m, 0.);
+            X.resize(n * m);
+            for (unsigned int c = 0; c < m; ++c)
+              for (const auto &[row, value] : columns[first + c])
+                B[c * n + map.LID(static_cast<int>(row))] = value;
+            cholesky->solve(B.data(), X.data(), m);
+            for (unsigned int c = 0; c < m; ++c)
+              {
+                const double *x = X.data() + c * n;
+                for (unsigned int i = 0; i < rows.size(); ++i)
+                  values[first + c][i] = x[map.LID(static_cast<int>(rows[i]))];
+                if (store)
+                  store(first + c, x);
+              }
+          }
+      }
+    else if (direct)
+      {
         for (unsigned int first = 0; first < columns.size(); first += block)
           {
             const unsigned int n =

@@ -10,6 +10,7 @@
 #include <dynamic_contact/timing.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -176,16 +177,29 @@ namespace DynamicContact
                                         Result                          &result)
   {
     std::vector<unsigned int> missing;
+    // Whole blocks of nodes_per_block consecutive nodes, each solved as one
+    // block of right-hand sides: a block solve's round-off depends on the
+    // block's composition (BLAS 3 in CHOLMOD), which is so fixed, and a run
+    // resumed from a checkpoint gets the columns of the uninterrupted one.
+    const auto        &all             = gathered.all_nodes();
+    const unsigned int nodes_per_block = 64 / dim;
+    std::vector<bool>  wanted(all.size(), false);
     for (const unsigned int j : nodes)
       if (columns[j].empty())
-        missing.push_back(j);
+        wanted[j / nodes_per_block * nodes_per_block] = true;
+    for (unsigned int first = 0; first < all.size(); first += nodes_per_block)
+      if (wanted[first])
+        for (unsigned int j = first;
+             j < std::min<unsigned int>(first + nodes_per_block, all.size());
+             ++j)
+          if (columns[j].empty())
+            missing.push_back(j);
     if (missing.empty())
       return;
     TimerSection t(problem.timer, "Bulk: compliance columns");
 
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
-    const auto                           &all = gathered.all_nodes();
     std::vector<BulkSolver::SparseColumn> rhs;
     for (const unsigned int j : missing)
       for (unsigned int c = 0; c < dim; ++c)
@@ -205,9 +219,14 @@ namespace DynamicContact
         rows.push_back(node.dofs[r]);
     std::vector<std::vector<double>> values;
     // Keep the whole columns while they fit (the same decision everywhere).
+    // Keep the whole columns while they fit, and only if a sum of all of
+    // them reads fewer numbers than a solve (the same decision everywhere):
+    // with a Cholesky factor a solve is cheaper (on the paper's scene about
+    // as fast, on the paper domain 256 x 16 ten times faster).
     const bool store =
       (stored_full_columns + rhs.size()) * max_owned_dofs * sizeof(double) <=
-      full_column_budget;
+        full_column_budget &&
+      double(dim) * all.size() * max_owned_dofs <= bulk_solver.solve_cost();
     const std::size_t n_owned =
       problem.discretization.locally_owned.n_elements();
     std::function<void(unsigned int, const double *)> keep;
@@ -216,7 +235,7 @@ namespace DynamicContact
         full_columns[dim * missing[column / dim] + column % dim].assign(
           entries, entries + n_owned);
       };
-    bulk_solver.solve_columns(rhs, rows, values, keep);
+    bulk_solver.solve_columns(rhs, rows, values, keep, dim * nodes_per_block);
     if (store)
       stored_full_columns += rhs.size();
     result.bulk_solves += rhs.size();
@@ -669,12 +688,22 @@ namespace DynamicContact
                         result);
     }
 
-    // A provisional velocity: the columns' sum instead of a solve, and no
-    // phase 2 (the loop's next pass, or finalize(), follows).
-    if (provisional && apply_full_columns(it.g, it.active, scratch))
+    // A provisional velocity: w = w_free - X g from the stored columns, or
+    // w = K0'^{-1} (b - sum_i P_i^T g_i) by a solve, and no phase 2 (the
+    // loop's next pass, or finalize(), follows).
+    if (provisional)
       {
-        w = free_response;
-        w -= scratch;
+        if (apply_full_columns(it.g, it.active, scratch))
+          {
+            w = free_response;
+            w -= scratch;
+          }
+        else
+          {
+            right_hand_side = rhs;
+            add_nodal_forces(it.g, -1., right_hand_side);
+            solve_bulk(right_hand_side, w, result);
+          }
         lambda = gathered.owned_part(it.lambda);
         pending.emplace(Pending{u_old, w_old, mu, std::move(it)});
         result.provisional = true;
@@ -698,7 +727,10 @@ namespace DynamicContact
   {
     const Vector_t &rhs = cached_rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
-    // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1.
+    // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1. (A
+    // solve: w_free - sum_j X_j g_j from the stored columns costs as much
+    // and leaves a bulk residual up to 1e2 times larger, which the first
+    // Newton step of phase 2 would have to solve for.)
     right_hand_side = rhs;
     add_nodal_forces(it.g, -1., right_hand_side);
     solve_bulk(right_hand_side, w, result);
@@ -737,7 +769,7 @@ namespace DynamicContact
     it.lambda = gathered.gather(x.lambda);
     linearize(it);
 
-    // z = -K0'^{-1} (K0 w - b + sum_i P_i^T base_i); the step is
+    // z = K0'^{-1} v, v = -(K0 w - b + sum_i P_i^T base_i); the step is
     // dw = z - K0'^{-1} sum_i P_i^T (g_i^new - base_i) (g form).
     residual = x.residual;
     problem.boundary.add_nodal_forces(
@@ -745,9 +777,16 @@ namespace DynamicContact
     problem.boundary.add_nodal_forces(
       [&](const unsigned int i) { return x.base[i]; }, 1., residual);
     residual *= -1.;
+    compute_columns(it.active, result);
+
+    // The rest of the step, K0'^{-1} sum_i P_i^T (g_i^new - base_i), is a
+    // sum of the stored whole columns if they are kept, else a solve. (Tried:
+    // z from C times the nodal part of v alone, the rest of v, bulk
+    // round-off of about 1e-11 |b|, left out: its response at the nodes is
+    // some 500 times larger and left |w_tau| = 7.9e-8 at a stick node of
+    // the critical-speed stress scene, 2.6 times the law's tolerance.)
     solve_bulk(residual, solution, result);
     const auto z = gather_values(solution);
-    compute_columns(it.active, result);
     std::vector<Tensor<1, dim>> r(it.active.size()), dw, new_forces;
     for (unsigned int a = 0; a < it.active.size(); ++a)
       r[a] = z[it.active[a]];
@@ -755,9 +794,12 @@ namespace DynamicContact
     dense_step(it, r, dw, lambda_full, new_forces);
     for (const unsigned int j : it.active)
       new_forces[j] -= it.base[j];
-    right_hand_side = 0;
-    add_nodal_forces(new_forces, 1., right_hand_side);
-    solve_bulk(right_hand_side, increment, result);
+    if (!apply_full_columns(new_forces, it.active, increment))
+      {
+        right_hand_side = 0;
+        add_nodal_forces(new_forces, 1., right_hand_side);
+        solve_bulk(right_hand_side, increment, result);
+      }
     solution -= increment; // the full step
     full.w = x.w;
     full.w += solution;

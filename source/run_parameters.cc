@@ -235,10 +235,15 @@ namespace DynamicContact
           "'direct': sparse LU of the Newton matrix (package chosen below). "
           "'iterative': GMRES preconditioned with algebraic multigrid, for "
           "problems too large for a direct solver.");
-        prm.declare_entry("Direct solver package",
-                          "Amesos_Mumps",
-                          Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
-                          "Trilinos Amesos package of the direct solver.");
+        prm.declare_entry(
+          "Direct solver package",
+          "auto",
+          Patterns::Selection("auto|Amesos_Mumps|Amesos_Klu"),
+          "The sparse direct solver. 'auto': the condensed solver on one "
+          "process factorizes K0 by sparse Cholesky (SuiteSparse CHOLMOD, "
+          "several times faster than MUMPS there), everything else by "
+          "MUMPS; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
+          "package everywhere.");
         prm.declare_entry("Linear tolerance",
                           "1e-12",
                           Patterns::Double(),

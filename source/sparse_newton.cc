@@ -509,7 +509,7 @@ namespace DynamicContact
         direct = std::make_unique<TrilinosWrappers::SolverDirect>(
           direct_control,
           TrilinosWrappers::SolverDirect::AdditionalData(
-            false, problem.parameters.direct_solver_package));
+            false, amesos_package(problem.parameters)));
         direct->initialize(system_matrix);
         ++result.factorizations;
         factorized_blocks = system.blocks;

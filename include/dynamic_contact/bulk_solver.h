@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -73,9 +74,27 @@ namespace DynamicContact
                    std::vector<double>       *coordinates = nullptr);
 
   /**
+   * The Trilinos Amesos package of Solver/Direct solver package ('auto':
+   * MUMPS; the condensed solver's BulkSolver uses CHOLMOD instead on one
+   * process).
+   */
+  inline std::string
+  amesos_package(const Parameters::Solver &parameters)
+  {
+    return parameters.direct_solver_package == "auto" ?
+             std::string("Amesos_Mumps") :
+             parameters.direct_solver_package;
+  }
+
+
+  /**
    * Solves with one (symmetric positive definite) matrix, many times: a
-   * sparse direct factorization (Trilinos Amesos, MUMPS or KLU) made once,
-   * or CG with algebraic multigrid built once. Unlike deal.II's
+   * sparse direct factorization made once, or CG with algebraic multigrid
+   * built once. The factorization is a supernodal Cholesky factorization
+   * (SuiteSparse CHOLMOD) on one process with Solver/Direct solver package
+   * = auto, else Trilinos Amesos (MUMPS or KLU) (benchmarks/direct_comparison.cc:
+   * on the paper's scene CHOLMOD factorizes and solves several times faster
+   * than MUMPS; README, "Choosing the contact solver"). Unlike deal.II's
    * TrilinosWrappers::SolverDirect it solves blocks of right-hand sides in
    * one call, which a direct solver does at the speed of dense matrix
    * products rather than one triangular solve after the other.
@@ -108,15 +127,27 @@ namespace DynamicContact
      * the entries of X at @p rows (rows owned by this process):
      * values[c][i] = X(rows[i], c). If @p store is given, it is called with
      * each column's index and its owned entries (in the order of the owned
-     * rows). Collective; every process passes the same columns (each sets
-     * the entries it owns).
+     * rows). The columns are solved in blocks of @p block (bounding the
+     * memory); a block's round-off depends on its composition. Collective;
+     * every process passes the same columns (each sets the entries it
+     * owns).
      */
     void
     solve_columns(
       const std::vector<SparseColumn>                         &columns,
       const std::vector<dealii::types::global_dof_index>      &rows,
       std::vector<std::vector<double>>                        &values,
-      const std::function<void(unsigned int, const double *)> &store = {});
+      const std::function<void(unsigned int, const double *)> &store = {},
+      const unsigned int                                       block = 64);
+
+    /**
+     * About how many numbers a solve with one right-hand side reads (the
+     * factor twice, forward and backward): what decides whether a sum of
+     * stored solutions is cheaper than a solve. Infinite where unknown
+     * (MUMPS, AMG).
+     */
+    double
+    solve_cost() const;
 
   private:
     const Parameters::Solver parameters;
@@ -125,6 +156,9 @@ namespace DynamicContact
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    direct;
     std::unique_ptr<BulkAMG>              amg;
+    /** The CHOLMOD factorization (one process; defined in the .cc). */
+    class Cholesky;
+    std::unique_ptr<Cholesky> cholesky;
   };
 } // namespace DynamicContact
 

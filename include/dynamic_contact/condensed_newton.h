@@ -22,7 +22,10 @@ namespace DynamicContact
    * nothing of size of the mesh is factorized more than once per mesh and
    * time step. The columns of C are computed when a node first becomes
    * active (dim solves with the factorized K0 each) and kept while K0 is
-   * unchanged. A step costs two solves with K0 plus the dense iterations.
+   * unchanged. A step costs a solve with K0 for w_free, one for the
+   * velocity of each convexification pass, and in the whole-system phase
+   * one plus one or two per Newton step (newton_step()), plus the dense
+   * iterations.
    *
    * What is factorized is K0' = K0 + S, S stiff springs (s I, s the largest
    * diagonal entry of K0 there) at two (2D) or three (3D) extreme nodes of
@@ -36,7 +39,8 @@ namespace DynamicContact
    * (w_Gamma = w_free - C f, no solve with K0 but for new columns of C),
    * which finds the active sets, then on the whole system, whose Newton
    * steps this class solves by the same condensation (the LinearBackend
-   * role: two solves with K0' and a dense solve each), which polishes the
+   * role: a solve with K0', a dense solve and a solve with K0' or a sum of
+   * stored columns each), which polishes the
    * solution where the cancellation in w_free - C f limits phase 1.
    *
    * The dense tables couple every pair of nodes, so Gamma_3 is replicated on
@@ -113,8 +117,10 @@ namespace DynamicContact
     /**
      * The whole responses K0'^{-1} P_j^T e_c (owned entries, index
      * dim j + c), kept beside C while they fit in full_column_budget bytes
-     * on every process: with them a provisional velocity is a sum of
-     * columns instead of a solve with K0'.
+     * on every process and a sum of all of them reads fewer numbers than a
+     * solve (BulkSolver::solve_cost(): with MUMPS; with a Cholesky factor a
+     * solve is as fast or faster): with them a provisional velocity or a
+     * whole-system step is a sum of columns instead of a solve with K0'.
      */
     std::vector<std::vector<double>> full_columns;
     std::size_t                      stored_full_columns = 0;

@@ -1,0 +1,309 @@
+// Which sparse direct solver factorizes and solves with the bulk matrix
+// fastest on one process?
+//
+// Builds K0 = (rho/k) M + k B with the program's own Discretization and
+// BulkOperator (backward Euler, the paper's elastic constants, clamped
+// ends) on the paper's 2D domain (2 m x 0.1 m, nx x ny cells of degree p)
+// and times, for each direct solver Debian's deal.II/Trilinos/SuiteSparse
+// offers: the factorization (symbolic + numeric), one solve with one
+// right-hand side (the mean of 20), and one solve with a block of 64
+// right-hand sides (what the compliance columns of the condensed contact
+// solver are made of). Solvers: Trilinos Amesos MUMPS (what
+// dynamic-contact used before) and KLU, SuiteSparse UMFPACK (the library
+// behind deal.II's SparseDirectUMFPACK) and CHOLMOD (supernodal Cholesky;
+// K0 is symmetric positive definite). The relative residual of each
+// single solve is printed as a check.
+//
+//   build/direct-comparison nx ny degree time_step
+//   (cmake --build build --target direct-comparison)
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <dynamic_contact/bulk_operator.h>
+#include <dynamic_contact/bulk_solver.h>
+#include <dynamic_contact/discretization.h>
+#include <dynamic_contact/material.h>
+#include <dynamic_contact/parameters.h>
+
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+#include <suitesparse/cholmod.h>
+#include <suitesparse/umfpack.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+using namespace dealii;
+
+namespace
+{
+  struct Csr
+  {
+    SuiteSparse_long                 n = 0;
+    std::vector<SuiteSparse_long>    start, column;
+    std::vector<double>              value;
+  };
+
+  Csr
+  to_csr(const Epetra_CrsMatrix &A)
+  {
+    Csr c;
+    c.n = A.NumMyRows();
+    c.start.push_back(0);
+    std::vector<std::pair<SuiteSparse_long, double>> row;
+    for (int r = 0; r < A.NumMyRows(); ++r)
+      {
+        int     count;
+        double *values;
+        int    *indices;
+        A.ExtractMyRowView(r, count, values, indices);
+        row.clear();
+        for (int k = 0; k < count; ++k)
+          row.emplace_back(A.GCID(indices[k]), values[k]);
+        std::sort(row.begin(), row.end());
+        for (const auto &[j, v] : row)
+          {
+            c.column.push_back(j);
+            c.value.push_back(v);
+          }
+        c.start.push_back(c.column.size());
+      }
+    return c;
+  }
+} // namespace
+
+
+template <int dim>
+void
+compare(const std::vector<unsigned int> &repetitions,
+        const Point<dim>                &corner,
+        const unsigned int               degree,
+        const double                     k)
+{
+  using namespace DynamicContact;
+  const MPI_Comm comm = MPI_COMM_WORLD;
+
+  Discretization<dim> discretization(comm, degree);
+  GridGenerator::subdivided_hyper_rectangle(
+    discretization.triangulation, repetitions, Point<dim>(), corner, true);
+  Parameters::BoundaryConditions boundary_conditions;
+  boundary_conditions.clamped = {0, 1};
+  discretization.setup_dofs(boundary_conditions);
+
+  Parameters::Material material_parameters;
+  material_parameters.density       = 1000;
+  material_parameters.young_modulus = 1e11;
+  material_parameters.poisson_ratio = 0.3;
+  material_parameters.plane_model =
+    Parameters::Material::PlaneModel::plane_strain;
+  material_parameters.viscosity_lambda = 0;
+  material_parameters.viscosity_mu     = 0;
+  const KelvinVoigtMaterial<dim> material(material_parameters);
+  BulkOperator<dim>              bulk(discretization, material);
+  bulk.reinit();
+  bulk.set_time_step(k);
+  const TrilinosWrappers::SparseMatrix &K0 = bulk.newton_matrix();
+  const Epetra_CrsMatrix               &A  = K0.trilinos_matrix();
+  const unsigned int                    n  = A.NumMyRows();
+  std::cout << dim << "D Q" << degree << " " << repetitions[0] << " x "
+            << repetitions[1] << ", k = " << k << ": " << n << " DoFs, "
+            << A.NumMyNonzeros() << " nonzeros" << std::endl;
+
+  constexpr unsigned int n_rhs = 64, repeats = 20;
+  std::vector<double>    b(n), x(n), B(n * n_rhs), X(n * n_rhs);
+  for (unsigned int i = 0; i < n; ++i)
+    b[i] = std::sin(1.0 * i);
+  for (unsigned int c = 0; c < n_rhs; ++c)
+    for (unsigned int i = 0; i < n; ++i)
+      B[c * n + i] = std::cos(0.37 * i + c);
+
+  auto residual = [&](const std::vector<double> &solution) {
+    Epetra_Vector xv(View, A.DomainMap(), const_cast<double *>(solution.data()));
+    Epetra_Vector y(A.RangeMap());
+    A.Multiply(false, xv, y);
+    double r = 0, s = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        r = std::max(r, std::abs(y[i] - b[i]));
+        s = std::max(s, std::abs(b[i]));
+      }
+    return r / s;
+  };
+  Timer timer;
+  auto  report = [&](const std::string &name,
+                    const double       factor,
+                    const double       solve,
+                    const double       block,
+                    const double       check) {
+    std::cout << "  " << std::left << std::setw(22) << name << std::right
+              << std::fixed << std::setprecision(4) << " factorization "
+              << factor << " s, one solve " << solve * 1e3 << " ms, 64 at once "
+              << block * 1e3 << " ms (" << block * 1e3 / n_rhs
+              << " ms each), residual " << std::scientific
+              << std::setprecision(1) << check << std::defaultfloat
+              << std::endl;
+  };
+
+  // Trilinos Amesos.
+  for (const std::string package : {"Amesos_Mumps", "Amesos_Klu"})
+    {
+      Epetra_LinearProblem problem;
+      problem.SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
+      Amesos                             factory;
+      std::unique_ptr<Amesos_BaseSolver> solver(
+        factory.Create(package.c_str(), problem));
+      timer.restart();
+      solver->SymbolicFactorization();
+      solver->NumericFactorization();
+      const double  factor = timer.wall_time();
+      Epetra_Vector bv(View, A.RangeMap(), b.data()), xv(View, A.DomainMap(), x.data());
+      problem.SetLHS(&xv);
+      problem.SetRHS(&bv);
+      timer.restart();
+      for (unsigned int r = 0; r < repeats; ++r)
+        solver->Solve();
+      const double solve = timer.wall_time() / repeats;
+      const double check = residual(x);
+      Epetra_MultiVector Bv(View, A.RangeMap(), B.data(), n, n_rhs),
+        Xv(View, A.DomainMap(), X.data(), n, n_rhs);
+      problem.SetLHS(&Xv);
+      problem.SetRHS(&Bv);
+      timer.restart();
+      solver->Solve();
+      report(package, factor, solve, timer.wall_time(), check);
+    }
+
+  const Csr csr = to_csr(A);
+
+  // UMFPACK: the CSR arrays are the CSC arrays of A^T; solve A^T' x = b.
+  {
+    void  *symbolic, *numeric;
+    double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
+    umfpack_dl_defaults(control);
+    timer.restart();
+    umfpack_dl_symbolic(csr.n, csr.n, csr.start.data(), csr.column.data(),
+                        csr.value.data(), &symbolic, control, info);
+    umfpack_dl_numeric(csr.start.data(), csr.column.data(), csr.value.data(),
+                       symbolic, &numeric, control, info);
+    const double factor = timer.wall_time();
+    timer.restart();
+    for (unsigned int r = 0; r < repeats; ++r)
+      umfpack_dl_solve(UMFPACK_At, csr.start.data(), csr.column.data(),
+                       csr.value.data(), x.data(), b.data(), numeric, control,
+                       info);
+    const double solve = timer.wall_time() / repeats;
+    const double check = residual(x);
+    timer.restart();
+    for (unsigned int c = 0; c < n_rhs; ++c)
+      umfpack_dl_solve(UMFPACK_At, csr.start.data(), csr.column.data(),
+                       csr.value.data(), X.data() + c * n, B.data() + c * n,
+                       numeric, control, info);
+    report("UMFPACK", factor, solve, timer.wall_time(), check);
+    umfpack_dl_free_symbolic(&symbolic);
+    umfpack_dl_free_numeric(&numeric);
+  }
+
+  // CHOLMOD, supernodal and simplicial, with its default choice of the
+  // ordering (AMD here) and with nested dissection (METIS).
+  for (const auto &[kind, ordering] :
+       std::vector<std::pair<int, int>>{{CHOLMOD_SUPERNODAL, -1},
+                                        {CHOLMOD_SUPERNODAL, CHOLMOD_METIS},
+                                        {CHOLMOD_SIMPLICIAL, -1}})
+    {
+      cholmod_common c;
+      cholmod_l_start(&c);
+      c.supernodal = kind;
+      if (ordering >= 0)
+        {
+          c.nmethods           = 1;
+          c.method[0].ordering = ordering;
+        }
+      cholmod_sparse S;
+      S.nrow   = csr.n;
+      S.ncol   = csr.n;
+      S.nzmax  = csr.value.size();
+      S.p      = const_cast<SuiteSparse_long *>(csr.start.data());
+      S.i      = const_cast<SuiteSparse_long *>(csr.column.data());
+      S.nz     = nullptr;
+      S.x      = const_cast<double *>(csr.value.data());
+      S.z      = nullptr;
+      S.stype  = 1;
+      S.itype  = CHOLMOD_LONG;
+      S.xtype  = CHOLMOD_REAL;
+      S.dtype  = CHOLMOD_DOUBLE;
+      S.sorted = 1;
+      S.packed = 1;
+      timer.restart();
+      cholmod_factor *L = cholmod_l_analyze(&S, &c);
+      cholmod_l_factorize(&S, L, &c);
+      const double factor = timer.wall_time();
+      auto         dense  = [&](double *data, const unsigned int columns) {
+        cholmod_dense d;
+        d.nrow  = n;
+        d.ncol  = columns;
+        d.nzmax = n * columns;
+        d.d     = n;
+        d.x     = data;
+        d.z     = nullptr;
+        d.xtype = CHOLMOD_REAL;
+        d.dtype = CHOLMOD_DOUBLE;
+        return d;
+      };
+      cholmod_dense  bd = dense(b.data(), 1);
+      cholmod_dense *xd = nullptr;
+      timer.restart();
+      for (unsigned int r = 0; r < repeats; ++r)
+        {
+          if (xd != nullptr)
+            cholmod_l_free_dense(&xd, &c);
+          xd = cholmod_l_solve(CHOLMOD_A, L, &bd, &c);
+        }
+      const double solve = timer.wall_time() / repeats;
+      std::copy_n(static_cast<double *>(xd->x), n, x.begin());
+      cholmod_l_free_dense(&xd, &c);
+      const double   check = residual(x);
+      cholmod_dense  Bd    = dense(B.data(), n_rhs);
+      timer.restart();
+      cholmod_dense *Xd = cholmod_l_solve(CHOLMOD_A, L, &Bd, &c);
+      const double   block = timer.wall_time();
+      cholmod_l_free_dense(&Xd, &c);
+      report(std::string(kind == CHOLMOD_SUPERNODAL ? "CHOLMOD supernodal" :
+                                                      "CHOLMOD simplicial") +
+               (ordering == CHOLMOD_METIS ? ", METIS" : ""),
+             factor,
+             solve,
+             block,
+             check);
+      std::cout << "    (" << c.lnz << " entries in L, ordering "
+                << (c.method[c.selected].ordering == CHOLMOD_AMD ? "AMD" :
+                    c.method[c.selected].ordering == CHOLMOD_METIS ? "METIS" :
+                                                                    "other")
+                << ")" << std::endl;
+      cholmod_l_free_factor(&L, &c);
+      cholmod_l_finish(&c);
+    }
+}
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  AssertThrow(argc == 5,
+              ExcMessage("usage: direct-comparison nx ny degree time_step"));
+  const unsigned int nx = std::stoi(argv[1]), ny = std::stoi(argv[2]),
+                     degree = std::stoi(argv[3]);
+  const double k          = std::stod(argv[4]);
+  compare<2>({nx, ny}, Point<2>(2, 0.1), degree, k);
+}
