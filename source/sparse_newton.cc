@@ -299,7 +299,6 @@ namespace DynamicContact
                                      Result                   &result)
   {
     const auto  &nodes = problem.boundary.nodes();
-    const double k     = problem.bulk.time_step();
     const double theta = problem.bulk.scheme().effective_derivative();
     if (!amg || amg_scheme != problem.bulk.scheme())
       {
@@ -407,8 +406,7 @@ namespace DynamicContact
                                   Vector_t                 &dw,
                                   Result                   &result)
   {
-    const auto  &nodes = problem.boundary.nodes();
-    const double k     = problem.bulk.time_step();
+    const auto &nodes = problem.boundary.nodes();
 
     // The Newton matrix changes only through the nodal blocks, the stick
     // set and K0's k: reuse the factorization if none of them changed.
