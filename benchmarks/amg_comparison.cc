@@ -34,6 +34,8 @@
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/parameters.h>
 
+#include "benchmark_material.h"
+
 #include <petscksp.h>
 
 #include <iomanip>
@@ -64,15 +66,7 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
 
   // K0 = (rho/k) M + k B: E = 1e11, nu = 0.3, rho = 1000, no viscosity,
   // k = 1/128 s (backward Euler).
-  Parameters::Material material_parameters;
-  material_parameters.density       = 1000;
-  material_parameters.young_modulus = 1e11;
-  material_parameters.poisson_ratio = 0.3;
-  material_parameters.plane_model =
-    Parameters::Material::PlaneModel::plane_strain;
-  material_parameters.viscosity_lambda = 0;
-  material_parameters.viscosity_mu     = 0;
-  const KelvinVoigtMaterial<dim> material(material_parameters);
+  const KelvinVoigtMaterial<dim> material(benchmark_material());
   BulkOperator<dim>              bulk(discretization, material);
   bulk.reinit();
   bulk.set_time_step(1. / 128);

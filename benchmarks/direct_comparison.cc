@@ -29,6 +29,8 @@
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/parameters.h>
 
+#include "benchmark_material.h"
+
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
 #include <Epetra_CrsMatrix.h>
@@ -50,9 +52,9 @@ namespace
 {
   struct Csr
   {
-    SuiteSparse_long                 n = 0;
-    std::vector<SuiteSparse_long>    start, column;
-    std::vector<double>              value;
+    SuiteSparse_long              n = 0;
+    std::vector<SuiteSparse_long> start, column;
+    std::vector<double>           value;
   };
 
   Csr
@@ -101,15 +103,7 @@ compare(const std::vector<unsigned int> &repetitions,
   boundary_conditions.clamped = {0, 1};
   discretization.setup_dofs(boundary_conditions);
 
-  Parameters::Material material_parameters;
-  material_parameters.density       = 1000;
-  material_parameters.young_modulus = 1e11;
-  material_parameters.poisson_ratio = 0.3;
-  material_parameters.plane_model =
-    Parameters::Material::PlaneModel::plane_strain;
-  material_parameters.viscosity_lambda = 0;
-  material_parameters.viscosity_mu     = 0;
-  const KelvinVoigtMaterial<dim> material(material_parameters);
+  const KelvinVoigtMaterial<dim> material(benchmark_material());
   BulkOperator<dim>              bulk(discretization, material);
   bulk.reinit();
   bulk.set_time_step(k);
@@ -129,7 +123,9 @@ compare(const std::vector<unsigned int> &repetitions,
       B[c * n + i] = std::cos(0.37 * i + c);
 
   auto residual = [&](const std::vector<double> &solution) {
-    Epetra_Vector xv(View, A.DomainMap(), const_cast<double *>(solution.data()));
+    Epetra_Vector xv(View,
+                     A.DomainMap(),
+                     const_cast<double *>(solution.data()));
     Epetra_Vector y(A.RangeMap());
     A.Multiply(false, xv, y);
     double r = 0, s = 0;
@@ -167,14 +163,15 @@ compare(const std::vector<unsigned int> &repetitions,
       solver->SymbolicFactorization();
       solver->NumericFactorization();
       const double  factor = timer.wall_time();
-      Epetra_Vector bv(View, A.RangeMap(), b.data()), xv(View, A.DomainMap(), x.data());
+      Epetra_Vector bv(View, A.RangeMap(), b.data()),
+        xv(View, A.DomainMap(), x.data());
       problem.SetLHS(&xv);
       problem.SetRHS(&bv);
       timer.restart();
       for (unsigned int r = 0; r < repeats; ++r)
         solver->Solve();
-      const double solve = timer.wall_time() / repeats;
-      const double check = residual(x);
+      const double       solve = timer.wall_time() / repeats;
+      const double       check = residual(x);
       Epetra_MultiVector Bv(View, A.RangeMap(), B.data(), n, n_rhs),
         Xv(View, A.DomainMap(), X.data(), n, n_rhs);
       problem.SetLHS(&Xv);
@@ -192,23 +189,46 @@ compare(const std::vector<unsigned int> &repetitions,
     double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
     umfpack_dl_defaults(control);
     timer.restart();
-    umfpack_dl_symbolic(csr.n, csr.n, csr.start.data(), csr.column.data(),
-                        csr.value.data(), &symbolic, control, info);
-    umfpack_dl_numeric(csr.start.data(), csr.column.data(), csr.value.data(),
-                       symbolic, &numeric, control, info);
+    umfpack_dl_symbolic(csr.n,
+                        csr.n,
+                        csr.start.data(),
+                        csr.column.data(),
+                        csr.value.data(),
+                        &symbolic,
+                        control,
+                        info);
+    umfpack_dl_numeric(csr.start.data(),
+                       csr.column.data(),
+                       csr.value.data(),
+                       symbolic,
+                       &numeric,
+                       control,
+                       info);
     const double factor = timer.wall_time();
     timer.restart();
     for (unsigned int r = 0; r < repeats; ++r)
-      umfpack_dl_solve(UMFPACK_At, csr.start.data(), csr.column.data(),
-                       csr.value.data(), x.data(), b.data(), numeric, control,
+      umfpack_dl_solve(UMFPACK_At,
+                       csr.start.data(),
+                       csr.column.data(),
+                       csr.value.data(),
+                       x.data(),
+                       b.data(),
+                       numeric,
+                       control,
                        info);
     const double solve = timer.wall_time() / repeats;
     const double check = residual(x);
     timer.restart();
     for (unsigned int c = 0; c < n_rhs; ++c)
-      umfpack_dl_solve(UMFPACK_At, csr.start.data(), csr.column.data(),
-                       csr.value.data(), X.data() + c * n, B.data() + c * n,
-                       numeric, control, info);
+      umfpack_dl_solve(UMFPACK_At,
+                       csr.start.data(),
+                       csr.column.data(),
+                       csr.value.data(),
+                       X.data() + c * n,
+                       B.data() + c * n,
+                       numeric,
+                       control,
+                       info);
     report("UMFPACK", factor, solve, timer.wall_time(), check);
     umfpack_dl_free_symbolic(&symbolic);
     umfpack_dl_free_numeric(&numeric);
@@ -272,10 +292,10 @@ compare(const std::vector<unsigned int> &repetitions,
       const double solve = timer.wall_time() / repeats;
       std::copy_n(static_cast<double *>(xd->x), n, x.begin());
       cholmod_l_free_dense(&xd, &c);
-      const double   check = residual(x);
-      cholmod_dense  Bd    = dense(B.data(), n_rhs);
+      const double  check = residual(x);
+      cholmod_dense Bd    = dense(B.data(), n_rhs);
       timer.restart();
-      cholmod_dense *Xd = cholmod_l_solve(CHOLMOD_A, L, &Bd, &c);
+      cholmod_dense *Xd    = cholmod_l_solve(CHOLMOD_A, L, &Bd, &c);
       const double   block = timer.wall_time();
       cholmod_l_free_dense(&Xd, &c);
       report(std::string(kind == CHOLMOD_SUPERNODAL ? "CHOLMOD supernodal" :
@@ -286,9 +306,9 @@ compare(const std::vector<unsigned int> &repetitions,
              block,
              check);
       std::cout << "    (" << c.lnz << " entries in L, ordering "
-                << (c.method[c.selected].ordering == CHOLMOD_AMD ? "AMD" :
+                << (c.method[c.selected].ordering == CHOLMOD_AMD   ? "AMD" :
                     c.method[c.selected].ordering == CHOLMOD_METIS ? "METIS" :
-                                                                    "other")
+                                                                     "other")
                 << ")" << std::endl;
       cholmod_l_free_factor(&L, &c);
       cholmod_l_finish(&c);
@@ -304,6 +324,6 @@ main(int argc, char **argv)
               ExcMessage("usage: direct-comparison nx ny degree time_step"));
   const unsigned int nx = std::stoi(argv[1]), ny = std::stoi(argv[2]),
                      degree = std::stoi(argv[3]);
-  const double k          = std::stod(argv[4]);
+  const double k            = std::stod(argv[4]);
   compare<2>({nx, ny}, Point<2>(2, 0.1), degree, k);
 }

@@ -25,13 +25,23 @@ namespace DynamicContact
 
 
   bool
+  OutputSchedule::due(const unsigned int n,
+                      const double       t,
+                      const double       k,
+                      const bool         last,
+                      const unsigned int every) const
+  {
+    return last || at_output_time(t, k) || (every > 0 && n % every == 0);
+  }
+
+
+  bool
   OutputSchedule::contact_csv_due(const unsigned int n,
                                   const double       t,
                                   const double       k,
                                   const bool         last) const
   {
-    const unsigned int every = output.output_every;
-    return last || at_output_time(t, k) || (every > 0 && n % every == 0);
+    return due(n, t, k, last, output.output_every);
   }
 
 
@@ -41,9 +51,7 @@ namespace DynamicContact
                           const double       k,
                           const bool         last) const
   {
-    const unsigned int every = output.vtu_every;
-    return output.write_vtu &&
-           (last || at_output_time(t, k) || (every > 0 && n % every == 0));
+    return output.write_vtu && due(n, t, k, last, output.vtu_every);
   }
 
 

@@ -400,6 +400,26 @@ namespace DynamicContact
 
   namespace
   {
+    /**
+     * Add the nodal vector field @p v (dim components, one name) of
+     * @p dof_handler to the volume or surface output @p out.
+     */
+    template <int dim, typename Output>
+    void
+    add_vector_field(Output                &out,
+                     const DoFHandler<dim> &dof_handler,
+                     const Vector_t        &v,
+                     const std::string     &name)
+    {
+      out.add_data_vector(
+        dof_handler,
+        v,
+        std::vector<std::string>(dim, name),
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+          dim, DataComponentInterpretation::component_is_part_of_vector));
+    }
+
+
     /** The nodal fields of the surface Gamma_3 (contact_surface files). */
     template <int dim>
     void
@@ -410,32 +430,21 @@ namespace DynamicContact
       const std::array<Vector_t, n_vectorial>                   &vectorial,
       const std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar)
     {
-      const auto vector_field = [](const unsigned int n) {
-        return std::vector<
-          DataComponentInterpretation::DataComponentInterpretation>(
-          n, DataComponentInterpretation::component_is_part_of_vector);
-      };
-      const auto names = [](const unsigned int n, const std::string &name) {
-        return std::vector<std::string>(n, name);
-      };
-      faces.add_data_vector(d.dof_handler,
-                            u_ghosted,
-                            names(dim, "displacement"),
-                            vector_field(dim));
+      add_vector_field(faces, d.dof_handler, u_ghosted, "displacement");
       faces.add_data_vector(d.scalar_dof_handler,
                             scalar[s_pressure],
                             "normal_pressure");
       faces.add_data_vector(d.scalar_dof_handler,
                             scalar[s_penetration],
                             "penetration");
-      faces.add_data_vector(d.dof_handler,
-                            vectorial[v_friction],
-                            names(dim, "friction_traction"),
-                            vector_field(dim));
-      faces.add_data_vector(d.dof_handler,
-                            vectorial[v_slip],
-                            names(dim, "slip_velocity"),
-                            vector_field(dim));
+      add_vector_field(faces,
+                       d.dof_handler,
+                       vectorial[v_friction],
+                       "friction_traction");
+      add_vector_field(faces,
+                       d.dof_handler,
+                       vectorial[v_slip],
+                       "slip_velocity");
       faces.add_data_vector(d.scalar_dof_handler,
                             scalar[s_mu],
                             "friction_coefficient");
@@ -537,15 +546,6 @@ namespace DynamicContact
                 stress_zz,
                 subdomain);
 
-    const auto vector_field = [](const unsigned int n) {
-      return std::vector<
-        DataComponentInterpretation::DataComponentInterpretation>(
-        n, DataComponentInterpretation::component_is_part_of_vector);
-    };
-    const auto names = [](const unsigned int n, const std::string &name) {
-      return std::vector<std::string>(n, name);
-    };
-
     // The time and step go into every file (VTK's TimeValue field, read by
     // ParaView when a single file is opened); no date, so that equal runs
     // write equal files.
@@ -559,18 +559,12 @@ namespace DynamicContact
     FieldsOut<dim> data_out;
     data_out.set_flags(flags);
     data_out.attach_triangulation(d.triangulation);
-    data_out.add_data_vector(d.dof_handler,
-                             u_ghosted,
-                             names(dim, "displacement"),
-                             vector_field(dim));
-    data_out.add_data_vector(d.dof_handler,
-                             w_ghosted,
-                             names(dim, "velocity"),
-                             vector_field(dim));
-    data_out.add_data_vector(d.dof_handler,
-                             vectorial[v_traction],
-                             names(dim, "contact_traction"),
-                             vector_field(dim));
+    add_vector_field(data_out, d.dof_handler, u_ghosted, "displacement");
+    add_vector_field(data_out, d.dof_handler, w_ghosted, "velocity");
+    add_vector_field(data_out,
+                     d.dof_handler,
+                     vectorial[v_traction],
+                     "contact_traction");
     data_out.add_data_vector(d.scalar_dof_handler,
                              scalar[s_pressure],
                              "contact_pressure");
@@ -589,7 +583,7 @@ namespace DynamicContact
     data_out.add_data_vector(
       stress_dofs,
       stress,
-      names(dim * dim, "stress"),
+      std::vector<std::string>(dim * dim, "stress"),
       std::vector<DataComponentInterpretation::DataComponentInterpretation>(
         dim * dim, DataComponentInterpretation::component_is_part_of_tensor));
     data_out.add_data_vector(von_mises,

@@ -56,6 +56,16 @@ namespace DynamicContact
      */
     bool
     at_output_time(const double t, const double k) const;
+    /**
+     * The last step, an Output times entry in the step, or every @p every
+     * steps (0: not periodically).
+     */
+    bool
+    due(const unsigned int n,
+        const double       t,
+        const double       k,
+        const bool         last,
+        const unsigned int every) const;
   };
 } // namespace DynamicContact
 
