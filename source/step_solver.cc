@@ -477,8 +477,8 @@ namespace DynamicContact
         std::vector<Tensor<1, dim>> dxi(all.size());
         for (unsigned int i = 0; i < all.size(); ++i)
           dxi[i] = m.xi[i] - xi_previous[i];
-        const bool rule_85 =
-          du <= eps * u_norm && l2(dxi) <= eps * l2(xi_previous);
+        const double dxi_norm = l2(dxi), xi_norm = l2(xi_previous);
+        const bool   rule_85 = du <= eps * u_norm && dxi_norm <= eps * xi_norm;
 
         // mu(|w_tau,i|), at the nodes in contact first (the others only if
         // the loop goes on: a node out of contact does not decide it).
@@ -499,7 +499,7 @@ namespace DynamicContact
         details << "  convexification pass " << pass + 1
                 << (provisional ? " (provisional)" : "") << ": |du|_V/|u|_V "
                 << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
-                << l2(dxi) / std::max(l2(xi_previous), 1e-300)
+                << dxi_norm / std::max(xi_norm, 1e-300)
                 << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
                 << std::endl;
         return m;
