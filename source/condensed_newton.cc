@@ -503,6 +503,48 @@ namespace DynamicContact
 
 
   template <int dim>
+  std::vector<Tensor<1, dim>>
+  CondensedNewton<dim>::provisional_velocities() const
+  {
+    Assert(pending, ExcInternalError());
+    std::vector<Tensor<1, dim>> w;
+    compliance_response(w_free_nodes, pending->it.g, pending->it.active, w);
+    return gathered.owned_part(w);
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::velocity_from_forces(
+    const std::vector<Tensor<1, dim>> &g,
+    const std::vector<unsigned int>   &nodes,
+    Vector_t                          &w,
+    Result                            &result)
+  {
+    if (apply_full_columns(g, nodes, scratch))
+      {
+        w = free_response;
+        w -= scratch;
+        return;
+      }
+    right_hand_side = cached_rhs;
+    add_nodal_forces(g, -1., right_hand_side);
+    solve_bulk(right_hand_side, w, result);
+  }
+
+
+  template <int dim>
+  typename CondensedNewton<dim>::Result
+  CondensedNewton<dim>::previous_provisional_velocity(Vector_t &w)
+  {
+    Assert(previous_pass, ExcInternalError());
+    Result result;
+    velocity_from_forces(previous_pass->first, previous_pass->second, w, result);
+    return result;
+  }
+
+
+  template <int dim>
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::finalize(Vector_t                    &w,
                                  std::vector<Tensor<1, dim>> &lambda)
@@ -531,7 +573,6 @@ namespace DynamicContact
                               const bool                         provisional)
   {
     Result result;
-    pending.reset();
     prepare(result);
     const unsigned int n = gathered.all_nodes().size();
 
@@ -551,6 +592,13 @@ namespace DynamicContact
         w_free_nodes        = gather_values(free_response);
         free_response_valid = true;
       }
+    // A pending provisional pass of the same step (same b) is the loop's
+    // last iterate; one of another step is stale (a failed step).
+    previous_pass.reset();
+    if (pending && same_rhs && provisional)
+      previous_pass.emplace(std::move(pending->it.g),
+                            std::move(pending->it.active));
+    pending.reset();
     if (n == 0)
       {
         w = free_response;
@@ -566,7 +614,13 @@ namespace DynamicContact
     // K0 is nearly singular (a body held only by the foundation) the
     // cancellation in w_free - C f limits its accuracy, and phase 2 polishes.
     Iterate it;
-    it.w           = gather_values(w);
+    if (previous_pass)
+      compliance_response(w_free_nodes,
+                          previous_pass->first,
+                          previous_pass->second,
+                          it.w);
+    else
+      it.w = gather_values(w);
     it.lambda      = gathered.gather(lambda);
     double w_scale = 1e-300;
     for (unsigned int i = 0; i < n; ++i)
@@ -589,22 +643,11 @@ namespace DynamicContact
                         result);
     }
 
-    // A provisional velocity: w = w_free - X g from the stored columns, or
-    // w = K0'^{-1} (b - sum_i P_i^T g_i) by a solve, and no phase 2 (the
-    // loop's next pass, or finalize(), follows).
+    // Provisional: the nodal velocities w_free - C g of the iterate (at the
+    // nodes, what w = K0'^{-1} (b - sum_i P_i^T g_i) would be), no solve
+    // and no phase 2 (the loop's next pass, or finalize(), follows).
     if (provisional)
       {
-        if (apply_full_columns(it.g, it.active, scratch))
-          {
-            w = free_response;
-            w -= scratch;
-          }
-        else
-          {
-            right_hand_side = rhs;
-            add_nodal_forces(it.g, -1., right_hand_side);
-            solve_bulk(right_hand_side, w, result);
-          }
         lambda = gathered.owned_part(it.lambda);
         pending.emplace(Pending{u_old, w_old, mu, std::move(it)});
         result.provisional = true;

@@ -375,7 +375,7 @@ namespace DynamicContact
             const std::vector<Tensor<1, dim>> &lambda,
             std::vector<double>               &mu) const
       {
-        const auto n = iterate(w);
+        const auto n = iterate(boundary.values(w));
         for (unsigned int i = 0; i < all.size(); ++i)
           mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
         return density(lambda, n);
@@ -403,9 +403,8 @@ namespace DynamicContact
       }
 
       NodalIterate
-      iterate(const Vector_t &v) const
+      iterate(const std::vector<Tensor<1, dim>> &values) const
       {
-        const auto   values = boundary.values(v);
         NodalIterate n{std::vector<double>(all.size()),
                        std::vector<double>(all.size())};
         for (unsigned int i = 0; i < all.size(); ++i)
@@ -450,29 +449,34 @@ namespace DynamicContact
        * ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law
        * max_i |mu_i - mu(|w_tau,i|)| <= tol, of the pass @p pass that
        * gave (@p w, @p lambda) with the frozen @p mu (u^(m+1) = u_old +
-       * k w), against the last pass (remember(), @p xi_previous).
+       * k w), against the last pass (remember(), @p xi_previous). A
+       * provisional pass (@p w null) has only its velocities at the nodes,
+       * @p w_nodes: it is measured on Gamma_3 alone, and the V-norm part of
+       * the rule is left to the pass once finished.
        */
       Measures
       measure(const Vector_t                    &u_old,
               const double                       k,
-              const Vector_t                    &w,
+              const Vector_t                    *w,
+              const std::vector<Tensor<1, dim>> &w_nodes,
               const std::vector<Tensor<1, dim>> &lambda,
               const std::vector<double>         &mu,
               const std::vector<Tensor<1, dim>> &xi_previous,
               const unsigned int                 pass,
-              const bool                         provisional,
               const ConditionalOStream          &details)
       {
-        u_current = u_old;
-        u_current.add(k, w);
-        difference = u_current;
-        difference -= u_previous;
-        const double du =
-          std::sqrt(bulk.strain_product(difference, difference));
-        const double u_norm =
-          std::sqrt(bulk.strain_product(u_previous, u_previous));
+        double du = 0, u_norm = 0;
+        if (w != nullptr)
+          {
+            u_current = u_old;
+            u_current.add(k, *w);
+            difference = u_current;
+            difference -= u_previous;
+            du     = std::sqrt(bulk.strain_product(difference, difference));
+            u_norm = std::sqrt(bulk.strain_product(u_previous, u_previous));
+          }
         Measures m;
-        m.iterate = iterate(w);
+        m.iterate = iterate(w != nullptr ? boundary.values(*w) : w_nodes);
         m.xi      = density(lambda, m.iterate);
         std::vector<Tensor<1, dim>> dxi(all.size());
         for (unsigned int i = 0; i < all.size(); ++i)
@@ -496,9 +500,12 @@ namespace DynamicContact
           Utilities::MPI::max(m.coefficient_residual, comm);
         m.converged =
           rule_85 && m.coefficient_residual <= coefficient_tolerance;
-        details << "  convexification pass " << pass + 1
-                << (provisional ? " (provisional)" : "") << ": |du|_V/|u|_V "
-                << du / std::max(u_norm, 1e-300) << ", |dxi|/|xi| "
+        details << "  convexification pass " << pass + 1;
+        if (w != nullptr)
+          details << ": |du|_V/|u|_V " << du / std::max(u_norm, 1e-300);
+        else
+          details << " (provisional, on Gamma_3)";
+        details << ", |dxi|/|xi| "
                 << dxi_norm / std::max(xi_norm, 1e-300)
                 << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
                 << std::endl;
@@ -565,26 +572,43 @@ namespace DynamicContact
     AndersonMixing mixing(friction_parameters.acceleration_depth,
                           friction_parameters.relaxation,
                           comm);
-    // In the loop, a pass may end with a provisional w (the condensed
-    // solver's boundary iteration, the velocity from the stored compliance
-    // columns, no solve with K0): enough to decide whether the loop goes
-    // on, while the loop is far from its tolerances. A provisional w is only
-    // as accurate as the boundary iteration's stopping point, so a pass that
+    // In the loop, a pass may be provisional (the condensed solver's
+    // boundary iteration: the velocities at the nodes of Gamma_3 only, no
+    // solve with K0): enough to decide whether the loop goes on, while the
+    // loop is far from its tolerances. It is measured on Gamma_3 (xi and
+    // the coefficients; the V norm needs the whole w), and only as
+    // accurately as the boundary iteration's stopping point, so a pass that
     // would end the loop, reaches the cap, or whose coefficient residual no
     // longer falls (the provisional accuracy reached) is finished
-    // (finalize()) and measured again; the passes after it are exact.
+    // (finalize()), the whole velocity of the pass before it computed (one
+    // solve) if that one was provisional too, and the pass measured again
+    // by the whole rule; the passes after it are exact.
     bool   allow_provisional = loop && parameters.provisional_passes;
     bool   provisional       = false;
     double best_residual     = std::numeric_limits<double>::max();
     using Measures           = typename LoopMeasures<dim>::Measures;
     auto measure             = [&](const unsigned int pass) {
       TimerSection t(timer, "Friction: convexification update");
-      return measures.measure(
-        u_old, k, w, lambda, mu, xi_previous, pass, provisional, details);
+      return provisional ?
+               measures.measure(u_old,
+                                k,
+                                nullptr,
+                                newton.provisional_velocities(),
+                                lambda,
+                                mu,
+                                xi_previous,
+                                pass,
+                                details) :
+               measures.measure(
+                 u_old, k, &w, {}, lambda, mu, xi_previous, pass, details);
     };
+    Vector_t w_previous; // the whole velocity of a provisional pass
     for (unsigned int pass = 0; pass < max_passes; ++pass)
       {
-        if (loop)
+        // u^(m) of rule (85): w is whole unless the last pass was
+        // provisional (then it is computed if the loop would end).
+        const bool after_provisional = provisional;
+        if (loop && !after_provisional)
           measures.remember(u_old, k, w);
         const auto result =
           allow_provisional ?
@@ -601,6 +625,13 @@ namespace DynamicContact
         if (provisional && (m.converged || pass + 1 == max_passes ||
                             m.coefficient_residual >= best_residual))
           {
+            if (after_provisional)
+              {
+                discretization.reinit_owned(w_previous);
+                statistics.add_newton(
+                  newton.previous_provisional_velocity(w_previous));
+                measures.remember(u_old, k, w_previous);
+              }
             statistics.add_newton(newton.finalize(w, lambda));
             provisional       = false;
             allow_provisional = false;

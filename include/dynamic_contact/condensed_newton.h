@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace DynamicContact
 {
@@ -67,9 +68,8 @@ namespace DynamicContact
           Vector_t                          &w) override;
 
     /**
-     * Phase 1 only, and w = w_free - sum_j K0'^{-1} P_j^T g_j from the
-     * stored whole columns (no solve with K0'), if they are stored; else as
-     * solve().
+     * Phase 1 only: the nodal velocities w_free - C g of its iterate, no
+     * solve with K0' (w is left as it was).
      */
     Result
     solve_provisional(const Vector_t                    &rhs,
@@ -82,6 +82,13 @@ namespace DynamicContact
     /** Phase 2 of the last provisional solve: the solution itself. */
     Result
     finalize(Vector_t &w, std::vector<Tensor<1, dim>> &lambda) override;
+
+    std::vector<Tensor<1, dim>>
+    provisional_velocities() const override;
+
+    /** w_free - sum_j K0'^{-1} P_j^T g_j of the earlier pass. */
+    Result
+    previous_provisional_velocity(Vector_t &w) override;
 
     /** The whole-system Newton step by condensation (phase 2). */
     void
@@ -186,6 +193,24 @@ namespace DynamicContact
       Iterate                     it;
     };
     std::optional<Pending> pending;
+    /**
+     * The nodal forces g (every node) and the nodes with a force of the
+     * provisional solve before the pending one, if the pending one followed
+     * another in the same step.
+     */
+    std::optional<std::pair<std::vector<Tensor<1, dim>>,
+                            std::vector<unsigned int>>>
+      previous_pass;
+
+    /**
+     * w = K0'^{-1} (b - sum_{j in nodes} P_j^T g_j) of the current b: a sum
+     * of the stored whole columns if they are kept, else a solve.
+     */
+    void
+    velocity_from_forces(const std::vector<Tensor<1, dim>> &g,
+                         const std::vector<unsigned int>   &nodes,
+                         Vector_t                          &w,
+                         Result                            &result);
 
     /** solve() and solve_provisional(). */
     Result

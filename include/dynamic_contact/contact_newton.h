@@ -89,8 +89,9 @@ namespace DynamicContact
     /** Damped trial steps of the line search. */
     unsigned int line_search_steps = 0;
     /**
-     * The w returned is an estimate (the condensed solver's boundary
-     * iteration without its whole-system polish): finalize() must follow
+     * The solve was provisional (the condensed solver's boundary iteration
+     * without its whole-system polish): w is left as it was, the nodal
+     * velocities are provisional_velocities(), and finalize() must follow
      * before w is used as the step's solution.
      */
     bool provisional = false;
@@ -139,10 +140,11 @@ namespace DynamicContact
           Vector_t                          &w) = 0;
 
     /**
-     * The same, where the caller may accept a provisional w (a pass of the
-     * convexification loop that is probably not the last): a solver that can
-     * estimate w more cheaply than it solves for it does so and sets
-     * Result::provisional. The default solves.
+     * The same, where the caller may accept a provisional answer (a pass
+     * of the convexification loop that is probably not the last): a solver
+     * that finds the velocities at the nodes more cheaply than the whole w
+     * does so, leaves @p w as it was and sets Result::provisional. The
+     * default solves.
      */
     virtual Result
     solve_provisional(const Vector_t                    &rhs,
@@ -162,6 +164,31 @@ namespace DynamicContact
     virtual Result
     finalize(Vector_t & /*w*/, std::vector<Tensor<1, dim>> & /*lambda*/)
     {
+      return Result();
+    }
+
+    /**
+     * After a provisional solve: its velocities at the nodes this process
+     * owns (aligned with ContactBoundary::nodes()). A provisional solve
+     * leaves the whole w untouched; the nodes are what the
+     * convexification loop measures of a pass.
+     */
+    virtual std::vector<Tensor<1, dim>>
+    provisional_velocities() const
+    {
+      Assert(false, ExcInternalError());
+      return {};
+    }
+
+    /**
+     * After a provisional solve that followed another one of the same
+     * step: the whole velocity of that earlier pass into @p w (what
+     * rule (85) compares the finished pass with).
+     */
+    virtual Result
+    previous_provisional_velocity(Vector_t & /*w*/)
+    {
+      Assert(false, ExcInternalError());
       return Result();
     }
   };
