@@ -358,6 +358,28 @@ namespace DynamicContact
 
 
   void
+  BulkSolver::solve(const std::vector<const Vector_t *> &b,
+                    const std::vector<Vector_t *>       &x)
+  {
+    AssertDimension(b.size(), x.size());
+    if (!cholesky || b.size() < 2)
+      {
+        for (unsigned int c = 0; c < b.size(); ++c)
+          solve(*b[c], *x[c]);
+        return;
+      }
+    // One process: the owned entries are the whole vector.
+    const std::size_t   n = b[0]->locally_owned_size();
+    std::vector<double> B(n * b.size()), X(n * b.size());
+    for (unsigned int c = 0; c < b.size(); ++c)
+      std::memcpy(&B[c * n], b[c]->trilinos_vector()[0], sizeof(double) * n);
+    cholesky->solve(B.data(), X.data(), b.size());
+    for (unsigned int c = 0; c < x.size(); ++c)
+      std::memcpy(x[c]->trilinos_vector()[0], &X[c * n], sizeof(double) * n);
+  }
+
+
+  void
   BulkSolver::solve_columns(
     const std::vector<SparseColumn>                         &columns,
     const std::vector<types::global_dof_index>              &rows,

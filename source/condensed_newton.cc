@@ -172,6 +172,20 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  CondensedNewton<dim>::solve_bulk(const std::vector<const Vector_t *> &b,
+                                   const std::vector<Vector_t *>       &x,
+                                   Result                              &result)
+  {
+    TimerSection t(problem.timer, "Bulk: solves with K0");
+    bulk_solver.solve(b, x);
+    for (Vector_t *xc : x)
+      problem.discretization.constraints.set_zero(*xc);
+    result.bulk_solves += b.size();
+  }
+
+
+  template <int dim>
   bool
   CondensedNewton<dim>::apply_full_columns(
     const std::vector<Tensor<1, dim>> &f,
@@ -514,41 +528,12 @@ namespace DynamicContact
 
 
   template <int dim>
-  void
-  CondensedNewton<dim>::velocity_from_forces(
-    const std::vector<Tensor<1, dim>> &g,
-    const std::vector<unsigned int>   &nodes,
-    Vector_t                          &w,
-    Result                            &result)
-  {
-    if (apply_full_columns(g, nodes, scratch))
-      {
-        w = free_response;
-        w -= scratch;
-        return;
-      }
-    right_hand_side = cached_rhs;
-    add_nodal_forces(g, -1., right_hand_side);
-    solve_bulk(right_hand_side, w, result);
-  }
-
-
-  template <int dim>
-  typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::previous_provisional_velocity(Vector_t &w)
-  {
-    Assert(previous_pass, ExcInternalError());
-    Result result;
-    velocity_from_forces(previous_pass->first, previous_pass->second, w, result);
-    return result;
-  }
-
-
-  template <int dim>
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::finalize(Vector_t                    &w,
-                                 std::vector<Tensor<1, dim>> &lambda)
+                                 std::vector<Tensor<1, dim>> &lambda,
+                                 Vector_t                    *previous)
   {
+    Assert(previous == nullptr || previous_pass, ExcInternalError());
     Result result;
     if (!pending)
       return result;
@@ -557,7 +542,15 @@ namespace DynamicContact
     u_old_all = gathered.gather(p.u_old);
     w_old_all = gathered.gather(p.w_old);
     mu_all    = gathered.gather(p.mu);
-    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, 1e-1);
+    polish(p.it,
+           p.u_old,
+           p.w_old,
+           p.mu,
+           lambda,
+           w,
+           result,
+           1e-1,
+           previous);
     return result;
   }
 
@@ -667,7 +660,8 @@ namespace DynamicContact
                                std::vector<Tensor<1, dim>>       &lambda,
                                Vector_t                          &w,
                                Result                            &result,
-                               const double tolerance_factor)
+                               const double tolerance_factor,
+                               Vector_t    *previous)
   {
     const Vector_t &rhs = cached_rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
@@ -677,7 +671,23 @@ namespace DynamicContact
     // Newton step of phase 2 would have to solve for.)
     right_hand_side = rhs;
     add_nodal_forces(it.g, -1., right_hand_side);
-    solve_bulk(right_hand_side, w, result);
+    // The earlier provisional pass's velocity alike (finalize()): a sum of
+    // the stored whole columns, or in one block solve with w.
+    if (previous != nullptr &&
+        apply_full_columns(previous_pass->first, previous_pass->second, scratch))
+      {
+        *previous = free_response;
+        *previous -= scratch;
+        previous  = nullptr;
+      }
+    if (previous != nullptr)
+      {
+        scratch = rhs;
+        add_nodal_forces(previous_pass->first, -1., scratch);
+        solve_bulk({&right_hand_side, &scratch}, {&w, previous}, result);
+      }
+    else
+      solve_bulk(right_hand_side, w, result);
 
     // Phase 2: Newton on the residual of the whole system,
     //   R = K0 w - b + sum_i P_i^T f_i(w),

@@ -626,13 +626,11 @@ namespace DynamicContact
                             m.coefficient_residual >= best_residual))
           {
             if (after_provisional)
-              {
-                discretization.reinit_owned(w_previous);
-                statistics.add_newton(
-                  newton.previous_provisional_velocity(w_previous));
-                measures.remember(u_old, k, w_previous);
-              }
-            statistics.add_newton(newton.finalize(w, lambda));
+              discretization.reinit_owned(w_previous);
+            statistics.add_newton(newton.finalize(
+              w, lambda, after_provisional ? &w_previous : nullptr));
+            if (after_provisional)
+              measures.remember(u_old, k, w_previous);
             provisional       = false;
             allow_provisional = false;
             m                 = measure(pass);

@@ -123,6 +123,15 @@ namespace DynamicContact
     solve(const Vector_t &b, Vector_t &x);
 
     /**
+     * x_c = A^{-1} b_c for several right-hand sides: with a Cholesky factor
+     * in one pass over it (the solve reads the factor from memory once for
+     * all of them), else one after the other.
+     */
+    void
+    solve(const std::vector<const Vector_t *> &b,
+          const std::vector<Vector_t *>       &x);
+
+    /**
      * Solve A X = B for the columns of B and return, for each column c,
      * the entries of X at @p rows (rows owned by this process):
      * values[c][i] = X(rows[i], c). If @p store is given, it is called with

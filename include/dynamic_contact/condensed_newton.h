@@ -79,16 +79,18 @@ namespace DynamicContact
                       std::vector<Tensor<1, dim>>       &lambda,
                       Vector_t                          &w) override;
 
-    /** Phase 2 of the last provisional solve: the solution itself. */
+    /**
+     * Phase 2 of the last provisional solve: the solution itself; the
+     * earlier pass's velocity K0'^{-1} (b - sum_j P_j^T g_j) in one block
+     * solve with the first solve of phase 2.
+     */
     Result
-    finalize(Vector_t &w, std::vector<Tensor<1, dim>> &lambda) override;
+    finalize(Vector_t                    &w,
+             std::vector<Tensor<1, dim>> &lambda,
+             Vector_t                    *previous = nullptr) override;
 
     std::vector<Tensor<1, dim>>
     provisional_velocities() const override;
-
-    /** w_free - sum_j K0'^{-1} P_j^T g_j of the earlier pass. */
-    Result
-    previous_provisional_velocity(Vector_t &w) override;
 
     /** The whole-system Newton step by condensation (phase 2). */
     void
@@ -202,15 +204,6 @@ namespace DynamicContact
                             std::vector<unsigned int>>>
       previous_pass;
 
-    /**
-     * w = K0'^{-1} (b - sum_{j in nodes} P_j^T g_j) of the current b: a sum
-     * of the stored whole columns if they are kept, else a solve.
-     */
-    void
-    velocity_from_forces(const std::vector<Tensor<1, dim>> &g,
-                         const std::vector<unsigned int>   &nodes,
-                         Vector_t                          &w,
-                         Result                            &result);
 
     /** solve() and solve_provisional(). */
     Result
@@ -235,7 +228,8 @@ namespace DynamicContact
            std::vector<Tensor<1, dim>>       &lambda,
            Vector_t                          &w,
            Result                            &result,
-           const double                       tolerance_factor = 1);
+           const double                       tolerance_factor = 1,
+           Vector_t                          *previous         = nullptr);
 
     /**
      * One Newton step on the active nodes for the right-hand side @p r (one
@@ -273,6 +267,12 @@ namespace DynamicContact
     /** x = K0'^{-1} b. */
     void
     solve_bulk(const Vector_t &b, Vector_t &x, Result &result);
+
+    /** x_c = K0'^{-1} b_c, in one block solve where that is cheaper. */
+    void
+    solve_bulk(const std::vector<const Vector_t *> &b,
+               const std::vector<Vector_t *>       &x,
+               Result                              &result);
 
     /** Make sure C_:j exists for every j of @p nodes (one block solve). */
     void

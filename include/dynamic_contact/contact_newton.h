@@ -159,10 +159,15 @@ namespace DynamicContact
 
     /**
      * After a provisional solve: the solution itself, from the same data
-     * (the last solve's). The default has nothing to do.
+     * (the last solve's). With @p previous given (only if the provisional
+     * solve followed another one of the same step): also the whole
+     * velocity of that earlier pass into @p previous (what rule (85)
+     * compares the finished pass with). The default has nothing to do.
      */
     virtual Result
-    finalize(Vector_t & /*w*/, std::vector<Tensor<1, dim>> & /*lambda*/)
+    finalize(Vector_t & /*w*/,
+             std::vector<Tensor<1, dim>> & /*lambda*/,
+             Vector_t * /*previous*/ = nullptr)
     {
       return Result();
     }
@@ -180,17 +185,6 @@ namespace DynamicContact
       return {};
     }
 
-    /**
-     * After a provisional solve that followed another one of the same
-     * step: the whole velocity of that earlier pass into @p w (what
-     * rule (85) compares the finished pass with).
-     */
-    virtual Result
-    previous_provisional_velocity(Vector_t & /*w*/)
-    {
-      Assert(false, ExcInternalError());
-      return Result();
-    }
   };
 } // namespace DynamicContact
 
