@@ -206,9 +206,7 @@ namespace DynamicContact
      * (B and X may not overlap).
      */
     void
-    solve(const double      *B,
-          double            *X,
-          const unsigned int n_columns)
+    solve(const double *B, double *X, const unsigned int n_columns)
     {
       const std::size_t n = factor->n;
       cholmod_dense     b;
@@ -224,17 +222,11 @@ namespace DynamicContact
       // columns is the same.
       if (x != nullptr && x->ncol != n_columns)
         free_workspace();
-      AssertThrow(cholmod_l_solve2(CHOLMOD_A,
-                                   factor,
-                                   &b,
-                                   nullptr,
-                                   &x,
-                                   nullptr,
-                                   &y,
-                                   &e,
-                                   &common) &&
-                    common.status == CHOLMOD_OK,
-                  ExcMessage("A solve with the bulk matrix failed."));
+      AssertThrow(
+        cholmod_l_solve2(
+          CHOLMOD_A, factor, &b, nullptr, &x, nullptr, &y, &e, &common) &&
+          common.status == CHOLMOD_OK,
+        ExcMessage("A solve with the bulk matrix failed."));
       std::memcpy(X, x->x, sizeof(double) * n * n_columns);
     }
 
@@ -290,8 +282,7 @@ namespace DynamicContact
     problem.reset();
     const bool one_process =
       Utilities::MPI::n_mpi_processes(A.get_mpi_communicator()) == 1;
-    if (parameters.linear_solver ==
-          Parameters::Solver::LinearSolver::direct &&
+    if (parameters.linear_solver == Parameters::Solver::LinearSolver::direct &&
         one_process && parameters.direct_solver_package == "auto")
       {
         // Keep the analysis of the last factorization (same pattern).
@@ -395,8 +386,8 @@ namespace DynamicContact
     if (cholesky)
       {
         // One process: the local index of a row is the row.
-        const std::size_t      n     = map.NumMyElements();
-        std::vector<double>    B, X;
+        const std::size_t   n = map.NumMyElements();
+        std::vector<double> B, X;
         for (unsigned int first = 0; first < columns.size(); first += block)
           {
             const unsigned int m =

@@ -505,8 +505,7 @@ namespace DynamicContact
           details << ": |du|_V/|u|_V " << du / std::max(u_norm, 1e-300);
         else
           details << " (provisional, on Gamma_3)";
-        details << ", |dxi|/|xi| "
-                << dxi_norm / std::max(xi_norm, 1e-300)
+        details << ", |dxi|/|xi| " << dxi_norm / std::max(xi_norm, 1e-300)
                 << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
                 << std::endl;
         return m;
@@ -590,7 +589,7 @@ namespace DynamicContact
     auto measure             = [&](const unsigned int pass) {
       TimerSection t(timer, "Friction: convexification update");
       return provisional ?
-               measures.measure(u_old,
+                           measures.measure(u_old,
                                 k,
                                 nullptr,
                                 newton.provisional_velocities(),
@@ -599,7 +598,7 @@ namespace DynamicContact
                                 xi_previous,
                                 pass,
                                 details) :
-               measures.measure(
+                           measures.measure(
                  u_old, k, &w, {}, lambda, mu, xi_previous, pass, details);
     };
     Vector_t w_previous; // the whole velocity of a provisional pass

@@ -92,12 +92,12 @@ namespace DynamicContact
    * sparse direct factorization made once, or CG with algebraic multigrid
    * built once. The factorization is a supernodal Cholesky factorization
    * (SuiteSparse CHOLMOD) on one process with Solver/Direct solver package
-   * = auto, else Trilinos Amesos (MUMPS or KLU) (benchmarks/direct_comparison.cc:
-   * on the paper's scene CHOLMOD factorizes and solves several times faster
-   * than MUMPS; README, "Choosing the contact solver"). Unlike deal.II's
-   * TrilinosWrappers::SolverDirect it solves blocks of right-hand sides in
-   * one call, which a direct solver does at the speed of dense matrix
-   * products rather than one triangular solve after the other.
+   * = auto, else Trilinos Amesos (MUMPS or KLU)
+   * (benchmarks/direct_comparison.cc: on the paper's scene CHOLMOD factorizes
+   * and solves several times faster than MUMPS; README, "Choosing the contact
+   * solver"). Unlike deal.II's TrilinosWrappers::SolverDirect it solves blocks
+   * of right-hand sides in one call, which a direct solver does at the speed of
+   * dense matrix products rather than one triangular solve after the other.
    */
   class BulkSolver
   {

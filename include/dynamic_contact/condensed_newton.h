@@ -200,8 +200,8 @@ namespace DynamicContact
      * provisional solve before the pending one, if the pending one followed
      * another in the same step.
      */
-    std::optional<std::pair<std::vector<Tensor<1, dim>>,
-                            std::vector<unsigned int>>>
+    std::optional<
+      std::pair<std::vector<Tensor<1, dim>>, std::vector<unsigned int>>>
       previous_pass;
 
 

@@ -184,7 +184,6 @@ namespace DynamicContact
       Assert(false, ExcInternalError());
       return {};
     }
-
   };
 } // namespace DynamicContact
 
