@@ -104,16 +104,19 @@ namespace DynamicContact
           }
     for (const unsigned int j : missing)
       columns[j].assign(all.size(), Tensor<2, dim>());
-    for (const auto &part :
-         Utilities::MPI::all_gather(problem.discretization.comm, packed))
-      for (std::size_t p = 0; p < part.size(); p += 3 + dim)
-        {
-          const unsigned int j = missing[static_cast<unsigned int>(part[p])];
-          const unsigned int c = static_cast<unsigned int>(part[p + 1]);
-          const unsigned int i = static_cast<unsigned int>(part[p + 2]);
-          for (unsigned int r = 0; r < dim; ++r)
-            columns[j][i][r][c] = part[p + 3 + r];
-        }
+    const auto gathered_values =
+      all_gather_numbers(problem.discretization.comm, packed);
+    for (std::size_t p = 0; p < gathered_values.size(); p += 3 + dim)
+      {
+        const unsigned int j =
+          missing[static_cast<unsigned int>(gathered_values[p])];
+        const unsigned int c =
+          static_cast<unsigned int>(gathered_values[p + 1]);
+        const unsigned int i =
+          static_cast<unsigned int>(gathered_values[p + 2]);
+        for (unsigned int r = 0; r < dim; ++r)
+          columns[j][i][r][c] = gathered_values[p + 3 + r];
+      }
   }
 
 

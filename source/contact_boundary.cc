@@ -112,9 +112,9 @@ namespace DynamicContact
           local.push_back(owned_to_global[i]);
           pack(i, local);
         }
-      for (const auto &part : Utilities::MPI::all_gather(comm, local))
-        for (std::size_t pos = 0; pos < part.size(); pos += width + 1)
-          unpack(static_cast<unsigned int>(part[pos]), &part[pos + 1]);
+      const auto all = all_gather_numbers(comm, local);
+      for (std::size_t pos = 0; pos < all.size(); pos += width + 1)
+        unpack(static_cast<unsigned int>(all[pos]), &all[pos + 1]);
     }
   } // namespace
 
@@ -167,9 +167,9 @@ namespace DynamicContact
     for (const auto &node : boundary.nodes())
       pack(node, packed);
     every_node.clear();
-    for (const auto &part : Utilities::MPI::all_gather(comm, packed))
-      for (std::size_t pos = 0; pos < part.size();)
-        every_node.push_back(unpack<dim>(part, pos));
+    const auto all = all_gather_numbers(comm, packed);
+    for (std::size_t pos = 0; pos < all.size();)
+      every_node.push_back(unpack<dim>(all, pos));
     std::sort(every_node.begin(), every_node.end(), by_position<dim>);
     owned_to_global.clear();
     for (const auto &node : boundary.nodes())
