@@ -392,23 +392,23 @@ namespace DynamicContact
     LAPACKFullMatrix<double> matrix(size, size);
     if (size > 0)
       {
-        for (unsigned int a = 0; a < n_active; ++a)
+        // Column by column (C_:j is contiguous in columns[j]).
+        for (unsigned int b = 0; b < n_active; ++b)
           {
-            const unsigned int i    = active[a];
-            const auto        &rows = row_vectors[a];
-            for (unsigned int b = 0; b < n_active; ++b)
-              {
-                const Tensor<2, dim> &C = columns[active[b]][i];
-                for (unsigned int c = 0; c < column_vectors[b].size(); ++c)
-                  {
-                    const Tensor<1, dim> Cu = C * column_vectors[b][c];
-                    for (unsigned int q = 0; q < rows.size(); ++q)
-                      matrix(offset[a] + q, offset[b] + c) = rows[q] * Cu;
-                  }
-              }
-            for (unsigned int q = 0; q < n_low_rank[a]; ++q)
-              matrix(offset[a] + q, offset[a] + q) += 1.;
+            const auto &column = columns[active[b]];
+            for (unsigned int c = 0; c < column_vectors[b].size(); ++c)
+              for (unsigned int a = 0; a < n_active; ++a)
+                {
+                  const Tensor<1, dim> Cu =
+                    column[active[a]] * column_vectors[b][c];
+                  const auto &rows = row_vectors[a];
+                  for (unsigned int q = 0; q < rows.size(); ++q)
+                    matrix(offset[a] + q, offset[b] + c) = rows[q] * Cu;
+                }
           }
+        for (unsigned int a = 0; a < n_active; ++a)
+          for (unsigned int q = 0; q < n_low_rank[a]; ++q)
+            matrix(offset[a] + q, offset[a] + q) += 1.;
         matrix.compute_lu_factorization();
       }
 
@@ -442,13 +442,15 @@ namespace DynamicContact
           for (unsigned int c = 0; c < column_vectors[b].size(); ++c)
             force_change[b] += xx(offset[b] + c) * column_vectors[b][c];
         }
-      dd.resize(n_active);
+      dd = rr;
+      for (unsigned int b = 0; b < n_active; ++b)
+        {
+          const auto &column = columns[active[b]];
+          for (unsigned int a = 0; a < n_active; ++a)
+            dd[a] -= column[active[a]] * force_change[b];
+        }
       for (unsigned int a = 0; a < n_active; ++a)
         {
-          const unsigned int i = active[a];
-          dd[a]                = rr[a];
-          for (unsigned int b = 0; b < n_active; ++b)
-            dd[a] -= columns[active[b]][i] * force_change[b];
           basis.clear();
           basis_value.clear();
           for (unsigned int q = 0; q < row_vectors[a].size(); ++q)
@@ -492,10 +494,12 @@ namespace DynamicContact
       for (unsigned int b = 0; b < n_active; ++b)
         full_change[b] = it.lin[active[b]].block * dw[b] + stick_force(x, b);
       for (unsigned int a = 0; a < n_active; ++a)
+        e[a] = r[a] - dw[a];
+      for (unsigned int b = 0; b < n_active; ++b)
         {
-          e[a] = r[a] - dw[a];
-          for (unsigned int b = 0; b < n_active; ++b)
-            e[a] -= columns[active[b]][active[a]] * full_change[b];
+          const auto &column = columns[active[b]];
+          for (unsigned int a = 0; a < n_active; ++a)
+            e[a] -= column[active[a]] * full_change[b];
         }
       Vector<double> dx;
       auto           no_target = stick_target;
