@@ -222,7 +222,18 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>>       &w) const
   {
     w = w_free;
-    for (const unsigned int j : with_force)
+    subtract_compliance(forces, with_force, w);
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::subtract_compliance(
+    const std::vector<Tensor<1, dim>> &forces,
+    const std::vector<unsigned int>   &nodes,
+    std::vector<Tensor<1, dim>>       &w) const
+  {
+    for (const unsigned int j : nodes)
       for (unsigned int i = 0; i < w.size(); ++i)
         w[i] -= columns[j][i] * forces[j];
   }
@@ -565,7 +576,11 @@ namespace DynamicContact
     {
       solver.linearize(x);
       solver.compute_columns(x.active, result);
-      solver.compliance_response(solver.w_free_nodes, x.g, x.active, response);
+      solver.compliance_response(solver.w_free_nodes,
+                                 x.g,
+                                 x.active,
+                                 x.response);
+      const auto &response  = x.response;
       x.equilibrium         = 0;
       x.equilibrium_squares = 0;
       for (unsigned int i = 0; i < x.w.size(); ++i)
@@ -594,10 +609,19 @@ namespace DynamicContact
     void
     newton_step(Iterate &x, Iterate &full)
     {
-      solver.compliance_response(solver.w_free_nodes,
-                                 x.base,
-                                 x.active,
-                                 response);
+      // w_free - C base from evaluate()'s w_free - C g: base and g differ at
+      // the stick nodes only (the friction force, an unknown of the step).
+      response = x.response;
+      difference.clear();
+      differing.clear();
+      difference.resize(x.g.size());
+      for (const unsigned int j : x.active)
+        if ((x.base[j] - x.g[j]).norm_square() > 0)
+          {
+            difference[j] = x.base[j] - x.g[j];
+            differing.push_back(j);
+          }
+      solver.subtract_compliance(difference, differing, response);
       r.resize(x.active.size());
       for (unsigned int a = 0; a < x.active.size(); ++a)
         r[a] = response[x.active[a]] - x.w[x.active[a]];
@@ -630,7 +654,8 @@ namespace DynamicContact
     CondensedNewton<dim>       &solver;
     const double                w_scale;
     Result                     &result;
-    std::vector<Tensor<1, dim>> response, r, dw, new_forces;
+    std::vector<Tensor<1, dim>> response, r, dw, new_forces, difference;
+    std::vector<unsigned int>   differing;
   };
 
 
@@ -666,9 +691,7 @@ namespace DynamicContact
   CondensedNewton<dim>::provisional_velocities() const
   {
     Assert(pending, ExcInternalError());
-    std::vector<Tensor<1, dim>> w;
-    compliance_response(w_free_nodes, pending->it.g, pending->it.active, w);
-    return gathered.owned_part(w);
+    return gathered.owned_part(pending->it.response);
   }
 
 
@@ -725,9 +748,13 @@ namespace DynamicContact
     // A pending provisional pass of the same step (same b) is the loop's
     // last iterate; one of another step is stale (a failed step).
     previous_pass.reset();
+    std::vector<Tensor<1, dim>> previous_velocities;
     if (pending && same_rhs && provisional)
-      previous_pass.emplace(std::move(pending->it.g),
-                            std::move(pending->it.active));
+      {
+        previous_velocities = std::move(pending->it.response);
+        previous_pass.emplace(std::move(pending->it.g),
+                              std::move(pending->it.active));
+      }
     pending.reset();
     if (n == 0)
       {
@@ -745,10 +772,7 @@ namespace DynamicContact
     // cancellation in w_free - C f limits its accuracy, and phase 2 polishes.
     Iterate it;
     if (previous_pass)
-      compliance_response(w_free_nodes,
-                          previous_pass->first,
-                          previous_pass->second,
-                          it.w);
+      it.w = std::move(previous_velocities);
     else
       it.w = gather_values(w);
     it.lambda      = gathered.gather(lambda);

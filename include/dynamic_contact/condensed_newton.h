@@ -168,6 +168,8 @@ namespace DynamicContact
       // lin[i].block is likewise B_i - s I at spring nodes.
       std::vector<Tensor<1, dim>> g;
       std::vector<Tensor<1, dim>> base;
+      // w_free - C g at every node (BoundaryProblem::evaluate()).
+      std::vector<Tensor<1, dim>> response;
       std::uint64_t               signature = 0; // of the sets
       std::vector<unsigned int>   active;
       double equilibrium_squares = 0; // sum |w_i - (w_free - C g)_i|^2
@@ -283,6 +285,12 @@ namespace DynamicContact
     compliance_response(const std::vector<Tensor<1, dim>> &w_free,
                         const std::vector<Tensor<1, dim>> &forces,
                         const std::vector<unsigned int>   &with_force,
+                        std::vector<Tensor<1, dim>>       &w) const;
+
+    /** w_i -= sum_j C_ij f_j over the nodes @p nodes. */
+    void
+    subtract_compliance(const std::vector<Tensor<1, dim>> &forces,
+                        const std::vector<unsigned int>   &nodes,
                         std::vector<Tensor<1, dim>>       &w) const;
   };
 } // namespace DynamicContact
