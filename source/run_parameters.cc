@@ -195,7 +195,7 @@ namespace DynamicContact
           "(decided per mesh).");
         prm.declare_entry(
           "Condensed limit",
-          "3000",
+          "4000",
           Patterns::Integer(0),
           "Contact solver = auto: the largest dim times the number of "
           "contact nodes for which the condensed solver is chosen (the "
