@@ -18,6 +18,16 @@ namespace DynamicContact
    */
   std::vector<std::vector<double>>
   all_gather_values(const MPI_Comm comm, const std::vector<double> &local);
+
+  /**
+   * Collective: the same on @p root only (MPI_Gather of the sizes and
+   * MPI_Gatherv; the other processes get an empty list), in place of
+   * Utilities::MPI::gather(comm, local, root).
+   */
+  std::vector<std::vector<double>>
+  gather_values(const MPI_Comm             comm,
+                const std::vector<double> &local,
+                const unsigned int         root);
 } // namespace DynamicContact
 
 #endif
