@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/condensed_newton.h>
+#include <dynamic_contact/mpi_gather.h>
 #include <dynamic_contact/newton_driver.h>
 #include <dynamic_contact/timing.h>
 
@@ -104,19 +105,16 @@ namespace DynamicContact
           }
     for (const unsigned int j : missing)
       columns[j].assign(all.size(), Tensor<2, dim>());
-    const auto gathered_values =
-      all_gather_numbers(problem.discretization.comm, packed);
-    for (std::size_t p = 0; p < gathered_values.size(); p += 3 + dim)
-      {
-        const unsigned int j =
-          missing[static_cast<unsigned int>(gathered_values[p])];
-        const unsigned int c =
-          static_cast<unsigned int>(gathered_values[p + 1]);
-        const unsigned int i =
-          static_cast<unsigned int>(gathered_values[p + 2]);
-        for (unsigned int r = 0; r < dim; ++r)
-          columns[j][i][r][c] = gathered_values[p + 3 + r];
-      }
+    for (const auto &part :
+         all_gather_values(problem.discretization.comm, packed))
+      for (std::size_t p = 0; p < part.size(); p += 3 + dim)
+        {
+          const unsigned int j = missing[static_cast<unsigned int>(part[p])];
+          const unsigned int c = static_cast<unsigned int>(part[p + 1]);
+          const unsigned int i = static_cast<unsigned int>(part[p + 2]);
+          for (unsigned int r = 0; r < dim; ++r)
+            columns[j][i][r][c] = part[p + 3 + r];
+        }
   }
 
 

@@ -3,6 +3,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <dynamic_contact/contact_boundary.h>
+#include <dynamic_contact/mpi_gather.h>
 
 #include <algorithm>
 #include <map>
@@ -112,9 +113,9 @@ namespace DynamicContact
           local.push_back(owned_to_global[i]);
           pack(i, local);
         }
-      const auto all = all_gather_numbers(comm, local);
-      for (std::size_t pos = 0; pos < all.size(); pos += width + 1)
-        unpack(static_cast<unsigned int>(all[pos]), &all[pos + 1]);
+      for (const auto &part : all_gather_values(comm, local))
+        for (std::size_t pos = 0; pos < part.size(); pos += width + 1)
+          unpack(static_cast<unsigned int>(part[pos]), &part[pos + 1]);
     }
   } // namespace
 
@@ -167,9 +168,9 @@ namespace DynamicContact
     for (const auto &node : boundary.nodes())
       pack(node, packed);
     every_node.clear();
-    const auto all = all_gather_numbers(comm, packed);
-    for (std::size_t pos = 0; pos < all.size();)
-      every_node.push_back(unpack<dim>(all, pos));
+    for (const auto &part : all_gather_values(comm, packed))
+      for (std::size_t pos = 0; pos < part.size();)
+        every_node.push_back(unpack<dim>(part, pos));
     std::sort(every_node.begin(), every_node.end(), by_position<dim>);
     owned_to_global.clear();
     for (const auto &node : boundary.nodes())

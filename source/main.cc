@@ -4,6 +4,7 @@
 #include <dynamic_contact/command_line.h>
 #include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/failure.h>
+#include <dynamic_contact/mpi_startup.h>
 #include <dynamic_contact/parameters.h>
 #include <dynamic_contact/provenance.h>
 #include <dynamic_contact/time_loop.h>
@@ -14,6 +15,10 @@ int
 main(int argc, char *argv[])
 {
   using namespace DynamicContact;
+  // A process started without mpirun (an MPI singleton) is started cheaply:
+  // Open MPI without its daemon and its network probing (mpi_startup.h;
+  // nothing changes under a launcher, and a setting of the user's wins).
+  set_open_mpi_singleton_defaults();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm                           comm = MPI_COMM_WORLD;
   const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;

@@ -11,6 +11,7 @@
 
 #include <dynamic_contact/error_messages.h>
 #include <dynamic_contact/failure.h>
+#include <dynamic_contact/mpi_gather.h>
 #include <dynamic_contact/output.h>
 
 #include <algorithm>
@@ -109,47 +110,51 @@ namespace DynamicContact
                     const bool                                friction,
                     const MPI_Comm                            comm)
   {
-    const auto                      &nodes = boundary.nodes();
-    std::vector<std::vector<double>> rows;
-    rows.reserve(nodes.size());
+    // One row of doubles per node, all of one width (the state last, as a
+    // number), gathered to rank 0 as one flat list per process.
+    const unsigned int width =
+      2 * dim + 3 + (friction ? 2 * (dim - 1) + 2 : 0);
+    const auto         &nodes = boundary.nodes();
+    std::vector<double> rows;
+    rows.reserve(nodes.size() * width);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
-        const auto         &node = nodes[i];
-        const auto         &s    = states[i];
-        std::vector<double> row;
+        const auto &node = nodes[i];
+        const auto &s    = states[i];
         for (unsigned int d = 0; d < dim; ++d)
-          row.push_back(node.position[d]);
-        row.push_back(s.normal.u_nu);
-        row.push_back(s.normal.w_nu);
-        row.push_back(s.normal.pressure);
+          rows.push_back(node.position[d]);
+        rows.push_back(s.normal.u_nu);
+        rows.push_back(s.normal.w_nu);
+        rows.push_back(s.normal.pressure);
         if (friction)
           {
             const Tensor<1, dim> w_tau = node.tangential(node.value(w));
             for (unsigned int j = 0; j < dim - 1; ++j)
-              row.push_back(w_tau * node.tangents[j]);
+              rows.push_back(w_tau * node.tangents[j]);
             // The traction the foundation exerts against the slip:
             // -lambda_i / m_i, in the tangent basis.
             for (unsigned int j = 0; j < dim - 1; ++j)
-              row.push_back(-(s.friction_force * node.tangents[j]) /
-                            node.weight);
-            row.push_back(s.mu);
+              rows.push_back(-(s.friction_force * node.tangents[j]) /
+                             node.weight);
+            rows.push_back(s.mu);
           }
         const Tensor<1, dim> displacement = node.value(u);
         for (unsigned int d = 0; d < dim; ++d)
-          row.push_back(displacement[d]);
+          rows.push_back(displacement[d]);
         if (friction)
-          row.push_back(static_cast<double>(s.state)); // last: printed as text
-        rows.push_back(row);
+          rows.push_back(static_cast<double>(s.state)); // last: printed as text
+        Assert(rows.size() == (i + 1) * width, ExcInternalError());
       }
 
-    const auto gathered = Utilities::MPI::gather(comm, rows, 0);
+    const auto gathered = gather_values(comm, rows, 0);
     collectively(comm, [&]() {
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         return;
 
       std::vector<std::vector<double>> all;
       for (const auto &part : gathered)
-        all.insert(all.end(), part.begin(), part.end());
+        for (std::size_t pos = 0; pos < part.size(); pos += width)
+          all.emplace_back(part.begin() + pos, part.begin() + pos + width);
       std::sort(all.begin(),
                 all.end(),
                 [](const std::vector<double> &a, const std::vector<double> &b) {
