@@ -25,6 +25,7 @@
 
 #include <dynamic_contact/bulk_operator.h>
 #include <dynamic_contact/bulk_solver.h>
+#include <dynamic_contact/cholmod_views.h>
 #include <dynamic_contact/discretization.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/parameters.h>
@@ -37,7 +38,6 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
-#include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
 
 #include <algorithm>
@@ -249,39 +249,16 @@ compare(const std::vector<unsigned int> &repetitions,
           c.nmethods           = 1;
           c.method[0].ordering = ordering;
         }
-      cholmod_sparse S;
-      S.nrow   = csr.n;
-      S.ncol   = csr.n;
-      S.nzmax  = csr.value.size();
-      S.p      = const_cast<SuiteSparse_long *>(csr.start.data());
-      S.i      = const_cast<SuiteSparse_long *>(csr.column.data());
-      S.nz     = nullptr;
-      S.x      = const_cast<double *>(csr.value.data());
-      S.z      = nullptr;
-      S.stype  = 1;
-      S.itype  = CHOLMOD_LONG;
-      S.xtype  = CHOLMOD_REAL;
-      S.dtype  = CHOLMOD_DOUBLE;
-      S.sorted = 1;
-      S.packed = 1;
+      cholmod_sparse S = upper_triangle_view(csr.n,
+                                             csr.start.data(),
+                                             csr.column.data(),
+                                             csr.value.data());
       timer.restart();
       cholmod_factor *L = cholmod_l_analyze(&S, &c);
       cholmod_l_factorize(&S, L, &c);
-      const double factor = timer.wall_time();
-      auto         dense  = [&](double *data, const unsigned int columns) {
-        cholmod_dense d;
-        d.nrow  = n;
-        d.ncol  = columns;
-        d.nzmax = n * columns;
-        d.d     = n;
-        d.x     = data;
-        d.z     = nullptr;
-        d.xtype = CHOLMOD_REAL;
-        d.dtype = CHOLMOD_DOUBLE;
-        return d;
-      };
-      cholmod_dense  bd = dense(b.data(), 1);
-      cholmod_dense *xd = nullptr;
+      const double   factor = timer.wall_time();
+      cholmod_dense  bd     = dense_view(n, 1, b.data());
+      cholmod_dense *xd     = nullptr;
       timer.restart();
       for (unsigned int r = 0; r < repeats; ++r)
         {
@@ -293,7 +270,7 @@ compare(const std::vector<unsigned int> &repetitions,
       std::copy_n(static_cast<double *>(xd->x), n, x.begin());
       cholmod_l_free_dense(&xd, &c);
       const double  check = residual(x);
-      cholmod_dense Bd    = dense(B.data(), n_rhs);
+      cholmod_dense Bd    = dense_view(n, n_rhs, B.data());
       timer.restart();
       cholmod_dense *Xd    = cholmod_l_solve(CHOLMOD_A, L, &Bd, &c);
       const double   block = timer.wall_time();

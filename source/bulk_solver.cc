@@ -4,13 +4,13 @@
 #include <deal.II/lac/solver_control.h>
 
 #include <dynamic_contact/bulk_solver.h>
+#include <dynamic_contact/cholmod_views.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
-#include <suitesparse/cholmod.h>
 
 #include <algorithm>
 #include <cstring>
@@ -171,21 +171,10 @@ namespace DynamicContact
       pattern_index = std::move(index);
       values        = std::move(value);
 
-      cholmod_sparse S;
-      S.nrow   = n;
-      S.ncol   = n;
-      S.nzmax  = values.size();
-      S.p      = pattern_start.data();
-      S.i      = pattern_index.data();
-      S.nz     = nullptr;
-      S.x      = values.data();
-      S.z      = nullptr;
-      S.stype  = 1;
-      S.itype  = CHOLMOD_LONG;
-      S.xtype  = CHOLMOD_REAL;
-      S.dtype  = CHOLMOD_DOUBLE;
-      S.sorted = 1;
-      S.packed = 1;
+      cholmod_sparse S = upper_triangle_view(n,
+                                             pattern_start.data(),
+                                             pattern_index.data(),
+                                             values.data());
       if (!same_pattern)
         {
           if (factor != nullptr)
@@ -209,15 +198,7 @@ namespace DynamicContact
     solve(const double *B, double *X, const unsigned int n_columns)
     {
       const std::size_t n = factor->n;
-      cholmod_dense     b;
-      b.nrow  = n;
-      b.ncol  = n_columns;
-      b.nzmax = n * n_columns;
-      b.d     = n;
-      b.x     = const_cast<double *>(B);
-      b.z     = nullptr;
-      b.xtype = CHOLMOD_REAL;
-      b.dtype = CHOLMOD_DOUBLE;
+      cholmod_dense     b = dense_view(n, n_columns, B);
       // The workspace (and the solution) are reused while the number of
       // columns is the same.
       if (x != nullptr && x->ncol != n_columns)

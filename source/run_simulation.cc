@@ -48,7 +48,7 @@ namespace DynamicContact
           // collective operation; end them all from here.
           if (!every_process_failed())
             {
-              simulator.abandon_alone(error);
+              simulator.abandon(error, true);
               abort_run(error);
             }
           simulator.abandon(error);

@@ -738,34 +738,17 @@ namespace DynamicContact
 
   template <int dim>
   void
-  TimeLoop<dim>::abandon(const std::string &reason)
+  TimeLoop<dim>::abandon(const std::string &reason, const bool alone)
   {
     timer.disable_output();
     // Only a run that has taken the results over marks them failed (a
     // refused --resume leaves them as they are).
-    if (took_over && Utilities::MPI::this_mpi_process(comm) == 0)
-      try
-        {
-          close_log_after_error(reason);
-          output_directory->write_status("failed: " + reason);
-        }
-      catch (const std::exception &e)
-        {
-          std::cerr << "dynamic-contact: " << e.what() << std::endl;
-        }
-  }
-
-
-  template <int dim>
-  void
-  TimeLoop<dim>::abandon_alone(const std::string &reason)
-  {
-    timer.disable_output();
-    if (!took_over)
+    const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+    if (!took_over || !(root || alone))
       return;
     try
       {
-        if (Utilities::MPI::this_mpi_process(comm) == 0)
+        if (root)
           {
             close_log_after_error(reason);
             output_directory->write_status("failed: " + reason);

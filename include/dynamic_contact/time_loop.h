@@ -114,18 +114,13 @@ namespace DynamicContact
     }
 
     /**
-     * After a failure that every process knows: mark the output as failed
-     * (if this run had taken it over) and silence the timer summary.
+     * After a failure: mark the output as failed (if this run had taken it
+     * over) and silence the timer summary. A failure every process knows is
+     * written by rank 0; one of this process @p alone (the others may wait
+     * in a collective operation) by this process.
      */
     void
-    abandon(const std::string &reason);
-
-    /**
-     * After a failure of this process alone (the others may wait in a
-     * collective operation): write run_status from this process.
-     */
-    void
-    abandon_alone(const std::string &reason);
+    abandon(const std::string &reason, const bool alone = false);
 
     /** The steps written to time_series.csv so far (step 0 first). */
     const std::vector<StepRecord<dim>> &
