@@ -83,7 +83,7 @@ namespace DynamicContact
     data.elliptic              = true;
     data.higher_order_elements = fe.degree > 1;
     data.smoother_sweeps       = 2;
-    data.aggregation_threshold = 0.02;
+    data.aggregation_threshold = 0.;
     Teuchos::ParameterList              list;
     std::unique_ptr<Epetra_MultiVector> unused;
     data.set_parameters(list, unused, matrix);

@@ -23,12 +23,15 @@ namespace DynamicContact
 
   /**
    * Algebraic multigrid for the bulk matrix K0 (Trilinos ML, smoothed
-   * aggregation, elliptic settings, two smoother sweeps, aggregation
-   * threshold 0.02), with the rigid-body modes of the mesh as near null
+   * aggregation, elliptic settings, Chebyshev smoother of degree 2,
+   * aggregation threshold 0: no connection of the elasticity matrix is
+   * dropped as weak), with the rigid-body modes of the mesh as near null
    * space: dim translations and the rotations, 3 modes in 2D and 6 in 3D.
-   * The rotations matter: with the translations only, CG needs 700
-   * iterations instead of 203 on the paper scene's K0 and 123 instead of 69
-   * on the 3D rail (benchmarks/amg-comparison). Built once per K0 (mesh and
+   * Both choices are measured by benchmarks/amg-comparison (CG on K0 to
+   * 1e-10): on the 3D rail 160 x 16 x 16 the threshold 0.02 of earlier
+   * versions took 99 iterations, 0 takes 20 (6x less time); with the
+   * translations only as near null space ML needs several times more
+   * iterations. Built once per K0 (mesh and
    * time step) and used for every solve with it and, as the preconditioner
    * of the whole Newton system, for every Newton iteration.
    */
