@@ -52,6 +52,36 @@ namespace DynamicContact
   }
 
 
+  EnergyBalanceTerms
+  sdirk_terms(const EnergyBalanceTerms &first,
+              const EnergyBalanceTerms &second,
+              const Energy             &old_energy,
+              const Energy             &hat_energy,
+              const Energy             &end_energy,
+              const double              numerical,
+              const double              weight)
+  {
+    EnergyBalanceTerms t;
+    t.energy    = end_energy;
+    t.load_work = weight * (first.load_work + second.load_work);
+    t.inertia   = numerical;
+    t.elastic   = 0;
+    t.viscous   = weight * (first.viscous + second.viscous);
+    t.damping   = weight * (first.damping + second.damping);
+    t.friction  = weight * (first.friction + second.friction);
+    // A stage's compliance power p(U_i) (U_i - start_i) is its term plus
+    // the change of Pi over the stage.
+    const double power =
+      first.compliance + (first.energy.foundation - old_energy.foundation) +
+      second.compliance + (second.energy.foundation - hat_energy.foundation);
+    t.compliance =
+      weight * power - (end_energy.foundation - old_energy.foundation);
+    t.defect = t.energy.total() - old_energy.total() + t.dissipation() -
+               t.load_work;
+    return t;
+  }
+
+
   template <int dim>
   EnergyBalance<dim>::EnergyBalance(const BulkOperator<dim>    &bulk,
                                     const ContactBoundary<dim> &boundary,

@@ -61,7 +61,7 @@ namespace DynamicContact
       prm.declare_entry(
         "Scheme",
         "backward Euler",
-        Patterns::Selection("backward Euler|trapezoidal|bathe"),
+        Patterns::Selection("backward Euler|trapezoidal|bathe|sdirk"),
         "'backward Euler': the paper's scheme (eqs. (52)-(54)), first order. "
         "'trapezoidal': second order, u_n = u_{n-1} + k (w_n + w_{n-1})/2, "
         "the equation of motion at the midpoint, the compliance force the "
@@ -76,21 +76,30 @@ namespace DynamicContact
         "difference, which is a backward-Euler step of k/3 from the "
         "extrapolated state (4 x_{n-1/2} - x_{n-1})/3; two solves per step "
         "(doc/theory.md section 2); its high-frequency dissipation is set "
-        "by Spectral radius at infinity.");
+        "by Spectral radius at infinity. "
+        "'sdirk': a two-stage diagonally implicit Runge-Kutta scheme, second "
+        "order, with the same control of the high-frequency dissipation "
+        "(Spectral radius at infinity) and a numerical dissipation that is "
+        ">= 0 at every step whatever the load (algebraically stable): two "
+        "backward-Euler stages of gamma k (gamma = 1 - 1/sqrt(2) at "
+        "rho_inf = 0), the second from an extrapolated state, and the end "
+        "state a combination of the stages; two solves per step, one "
+        "matrix (doc/theory.md section 2.6).");
       prm.declare_entry(
         "Spectral radius at infinity",
         "0",
         Patterns::Double(),
-        "rho_inf in [0, 1] of Time/Scheme = bathe: the amplification of a "
+        "rho_inf in [0, 1] of Time/Scheme = bathe or sdirk: the amplification of a "
         "mode far beyond the resolution (omega k -> infinity) in one step. "
         "0 (default): the Bathe scheme as above, such modes are removed in "
         "a step; 1: no high-frequency dissipation (two trapezoidal half "
         "steps). In between, the step is a trapezoidal sub-step over k/2, "
         "the linear extrapolation of u and w to t_{n-1} + s k and a "
         "theta-step of (1 - s) k, s and theta chosen for second order and "
-        "this rho_inf (doc/theory.md section 2.4). The other schemes have "
+        "this rho_inf (doc/theory.md section 2.4); for sdirk it sets the "
+        "stages' gamma (section 2.6). The other schemes have "
         "their own (backward Euler 0, trapezoidal 1): a value other than "
-        "0 needs Time/Scheme = bathe.");
+        "0 needs Time/Scheme = bathe or sdirk.");
       prm.declare_entry(
         "Adaptive",
         "false",
@@ -102,7 +111,7 @@ namespace DynamicContact
         "larger, at least 0.2 times smaller, rounded down to Time step times "
         "a power of 2 so that factorizations are reused), between Minimum "
         "time step and Maximum time step; Time step is the first k. Steps end exactly at "
-        "the Output times. Needs Time/Scheme = bathe or backward Euler. "
+        "the Output times. Needs Time/Scheme = bathe, sdirk or backward Euler. "
         "time_series.csv gets the columns time_error_estimate and "
         "rejected_steps.");
       prm.declare_entry(
@@ -133,6 +142,7 @@ namespace DynamicContact
       const std::string scheme_name = prm.get("Scheme");
       scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
                 scheme_name == "bathe"       ? Scheme::bathe :
+                scheme_name == "sdirk"       ? Scheme::sdirk :
                                                Scheme::backward_euler);
       const double spectral_radius =
         prm.get_double("Spectral radius at infinity");
@@ -151,14 +161,17 @@ namespace DynamicContact
       require(spectral_radius >= 0 && spectral_radius <= 1,
               "Time/Spectral radius at infinity must lie in [0, 1], got " +
                 str(spectral_radius) + ".");
-      require(spectral_radius == 0 || scheme == Scheme::bathe,
+      require(spectral_radius == 0 || scheme == Scheme::bathe ||
+                scheme == Scheme::sdirk,
               "Time/Spectral radius at infinity = " + str(spectral_radius) +
-                " needs Time/Scheme = bathe (backward Euler has 0, the "
+                " needs Time/Scheme = bathe or sdirk (backward Euler has 0, the "
                 "trapezoidal rule 1, and neither has a parameter).");
       composite = CompositeScheme(spectral_radius);
+      sdirk     = SdirkScheme(spectral_radius);
       require(!adaptive || scheme != Scheme::trapezoidal,
-              "Time/Adaptive = true needs Time/Scheme = bathe or backward "
-              "Euler (the trapezoidal rule has no error estimate here).");
+              "Time/Adaptive = true needs Time/Scheme = bathe, sdirk or "
+              "backward Euler (the trapezoidal rule has no error estimate "
+              "here).");
       require(!adaptive || adaptive_tolerance > 0,
               "Time/Adaptive tolerance must be positive, got " +
                 str(adaptive_tolerance) + ".");

@@ -65,7 +65,17 @@ namespace DynamicContact
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
     for (auto *v :
-         {&u, &w, &u_old, &w_old, &u_bar, &w_bar, &load, &rhs, &scratch})
+         {&u,
+          &w,
+          &u_old,
+          &w_old,
+          &u_bar,
+          &w_bar,
+          &u_stage,
+          &w_stage,
+          &load,
+          &rhs,
+          &scratch})
       discretization.reinit_owned(*v);
     energy_of_state.reset();
   }
@@ -286,14 +296,7 @@ namespace DynamicContact
   Simulator<dim>::initial_record()
   {
     StepRecord<dim> record;
-    if (scene.has_exact_solution())
-      {
-        const Vector_t u_ghosted = discretization.expanded(u),
-                       w_ghosted = discretization.expanded(w);
-        record.has_errors        = true;
-        record.errors            = compute_errors(
-          discretization, material, scene, 0., u_ghosted, w_ghosted);
-      }
+    record_errors(record, 0.);
     record.terms.energy    = energy_balance.energy(u, w);
     record.previous_energy = record.terms.energy.total();
     energy_of_state        = record.previous_energy;
@@ -442,6 +445,9 @@ namespace DynamicContact
     e.reinit(u, true);
     if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
       parameters.time.composite.local_error(e, w, w_bar, w_old, k);
+    else if (parameters.time.scheme == Parameters::Time::Scheme::sdirk)
+      // Called with w = W2, before the stages are combined.
+      parameters.time.sdirk.local_error(e, w, w_stage, w_old, k);
     else
       {
         e = w;
@@ -534,6 +540,11 @@ namespace DynamicContact
                                    extrapolation_work,
                                    record.previous_energy);
       }
+    else if (parameters.time.scheme == Parameters::Time::Scheme::sdirk)
+      {
+        sdirk_step(record, t, k, accept_unconverged_loop);
+        last = parameters.time.sdirk.stage(k);
+      }
     else
       solve_substep(last,
                     t,
@@ -547,11 +558,14 @@ namespace DynamicContact
     if (parameters.time.adaptive)
       {
         record.adaptive_time = true;
-        record.time_error    = time_error_estimate(k);
-        record.rejected      = rejected;
+        if (parameters.time.scheme != Parameters::Time::Scheme::sdirk)
+          record.time_error = time_error_estimate(k); // sdirk: in its step
+        record.rejected = rejected;
       }
 
-    compute_balances(record, last, *u_start, *w_start, t);
+    if (parameters.time.scheme != Parameters::Time::Scheme::sdirk)
+      compute_balances(record, last, *u_start, *w_start, t);
+    record_errors(record, t);
     record.dofs     = discretization.dof_handler.n_dofs();
     record.cells    = discretization.triangulation.n_global_active_cells();
     energy_of_state = record.terms.energy.total(); // the step succeeded
@@ -590,13 +604,106 @@ namespace DynamicContact
                                             w_theta,
                                             w_ghosted,
                                             w_old_ghosted);
-      if (scene.has_exact_solution())
-        {
-          record.has_errors = true;
-          record.errors     = compute_errors(
-            discretization, material, scene, t, u_ghosted, w_ghosted);
-        }
     }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::record_errors(StepRecord<dim> &record, const double t)
+  {
+    if (!scene.has_exact_solution())
+      return;
+    TimerSection   scope(timer, "Step: energy and force balance");
+    const Vector_t u_ghosted = discretization.expanded(u),
+                   w_ghosted = discretization.expanded(w);
+    record.has_errors        = true;
+    record.errors            = compute_errors(
+      discretization, material, scene, t, u_ghosted, w_ghosted);
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::sdirk_step(StepRecord<dim> &record,
+                             const double     t,
+                             const double     k,
+                             const bool       accept_unconverged_loop)
+  {
+    // The two-stage SDIRK scheme (doc/theory.md section 2.6). Stage 1:
+    // backward Euler over gamma k from y_{n-1}.
+    const SdirkScheme &sdirk = parameters.time.sdirk;
+    const TimeScheme   stage = sdirk.stage(k);
+    const double       t0    = t - k;
+    typename StepSolver<dim>::Statistics first_statistics;
+    EnergyBalanceTerms                   first_terms;
+    const Energy old_energy = energy_balance.energy(u_old, w_old);
+    solve_substep(stage,
+                  t0 + sdirk.first_stage_time() * k,
+                  u_old,
+                  w_old,
+                  record.previous_energy,
+                  accept_unconverged_loop,
+                  first_statistics,
+                  first_terms);
+    u_stage = u;
+    w_stage = w;
+    const auto first_forces = contact_state.force_sums(contact_boundary, comm);
+
+    // Stage 2: backward Euler over gamma k from y_hat = y_{n-1} +
+    // alpha (Y1 - y_{n-1}), to t_{n-1} + (1 - gamma) k.
+    sdirk.second_stage_start(u_bar, u_stage, u_old);
+    sdirk.second_stage_start(w_bar, w_stage, w_old);
+    const Energy       hat_energy = energy_balance.energy(u_bar, w_bar);
+    EnergyBalanceTerms second_terms;
+    const double       t2 = t0 + sdirk.second_stage_time() * k;
+    solve_substep(stage,
+                  t2,
+                  u_bar,
+                  w_bar,
+                  hat_energy.total(),
+                  accept_unconverged_loop,
+                  record.statistics,
+                  second_terms);
+    record.statistics.add_work(first_statistics);
+    last_newton_residual =
+      std::max(first_statistics.residual, record.statistics.residual);
+
+    // The force balance is that of stage 2's equation; the contact force
+    // sums are extrapolated from the stages to t_n.
+    compute_balances(record, stage, u_bar, w_bar, t2);
+    record.normal_force =
+      sdirk.value_at_end(first_forces.first, record.normal_force);
+    record.tangential_force =
+      sdirk.value_at_end(first_forces.second, record.tangential_force);
+    if (parameters.time.adaptive)
+      record.time_error = time_error_estimate(k);
+
+    // The numerical dissipation from the stage increments,
+    // d = (Y1 - y_{n-1}) - (Y2 - y_hat), before u, w become y_n.
+    const double density = material.density();
+    scratch              = u_stage;
+    scratch -= u_old;
+    scratch -= u;
+    scratch += u_bar;
+    double d2 = bulk.elastic_product(scratch, scratch);
+    scratch   = w_stage;
+    scratch -= w_old;
+    scratch -= w;
+    scratch += w_bar;
+    d2 += density * bulk.mass_product(scratch, scratch);
+
+    sdirk.combine(u, u_stage, u_bar, u_old);
+    sdirk.combine(w, w_stage, w_bar, w_old);
+    record.terms = sdirk_terms(first_terms,
+                               second_terms,
+                               old_energy,
+                               hat_energy,
+                               energy_balance.energy(u, w),
+                               sdirk.numerical_dissipation_factor() * d2,
+                               sdirk.stage_weight());
   }
 
   template <int dim>

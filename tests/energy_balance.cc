@@ -15,6 +15,13 @@
 // dissipation (theta - 1/2)(...) is booked in dissipation_inertia as well,
 // and whose compliance force (2 theta - 1) p(u_n) + 2 (1 - theta) DG
 // dissipates (2 theta - 1) times backward Euler's compliance term.
+// With the SDIRK scheme (Time/Scheme = sdirk) dissipation_inertia books
+// (gamma - 1/4)/(2 gamma^2) |(Y1 - y_{n-1}) - (Y2 - y_hat)|_E^2 and the
+// other terms are the stages' (doc/theory.md section 6). Its compliance
+// term is not a square: the foundation energy is not quadratic where a
+// node enters or leaves contact within a step, and there it can be < 0
+// (measured, doc/theory.md section 6); for sdirk that term is checked for
+// being at work, not for its sign.
 
 #include "test_tools.h"
 
@@ -57,7 +64,8 @@ check_balance(const std::string &scheme, const double rho_inf = 0)
   // trapezoidal rule not the first two nor the compliance term; for the
   // Bathe scheme all but the elastic one (booked with the inertia).
   const bool trapezoidal = (scheme == "trapezoidal");
-  const bool bathe       = (scheme == "bathe");
+  const bool sdirk       = (scheme == "sdirk");
+  const bool bathe       = (scheme == "bathe" || sdirk);
   const bool present[]   = {
       !trapezoidal, !trapezoidal && !bathe, true, !trapezoidal, true, true};
   double              worst_defect = 0, most_negative = 0, worst_column = 0;
@@ -76,11 +84,11 @@ check_balance(const std::string &scheme, const double rho_inf = 0)
       worst_column =
         std::max(worst_column, std::abs(defect - row.terms.defect) / scale);
       worst_defect  = std::max(worst_defect, std::abs(defect) / scale);
-      most_negative = std::min(most_negative, row.relative_min_dissipation());
       for (unsigned int t = 0; t < 6; ++t)
         {
           const double term = row.terms.*members[t];
-          most_negative     = std::min(most_negative, term / scale);
+          if (!(sdirk && members[t] == &EnergyBalanceTerms::compliance))
+            most_negative = std::min(most_negative, term / scale);
           largest[t]        = std::max(largest[t], term);
           largest_relative[t] =
             std::max(largest_relative[t], std::abs(term) / scale);
@@ -92,8 +100,11 @@ check_balance(const std::string &scheme, const double rho_inf = 0)
   test_tools::check(worst_defect < 1e-8,
                     "energy balance at every step to 1e-8 of the energy");
   test_tools::check(most_negative >= -1e-12,
-                    "every dissipation term >= 0 at every step (to the "
-                    "round-off of its evaluation, 1e-12 of the energy)");
+                    std::string(sdirk ? "every dissipation term but the "
+                                        "compliance term" :
+                                        "every dissipation term") +
+                      " >= 0 at every step (to the round-off of its "
+                      "evaluation, 1e-12 of the energy)");
   for (unsigned int t = 0; t < 6; ++t)
     if (present[t])
       test_tools::check(largest[t] > 0,
@@ -115,4 +126,6 @@ main(int argc, char *argv[])
   check_balance("bathe");
   check_balance("bathe", 0.5);
   check_balance("bathe", 0.9);
+  check_balance("sdirk");
+  check_balance("sdirk", 0.5);
 }

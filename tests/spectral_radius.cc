@@ -1,4 +1,4 @@
-// The high-frequency dissipation of Time/Scheme = bathe, measured: with
+// The high-frequency dissipation of Time/Scheme = bathe and sdirk, measured: with
 // Time/Spectral radius at infinity = rho_inf, a mode far beyond the
 // resolution (omega k -> infinity) is multiplied by rho_inf in a step
 // (doc/theory.md section 2.4), and in the energy norm the amplification
@@ -30,7 +30,10 @@ struct Run
 };
 
 Run
-energies(const double rho_inf, const double k, const std::string &name)
+energies(const std::string &scheme,
+         const double       rho_inf,
+         const double       k,
+         const std::string &name)
 {
   auto simulator = test_tools::run<2>(
     test_tools::scene("barboteu_danan_2016_small.prm"),
@@ -44,7 +47,7 @@ energies(const double rho_inf, const double k, const std::string &name)
      "Friction/Law=none",
      "Initial conditions/Displacement/Function expression=0; "
      "1e-3*sin(pi*x/2)",
-     "Time/Scheme=bathe",
+     "Time/Scheme=" + scheme,
      "Time/Spectral radius at infinity=" + std::to_string(rho_inf),
      "Time/Time step=" + std::to_string(k),
      "Time/End time=" + std::to_string(4 * k)});
@@ -70,12 +73,14 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   unsigned int                     index = 0;
-  for (const double rho_inf : {0., 0.3, 0.6, 0.9, 1.})
+  for (const std::string scheme : {"bathe", "sdirk"})
+    for (const double rho_inf : {0., 0.3, 0.6, 0.9, 1.})
     {
       const std::string name = std::to_string(index++);
-      test_tools::out() << "--- Spectral radius at infinity = "
+      test_tools::out() << "--- Time/Scheme = " << scheme
+                        << ", Spectral radius at infinity = "
                         << test_tools::digits(rho_inf, 2) << std::endl;
-      const Run                  run = energies(rho_inf, 10., name);
+      const Run                  run = energies(scheme, rho_inf, 10., name);
       const std::vector<double> &e   = run.energy;
       test_tools::check(e.size() == 5 && e[0] > 0, "four steps from E_0 > 0");
       // Every step (for rho_inf = 0 the first two: the energy is at

@@ -111,6 +111,33 @@ namespace DynamicContact
               const double              previous_energy);
 
 
+  /**
+   * The balance of one step of the SDIRK scheme (Time/Scheme = sdirk;
+   * doc/theory.md sections 2.6 and 6) from those of its two
+   * backward-Euler stages of gamma k: @p first from y_{n-1} (energy
+   * @p old_energy) to Y1, @p second from y_hat (energy @p hat_energy) to
+   * Y2, and the energy @p end_energy of y_n. The step's work and
+   * physical dissipation are the stages' times @p weight = 1/(2 gamma)
+   * (b_i k over the stage's gamma k): W_n = k sum_i b_i (f_i, W_i), the
+   * viscous, damping and friction terms alike; the compliance term is the
+   * stages' compliance power k sum_i b_i p(U_i) W_i minus the change of
+   * the foundation energy over the step (>= 0 where no node crosses the
+   * foundation's threshold within the step and p is linear, as in the
+   * paper; measured otherwise), and the numerical dissipation
+   *   inertia = @p numerical = (gamma - 1/4)/(2 gamma^2)
+   *             |(Y1 - y_{n-1}) - (Y2 - y_hat)|_E^2 >= 0
+   * (elastic = 0), so that E_n - E_{n-1} + D_n = W_n holds exactly.
+   */
+  EnergyBalanceTerms
+  sdirk_terms(const EnergyBalanceTerms &first,
+              const EnergyBalanceTerms &second,
+              const Energy             &old_energy,
+              const Energy             &hat_energy,
+              const Energy             &end_energy,
+              const double              numerical,
+              const double              weight);
+
+
   template <int dim>
   class EnergyBalance
   {

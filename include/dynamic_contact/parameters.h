@@ -195,7 +195,8 @@ namespace DynamicContact
       {
         backward_euler,
         trapezoidal,
-        bathe
+        bathe,
+        sdirk
       };
       double end_time;
       double time_step;
@@ -214,16 +215,35 @@ namespace DynamicContact
        * radius at infinity (Time/Spectral radius at infinity).
        */
       CompositeScheme composite;
+      /**
+       * The two-stage SDIRK scheme of Time/Scheme = sdirk, with the same
+       * spectral radius at infinity.
+       */
+      SdirkScheme sdirk;
 
       /**
        * The theta of the one-step schemes: 1 for backward Euler, 1/2 for
        * the trapezoidal scheme. (The Bathe scheme's sub-steps have their
-       * own: 1/2, then composite.theta().)
+       * own: 1/2, then composite.theta(); the stages of sdirk are
+       * backward-Euler steps of gamma k.)
        */
       double
       theta() const
       {
-        return scheme == Scheme::backward_euler ? 1. : 0.5;
+        return (scheme == Scheme::backward_euler || scheme == Scheme::sdirk) ?
+                 1. :
+                 0.5;
+      }
+
+      /**
+       * The power of k in the local error estimate of a step (Time/Adaptive):
+       * 3 for the second-order schemes with an estimate (bathe, sdirk), 2
+       * for backward Euler.
+       */
+      double
+      local_error_order() const
+      {
+        return (scheme == Scheme::bathe || scheme == Scheme::sdirk) ? 3 : 2;
       }
 
       static void

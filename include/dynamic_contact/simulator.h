@@ -281,8 +281,10 @@ namespace DynamicContact
 
     // Fields in master form (constrained entries zero). u_old, w_old: the
     // state at the start of the step; u_bar, w_bar: the start of the Bathe
-    // scheme's second sub-step.
-    Vector_t u, w, u_old, w_old, u_bar, w_bar, load, rhs, scratch;
+    // scheme's second sub-step or of the SDIRK scheme's second stage;
+    // u_stage, w_stage: the SDIRK scheme's first stage.
+    Vector_t u, w, u_old, w_old, u_bar, w_bar, u_stage, w_stage, load, rhs,
+      scratch;
 
     /**
      * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
@@ -344,9 +346,9 @@ namespace DynamicContact
                  const Vector_t   &u_start,
                  const Vector_t   &w_start);
     /**
-     * The balances of the step just solved into @p record: the contact
-     * force sums, the force balance of the (sub-)step @p last from
-     * (@p u_start, @p w_start), the errors of a manufactured solution.
+     * The balances of the (sub-)step just solved into @p record: the contact
+     * force sums and the force balance of the (sub-)step @p last from
+     * (@p u_start, @p w_start) to @p t.
      */
     void
     compute_balances(StepRecord<dim>  &record,
@@ -354,6 +356,20 @@ namespace DynamicContact
                      const Vector_t   &u_start,
                      const Vector_t   &w_start,
                      const double      t);
+    /** The errors of a manufactured solution at @p t, of (u, w). */
+    void
+    record_errors(StepRecord<dim> &record, const double t);
+    /**
+     * A step of Time/Scheme = sdirk from (u_old, w_old) to t (doc/theory.md
+     * section 2.6): the two stages, the balances of the second, the
+     * contact force sums extrapolated to t, (u, w) = y_n and the step's
+     * energy balance into @p record.
+     */
+    void
+    sdirk_step(StepRecord<dim> &record,
+               const double     t,
+               const double     k,
+               const bool       accept_unconverged_loop);
   };
 } // namespace DynamicContact
 

@@ -316,6 +316,160 @@ namespace DynamicContact
     double error_old      = 0.5;
     double error_divisor  = 6;
   };
+  /**
+   * The two-stage singly diagonally implicit Runge-Kutta scheme of
+   * Time/Scheme = sdirk (doc/theory.md section 2.6) with a prescribed
+   * spectral radius at infinity rho_inf in [0, 1]: the Butcher tableau
+   *   c = (gamma, 1 - gamma),  A = [[gamma, 0], [1 - 2 gamma, gamma]],
+   *   b = (1/2, 1/2),
+   * on the first-order system y = (u, w), y' = (w, M^-1 (f - ...)).
+   * A step of length k from y_{n-1}:
+   *   1. a backward-Euler step of gamma k from y_{n-1} to Y1 at
+   *      t_{n-1} + gamma k;
+   *   2. the extrapolation y_hat = y_{n-1} + alpha (Y1 - y_{n-1}),
+   *      alpha = (1 - 2 gamma)/gamma;
+   *   3. a backward-Euler step of gamma k from y_hat to Y2 at
+   *      t_{n-1} + (1 - gamma) k;
+   *   4. y_n = y_{n-1} + beta ((Y1 - y_{n-1}) + (Y2 - y_hat)),
+   *      beta = 1/(2 gamma), i.e. y_n = rho_inf y_{n-1}
+   *      + beta (1 - alpha) Y1 + beta Y2.
+   * Second order for every gamma; R(infinity) = 1 - (4 gamma - 1)/(2 gamma^2)
+   * = rho_inf gives gamma = (2 - sqrt(2 + 2 rho))/(2 (1 - rho)), from
+   * 1 - 1/sqrt(2) (rho_inf = 0, L-stable) to 1/4 (rho_inf = 1: two implicit
+   * midpoint steps of k/2). Its algebraic-stability matrix
+   * diag(b) A + A^T diag(b) - b b^T = (gamma - 1/4) [[1, -1], [-1, 1]] is
+   * positive semidefinite, so that the energy of the quadratic part changes
+   * by the stages' work minus
+   *   D_num = (gamma - 1/4)/(2 gamma^2) |(Y1 - y_{n-1}) - (Y2 - y_hat)|_E^2
+   * >= 0, for any load, damping and contact forces (doc/theory.md
+   * section 6). This value type is the one place that holds these
+   * coefficients.
+   */
+  class SdirkScheme
+  {
+  public:
+    explicit SdirkScheme(const double spectral_radius_at_infinity = 0)
+      : rho(spectral_radius_at_infinity)
+      , g(rho >= 1 ? 0.25 :
+                     (2 - std::sqrt(2 + 2 * rho)) / (2 * (1 - rho)))
+    {}
+
+    double
+    spectral_radius_at_infinity() const
+    {
+      return rho;
+    }
+
+    double
+    gamma() const
+    {
+      return g;
+    }
+
+    /** Both stages: backward Euler over gamma k. */
+    TimeScheme
+    stage(const double k) const
+    {
+      return TimeScheme(g * k, 1);
+    }
+
+    /** The stages' times after t_{n-1}, as fractions of k. */
+    double
+    first_stage_time() const
+    {
+      return g;
+    }
+    double
+    second_stage_time() const
+    {
+      return 1 - g;
+    }
+
+    /** y_hat = y_{n-1} + alpha (Y1 - y_{n-1}). */
+    template <typename VectorType>
+    void
+    second_stage_start(VectorType       &y_hat,
+                       const VectorType &y1,
+                       const VectorType &y_old) const
+    {
+      const double alpha = (1 - 2 * g) / g;
+      y_hat              = y1;
+      y_hat *= alpha;
+      y_hat.add(1 - alpha, y_old);
+    }
+
+    /** y_n = y_{n-1} + beta ((Y1 - y_{n-1}) + (Y2 - y_hat)), in place of Y2. */
+    template <typename VectorType>
+    void
+    combine(VectorType       &y2_to_yn,
+            const VectorType &y1,
+            const VectorType &y_hat,
+            const VectorType &y_old) const
+    {
+      const double beta = 1 / (2 * g);
+      y2_to_yn.add(-1., y_hat);
+      y2_to_yn.add(1., y1);
+      y2_to_yn.add(-1., y_old);
+      y2_to_yn *= beta;
+      y2_to_yn += y_old;
+    }
+
+    /**
+     * The weight b_i/gamma = 1/(2 gamma) of a stage's work and dissipation
+     * (each stage books them over gamma k) in the step's balance.
+     */
+    double
+    stage_weight() const
+    {
+      return 1 / (2 * g);
+    }
+
+    /** (gamma - 1/4)/(2 gamma^2), the factor of D_num. */
+    double
+    numerical_dissipation_factor() const
+    {
+      return (g - 0.25) / (2 * g * g);
+    }
+
+    /**
+     * A quantity known at the two stages (a contact force sum) at t_n, by
+     * linear extrapolation in time.
+     */
+    double
+    value_at_end(const double first, const double second) const
+    {
+      return ((1 - g) * second - g * first) / (1 - 2 * g);
+    }
+
+    /**
+     * The local error estimate of the displacement (doc/theory.md section
+     * 2.5): u_n - u_{n-1} = (k/2)(W1 + W2) against the quadrature of the
+     * velocities w_{n-1}, W1, W2 at 0, gamma, 1 - gamma that is exact for
+     * quadratics; the difference is
+     *   e = k C (w_{n-1}/(gamma (1 - gamma)) + W1/(gamma (2 gamma - 1))
+     *            + W2/((1 - gamma)(1 - 2 gamma))),
+     *   C = 1/3 - (gamma^2 + (1 - gamma)^2)/2,
+     * O(k^3) for smooth velocities.
+     */
+    template <typename VectorType>
+    void
+    local_error(VectorType       &e,
+                const VectorType &w2,
+                const VectorType &w1,
+                const VectorType &w_old,
+                const double      k) const
+    {
+      const double C = 1. / 3 - (g * g + (1 - g) * (1 - g)) / 2;
+      e              = w2;
+      e *= k * C / ((1 - g) * (1 - 2 * g));
+      e.add(k * C / (g * (2 * g - 1)), w1);
+      e.add(k * C / (g * (1 - g)), w_old);
+    }
+
+  private:
+    double rho;
+    double g;
+  };
 } // namespace DynamicContact
 
 #endif
