@@ -4,13 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace DynamicContact
 {
   double
   EnergyBalanceTerms::min_dissipation_term() const
   {
-    return std::min({inertia, elastic, viscous, compliance, damping, friction});
+    return std::min({inertia,
+                     elastic,
+                     viscous,
+                     compliance_sign_definite ?
+                       compliance :
+                       std::numeric_limits<double>::infinity(),
+                     damping,
+                     friction});
   }
 
 
@@ -76,6 +84,7 @@ namespace DynamicContact
       second.compliance + (second.energy.foundation - hat_energy.foundation);
     t.compliance =
       weight * power - (end_energy.foundation - old_energy.foundation);
+    t.compliance_sign_definite = false;
     t.defect = t.energy.total() - old_energy.total() + t.dissipation() -
                t.load_work;
     return t;

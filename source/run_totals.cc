@@ -79,7 +79,12 @@ namespace DynamicContact
     pcout << "  energy balance: max relative defect "
           << (balance ? "below 1e-8" :
                         "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
-          << ", every dissipation term >= 0: "
+          << ", every dissipation term >= 0"
+          << (parameters.time.scheme == Parameters::Time::Scheme::sdirk ?
+                " (the compliance term left out: not sign-definite with "
+                "sdirk)" :
+                "")
+          << ": "
           << (dissipation ?
                 "yes" :
                 "NO (" + sig6(state.min_dissipation) + " of the energy)")

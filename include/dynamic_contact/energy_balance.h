@@ -49,6 +49,14 @@ namespace DynamicContact
     double damping  = 0; // k sum m_i q(w_e,nu) w_e,nu
     double friction = 0; // k sum lambda_i . w_e,tau,i
     double defect   = 0; // E_n - E_{n-1} + D_n - W_n
+    /**
+     * Whether the compliance term is >= 0 by the theory: true for the
+     * one-step schemes and the Bathe scheme (p nondecreasing), false for
+     * the SDIRK scheme, whose end state combines the stages so that a node
+     * entering or leaving contact within the step can give it either sign
+     * (doc/theory.md section 6); min_dissipation_term() then leaves it out.
+     */
+    bool compliance_sign_definite = true;
 
     double
     dissipation() const
@@ -56,7 +64,10 @@ namespace DynamicContact
       return inertia + elastic + viscous + compliance + damping + friction;
     }
 
-    /** The smallest of the dissipation terms. */
+    /**
+     * The smallest of the dissipation terms that the theory makes >= 0
+     * (all six, or all but the compliance term: compliance_sign_definite).
+     */
     double
     min_dissipation_term() const;
 
