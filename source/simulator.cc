@@ -517,17 +517,13 @@ namespace DynamicContact
         u_start                 = &u_bar;
         w_start                 = &w_bar;
         EnergyBalanceTerms second_terms;
-        solve_substep(last,
-                      t,
-                      u_bar,
-                      w_bar,
-                      bar_energy.total(),
-                      accept_unconverged_loop,
-                      record.statistics,
-                      second_terms);
-        record.statistics.add_work(first_statistics);
-        last_newton_residual =
-          std::max(first_statistics.residual, record.statistics.residual);
+        solve_second_substep(last,
+                             t,
+                             bar_energy.total(),
+                             accept_unconverged_loop,
+                             first_statistics,
+                             record,
+                             second_terms);
         // (f, u_bar - u_{n-1/2}) = a/(1 + a) (f, u_bar - u_{n-1}) with the
         // second sub-step's load f (f_n at rho_inf = 0).
         scratch = u_bar;
@@ -611,6 +607,32 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Simulator<dim>::solve_second_substep(
+    const TimeScheme                           &scheme,
+    const double                                t,
+    const double                                start_energy,
+    const bool                                  accept_unconverged_loop,
+    const typename StepSolver<dim>::Statistics &first_statistics,
+    StepRecord<dim>                            &record,
+    EnergyBalanceTerms                         &terms)
+  {
+    solve_substep(scheme,
+                  t,
+                  u_bar,
+                  w_bar,
+                  start_energy,
+                  accept_unconverged_loop,
+                  record.statistics,
+                  terms);
+    record.statistics.add_work(first_statistics);
+    last_newton_residual =
+      std::max(first_statistics.residual, record.statistics.residual);
+  }
+
+
+
+  template <int dim>
+  void
   Simulator<dim>::record_errors(StepRecord<dim> &record, const double t)
   {
     if (!scene.has_exact_solution())
@@ -659,17 +681,13 @@ namespace DynamicContact
     const Energy       hat_energy = energy_balance.energy(u_bar, w_bar);
     EnergyBalanceTerms second_terms;
     const double       t2 = t0 + sdirk.second_stage_time() * k;
-    solve_substep(stage,
-                  t2,
-                  u_bar,
-                  w_bar,
-                  hat_energy.total(),
-                  accept_unconverged_loop,
-                  record.statistics,
-                  second_terms);
-    record.statistics.add_work(first_statistics);
-    last_newton_residual =
-      std::max(first_statistics.residual, record.statistics.residual);
+    solve_second_substep(stage,
+                         t2,
+                         hat_energy.total(),
+                         accept_unconverged_loop,
+                         first_statistics,
+                         record,
+                         second_terms);
 
     // The force balance is that of stage 2's equation; the contact force
     // sums are extrapolated from the stages to t_n.

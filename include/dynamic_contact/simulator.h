@@ -356,6 +356,21 @@ namespace DynamicContact
                      const Vector_t   &u_start,
                      const Vector_t   &w_start,
                      const double      t);
+    /**
+     * The second (sub-)step of a two-solve scheme (bathe, sdirk): from
+     * (u_bar, w_bar), whose energy is @p start_energy, to @p t; the step's
+     * statistics (the first (sub-)step's @p first_statistics added) into
+     * @p record, the (sub-)step's balance terms into @p terms.
+     */
+    void
+    solve_second_substep(
+      const TimeScheme                           &scheme,
+      const double                                t,
+      const double                                start_energy,
+      const bool                                  accept_unconverged_loop,
+      const typename StepSolver<dim>::Statistics &first_statistics,
+      StepRecord<dim>                            &record,
+      EnergyBalanceTerms                         &terms);
     /** The errors of a manufactured solution at @p t, of (u, w). */
     void
     record_errors(StepRecord<dim> &record, const double t);
