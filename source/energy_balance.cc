@@ -63,7 +63,8 @@ namespace DynamicContact
   EnergyBalanceTerms
   sdirk_terms(const EnergyBalanceTerms &first,
               const EnergyBalanceTerms &second,
-              const Energy             &old_energy,
+              const double              previous_energy,
+              const double              old_foundation,
               const Energy             &hat_energy,
               const Energy             &end_energy,
               const double              numerical,
@@ -80,12 +81,12 @@ namespace DynamicContact
     // A stage's compliance power p(U_i) (U_i - start_i) is its term plus
     // the change of Pi over the stage.
     const double power =
-      first.compliance + (first.energy.foundation - old_energy.foundation) +
+      first.compliance + (first.energy.foundation - old_foundation) +
       second.compliance + (second.energy.foundation - hat_energy.foundation);
     t.compliance =
-      weight * power - (end_energy.foundation - old_energy.foundation);
+      weight * power - (end_energy.foundation - old_foundation);
     t.compliance_sign_definite = false;
-    t.defect = t.energy.total() - old_energy.total() + t.dissipation() -
+    t.defect = t.energy.total() - previous_energy + t.dissipation() -
                t.load_work;
     return t;
   }
@@ -110,15 +111,22 @@ namespace DynamicContact
   EnergyBalance<dim>::energy(const Vector_t &u, const Vector_t &w) const
   {
     Energy e;
-    e.kinetic                = 0.5 * density * bulk.mass_product(w, w);
-    e.elastic                = 0.5 * bulk.elastic_product(u, u);
-    double foundation_energy = 0;
-    for (const auto &node : contact_boundary.nodes())
-      foundation_energy +=
-        node.weight * foundation.compliance().primitive(
-                        node.value(u) * node.normal - node.gap);
-    e.foundation = Utilities::MPI::sum(foundation_energy, comm);
+    e.kinetic    = 0.5 * density * bulk.mass_product(w, w);
+    e.elastic    = 0.5 * bulk.elastic_product(u, u);
+    e.foundation = foundation_energy(u);
     return e;
+  }
+
+
+  template <int dim>
+  double
+  EnergyBalance<dim>::foundation_energy(const Vector_t &u) const
+  {
+    double sum = 0;
+    for (const auto &node : contact_boundary.nodes())
+      sum += node.weight * foundation.compliance().primitive(
+                             node.value(u) * node.normal - node.gap);
+    return Utilities::MPI::sum(sum, comm);
   }
 
 

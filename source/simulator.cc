@@ -446,7 +446,7 @@ namespace DynamicContact
     if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
       parameters.time.composite.local_error(e, w, w_bar, w_old, k);
     else if (parameters.time.scheme == Parameters::Time::Scheme::sdirk)
-      // Called with w = W2, before the stages are combined.
+      // With w = W2, before the stages are combined (measure_last_solve).
       parameters.time.sdirk.local_error(e, w, w_stage, w_old, k);
     else
       {
@@ -486,10 +486,6 @@ namespace DynamicContact
     record.cutbacks             = cutbacks;
     record.previous_energy      = energy_now(); // of u_old = u, w_old = w
 
-    // The (sub-)step that ends at t and the state it starts from: the force
-    // balance is that of its equation.
-    TimeScheme      last(k, parameters.time.theta());
-    const Vector_t *u_start = &u_old, *w_start = &w_old;
     if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
       {
         // The Bathe composite scheme (doc/theory.md section 2.4). Sub-step
@@ -512,10 +508,8 @@ namespace DynamicContact
         // (4 x_{n-1/2} - x_{n-1})/3).
         composite.extrapolate(u_bar, u, u_old);
         composite.extrapolate(w_bar, w, w_old);
-        const Energy bar_energy = energy_balance.energy(u_bar, w_bar);
-        last                    = composite.second_substep(k);
-        u_start                 = &u_bar;
-        w_start                 = &w_bar;
+        const Energy     bar_energy = energy_balance.energy(u_bar, w_bar);
+        const TimeScheme last       = composite.second_substep(k);
         EnergyBalanceTerms second_terms;
         solve_second_substep(last,
                              t,
@@ -535,32 +529,28 @@ namespace DynamicContact
                                    second_terms,
                                    extrapolation_work,
                                    record.previous_energy);
+        measure_last_solve(record, last, u_bar, w_bar, t, k);
       }
     else if (parameters.time.scheme == Parameters::Time::Scheme::sdirk)
-      {
-        sdirk_step(record, t, k, accept_unconverged_loop);
-        last = parameters.time.sdirk.stage(k);
-      }
+      sdirk_step(record, t, k, accept_unconverged_loop);
     else
-      solve_substep(last,
-                    t,
-                    u_old,
-                    w_old,
-                    record.previous_energy,
-                    accept_unconverged_loop,
-                    record.statistics,
-                    record.terms);
-
+      {
+        const TimeScheme scheme(k, parameters.time.theta());
+        solve_substep(scheme,
+                      t,
+                      u_old,
+                      w_old,
+                      record.previous_energy,
+                      accept_unconverged_loop,
+                      record.statistics,
+                      record.terms);
+        measure_last_solve(record, scheme, u_old, w_old, t, k);
+      }
     if (parameters.time.adaptive)
       {
         record.adaptive_time = true;
-        if (parameters.time.scheme != Parameters::Time::Scheme::sdirk)
-          record.time_error = time_error_estimate(k); // sdirk: in its step
-        record.rejected = rejected;
+        record.rejected      = rejected;
       }
-
-    if (parameters.time.scheme != Parameters::Time::Scheme::sdirk)
-      compute_balances(record, last, *u_start, *w_start, t);
     record_errors(record, t);
     record.dofs     = discretization.dof_handler.n_dofs();
     record.cells    = discretization.triangulation.n_global_active_cells();
@@ -601,6 +591,22 @@ namespace DynamicContact
                                             w_ghosted,
                                             w_old_ghosted);
     }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::measure_last_solve(StepRecord<dim>  &record,
+                                     const TimeScheme &last,
+                                     const Vector_t   &u_start,
+                                     const Vector_t   &w_start,
+                                     const double      t_last,
+                                     const double      k)
+  {
+    if (parameters.time.adaptive)
+      record.time_error = time_error_estimate(k);
+    compute_balances(record, last, u_start, w_start, t_last);
   }
 
 
@@ -661,7 +667,7 @@ namespace DynamicContact
     const double       t0    = t - k;
     typename StepSolver<dim>::Statistics first_statistics;
     EnergyBalanceTerms                   first_terms;
-    const Energy old_energy = energy_balance.energy(u_old, w_old);
+    const double old_foundation = energy_balance.foundation_energy(u_old);
     solve_substep(stage,
                   t0 + sdirk.first_stage_time() * k,
                   u_old,
@@ -689,15 +695,13 @@ namespace DynamicContact
                          record,
                          second_terms);
 
-    // The force balance is that of stage 2's equation; the contact force
-    // sums are extrapolated from the stages to t_n.
-    compute_balances(record, stage, u_bar, w_bar, t2);
+    // The error estimate (with w = W2) and the force balance of stage 2's
+    // equation; the contact force sums extrapolated from the stages to t_n.
+    measure_last_solve(record, stage, u_bar, w_bar, t2, k);
     record.normal_force =
       sdirk.value_at_end(first_forces.first, record.normal_force);
     record.tangential_force =
       sdirk.value_at_end(first_forces.second, record.tangential_force);
-    if (parameters.time.adaptive)
-      record.time_error = time_error_estimate(k);
 
     // The numerical dissipation from the stage increments,
     // d = (Y1 - y_{n-1}) - (Y2 - y_hat), before u, w become y_n.
@@ -717,7 +721,8 @@ namespace DynamicContact
     sdirk.combine(w, w_stage, w_bar, w_old);
     record.terms = sdirk_terms(first_terms,
                                second_terms,
-                               old_energy,
+                               record.previous_energy,
+                               old_foundation,
                                hat_energy,
                                energy_balance.energy(u, w),
                                sdirk.numerical_dissipation_factor() * d2,

@@ -126,7 +126,7 @@ namespace DynamicContact
    * The balance of one step of the SDIRK scheme (Time/Scheme = sdirk;
    * doc/theory.md sections 2.6 and 6) from those of its two
    * backward-Euler stages of gamma k: @p first from y_{n-1} (energy
-   * @p old_energy) to Y1, @p second from y_hat (energy @p hat_energy) to
+   * @p previous_energy, of which foundation energy @p old_foundation) to Y1, @p second from y_hat (energy @p hat_energy) to
    * Y2, and the energy @p end_energy of y_n. The step's work and
    * physical dissipation are the stages' times @p weight = 1/(2 gamma)
    * (b_i k over the stage's gamma k): W_n = k sum_i b_i (f_i, W_i), the
@@ -142,7 +142,8 @@ namespace DynamicContact
   EnergyBalanceTerms
   sdirk_terms(const EnergyBalanceTerms &first,
               const EnergyBalanceTerms &second,
-              const Energy             &old_energy,
+              const double              previous_energy,
+              const double              old_foundation,
               const Energy             &hat_energy,
               const Energy             &end_energy,
               const double              numerical,
@@ -162,6 +163,10 @@ namespace DynamicContact
     /** E(u, w), with the nodal penetrations of u computed here. */
     Energy
     energy(const Vector_t &u, const Vector_t &w) const;
+
+    /** The foundation part sum_i m_i Pi(u_nu,i) of E (collective). */
+    double
+    foundation_energy(const Vector_t &u) const;
 
     /**
      * All terms of step n, from u_{n-1}, w_{n-1}, u_n, w_n, the load vector

@@ -371,6 +371,18 @@ namespace DynamicContact
       const typename StepSolver<dim>::Statistics &first_statistics,
       StepRecord<dim>                            &record,
       EnergyBalanceTerms                         &terms);
+    /**
+     * After the last solve of a step, while (u, w) are its solution: the
+     * local error estimate (Time/Adaptive) and compute_balances() of that
+     * (sub-)step @p last from (@p u_start, @p w_start) to @p t_last.
+     */
+    void
+    measure_last_solve(StepRecord<dim>  &record,
+                       const TimeScheme &last,
+                       const Vector_t   &u_start,
+                       const Vector_t   &w_start,
+                       const double      t_last,
+                       const double      k);
     /** The errors of a manufactured solution at @p t, of (u, w). */
     void
     record_errors(StepRecord<dim> &record, const double t);

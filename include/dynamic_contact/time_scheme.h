@@ -348,23 +348,9 @@ namespace DynamicContact
   class SdirkScheme
   {
   public:
-    explicit SdirkScheme(const double spectral_radius_at_infinity = 0)
-      : rho(spectral_radius_at_infinity)
-      , g(rho >= 1 ? 0.25 :
-                     (2 - std::sqrt(2 + 2 * rho)) / (2 * (1 - rho)))
+    explicit SdirkScheme(const double rho = 0)
+      : g(rho >= 1 ? 0.25 : (2 - std::sqrt(2 + 2 * rho)) / (2 * (1 - rho)))
     {}
-
-    double
-    spectral_radius_at_infinity() const
-    {
-      return rho;
-    }
-
-    double
-    gamma() const
-    {
-      return g;
-    }
 
     /** Both stages: backward Euler over gamma k. */
     TimeScheme
@@ -467,8 +453,7 @@ namespace DynamicContact
     }
 
   private:
-    double rho;
-    double g;
+    double g; // gamma
   };
 } // namespace DynamicContact
 
