@@ -710,7 +710,7 @@ namespace DynamicContact
     u_old_all = gathered.gather(p.u_old);
     w_old_all = gathered.gather(p.w_old);
     mu_all    = gathered.gather(p.mu);
-    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, 1e-1, previous);
+    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
     return result;
   }
 
@@ -821,8 +821,7 @@ namespace DynamicContact
                                std::vector<Tensor<1, dim>>       &lambda,
                                Vector_t                          &w,
                                Result                            &result,
-                               const double tolerance_factor,
-                               Vector_t    *previous)
+                               Vector_t                          *previous)
   {
     const Vector_t &rhs = cached_rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
@@ -863,7 +862,6 @@ namespace DynamicContact
     NewtonPolicy policy;
     policy.monotone          = true;
     policy.stagnation_factor = 0.5;
-    policy.tolerance_factor  = tolerance_factor;
     policy.name              = "whole system";
     globalized_newton(
       system, x, policy, problem.parameters, problem.details, result);

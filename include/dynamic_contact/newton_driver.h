@@ -50,13 +50,6 @@ namespace DynamicContact
      * set; a damped step that gains little is no sign of round-off).
      */
     double stagnation_factor = 0.1;
-    /**
-     * A starting iterate within Solver/Newton tolerance but above this
-     * times it still gets one Newton step (the finishing solve of a
-     * convexification loop whose passes were provisional: its start is only
-     * as good as theirs). 1: the tolerance alone.
-     */
-    double tolerance_factor = 1;
     /** Name of the phase in the per-iteration diagnostics. */
     const char *name = "";
   };
@@ -112,10 +105,7 @@ namespace DynamicContact
           current.residual > policy.stagnation_factor * previous_residual &&
           current.residual < std::sqrt(tol);
         result.residual = current.residual;
-        if ((current.residual <= tol &&
-             (iteration > 0 ||
-              current.residual <= policy.tolerance_factor * tol)) ||
-            stagnated)
+        if (current.residual <= tol || stagnated)
           break;
         check_newton_cap(result.iterations, current.residual, parameters);
         previous_residual = current.residual;
