@@ -572,8 +572,7 @@ namespace DynamicContact
     std::tie(record.normal_force, record.tangential_force) =
       contact_state.force_sums(contact_boundary, comm);
     {
-      const Vector_t u_ghosted     = discretization.expanded(u),
-                     w_ghosted     = discretization.expanded(w),
+      const Vector_t w_ghosted     = discretization.expanded(w),
                      w_old_ghosted = discretization.expanded(w_start);
       // The stress of the scheme's equation: at u_theta, w_theta.
       scratch = u;
