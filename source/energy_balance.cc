@@ -54,8 +54,7 @@ namespace DynamicContact
     t.compliance = first.compliance + second.compliance;
     t.damping    = first.damping + second.damping;
     t.friction   = first.friction + second.friction;
-    t.defect =
-      t.energy.total() - previous_energy + t.dissipation() - t.load_work;
+    t.close(previous_energy);
     return t;
   }
 
@@ -83,11 +82,9 @@ namespace DynamicContact
     const double power =
       first.compliance + (first.energy.foundation - old_foundation) +
       second.compliance + (second.energy.foundation - hat_energy.foundation);
-    t.compliance =
-      weight * power - (end_energy.foundation - old_foundation);
+    t.compliance = weight * power - (end_energy.foundation - old_foundation);
     t.compliance_sign_definite = false;
-    t.defect = t.energy.total() - previous_energy + t.dissipation() -
-               t.load_work;
+    t.close(previous_energy);
     return t;
   }
 
@@ -198,8 +195,7 @@ namespace DynamicContact
     t.damping    = Utilities::MPI::sum(damping, comm);
     t.friction   = Utilities::MPI::sum(friction, comm);
 
-    t.defect =
-      t.energy.total() - previous_energy + t.dissipation() - t.load_work;
+    t.close(previous_energy);
     return t;
   }
 

@@ -64,18 +64,17 @@ namespace DynamicContact
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
-    for (auto *v :
-         {&u,
-          &w,
-          &u_old,
-          &w_old,
-          &u_bar,
-          &w_bar,
-          &u_stage,
-          &w_stage,
-          &load,
-          &rhs,
-          &scratch})
+    for (auto *v : {&u,
+                    &w,
+                    &u_old,
+                    &w_old,
+                    &u_bar,
+                    &w_bar,
+                    &u_stage,
+                    &w_stage,
+                    &load,
+                    &rhs,
+                    &scratch})
       discretization.reinit_owned(*v);
     energy_of_state.reset();
   }
@@ -508,8 +507,8 @@ namespace DynamicContact
         // (4 x_{n-1/2} - x_{n-1})/3).
         composite.extrapolate(u_bar, u, u_old);
         composite.extrapolate(w_bar, w, w_old);
-        const Energy     bar_energy = energy_balance.energy(u_bar, w_bar);
-        const TimeScheme last       = composite.second_substep(k);
+        const Energy       bar_energy = energy_balance.energy(u_bar, w_bar);
+        const TimeScheme   last       = composite.second_substep(k);
         EnergyBalanceTerms second_terms;
         solve_second_substep(last,
                              t,
@@ -562,40 +561,6 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::compute_balances(StepRecord<dim>  &record,
-                                   const TimeScheme &last,
-                                   const Vector_t   &u_start,
-                                   const Vector_t   &w_start,
-                                   const double      t)
-  {
-    TimerSection scope(timer, "Step: energy and force balance");
-    std::tie(record.normal_force, record.tangential_force) =
-      contact_state.force_sums(contact_boundary, comm);
-    {
-      const Vector_t w_ghosted     = discretization.expanded(w),
-                     w_old_ghosted = discretization.expanded(w_start);
-      // The stress of the scheme's equation: at u_theta, w_theta.
-      scratch = u;
-      last.weigh(scratch, u_start);
-      const Vector_t u_theta = discretization.expanded(scratch);
-      scratch                = w;
-      last.weigh(scratch, w_start);
-      const Vector_t w_theta = discretization.expanded(scratch);
-      record.forces          = force_balance.compute(contact_boundary,
-                                            contact_state.nodes,
-                                            t,
-                                            last,
-                                            u_theta,
-                                            w_theta,
-                                            w_ghosted,
-                                            w_old_ghosted);
-    }
-  }
-
-
-
-  template <int dim>
-  void
   Simulator<dim>::measure_last_solve(StepRecord<dim>  &record,
                                      const TimeScheme &last,
                                      const Vector_t   &u_start,
@@ -605,7 +570,26 @@ namespace DynamicContact
   {
     if (parameters.time.adaptive)
       record.time_error = time_error_estimate(k);
-    compute_balances(record, last, u_start, w_start, t_last);
+    TimerSection scope(timer, "Step: energy and force balance");
+    std::tie(record.normal_force, record.tangential_force) =
+      contact_state.force_sums(contact_boundary, comm);
+    const Vector_t w_ghosted     = discretization.expanded(w),
+                   w_old_ghosted = discretization.expanded(w_start);
+    // The stress of the scheme's equation: at u_theta, w_theta.
+    scratch = u;
+    last.weigh(scratch, u_start);
+    const Vector_t u_theta = discretization.expanded(scratch);
+    scratch                = w;
+    last.weigh(scratch, w_start);
+    const Vector_t w_theta = discretization.expanded(scratch);
+    record.forces          = force_balance.compute(contact_boundary,
+                                          contact_state.nodes,
+                                          t_last,
+                                          last,
+                                          u_theta,
+                                          w_theta,
+                                          w_ghosted,
+                                          w_old_ghosted);
   }
 
 
@@ -646,8 +630,8 @@ namespace DynamicContact
     const Vector_t u_ghosted = discretization.expanded(u),
                    w_ghosted = discretization.expanded(w);
     record.has_errors        = true;
-    record.errors            = compute_errors(
-      discretization, material, scene, t, u_ghosted, w_ghosted);
+    record.errors =
+      compute_errors(discretization, material, scene, t, u_ghosted, w_ghosted);
   }
 
 
@@ -661,9 +645,9 @@ namespace DynamicContact
   {
     // The two-stage SDIRK scheme (doc/theory.md section 2.6). Stage 1:
     // backward Euler over gamma k from y_{n-1}.
-    const SdirkScheme &sdirk = parameters.time.sdirk;
-    const TimeScheme   stage = sdirk.stage(k);
-    const double       t0    = t - k;
+    const SdirkScheme                   &sdirk = parameters.time.sdirk;
+    const TimeScheme                     stage = sdirk.stage(k);
+    const double                         t0    = t - k;
     typename StepSolver<dim>::Statistics first_statistics;
     EnergyBalanceTerms                   first_terms;
     const double old_foundation = energy_balance.foundation_energy(u_old);
@@ -675,8 +659,8 @@ namespace DynamicContact
                   accept_unconverged_loop,
                   first_statistics,
                   first_terms);
-    u_stage = u;
-    w_stage = w;
+    u_stage                 = u;
+    w_stage                 = w;
     const auto first_forces = contact_state.force_sums(contact_boundary, comm);
 
     // Stage 2: backward Euler over gamma k from y_hat = y_{n-1} +

@@ -64,6 +64,13 @@ namespace DynamicContact
       return inertia + elastic + viscous + compliance + damping + friction;
     }
 
+    /** defect = E_n - E_{n-1} + D_n - W_n, once every other term is set. */
+    void
+    close(const double previous_energy)
+    {
+      defect = energy.total() - previous_energy + dissipation() - load_work;
+    }
+
     /**
      * The smallest of the dissipation terms that the theory makes >= 0
      * (all six, or all but the compliance term: compliance_sign_definite).
@@ -126,8 +133,9 @@ namespace DynamicContact
    * The balance of one step of the SDIRK scheme (Time/Scheme = sdirk;
    * doc/theory.md sections 2.6 and 6) from those of its two
    * backward-Euler stages of gamma k: @p first from y_{n-1} (energy
-   * @p previous_energy, of which foundation energy @p old_foundation) to Y1, @p second from y_hat (energy @p hat_energy) to
-   * Y2, and the energy @p end_energy of y_n. The step's work and
+   * @p previous_energy, of which foundation energy @p old_foundation) to
+   * Y1, @p second from y_hat (energy @p hat_energy) to Y2, and the energy
+   * @p end_energy of y_n. The step's work and
    * physical dissipation are the stages' times @p weight = 1/(2 gamma)
    * (b_i k over the stage's gamma k): W_n = k sum_i b_i (f_i, W_i), the
    * viscous, damping and friction terms alike; the compliance term is the

@@ -346,17 +346,6 @@ namespace DynamicContact
                  const Vector_t   &u_start,
                  const Vector_t   &w_start);
     /**
-     * The balances of the (sub-)step just solved into @p record: the contact
-     * force sums and the force balance of the (sub-)step @p last from
-     * (@p u_start, @p w_start) to @p t.
-     */
-    void
-    compute_balances(StepRecord<dim>  &record,
-                     const TimeScheme &last,
-                     const Vector_t   &u_start,
-                     const Vector_t   &w_start,
-                     const double      t);
-    /**
      * The second (sub-)step of a two-solve scheme (bathe, sdirk): from
      * (u_bar, w_bar), whose energy is @p start_energy, to @p t; the step's
      * statistics (the first (sub-)step's @p first_statistics added) into
@@ -372,9 +361,10 @@ namespace DynamicContact
       StepRecord<dim>                            &record,
       EnergyBalanceTerms                         &terms);
     /**
-     * After the last solve of a step, while (u, w) are its solution: the
-     * local error estimate (Time/Adaptive) and compute_balances() of that
-     * (sub-)step @p last from (@p u_start, @p w_start) to @p t_last.
+     * After the last solve of a step, while (u, w) are its solution, into
+     * @p record: the local error estimate (Time/Adaptive), the contact force
+     * sums and the force balance of that (sub-)step @p last from
+     * (@p u_start, @p w_start) to @p t_last.
      */
     void
     measure_last_solve(StepRecord<dim>  &record,

@@ -392,17 +392,17 @@ namespace DynamicContact
             const VectorType &y_hat,
             const VectorType &y_old) const
     {
-      const double beta = 1 / (2 * g);
       y2_to_yn.add(-1., y_hat);
       y2_to_yn.add(1., y1);
       y2_to_yn.add(-1., y_old);
-      y2_to_yn *= beta;
+      y2_to_yn *= stage_weight(); // beta
       y2_to_yn += y_old;
     }
 
     /**
-     * The weight b_i/gamma = 1/(2 gamma) of a stage's work and dissipation
-     * (each stage books them over gamma k) in the step's balance.
+     * beta = b_i/gamma = 1/(2 gamma): the weight of a stage's increment in
+     * y_n (combine()) and of its work and dissipation (each stage books
+     * them over gamma k) in the step's balance.
      */
     double
     stage_weight() const
