@@ -23,6 +23,7 @@ namespace DynamicContact
   {
     const auto &dof_handler = discretization.dof_handler;
     const auto &fe          = discretization.fe;
+    loaded_cells_scene      = nullptr; // the mesh changed
 
     pattern.reinit(discretization.locally_owned,
                    discretization.locally_owned,
@@ -203,54 +204,62 @@ namespace DynamicContact
     Vector<double>                       value(dim);
     std::vector<types::global_dof_index> dofs(n);
 
-    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          local         = 0;
-          bool has_load = false;
-          if (body_force)
+    if (loaded_cells_scene != &scene)
+      {
+        loaded_cells.clear();
+        for (const auto &cell :
+             discretization.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() && scene.carries_load(cell))
+            loaded_cells.push_back(cell);
+        loaded_cells_scene = &scene;
+      }
+    for (const auto &cell : loaded_cells)
+      {
+        local         = 0;
+        bool has_load = false;
+        if (body_force)
+          {
+            fe_values.reinit(cell);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                scene.body_force().vector_value(fe_values.quadrature_point(q),
+                                                value);
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    const unsigned int c =
+                      fe.system_to_component_index(i).first;
+                    local(i) +=
+                      value(c) * fe_values.shape_value(i, q) * fe_values.JxW(q);
+                  }
+              }
+            has_load = true;
+          }
+        for (const auto f : cell->face_indices())
+          if (Function<dim> *const load_function = scene.face_load(cell, f))
             {
-              fe_values.reinit(cell);
-              for (unsigned int q = 0; q < quadrature.size(); ++q)
+              Function<dim> &g = *load_function;
+              fe_face.reinit(cell, f);
+              for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                 {
-                  scene.body_force().vector_value(fe_values.quadrature_point(q),
-                                                  value);
+                  g.vector_value(fe_face.quadrature_point(q), value);
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       const unsigned int c =
                         fe.system_to_component_index(i).first;
-                      local(i) += value(c) * fe_values.shape_value(i, q) *
-                                  fe_values.JxW(q);
+                      local(i) +=
+                        value(c) * fe_face.shape_value(i, q) * fe_face.JxW(q);
                     }
                 }
               has_load = true;
             }
-          for (const auto f : cell->face_indices())
-            if (Function<dim> *const load_function = scene.face_load(cell, f))
-              {
-                Function<dim> &g = *load_function;
-                fe_face.reinit(cell, f);
-                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                  {
-                    g.vector_value(fe_face.quadrature_point(q), value);
-                    for (unsigned int i = 0; i < n; ++i)
-                      {
-                        const unsigned int c =
-                          fe.system_to_component_index(i).first;
-                        local(i) +=
-                          value(c) * fe_face.shape_value(i, q) * fe_face.JxW(q);
-                      }
-                  }
-                has_load = true;
-              }
-          if (has_load)
-            {
-              cell->get_dof_indices(dofs);
-              discretization.constraints.distribute_local_to_global(local,
-                                                                    dofs,
-                                                                    load);
-            }
-        }
+        if (has_load)
+          {
+            cell->get_dof_indices(dofs);
+            discretization.constraints.distribute_local_to_global(local,
+                                                                  dofs,
+                                                                  load);
+          }
+      }
     load.compress(VectorOperation::add);
   }
 

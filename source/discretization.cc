@@ -5,6 +5,8 @@
 
 #include <dynamic_contact/discretization.h>
 
+#include <Epetra_Import.h>
+
 #include <set>
 
 namespace DynamicContact
@@ -61,6 +63,48 @@ namespace DynamicContact
           dof_handler, 0, roller, constraints, mapping);
       }
     constraints.close();
+
+    bool plain_zeros = true;
+    for (const auto &line : constraints.get_lines())
+      plain_zeros =
+        plain_zeros && line.entries.empty() && line.inhomogeneity == 0.;
+    constraints_need_distribute =
+      Utilities::MPI::logical_or(!plain_zeros, comm);
+
+    owned_prototype.reinit(locally_owned, comm);
+    ghosted_prototype.reinit(locally_owned, locally_relevant, comm);
+    owned_to_relevant.reset();
+  }
+
+
+  template <int dim>
+  void
+  Discretization<dim>::expand(const Vector_t &master_form,
+                              Vector_t       &ghosted) const
+  {
+    const Vector_t *source = &master_form;
+    Vector_t        distributed;
+    if (constraints_need_distribute)
+      {
+        distributed = master_form;
+        constraints.distribute(distributed);
+        source = &distributed;
+      }
+    // What Vector_t's assignment does, with the exchange pattern kept.
+    if (!owned_to_relevant)
+      owned_to_relevant =
+        std::make_shared<Epetra_Import>(ghosted.trilinos_partitioner(),
+                                        source->trilinos_partitioner());
+    Assert(owned_to_relevant->TargetMap().NumMyElements() ==
+               ghosted.trilinos_partitioner().NumMyElements() &&
+             owned_to_relevant->SourceMap().NumMyElements() ==
+               source->trilinos_partitioner().NumMyElements(),
+           ExcInternalError());
+    const int error =
+      ghosted.trilinos_vector().Import(source->trilinos_vector(),
+                                       *owned_to_relevant,
+                                       Insert);
+    AssertThrow(error == 0, ExcTrilinosError(error));
   }
 
 

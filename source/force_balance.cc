@@ -63,17 +63,34 @@ namespace DynamicContact
         }
     volume_weights.compress(VectorOperation::add);
 
-    // The component of each owned DoF.
+    // The component of each owned DoF, and the cells with work.
     component.assign(d.locally_owned.n_elements(), 0);
+    cells.clear();
     for (const auto &cell : d.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(dofs);
+          bool has_support = false;
           for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (d.locally_owned.is_element(dofs[i]))
-              component[d.locally_owned.index_within_set(dofs[i])] =
-                d.fe.system_to_component_index(i).first;
+            {
+              if (d.locally_owned.is_element(dofs[i]))
+                component[d.locally_owned.index_within_set(dofs[i])] =
+                  d.fe.system_to_component_index(i).first;
+              has_support = has_support || supported(d, dofs[i]);
+            }
+          if (has_support || scene.carries_load(cell))
+            cells.push_back({cell, has_support});
         }
+
+    // Where each owned DoF sits in a ghosted vector.
+    Vector_t ghosted;
+    d.reinit_ghosted(ghosted);
+    const auto &map = ghosted.trilinos_partitioner();
+    ghosted_index.clear();
+    ghosted_index.reserve(d.locally_owned.n_elements());
+    for (const auto dof : d.locally_owned)
+      ghosted_index.push_back(
+        map.LID(static_cast<TrilinosWrappers::types::int_type>(dof)));
   }
 
 
@@ -115,88 +132,79 @@ namespace DynamicContact
     Vector<double>                       value(dim), residual(n);
     const bool                           body_force = scene.has_body_force();
 
-    for (const auto &cell : d.dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(dofs);
-          bool has_support = false;
-          for (const auto dof : dofs)
-            has_support = has_support || supported(d, dof);
-          if (!has_support && !scene.carries_load(cell))
-            continue;
-
-          fe_values.reinit(cell);
-          if (has_support)
-            {
-              fe_values[displacement].get_function_values(w, w_q);
-              fe_values[displacement].get_function_values(w_old, w_old_q);
-              fe_values[displacement].get_function_symmetric_gradients(u,
-                                                                       eps_u);
-              fe_values[displacement].get_function_symmetric_gradients(w_theta,
-                                                                       eps_w);
-            }
-          residual = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              value = 0;
-              if (body_force)
-                scene.step_load(scene.body_force(),
-                                fe_values.quadrature_point(q),
-                                t,
-                                scheme,
-                                value,
-                                value_old);
-              for (unsigned int c = 0; c < dim; ++c)
-                b.applied[c] += value(c) * fe_values.JxW(q);
-              if (has_support)
-                {
-                  const Tensor<1, dim> a =
-                    material.density() * (w_q[q] - w_old_q[q]) / k;
-                  const SymmetricTensor<2, dim> sigma =
-                    material.stress(eps_u[q], eps_w[q]);
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      const unsigned int c =
-                        fe.system_to_component_index(i).first;
-                      residual(i) +=
-                        ((a[c] - value(c)) * fe_values.shape_value(i, q) +
-                         scalar_product(
-                           sigma,
-                           fe_values[displacement].symmetric_gradient(i, q))) *
-                        fe_values.JxW(q);
-                    }
-                }
-            }
-          for (const auto f : cell->face_indices())
-            if (Function<dim> *const load_function = scene.face_load(cell, f))
+    for (const auto &[cell, has_support] : cells)
+      {
+        cell->get_dof_indices(dofs);
+        fe_values.reinit(cell);
+        if (has_support)
+          {
+            fe_values[displacement].get_function_values(w, w_q);
+            fe_values[displacement].get_function_values(w_old, w_old_q);
+            fe_values[displacement].get_function_symmetric_gradients(u, eps_u);
+            fe_values[displacement].get_function_symmetric_gradients(w_theta,
+                                                                     eps_w);
+          }
+        residual = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            value = 0;
+            if (body_force)
+              scene.step_load(scene.body_force(),
+                              fe_values.quadrature_point(q),
+                              t,
+                              scheme,
+                              value,
+                              value_old);
+            for (unsigned int c = 0; c < dim; ++c)
+              b.applied[c] += value(c) * fe_values.JxW(q);
+            if (has_support)
               {
-                Function<dim> &g = *load_function;
-                fe_face.reinit(cell, f);
-                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                const Tensor<1, dim> a =
+                  material.density() * (w_q[q] - w_old_q[q]) / k;
+                const SymmetricTensor<2, dim> sigma =
+                  material.stress(eps_u[q], eps_w[q]);
+                for (unsigned int i = 0; i < n; ++i)
                   {
-                    scene.step_load(g,
-                                    fe_face.quadrature_point(q),
-                                    t,
-                                    scheme,
-                                    value,
-                                    value_old);
-                    for (unsigned int c = 0; c < dim; ++c)
-                      b.applied[c] += value(c) * fe_face.JxW(q);
-                    if (has_support)
-                      for (unsigned int i = 0; i < n; ++i)
-                        residual(i) -=
-                          value(fe.system_to_component_index(i).first) *
-                          fe_face.shape_value(i, q) * fe_face.JxW(q);
+                    const unsigned int c =
+                      fe.system_to_component_index(i).first;
+                    residual(i) +=
+                      ((a[c] - value(c)) * fe_values.shape_value(i, q) +
+                       scalar_product(
+                         sigma,
+                         fe_values[displacement].symmetric_gradient(i, q))) *
+                      fe_values.JxW(q);
                   }
               }
-          // At a supported DoF the equation is balanced by the support's
-          // force (the boundary term of the weak form): it is the residual.
-          if (has_support)
-            for (unsigned int i = 0; i < n; ++i)
-              if (supported(d, dofs[i]))
-                b.reaction[fe.system_to_component_index(i).first] +=
-                  residual(i);
-        }
+          }
+        for (const auto f : cell->face_indices())
+          if (Function<dim> *const load_function = scene.face_load(cell, f))
+            {
+              Function<dim> &g = *load_function;
+              fe_face.reinit(cell, f);
+              for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                {
+                  scene.step_load(g,
+                                  fe_face.quadrature_point(q),
+                                  t,
+                                  scheme,
+                                  value,
+                                  value_old);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    b.applied[c] += value(c) * fe_face.JxW(q);
+                  if (has_support)
+                    for (unsigned int i = 0; i < n; ++i)
+                      residual(i) -=
+                        value(fe.system_to_component_index(i).first) *
+                        fe_face.shape_value(i, q) * fe_face.JxW(q);
+                }
+            }
+        // At a supported DoF the equation is balanced by the support's
+        // force (the boundary term of the weak form): it is the residual.
+        if (has_support)
+          for (unsigned int i = 0; i < n; ++i)
+            if (supported(d, dofs[i]))
+              b.reaction[fe.system_to_component_index(i).first] += residual(i);
+      }
   }
 
 
@@ -217,12 +225,13 @@ namespace DynamicContact
     ForceBalance<dim> b;
     // Inertia: rho/k sum_i (int phi_i) (w - w_old)_i, per component.
     {
-      unsigned int index = 0;
-      for (const auto dof : d.locally_owned)
+      const double *weights = volume_weights.begin();
+      const double *w_local = w.begin(), *w_old_local = w_old.begin();
+      for (std::size_t index = 0; index < component.size(); ++index)
         {
+          const int l = ghosted_index[index];
           b.inertia[component[index]] +=
-            volume_weights[dof] * (w[dof] - w_old[dof]);
-          ++index;
+            weights[index] * (w_local[l] - w_old_local[l]);
         }
       b.inertia *= material.density() / k;
     }

@@ -128,8 +128,17 @@ namespace DynamicContact
     Matrix_t                          viscosity_matrix;
     Matrix_t                          strain_matrix;
     Matrix_t                          bulk_matrix;
-    TimeScheme                        current;
-    mutable Vector_t                  tmp;
+
+    /**
+     * The locally owned cells with a load (Scene::carries_load), found by
+     * the first assemble_load_vector() on a mesh: the load of a step is
+     * assembled on them alone.
+     */
+    mutable std::vector<typename DoFHandler<dim>::active_cell_iterator>
+                              loaded_cells;
+    mutable const Scene<dim> *loaded_cells_scene = nullptr;
+    TimeScheme                current;
+    mutable Vector_t          tmp;
   };
 } // namespace DynamicContact
 

@@ -10,9 +10,13 @@
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/lac/affine_constraints.h>
 
+#include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/parameters.h>
 
+#include <memory>
 #include <vector>
+
+class Epetra_Import;
 
 namespace DynamicContact
 {
@@ -45,41 +49,44 @@ namespace DynamicContact
     double
     minimal_cell_diameter() const;
 
-    /** A vector of locally owned entries. */
-    template <typename VectorType>
+    /**
+     * A vector of locally owned entries, zero. Every such vector of a mesh
+     * shares one Epetra map (and communicator object) with all others, so
+     * that assigning one to another is a copy: vectors with maps of their
+     * own are exchanged through an Epetra_Import built anew at each
+     * assignment.
+     */
     void
-    reinit_owned(VectorType &v) const
+    reinit_owned(Vector_t &v) const
     {
-      v.reinit(locally_owned, comm);
+      Vector_t fresh(owned_prototype);
+      v.swap(fresh);
     }
 
-    /** A ghosted vector (owned and locally relevant entries). */
-    template <typename VectorType>
+    /** A ghosted vector (owned and locally relevant entries), zero. */
     void
-    reinit_ghosted(VectorType &v) const
+    reinit_ghosted(Vector_t &v) const
     {
-      v.reinit(locally_owned, locally_relevant, comm);
+      Vector_t fresh(ghosted_prototype);
+      v.swap(fresh);
     }
 
     /**
      * From a vector in master form, a ghosted vector with the constrained
-     * entries filled in (hanging nodes interpolated).
+     * entries filled in (hanging nodes interpolated). Collective. The
+     * exchange pattern of the owned and relevant entries is built once per
+     * mesh, and the constraints are applied only where some of them is not
+     * a plain zero (hanging nodes, roller conditions): the entries of a
+     * clamped DoF are zero in master form already.
      */
-    template <typename VectorType>
     void
-    expand(const VectorType &master_form, VectorType &ghosted) const
-    {
-      VectorType tmp(master_form);
-      constraints.distribute(tmp);
-      ghosted = tmp;
-    }
+    expand(const Vector_t &master_form, Vector_t &ghosted) const;
 
     /** The same, into a new ghosted vector. */
-    template <typename VectorType>
-    VectorType
-    expanded(const VectorType &master_form) const
+    Vector_t
+    expanded(const Vector_t &master_form) const
     {
-      VectorType ghosted;
+      Vector_t ghosted;
       reinit_ghosted(ghosted);
       expand(master_form, ghosted);
       return ghosted;
@@ -102,6 +109,17 @@ namespace DynamicContact
     AffineConstraints<double> hanging_node_constraints;
     /** Hanging nodes, clamped and roller conditions. */
     AffineConstraints<double> constraints;
+
+  private:
+    /**
+     * Whether some constraint on some process is more than "this entry is
+     * zero" (set by setup_dofs()).
+     */
+    bool constraints_need_distribute = true;
+    /** Zero vectors whose maps the others share (see reinit_owned()). */
+    Vector_t owned_prototype, ghosted_prototype;
+    /** Owned to relevant entries, built by the first expand() of a mesh. */
+    mutable std::shared_ptr<Epetra_Import> owned_to_relevant;
   };
 
 

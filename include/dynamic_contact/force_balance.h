@@ -89,6 +89,22 @@ namespace DynamicContact
     Vector_t volume_weights;
     /** Component of every owned DoF. */
     std::vector<unsigned char> component;
+    /**
+     * Index of every owned DoF among the local entries of a ghosted vector
+     * (Discretization::reinit_ghosted): the inertia sum reads the entries
+     * directly instead of looking each global index up.
+     */
+    std::vector<int> ghosted_index;
+    /**
+     * The locally owned cells that body_forces() visits (once per mesh):
+     * those with a supported DoF (their residual is a reaction) or a load.
+     */
+    struct CellWork
+    {
+      typename DoFHandler<dim>::active_cell_iterator cell;
+      bool                                           has_support;
+    };
+    std::vector<CellWork> cells;
   };
 } // namespace DynamicContact
 
