@@ -215,8 +215,7 @@ namespace DynamicContact
       }
     for (const auto &cell : loaded_cells)
       {
-        local         = 0;
-        bool has_load = false;
+        local = 0;
         if (body_force)
           {
             fe_values.reinit(cell);
@@ -232,7 +231,6 @@ namespace DynamicContact
                       value(c) * fe_values.shape_value(i, q) * fe_values.JxW(q);
                   }
               }
-            has_load = true;
           }
         for (const auto f : cell->face_indices())
           if (Function<dim> *const load_function = scene.face_load(cell, f))
@@ -250,15 +248,12 @@ namespace DynamicContact
                         value(c) * fe_face.shape_value(i, q) * fe_face.JxW(q);
                     }
                 }
-              has_load = true;
             }
-        if (has_load)
-          {
-            cell->get_dof_indices(dofs);
-            discretization.constraints.distribute_local_to_global(local,
-                                                                  dofs,
-                                                                  load);
-          }
+        // Every listed cell carries a load (a body force, a loaded face).
+        cell->get_dof_indices(dofs);
+        discretization.constraints.distribute_local_to_global(local,
+                                                              dofs,
+                                                              load);
       }
     load.compress(VectorOperation::add);
   }

@@ -134,10 +134,10 @@ namespace DynamicContact
 
     for (const auto &[cell, has_support] : cells)
       {
-        cell->get_dof_indices(dofs);
         fe_values.reinit(cell);
         if (has_support)
           {
+            cell->get_dof_indices(dofs);
             fe_values[displacement].get_function_values(w, w_q);
             fe_values[displacement].get_function_values(w_old, w_old_q);
             fe_values[displacement].get_function_symmetric_gradients(u, eps_u);
