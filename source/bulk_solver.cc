@@ -1,5 +1,6 @@
 #include <deal.II/base/quadrature.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/lapack_templates.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 
@@ -109,6 +110,14 @@ namespace DynamicContact
    * of its choice), on one process. The analysis (ordering and symbolic
    * factorization) is kept while the sparsity pattern is unchanged, so a
    * new time step costs the numeric factorization only.
+   *
+   * Given a set of trailing rows (the DoFs of Gamma_3), the rows are
+   * eliminated in CHOLMOD's fill-reducing order with these rows moved to
+   * the end, in the order given. The trailing block L_22 of the factor is
+   * then the Cholesky factor of the Schur complement S = A_22 - A_21
+   * A_11^{-1} A_12, and the block of A^{-1} at these rows is S^{-1} =
+   * L_22^{-T} L_22^{-1} (inverse_block()): the same factor the solves use,
+   * so the two agree to round-off.
    */
   class BulkSolver::Cholesky
   {
@@ -132,9 +141,13 @@ namespace DynamicContact
     Cholesky &
     operator=(const Cholesky &) = delete;
 
-    /** Factorize @p A (one process: every row is owned). */
+    /**
+     * Factorize @p A (one process: every row is owned), with the rows
+     * @p trailing (local indices, distinct) last if there are any.
+     */
     void
-    factorize(const Epetra_CrsMatrix &A)
+    factorize(const Epetra_CrsMatrix              &A,
+              const std::vector<SuiteSparse_long> &trailing)
     {
       // The upper triangle, column by column: row r of the (symmetric)
       // matrix read as column r, its entries with index <= r.
@@ -165,11 +178,13 @@ namespace DynamicContact
             }
           start.push_back(index.size());
         }
-      const bool same_pattern =
-        factor != nullptr && start == pattern_start && index == pattern_index;
+      const bool same_pattern = factor != nullptr && start == pattern_start &&
+                                index == pattern_index &&
+                                trailing == trailing_rows;
       pattern_start = std::move(start);
       pattern_index = std::move(index);
       values        = std::move(value);
+      trailing_rows = trailing;
 
       cholmod_sparse S = upper_triangle_view(n,
                                              pattern_start.data(),
@@ -183,6 +198,8 @@ namespace DynamicContact
           AssertThrow(factor != nullptr && common.status == CHOLMOD_OK,
                       ExcMessage("The analysis of the bulk matrix for its "
                                  "factorization (CHOLMOD) failed."));
+          if (!trailing_rows.empty())
+            analyze_with_trailing_rows(S);
         }
       AssertThrow(cholmod_l_factorize(&S, factor, &common) &&
                     common.status == CHOLMOD_OK,
@@ -218,12 +235,115 @@ namespace DynamicContact
       return common.lnz;
     }
 
+    /**
+     * The block of A^{-1} at the trailing rows given to factorize(), in
+     * their order, column-major in @p inverse (m x m): S^{-1} by the two
+     * triangular solves with L_22 for the identity (LAPACK potrs; an
+     * explicit inverse by potri is as fast but was not what a solve with
+     * the factor gives: its compliance left stick nodes of the
+     * critical-speed stress scene less accurate).
+     */
+    void
+    inverse_block(std::vector<double> &inverse) const
+    {
+      Assert(factor != nullptr && factor->is_super, ExcInternalError());
+      const SuiteSparse_long n     = factor->n;
+      const SuiteSparse_long m     = trailing_rows.size();
+      const SuiteSparse_long first = n - m;
+      inverse.assign(m * m, 0.);
+      // Supernode s holds the columns super[s] .. super[s+1] - 1, their
+      // rows s[pi[s]] .. s[pi[s+1] - 1] (the supernode's own columns
+      // first) and the values column-major from x[px[s]].
+      const auto *super = static_cast<const SuiteSparse_long *>(factor->super);
+      const auto *pi    = static_cast<const SuiteSparse_long *>(factor->pi);
+      const auto *px    = static_cast<const SuiteSparse_long *>(factor->px);
+      const auto *rows  = static_cast<const SuiteSparse_long *>(factor->s);
+      const auto *x     = static_cast<const double *>(factor->x);
+      for (std::size_t sn = 0; sn < factor->nsuper; ++sn)
+        {
+          const SuiteSparse_long n_rows = pi[sn + 1] - pi[sn];
+          for (SuiteSparse_long k = std::max(super[sn], first);
+               k < super[sn + 1];
+               ++k)
+            {
+              const double *column = x + px[sn] + (k - super[sn]) * n_rows;
+              for (SuiteSparse_long r = k - super[sn]; r < n_rows; ++r)
+                inverse[(rows[pi[sn] + r] - first) + (k - first) * m] =
+                  column[r];
+            }
+        }
+      std::vector<double> factor22;
+      std::swap(factor22, inverse);
+      inverse.assign(m * m, 0.);
+      for (SuiteSparse_long j = 0; j < m; ++j)
+        inverse[j + j * m] = 1;
+      const types::blas_int size = m;
+      types::blas_int       info = 0;
+      potrs("L",
+            &size,
+            &size,
+            factor22.data(),
+            &size,
+            inverse.data(),
+            &size,
+            &info);
+      AssertThrow(info == 0,
+                  ExcMessage("The inversion of the Schur complement of the "
+                             "bulk matrix on Gamma_3 failed (LAPACK potrs)."));
+    }
+
   private:
     cholmod_common                common;
     cholmod_factor               *factor = nullptr;
     cholmod_dense                *x = nullptr, *y = nullptr, *e = nullptr;
     std::vector<SuiteSparse_long> pattern_start, pattern_index;
     std::vector<double>           values;
+    std::vector<SuiteSparse_long> trailing_rows;
+
+    /**
+     * Replace the analysis just made (CHOLMOD's fill-reducing order) by one
+     * in that order with the trailing rows moved to the end: the order
+     * given as it is (no postordering, which could move rows of the block
+     * that nothing couples to the others, such as constrained ones, away
+     * from the end), supernodal, so that the trailing block of the factor
+     * can be read (inverse_block()).
+     */
+    void
+    analyze_with_trailing_rows(cholmod_sparse &S)
+    {
+      const SuiteSparse_long n = S.nrow;
+      std::vector<char>      trailing(n, 0);
+      for (const SuiteSparse_long r : trailing_rows)
+        trailing[r] = 1;
+      const auto *fill_order = static_cast<SuiteSparse_long *>(factor->Perm);
+      std::vector<SuiteSparse_long> order;
+      order.reserve(n);
+      for (SuiteSparse_long k = 0; k < n; ++k)
+        if (!trailing[fill_order[k]])
+          order.push_back(fill_order[k]);
+      order.insert(order.end(), trailing_rows.begin(), trailing_rows.end());
+      cholmod_l_free_factor(&factor, &common);
+
+      const int nmethods        = common.nmethods;
+      const int ordering        = common.method[0].ordering;
+      const int postorder       = common.postorder;
+      const int supernodal      = common.supernodal;
+      common.nmethods           = 1;
+      common.method[0].ordering = CHOLMOD_GIVEN;
+      common.postorder          = false;
+      common.supernodal         = CHOLMOD_SUPERNODAL;
+      factor = cholmod_l_analyze_p(&S, order.data(), nullptr, 0, &common);
+      common.nmethods           = nmethods;
+      common.method[0].ordering = ordering;
+      common.postorder          = postorder;
+      common.supernodal         = supernodal;
+      AssertThrow(factor != nullptr && common.status == CHOLMOD_OK &&
+                    std::equal(order.begin(),
+                               order.end(),
+                               static_cast<SuiteSparse_long *>(factor->Perm)),
+                  ExcMessage("The analysis of the bulk matrix for its "
+                             "factorization (CHOLMOD) failed."));
+    }
 
     void
     free_workspace()
@@ -254,10 +374,13 @@ namespace DynamicContact
 
   template <int dim>
   void
-  BulkSolver::initialize(const Matrix_t            &A,
-                         const Discretization<dim> &discretization)
+  BulkSolver::initialize(
+    const Matrix_t                                     &A,
+    const Discretization<dim>                          &discretization,
+    const std::vector<dealii::types::global_dof_index> &trailing_rows)
   {
-    matrix = &A;
+    matrix       = &A;
+    inverse_rows = 0;
     direct.reset();
     amg.reset();
     problem.reset();
@@ -269,7 +392,13 @@ namespace DynamicContact
         // Keep the analysis of the last factorization (same pattern).
         if (!cholesky)
           cholesky = std::make_unique<Cholesky>();
-        cholesky->factorize(A.trilinos_matrix());
+        // One process: the local index of a row is the row.
+        const Epetra_Map             &map = A.trilinos_matrix().DomainMap();
+        std::vector<SuiteSparse_long> trailing(trailing_rows.size());
+        for (std::size_t i = 0; i < trailing_rows.size(); ++i)
+          trailing[i] = map.LID(static_cast<int>(trailing_rows[i]));
+        cholesky->factorize(A.trilinos_matrix(), trailing);
+        inverse_rows = trailing_rows.size();
       }
     else if (parameters.linear_solver ==
              Parameters::Solver::LinearSolver::direct)
@@ -299,9 +428,13 @@ namespace DynamicContact
 
 
   template void
-  BulkSolver::initialize(const Matrix_t &, const Discretization<2> &);
+  BulkSolver::initialize(const Matrix_t &,
+                         const Discretization<2> &,
+                         const std::vector<dealii::types::global_dof_index> &);
   template void
-  BulkSolver::initialize(const Matrix_t &, const Discretization<3> &);
+  BulkSolver::initialize(const Matrix_t &,
+                         const Discretization<3> &,
+                         const std::vector<dealii::types::global_dof_index> &);
 
 
   void
@@ -348,6 +481,17 @@ namespace DynamicContact
     cholesky->solve(B.data(), X.data(), b.size());
     for (unsigned int c = 0; c < x.size(); ++c)
       std::memcpy(x[c]->trilinos_vector()[0], &X[c * n], sizeof(double) * n);
+  }
+
+
+  bool
+  BulkSolver::inverse_block(std::vector<double> &inverse) const
+  {
+    Assert(matrix != nullptr, ExcNotInitialized());
+    if (inverse_rows == 0)
+      return false;
+    cholesky->inverse_block(inverse);
+    return true;
   }
 
 

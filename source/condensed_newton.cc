@@ -143,8 +143,15 @@ namespace DynamicContact
       regularized.compress(VectorOperation::add);
     }
     {
+      // The DoFs of Gamma_3 last (one process, Cholesky): the compliance of
+      // every node is then the inverse of their Schur complement
+      // (compute_columns()).
+      std::vector<types::global_dof_index> trailing;
+      if (Utilities::MPI::n_mpi_processes(problem.discretization.comm) == 1)
+        for (const auto &node : gathered.all_nodes())
+          trailing.insert(trailing.end(), node.dofs.begin(), node.dofs.end());
       TimerSection t(problem.timer, "Bulk: factorization of K0");
-      bulk_solver.initialize(regularized, problem.discretization);
+      bulk_solver.initialize(regularized, problem.discretization, trailing);
     }
     ++result.factorizations;
     prepared_scheme     = problem.bulk.scheme();
@@ -854,8 +861,14 @@ namespace DynamicContact
     //   R = K0 w - b + sum_i P_i^T f_i(w),
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
-    TimerSection       t(problem.timer, "Contact: refinement");
-    SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
+    TimerSection      t(problem.timer, "Contact: refinement");
+    SystemNewton<dim> system(problem, rhs, u_old, w_old, mu, *this, result);
+    // The stick condition in velocity units too, relative to |w|; where the
+    // body is at rest |w| is itself round-off, which is of order eps
+    // |w_free| (w = w_free - C g cancels): 1e-6 |w_free| keeps the test
+    // above it.
+    system.velocity_scale =
+      std::max({w.linfty_norm(), 1e-6 * free_response.linfty_norm(), 1e-300});
     SystemIterate<dim> x;
     x.w      = w;
     x.lambda = gathered.owned_part(it.lambda);

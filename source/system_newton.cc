@@ -50,7 +50,7 @@ namespace DynamicContact
     x.lin.resize(n);
     x.forces.resize(n);
     x.base.resize(n);
-    double        law_residual = 0, law_squares = 0, f_scale = 1e-300;
+    double law_residual = 0, law_squares = 0, f_scale = 1e-300, stick_rate = 0;
     std::uint64_t signature = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
@@ -67,6 +67,7 @@ namespace DynamicContact
         f_scale                     = std::max(f_scale, e.force.norm());
         law_residual                = std::max(law_residual, e.law_residual);
         law_squares += e.law_residual * e.law_residual;
+        stick_rate = std::max(stick_rate, e.stick_rate);
         signature += e.signature;
       }
 
@@ -81,11 +82,15 @@ namespace DynamicContact
     x.law_residual = Utilities::MPI::max(law_residual, comm);
     x.law_squares  = Utilities::MPI::sum(law_squares, comm);
     x.f_scale      = Utilities::MPI::max(f_scale, comm);
+    x.stick_rate   = Utilities::MPI::max(stick_rate, comm);
 
     NewtonMeasure m;
     x.residual_norm = x.residual.l2_norm();
     x.relative_residual =
       std::max(x.residual_norm / x.scale, x.law_residual / x.f_scale);
+    if (velocity_scale > 0)
+      x.relative_residual =
+        std::max(x.relative_residual, x.stick_rate / velocity_scale);
     m.residual                     = x.relative_residual;
     m.merit                        = merit(x, x);
     std::uint64_t global_signature = 0;

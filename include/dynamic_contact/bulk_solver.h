@@ -114,12 +114,17 @@ namespace DynamicContact
 
     /**
      * Factorize @p matrix (or build the AMG preconditioner on the mesh of
-     * @p discretization). The matrix must outlive the solver.
+     * @p discretization). The matrix must outlive the solver. With the
+     * Cholesky factorization, the rows @p trailing_rows (distinct) are
+     * eliminated last, so that inverse_block() can give the block of the
+     * inverse at them; the other solvers ignore them.
      */
     template <int dim>
     void
-    initialize(const Matrix_t            &matrix,
-               const Discretization<dim> &discretization);
+    initialize(
+      const Matrix_t                                     &matrix,
+      const Discretization<dim>                          &discretization,
+      const std::vector<dealii::types::global_dof_index> &trailing_rows = {});
 
     /** x = A^{-1} b. */
     void
@@ -153,6 +158,17 @@ namespace DynamicContact
       const unsigned int                                       block = 64);
 
     /**
+     * The block of A^{-1} at the trailing rows of initialize(), in their
+     * order, column-major in @p inverse (m^2 entries for m rows): with the
+     * Cholesky factorization, the inverse of their Schur complement from
+     * the trailing block of the factor, O(m^3) dense work instead of m
+     * solves. False (and nothing computed) without trailing rows or
+     * without the Cholesky factorization (several processes, MUMPS, AMG).
+     */
+    bool
+    inverse_block(std::vector<double> &inverse) const;
+
+    /**
      * About how many numbers a solve with one right-hand side reads (the
      * factor twice, forward and backward): what decides whether a sum of
      * stored solutions is cheaper than a solve. Infinite where unknown
@@ -170,6 +186,8 @@ namespace DynamicContact
     std::unique_ptr<BulkAMG>              amg;
     /** The CHOLMOD factorization (one process; defined in the .cc). */
     class Cholesky;
+    /** The number of trailing rows of the Cholesky factorization. */
+    std::size_t               inverse_rows = 0;
     std::unique_ptr<Cholesky> cholesky;
   };
 } // namespace DynamicContact

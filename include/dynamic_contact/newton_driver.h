@@ -202,8 +202,14 @@ namespace DynamicContact
     Tensor<1, dim>         force;
     Tensor<1, dim>         base;
     /** |lambda_i - P(lambda_i + c w_e,tau)| (0 without friction). */
-    double        law_residual = 0;
-    std::uint64_t signature    = 0;
+    double law_residual = 0;
+    /**
+     * |w_e,tau| at a stick node (else 0): the stick condition in velocity
+     * units. In the law residual it is c m_i |w_e,tau|, a force that
+     * vanishes with the time step (c = c_t k).
+     */
+    double        stick_rate = 0;
+    std::uint64_t signature  = 0;
   };
 
   /**
@@ -249,6 +255,8 @@ namespace DynamicContact
                                            lambda,
                                            c))
           .norm();
+    if (e.lin.friction.state == FrictionState::stick)
+      e.stick_rate = node.tangential(scheme.weighted(w, w_old)).norm();
     e.signature =
       node_set_hash(node.dofs[0],
                     e.lin.normal.set_signature() +

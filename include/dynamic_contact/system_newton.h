@@ -45,7 +45,12 @@ namespace DynamicContact
     double scale = 1e-300;
     /** |R|. */
     double residual_norm = 0;
-    /** max(|R|/scale, law_residual/f_scale): the stopping test's measure. */
+    /** Largest slip rate |w_e,tau| of a stick node (all ranks). */
+    double stick_rate = 0;
+    /**
+     * max(|R|/scale, law_residual/f_scale), and stick_rate/velocity_scale
+     * if SystemNewton::velocity_scale is set: the stopping test's measure.
+     */
     double relative_residual = 0;
   };
 
@@ -147,6 +152,19 @@ namespace DynamicContact
     const std::vector<Tensor<1, dim>> &u_old;
     const std::vector<Tensor<1, dim>> &w_old;
     const std::vector<double>         &mu;
+
+    /**
+     * If positive, the stopping test also measures the stick condition in
+     * velocity units, the largest |w_e,tau| of a stick node relative to
+     * this velocity. The law residual weighs it with c m_i = c_t k m_i,
+     * which vanishes with the time step: at k = 5e-7 a stick node of the
+     * critical-speed stress scene kept |w_tau| = 1.4e-10 of the largest
+     * velocity while the law residual was far below its tolerance. The
+     * scale must not vanish where the body comes to rest (the round-off of
+     * w does not): the condensed solver gives max(|w|, 1e-6 |w_free|),
+     * w_free = K0^{-1} b.
+     */
+    double velocity_scale = 0;
 
   private:
     LinearBackend<dim>  &backend;
