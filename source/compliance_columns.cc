@@ -46,6 +46,34 @@ namespace DynamicContact
       return;
     TimerSection t(problem.timer, "Bulk: compliance columns");
 
+    // With the Cholesky factor (one process), which has the DoFs of
+    // Gamma_3 last (prepare()): the compliance of every node at once, from
+    // the inverse of their Schur complement (BulkSolver::inverse_block()),
+    // dense work of order (dim n)^3 instead of dim solves per node. The
+    // whole columns are not kept: with a Cholesky factor a solve reads
+    // fewer numbers than their sum.
+    {
+      std::vector<double> X;
+      if (bulk_solver.inverse_block(X))
+        {
+          const std::size_t m = dim * all.size();
+          for (unsigned int j = 0; j < all.size(); ++j)
+            {
+              columns[j].assign(all.size(), Tensor<2, dim>());
+              for (unsigned int i = 0; i < all.size(); ++i)
+                {
+                  Tensor<2, dim> X_ij;
+                  for (unsigned int a = 0; a < dim; ++a)
+                    for (unsigned int b = 0; b < dim; ++b)
+                      X_ij[a][b] = X[(dim * i + a) + (dim * j + b) * m];
+                  columns[j][i] = all[i].constraint_map * X_ij *
+                                  transpose(all[j].constraint_map);
+                }
+            }
+          return;
+        }
+    }
+
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
     std::vector<BulkSolver::SparseColumn> rhs;
@@ -75,33 +103,6 @@ namespace DynamicContact
       (stored_full_columns + rhs.size()) * max_owned_dofs * sizeof(double) <=
         full_column_budget &&
       double(dim) * all.size() * max_owned_dofs <= bulk_solver.solve_cost();
-    // With the Cholesky factor (one process), which has the DoFs of
-    // Gamma_3 last (prepare()): the compliance of every node at once, from
-    // the inverse of their Schur complement (BulkSolver::inverse_block()),
-    // dense work of order (dim n)^3 instead of dim solves per node. The
-    // whole columns are not kept: with a Cholesky factor a solve reads
-    // fewer numbers than their sum.
-    {
-      std::vector<double> X;
-      if (bulk_solver.inverse_block(X))
-        {
-          const std::size_t m = dim * all.size();
-          for (unsigned int j = 0; j < all.size(); ++j)
-            {
-              columns[j].assign(all.size(), Tensor<2, dim>());
-              for (unsigned int i = 0; i < all.size(); ++i)
-                {
-                  Tensor<2, dim> X_ij;
-                  for (unsigned int a = 0; a < dim; ++a)
-                    for (unsigned int b = 0; b < dim; ++b)
-                      X_ij[a][b] = X[(dim * i + a) + (dim * j + b) * m];
-                  columns[j][i] = all[i].constraint_map * X_ij *
-                                  transpose(all[j].constraint_map);
-                }
-            }
-          return;
-        }
-    }
     const std::size_t n_owned =
       problem.discretization.locally_owned.n_elements();
     std::function<void(unsigned int, const double *)> keep;
