@@ -687,9 +687,10 @@ namespace DynamicContact
     const std::vector<Tensor<1, dim>> &w_old,
     const std::vector<double>         &mu,
     std::vector<Tensor<1, dim>>       &lambda,
-    Vector_t                          &w)
+    Vector_t                          &w,
+    const double                       velocity_accuracy)
   {
-    return solve(rhs, u_old, w_old, mu, lambda, w, true);
+    return solve(rhs, u_old, w_old, mu, lambda, w, true, velocity_accuracy);
   }
 
 
@@ -717,7 +718,16 @@ namespace DynamicContact
     u_old_all = gathered.gather(p.u_old);
     w_old_all = gathered.gather(p.w_old);
     mu_all    = gathered.gather(p.mu);
-    polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
+    if (!p.loose)
+      polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
+    else
+      {
+        // The pass stopped early: phase 1 on to the Newton tolerance first
+        // (on Gamma_3, cheap), so that phase 2 starts where it would have.
+        Iterate it = p.it;
+        boundary_newton(it, p.w_scale, 0., result);
+        polish(it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
+      }
     return result;
   }
 
@@ -730,7 +740,8 @@ namespace DynamicContact
                               const std::vector<double>         &mu,
                               std::vector<Tensor<1, dim>>       &lambda,
                               Vector_t                          &w,
-                              const bool                         provisional)
+                              const bool                         provisional,
+                              const double velocity_accuracy)
   {
     Result result;
     prepare(result);
@@ -786,23 +797,10 @@ namespace DynamicContact
     double w_scale = 1e-300;
     for (unsigned int i = 0; i < n; ++i)
       w_scale = std::max({w_scale, w_free_nodes[i].norm(), it.w[i].norm()});
-    {
-      TimerSection    t(problem.timer, "Contact: boundary Newton");
-      BoundaryProblem boundary_problem(*this, w_scale, result);
-      NewtonPolicy    policy;
-      policy.monotone          = false;
-      policy.free_iterations   = 4;
-      policy.window            = 5;
-      policy.stagnation_factor = 0.1;
-      policy.name              = "on Gamma_3";
-      // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
-      globalized_newton(boundary_problem,
-                        it,
-                        policy,
-                        problem.parameters,
-                        problem.details,
-                        result);
-    }
+    // Phase 1's residual is relative to w_scale (a velocity).
+    const double loose_tolerance =
+      provisional ? velocity_accuracy / w_scale : 0.;
+    boundary_newton(it, w_scale, loose_tolerance, result);
 
     // Provisional: the nodal velocities w_free - C g of the iterate (at the
     // nodes, what w = K0'^{-1} (b - sum_i P_i^T g_i) would be), no solve
@@ -810,12 +808,44 @@ namespace DynamicContact
     if (provisional)
       {
         lambda = gathered.owned_part(it.lambda);
-        pending.emplace(Pending{u_old, w_old, mu, std::move(it)});
+        pending.emplace(
+          Pending{u_old,
+                  w_old,
+                  mu,
+                  std::move(it),
+                  w_scale,
+                  loose_tolerance > problem.parameters.newton_tolerance});
         result.provisional = true;
         return result;
       }
     polish(it, u_old, w_old, mu, lambda, w, result);
     return result;
+  }
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::boundary_newton(Iterate     &it,
+                                        const double w_scale,
+                                        const double tolerance,
+                                        Result      &result)
+  {
+    TimerSection    t(problem.timer, "Contact: boundary Newton");
+    BoundaryProblem boundary_problem(*this, w_scale, result);
+    NewtonPolicy    policy;
+    policy.monotone          = false;
+    policy.free_iterations   = 4;
+    policy.window            = 5;
+    policy.stagnation_factor = 0.1;
+    policy.name              = "on Gamma_3";
+    policy.tolerance         = tolerance;
+    // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
+    globalized_newton(boundary_problem,
+                      it,
+                      policy,
+                      problem.parameters,
+                      problem.details,
+                      result);
   }
 
 

@@ -568,6 +568,13 @@ namespace DynamicContact
         xi_previous = measures.start(w, lambda, mu);
       }
 
+    // How fast mu can change with the slip rate: max(0, -min mu'), the
+    // one-sided Lipschitz constant (slip-weakening laws).
+    const double mu_slope =
+      loop ? std::max(friction_law->one_sided_lipschitz_constant(
+                        friction_parameters.maximum_slip_rate),
+                      1e-300) :
+             1.;
     AndersonMixing mixing(friction_parameters.acceleration_depth,
                           friction_parameters.relaxation,
                           comm);
@@ -609,10 +616,27 @@ namespace DynamicContact
         const bool after_provisional = provisional;
         if (loop && !after_provisional)
           measures.remember(u_old, k, w);
+        // A provisional pass need not be solved further than the loop is
+        // from its end: its velocities at the nodes may be off by a slip
+        // rate that moves mu by at most the smallest coefficient residual
+        // so far (the next pass moves the coefficients by about that much;
+        // finalize() finishes a pass to the Newton tolerance before it
+        // counts). Measured (3D rail 80 x 8 x 8, 32 steps): 445 Newton
+        // iterations instead of 491; a tenth of it, 467; the paper's scene
+        // 443 solves with K0 instead of 439, 432 with a tenth.
+        const double provisional_accuracy =
+          best_residual < std::numeric_limits<double>::max() ?
+            best_residual / mu_slope :
+            0.;
         const auto result =
           allow_provisional ?
-            newton.solve_provisional(
-              rhs, u_old_nodes, w_old_nodes, mu, lambda, w) :
+            newton.solve_provisional(rhs,
+                                     u_old_nodes,
+                                     w_old_nodes,
+                                     mu,
+                                     lambda,
+                                     w,
+                                     provisional_accuracy) :
             newton.solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
         statistics.add_newton(result);
         provisional = result.provisional;

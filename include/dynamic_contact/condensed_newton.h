@@ -71,8 +71,10 @@ namespace DynamicContact
           Vector_t                          &w) override;
 
     /**
-     * Phase 1 only: the nodal velocities w_free - C g of its iterate, no
-     * solve with K0' (w is left as it was).
+     * Phase 1 only, stopped at the relative residual @p velocity_accuracy
+     * / w_scale if that is larger than the Newton tolerance: the nodal
+     * velocities w_free - C g of its iterate, no solve with K0' (w is left
+     * as it was).
      */
     Result
     solve_provisional(const Vector_t                    &rhs,
@@ -80,7 +82,8 @@ namespace DynamicContact
                       const std::vector<Tensor<1, dim>> &w_old,
                       const std::vector<double>         &mu,
                       std::vector<Tensor<1, dim>>       &lambda,
-                      Vector_t                          &w) override;
+                      Vector_t                          &w,
+                      const double velocity_accuracy = 0) override;
 
     /**
      * Phase 2 of the last provisional solve: the solution itself; the
@@ -198,7 +201,20 @@ namespace DynamicContact
       std::vector<Tensor<1, dim>> u_old, w_old;
       std::vector<double>         mu;
       Iterate                     it;
+      /** The velocity scale of phase 1, and whether it stopped early. */
+      double w_scale = 0;
+      bool   loose   = false;
     };
+
+    /**
+     * Phase 1 on the current solve's data from @p it, to the relative
+     * residual max(Newton tolerance, @p tolerance).
+     */
+    void
+                           boundary_newton(Iterate     &it,
+                                           const double w_scale,
+                                           const double tolerance,
+                                           Result      &result);
     std::optional<Pending> pending;
     /**
      * The nodal forces g (every node) and the nodes with a force of the
@@ -218,7 +234,8 @@ namespace DynamicContact
           const std::vector<double>         &mu,
           std::vector<Tensor<1, dim>>       &lambda,
           Vector_t                          &w,
-          const bool                         provisional);
+          const bool                         provisional,
+          const double                       velocity_accuracy = 0);
 
     /**
      * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then

@@ -143,7 +143,10 @@ namespace DynamicContact
      * The same, where the caller may accept a provisional answer (a pass
      * of the convexification loop that is probably not the last): a solver
      * that finds the velocities at the nodes more cheaply than the whole w
-     * does so, leaves @p w as it was and sets Result::provisional. The
+     * does so, leaves @p w as it was and sets Result::provisional; it may
+     * stop once its nodal velocities are accurate to about
+     * @p velocity_accuracy (m/s) if that is coarser than the Newton
+     * tolerance (finalize() then iterates on to the Newton tolerance). The
      * default solves.
      */
     virtual Result
@@ -152,7 +155,8 @@ namespace DynamicContact
                       const std::vector<Tensor<1, dim>> &w_old,
                       const std::vector<double>         &mu,
                       std::vector<Tensor<1, dim>>       &lambda,
-                      Vector_t                          &w)
+                      Vector_t                          &w,
+                      const double /*velocity_accuracy*/ = 0)
     {
       return solve(rhs, u_old, w_old, mu, lambda, w);
     }

@@ -52,6 +52,12 @@ namespace DynamicContact
     double stagnation_factor = 0.1;
     /** Name of the phase in the per-iteration diagnostics. */
     const char *name = "";
+    /**
+     * Stop below this relative residual if it is larger than
+     * Solver/Newton tolerance (a provisional pass of the convexification
+     * loop; the stagnation test keeps the Newton tolerance).
+     */
+    double tolerance = 0;
   };
 
 
@@ -84,8 +90,9 @@ namespace DynamicContact
                     const ConditionalOStream  &details,
                     Result                    &result)
   {
-    using Iterate    = typename Problem::Iterate;
-    const double tol = parameters.newton_tolerance;
+    using Iterate         = typename Problem::Iterate;
+    const double tol      = parameters.newton_tolerance;
+    const double stop_tol = std::max(tol, policy.tolerance);
 
     Iterate                    full, trial;
     NewtonMeasure              current = problem.evaluate(x);
@@ -105,7 +112,7 @@ namespace DynamicContact
           current.residual > policy.stagnation_factor * previous_residual &&
           current.residual < std::sqrt(tol);
         result.residual = current.residual;
-        if (current.residual <= tol || stagnated)
+        if (current.residual <= stop_tol || stagnated)
           break;
         check_newton_cap(result.iterations, current.residual, parameters);
         previous_residual = current.residual;
