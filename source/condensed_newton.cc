@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/condensed_newton.h>
+#include <dynamic_contact/mixed_precision_lu.h>
 #include <dynamic_contact/newton_driver.h>
 #include <dynamic_contact/timing.h>
 
@@ -13,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace DynamicContact
 {
@@ -346,6 +348,7 @@ namespace DynamicContact
   } // namespace
 
 
+
   template <int dim>
   void
   CondensedNewton<dim>::dense_step(
@@ -427,8 +430,8 @@ namespace DynamicContact
         for (unsigned int a = 0; a < n_active; ++a)
           for (unsigned int q = 0; q < n_low_rank[a]; ++q)
             matrix(offset[a] + q, offset[a] + q) += 1.;
-        matrix.compute_lu_factorization();
       }
+    MixedPrecisionLU lu(matrix);
 
     // The reduced system for the right-hand side @p rr and stick targets
     // @p tg: its unknowns @p xx and the velocities @p dd. dd_i = rr_i -
@@ -452,8 +455,7 @@ namespace DynamicContact
           for (unsigned int s = 0; s < tg[a].size(); ++s)
             xx(offset[a] + n_low_rank[a] + s) -= tg[a][s];
         }
-      if (size > 0)
-        matrix.solve(xx);
+      lu.solve(xx);
       for (unsigned int b = 0; b < n_active; ++b)
         {
           force_change[b] = Tensor<1, dim>();

@@ -1,0 +1,129 @@
+// MixedPrecisionLU, the condensed solver's solve of its reduced Newton
+// systems: single-precision LU of the equilibrated matrix with refinement in
+// double. Against LAPACK's double LU on (a) a 600 x 600 system with rows
+// 1e7 times the others (the spring nodes' rows), which the mixed path must
+// solve to double round-off, (b) a system single precision cannot resolve
+// (1 + 1e-9 on the diagonal of a matrix of ones: it falls back to double
+// and still agrees), (c) a matrix below the size where single precision
+// pays (factorized in double), and (d) an empty one.
+
+#include <dynamic_contact/mixed_precision_lu.h>
+
+#include <random>
+
+#include "test_tools.h"
+
+using namespace DynamicContact;
+using test_tools::check;
+
+namespace
+{
+  /** max_i |x_i - y_i| / max_i |y_i|. */
+  double
+  relative_difference(const Vector<double> &x, const Vector<double> &y)
+  {
+    Vector<double> d = x;
+    d -= y;
+    return d.linfty_norm() / y.linfty_norm();
+  }
+
+  /** x from LAPACK's LU in double. */
+  Vector<double>
+  double_solve(const LAPACKFullMatrix<double> &A, const Vector<double> &b)
+  {
+    LAPACKFullMatrix<double> lu = A;
+    lu.compute_lu_factorization();
+    Vector<double> x = b;
+    lu.solve(x);
+    return x;
+  }
+
+  Vector<double>
+  random_vector(const unsigned int n, std::mt19937 &random)
+  {
+    std::uniform_real_distribution<double> u(-1, 1);
+    Vector<double>                         v(n);
+    for (unsigned int i = 0; i < n; ++i)
+      v[i] = u(random);
+    return v;
+  }
+} // namespace
+
+int
+main()
+{
+  std::mt19937                           random(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+
+  {
+    // (a) A nonsymmetric system like the reduced Newton systems: identity
+    // plus a coupling, the first 9 rows 1e7 times larger.
+    const unsigned int       n = 600;
+    LAPACKFullMatrix<double> A(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) = (i == j ? 1. : 0.) + 0.5 * u(random) / std::sqrt(double(n));
+    for (unsigned int i = 0; i < 9; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) *= 1e7;
+    const Vector<double> b = random_vector(n, random);
+    MixedPrecisionLU     lu(A);
+    Vector<double>       x = b;
+    lu.solve(x);
+    check(!lu.in_double_precision(),
+          "600 x 600 with rows of 1e7: solved in single precision with "
+          "refinement");
+    check(relative_difference(x, double_solve(A, b)) < 1e-12,
+          "600 x 600 with rows of 1e7: agrees with LAPACK's double LU to "
+          "1e-12");
+    // A second right-hand side with the same factorization.
+    const Vector<double> b2 = random_vector(n, random);
+    Vector<double>       x2 = b2;
+    lu.solve(x2);
+    check(relative_difference(x2, double_solve(A, b2)) < 1e-12,
+          "a second right-hand side: agrees to 1e-12");
+  }
+
+  {
+    // (b) Ones plus 1e-9 on the diagonal: 1 + 1e-9 is 1 in single
+    // precision, so the float factorization cannot resolve the matrix.
+    const unsigned int       n = 600;
+    LAPACKFullMatrix<double> A(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) = 1. + (i == j ? 1e-9 : 0.);
+    const Vector<double> b = random_vector(n, random);
+    MixedPrecisionLU     lu(A);
+    Vector<double>       x = b;
+    lu.solve(x);
+    check(lu.in_double_precision(),
+          "ones + 1e-9 I: falls back to LU in double");
+    check(relative_difference(x, double_solve(A, b)) < 1e-12,
+          "ones + 1e-9 I: agrees with LAPACK's double LU to 1e-12");
+  }
+
+  {
+    // (c) Below the size where single precision pays.
+    const unsigned int       n = 100;
+    LAPACKFullMatrix<double> A(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) = (i == j ? 2. : 0.) + u(random) / n;
+    const Vector<double> b = random_vector(n, random);
+    MixedPrecisionLU     lu(A);
+    Vector<double>       x = b;
+    lu.solve(x);
+    check(lu.in_double_precision(), "100 x 100: factorized in double");
+    check(relative_difference(x, double_solve(A, b)) == 0,
+          "100 x 100: the same answer as LAPACK's double LU");
+  }
+
+  {
+    // (d) No unknowns (no active node).
+    LAPACKFullMatrix<double> A(0, 0);
+    MixedPrecisionLU         lu(A);
+    Vector<double>           x;
+    lu.solve(x);
+    check(x.size() == 0, "0 x 0: nothing to solve");
+  }
+}
