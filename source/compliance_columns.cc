@@ -70,6 +70,9 @@ namespace DynamicContact
                                   transpose(all[j].constraint_map);
                 }
             }
+          problem.details << "    compliance of Gamma_3: the inverse of its "
+                             "Schur complement ("
+                          << m << " DoFs)" << std::endl;
           return;
         }
     }
@@ -111,6 +114,8 @@ namespace DynamicContact
         full_columns[dim * missing[column / dim] + column % dim].assign(
           entries, entries + n_owned);
       };
+    problem.details << "    compliance of Gamma_3: " << missing.size()
+                    << " nodes by " << rhs.size() << " solves" << std::endl;
     bulk_solver.solve_columns(rhs, rows, values, keep, dim * nodes_per_block);
     if (store)
       stored_full_columns += rhs.size();

@@ -117,7 +117,8 @@ namespace DynamicContact
      * @p discretization). The matrix must outlive the solver. With the
      * Cholesky factorization, the rows @p trailing_rows (distinct) are
      * eliminated last, so that inverse_block() can give the block of the
-     * inverse at them; the other solvers ignore them.
+     * inverse at them, unless that would more than double the factor (then
+     * inverse_block() returns false); the other solvers ignore them.
      */
     template <int dim>
     void
