@@ -38,6 +38,22 @@ namespace
     return x;
   }
 
+  /**
+   * x from MixedPrecisionLU; @p in_double: whether it factorized in double
+   * (small, or the fallback).
+   */
+  Vector<double>
+  mixed_solve(const LAPACKFullMatrix<double> &A,
+              const Vector<double>           &b,
+              bool                           &in_double)
+  {
+    MixedPrecisionLU lu(A);
+    Vector<double>   x = b;
+    lu.solve(x);
+    in_double = lu.in_double_precision();
+    return x;
+  }
+
   Vector<double>
   random_vector(const unsigned int n, std::mt19937 &random)
   {
@@ -93,11 +109,9 @@ main()
       for (unsigned int j = 0; j < n; ++j)
         A(i, j) = 1. + (i == j ? 1e-9 : 0.);
     const Vector<double> b = random_vector(n, random);
-    MixedPrecisionLU     lu(A);
-    Vector<double>       x = b;
-    lu.solve(x);
-    check(lu.in_double_precision(),
-          "ones + 1e-9 I: falls back to LU in double");
+    bool                 in_double;
+    const Vector<double> x = mixed_solve(A, b, in_double);
+    check(in_double, "ones + 1e-9 I: falls back to LU in double");
     check(relative_difference(x, double_solve(A, b)) < 1e-12,
           "ones + 1e-9 I: agrees with LAPACK's double LU to 1e-12");
   }
@@ -110,10 +124,9 @@ main()
       for (unsigned int j = 0; j < n; ++j)
         A(i, j) = (i == j ? 2. : 0.) + u(random) / n;
     const Vector<double> b = random_vector(n, random);
-    MixedPrecisionLU     lu(A);
-    Vector<double>       x = b;
-    lu.solve(x);
-    check(lu.in_double_precision(), "100 x 100: factorized in double");
+    bool                 in_double;
+    const Vector<double> x = mixed_solve(A, b, in_double);
+    check(in_double, "100 x 100: factorized in double");
     check(relative_difference(x, double_solve(A, b)) == 0,
           "100 x 100: the same answer as LAPACK's double LU");
   }
