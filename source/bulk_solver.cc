@@ -263,15 +263,15 @@ namespace DynamicContact
       const SuiteSparse_long n     = factor->n;
       const SuiteSparse_long m     = trailing_rows.size();
       const SuiteSparse_long first = n - m;
-      inverse.assign(m * m, 0.);
-      // Supernode s holds the columns super[s] .. super[s+1] - 1, their
-      // rows s[pi[s]] .. s[pi[s+1] - 1] (the supernode's own columns
-      // first) and the values column-major from x[px[s]].
+      // L_22, column-major. Supernode s holds the columns super[s] ..
+      // super[s+1] - 1, their rows s[pi[s]] .. s[pi[s+1] - 1] (the supernode's
+      // own columns first) and the values column-major from x[px[s]].
       const auto *super = static_cast<const SuiteSparse_long *>(factor->super);
       const auto *pi    = static_cast<const SuiteSparse_long *>(factor->pi);
       const auto *px    = static_cast<const SuiteSparse_long *>(factor->px);
       const auto *rows  = static_cast<const SuiteSparse_long *>(factor->s);
       const auto *x     = static_cast<const double *>(factor->x);
+      std::vector<double> factor22(m * m, 0.);
       for (std::size_t sn = 0; sn < factor->nsuper; ++sn)
         {
           const SuiteSparse_long n_rows = pi[sn + 1] - pi[sn];
@@ -281,12 +281,10 @@ namespace DynamicContact
             {
               const double *column = x + px[sn] + (k - super[sn]) * n_rows;
               for (SuiteSparse_long r = k - super[sn]; r < n_rows; ++r)
-                inverse[(rows[pi[sn] + r] - first) + (k - first) * m] =
+                factor22[(rows[pi[sn] + r] - first) + (k - first) * m] =
                   column[r];
             }
         }
-      std::vector<double> factor22;
-      std::swap(factor22, inverse);
       inverse.assign(m * m, 0.);
       for (SuiteSparse_long j = 0; j < m; ++j)
         inverse[j + j * m] = 1;
@@ -415,8 +413,7 @@ namespace DynamicContact
     const Discretization<dim>                          &discretization,
     const std::vector<dealii::types::global_dof_index> &trailing_rows)
   {
-    matrix       = &A;
-    inverse_rows = 0;
+    matrix = &A;
     direct.reset();
     amg.reset();
     problem.reset();
@@ -434,7 +431,6 @@ namespace DynamicContact
         for (std::size_t i = 0; i < trailing_rows.size(); ++i)
           trailing[i] = map.LID(static_cast<int>(trailing_rows[i]));
         cholesky->factorize(A.trilinos_matrix(), trailing);
-        inverse_rows = cholesky->has_trailing_rows() ? trailing_rows.size() : 0;
       }
     else if (parameters.linear_solver ==
              Parameters::Solver::LinearSolver::direct)
@@ -524,7 +520,7 @@ namespace DynamicContact
   BulkSolver::inverse_block(std::vector<double> &inverse) const
   {
     Assert(matrix != nullptr, ExcNotInitialized());
-    if (inverse_rows == 0)
+    if (!cholesky || !cholesky->has_trailing_rows())
       return false;
     cholesky->inverse_block(inverse);
     return true;

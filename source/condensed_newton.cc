@@ -145,13 +145,12 @@ namespace DynamicContact
       regularized.compress(VectorOperation::add);
     }
     {
-      // The DoFs of Gamma_3 last (one process, Cholesky): the compliance of
-      // every node is then the inverse of their Schur complement
-      // (compute_columns()).
+      // The DoFs of Gamma_3 last (taken by the Cholesky factorization, on
+      // one process, where it pays): the compliance of every node is then
+      // the inverse of their Schur complement (compute_columns()).
       std::vector<types::global_dof_index> trailing;
-      if (Utilities::MPI::n_mpi_processes(problem.discretization.comm) == 1)
-        for (const auto &node : gathered.all_nodes())
-          trailing.insert(trailing.end(), node.dofs.begin(), node.dofs.end());
+      for (const auto &node : gathered.all_nodes())
+        trailing.insert(trailing.end(), node.dofs.begin(), node.dofs.end());
       TimerSection t(problem.timer, "Bulk: factorization of K0");
       bulk_solver.initialize(regularized, problem.discretization, trailing);
     }
@@ -346,7 +345,6 @@ namespace DynamicContact
         }
     }
   } // namespace
-
 
 
   template <int dim>

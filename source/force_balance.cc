@@ -131,6 +131,14 @@ namespace DynamicContact
     std::vector<types::global_dof_index> dofs(n);
     Vector<double>                       value(dim), residual(n);
     const bool                           body_force = scene.has_body_force();
+    // value = the step's load g at x (Scene::step_load), and its part of
+    // the applied force.
+    const auto load_at =
+      [&](Function<dim> &g, const Point<dim> &x, const double JxW) {
+        scene.step_load(g, x, t, scheme, value, value_old);
+        for (unsigned int c = 0; c < dim; ++c)
+          b.applied[c] += value(c) * JxW;
+      };
 
     for (const auto &[cell, has_support] : cells)
       {
@@ -149,14 +157,9 @@ namespace DynamicContact
           {
             value = 0;
             if (body_force)
-              scene.step_load(scene.body_force(),
-                              fe_values.quadrature_point(q),
-                              t,
-                              scheme,
-                              value,
-                              value_old);
-            for (unsigned int c = 0; c < dim; ++c)
-              b.applied[c] += value(c) * fe_values.JxW(q);
+              load_at(scene.body_force(),
+                      fe_values.quadrature_point(q),
+                      fe_values.JxW(q));
             if (has_support)
               {
                 const Tensor<1, dim> a =
@@ -179,18 +182,12 @@ namespace DynamicContact
         for (const auto f : cell->face_indices())
           if (Function<dim> *const load_function = scene.face_load(cell, f))
             {
-              Function<dim> &g = *load_function;
               fe_face.reinit(cell, f);
               for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                 {
-                  scene.step_load(g,
-                                  fe_face.quadrature_point(q),
-                                  t,
-                                  scheme,
-                                  value,
-                                  value_old);
-                  for (unsigned int c = 0; c < dim; ++c)
-                    b.applied[c] += value(c) * fe_face.JxW(q);
+                  load_at(*load_function,
+                          fe_face.quadrature_point(q),
+                          fe_face.JxW(q));
                   if (has_support)
                     for (unsigned int i = 0; i < n; ++i)
                       residual(i) -=

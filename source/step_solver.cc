@@ -49,6 +49,11 @@ namespace DynamicContact
     , timer(timer)
     , details(details)
     , friction(law_has_friction(friction_law))
+    , mu_slope(friction && !friction_law->is_constant() ?
+                 std::max(friction_law->one_sided_lipschitz_constant(
+                            friction_parameters.maximum_slip_rate),
+                          1e-300) :
+                 1.)
   {}
 
 
@@ -568,13 +573,6 @@ namespace DynamicContact
         xi_previous = measures.start(w, lambda, mu);
       }
 
-    // How fast mu can change with the slip rate: max(0, -min mu'), the
-    // one-sided Lipschitz constant (slip-weakening laws).
-    const double mu_slope =
-      loop ? std::max(friction_law->one_sided_lipschitz_constant(
-                        friction_parameters.maximum_slip_rate),
-                      1e-300) :
-             1.;
     AndersonMixing mixing(friction_parameters.acceleration_depth,
                           friction_parameters.relaxation,
                           comm);

@@ -82,15 +82,17 @@ namespace DynamicContact
     x.law_residual = Utilities::MPI::max(law_residual, comm);
     x.law_squares  = Utilities::MPI::sum(law_squares, comm);
     x.f_scale      = Utilities::MPI::max(f_scale, comm);
-    x.stick_rate   = Utilities::MPI::max(stick_rate, comm);
 
     NewtonMeasure m;
     x.residual_norm = x.residual.l2_norm();
     x.relative_residual =
       std::max(x.residual_norm / x.scale, x.law_residual / x.f_scale);
     if (velocity_scale > 0)
-      x.relative_residual =
-        std::max(x.relative_residual, x.stick_rate / velocity_scale);
+      {
+        x.stick_rate = Utilities::MPI::max(stick_rate, comm);
+        x.relative_residual =
+          std::max(x.relative_residual, x.stick_rate / velocity_scale);
+      }
     m.residual                     = x.relative_residual;
     m.merit                        = merit(x, x);
     std::uint64_t global_signature = 0;

@@ -187,8 +187,6 @@ namespace DynamicContact
     std::unique_ptr<BulkAMG>              amg;
     /** The CHOLMOD factorization (one process; defined in the .cc). */
     class Cholesky;
-    /** The number of trailing rows of the Cholesky factorization. */
-    std::size_t               inverse_rows = 0;
     std::unique_ptr<Cholesky> cholesky;
   };
 } // namespace DynamicContact

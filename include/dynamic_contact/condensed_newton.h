@@ -205,16 +205,6 @@ namespace DynamicContact
       double w_scale = 0;
       bool   loose   = false;
     };
-
-    /**
-     * Phase 1 on the current solve's data from @p it, to the relative
-     * residual max(Newton tolerance, @p tolerance).
-     */
-    void
-                           boundary_newton(Iterate     &it,
-                                           const double w_scale,
-                                           const double tolerance,
-                                           Result      &result);
     std::optional<Pending> pending;
     /**
      * The nodal forces g (every node) and the nodes with a force of the
@@ -236,6 +226,16 @@ namespace DynamicContact
           Vector_t                          &w,
           const bool                         provisional,
           const double                       velocity_accuracy = 0);
+
+    /**
+     * Phase 1 on the current solve's data from @p it, to the relative
+     * residual max(Newton tolerance, @p tolerance).
+     */
+    void
+    boundary_newton(Iterate     &it,
+                    const double w_scale,
+                    const double tolerance,
+                    Result      &result);
 
     /**
      * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then

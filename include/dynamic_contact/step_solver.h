@@ -150,6 +150,14 @@ namespace DynamicContact
     const ConditionalOStream   &details;
     const bool                  friction;
     double                      c_t = 0;
+    /**
+     * How fast mu can change with the slip rate: max(0, -min mu') on
+     * [0, Friction/Maximum slip rate], the law's one-sided Lipschitz
+     * constant (1 without a law that depends on s). What a provisional pass
+     * of the convexification loop may leave of the slip rate is measured
+     * by it.
+     */
+    const double mu_slope;
 
     /**
      * The Newton solver of each kind of (sub-)step: [0] theta > 1/2

@@ -45,7 +45,10 @@ namespace DynamicContact
     double scale = 1e-300;
     /** |R|. */
     double residual_norm = 0;
-    /** Largest slip rate |w_e,tau| of a stick node (all ranks). */
+    /**
+     * Largest slip rate |w_e,tau| of a stick node (all ranks; measured only
+     * with SystemNewton::velocity_scale set).
+     */
     double stick_rate = 0;
     /**
      * max(|R|/scale, law_residual/f_scale), and stick_rate/velocity_scale
