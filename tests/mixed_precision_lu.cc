@@ -54,6 +54,18 @@ namespace
     return x;
   }
 
+  /** The n x n matrix of entry(i, j), row by row. */
+  template <typename Entry>
+  LAPACKFullMatrix<double>
+  matrix_of(const unsigned int n, const Entry &entry)
+  {
+    LAPACKFullMatrix<double> A(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) = entry(i, j);
+    return A;
+  }
+
   Vector<double>
   random_vector(const unsigned int n, std::mt19937 &random)
   {
@@ -75,10 +87,10 @@ main()
     // (a) A nonsymmetric system like the reduced Newton systems: identity
     // plus a coupling, the first 9 rows 1e7 times larger.
     const unsigned int       n = 600;
-    LAPACKFullMatrix<double> A(n, n);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        A(i, j) = (i == j ? 1. : 0.) + 0.5 * u(random) / std::sqrt(double(n));
+    LAPACKFullMatrix<double> A =
+      matrix_of(n, [&](const unsigned int i, const unsigned int j) {
+        return (i == j ? 1. : 0.) + 0.5 * u(random) / std::sqrt(double(n));
+      });
     for (unsigned int i = 0; i < 9; ++i)
       for (unsigned int j = 0; j < n; ++j)
         A(i, j) *= 1e7;
@@ -103,11 +115,11 @@ main()
   {
     // (b) Ones plus 1e-9 on the diagonal: 1 + 1e-9 is 1 in single
     // precision, so the float factorization cannot resolve the matrix.
-    const unsigned int       n = 600;
-    LAPACKFullMatrix<double> A(n, n);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        A(i, j) = 1. + (i == j ? 1e-9 : 0.);
+    const unsigned int             n = 600;
+    const LAPACKFullMatrix<double> A =
+      matrix_of(n, [](const unsigned int i, const unsigned int j) {
+        return 1. + (i == j ? 1e-9 : 0.);
+      });
     const Vector<double> b = random_vector(n, random);
     bool                 in_double;
     const Vector<double> x = mixed_solve(A, b, in_double);
@@ -118,11 +130,11 @@ main()
 
   {
     // (c) Below the size where single precision pays.
-    const unsigned int       n = 100;
-    LAPACKFullMatrix<double> A(n, n);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        A(i, j) = (i == j ? 2. : 0.) + u(random) / n;
+    const unsigned int             n = 100;
+    const LAPACKFullMatrix<double> A =
+      matrix_of(n, [&](const unsigned int i, const unsigned int j) {
+        return (i == j ? 2. : 0.) + u(random) / n;
+      });
     const Vector<double> b = random_vector(n, random);
     bool                 in_double;
     const Vector<double> x = mixed_solve(A, b, in_double);
