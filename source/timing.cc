@@ -79,7 +79,7 @@ namespace DynamicContact
     const auto         row =
       [&](const std::string &name, const std::string &calls, const double t) {
         out << "  " << std::left << std::setw(width) << name << std::right
-            << std::setw(9) << calls << std::fixed << std::setprecision(2)
+            << std::setw(9) << calls << std::fixed << std::setprecision(3)
             << std::setw(11) << t << " s" << std::setprecision(1)
             << std::setw(8) << (total > 0 ? 100 * t / total : 0.) << " %\n";
       };
