@@ -349,12 +349,12 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::dense_step(
-    const Iterate                     &it,
-    const std::vector<Tensor<1, dim>> &r,
-    std::vector<Tensor<1, dim>>       &dw,
-    std::vector<Tensor<1, dim>>       &lambda,
-    std::vector<Tensor<1, dim>>       &new_forces) const
+  CondensedNewton<dim>::dense_step(const Iterate                     &it,
+                                   const std::vector<Tensor<1, dim>> &r,
+                                   std::vector<Tensor<1, dim>>       &dw,
+                                   std::vector<Tensor<1, dim>>       &lambda,
+                                   std::vector<Tensor<1, dim>> &new_forces,
+                                   const bool                   refine) const
   {
     // The Newton system on the active nodes,
     //   dw_i + sum_j C_ij (B_j dw_j + T_j l_j) = r_i,
@@ -429,7 +429,7 @@ namespace DynamicContact
           for (unsigned int q = 0; q < n_low_rank[a]; ++q)
             matrix(offset[a] + q, offset[a] + q) += 1.;
       }
-    MixedPrecisionLU lu(matrix);
+    MixedPrecisionLU lu(matrix, large_system);
 
     // The reduced system for the right-hand side @p rr and stick targets
     // @p tg: its unknowns @p xx and the velocities @p dd. dd_i = rr_i -
@@ -507,27 +507,28 @@ namespace DynamicContact
     // One step of iterative refinement on the unreduced system, whose
     // residual e_i = r_i - dw_i - sum_j C_ij (B_j dw_j + T_j l_j) is the
     // round-off the reconstruction left (the stick constraints hold).
-    {
-      std::vector<Tensor<1, dim>> full_change(n_active), e(n_active), de;
-      for (unsigned int b = 0; b < n_active; ++b)
-        full_change[b] = it.lin[active[b]].block * dw[b] + stick_force(x, b);
-      for (unsigned int a = 0; a < n_active; ++a)
-        e[a] = r[a] - dw[a];
-      for (unsigned int b = 0; b < n_active; ++b)
-        {
-          const auto &column = columns[active[b]];
-          for (unsigned int a = 0; a < n_active; ++a)
-            e[a] -= column[active[a]] * full_change[b];
-        }
-      Vector<double> dx;
-      auto           no_target = stick_target;
-      for (auto &t : no_target)
-        std::fill(t.begin(), t.end(), 0.);
-      solve_reduced(e, no_target, dx, de);
-      x += dx;
-      for (unsigned int a = 0; a < n_active; ++a)
-        dw[a] += de[a];
-    }
+    if (refine || size < large_system)
+      {
+        std::vector<Tensor<1, dim>> full_change(n_active), e(n_active), de;
+        for (unsigned int b = 0; b < n_active; ++b)
+          full_change[b] = it.lin[active[b]].block * dw[b] + stick_force(x, b);
+        for (unsigned int a = 0; a < n_active; ++a)
+          e[a] = r[a] - dw[a];
+        for (unsigned int b = 0; b < n_active; ++b)
+          {
+            const auto &column = columns[active[b]];
+            for (unsigned int a = 0; a < n_active; ++a)
+              e[a] -= column[active[a]] * full_change[b];
+          }
+        Vector<double> dx;
+        auto           no_target = stick_target;
+        for (auto &t : no_target)
+          std::fill(t.begin(), t.end(), 0.);
+        solve_reduced(e, no_target, dx, de);
+        x += dx;
+        for (unsigned int a = 0; a < n_active; ++a)
+          dw[a] += de[a];
+      }
 
     for (unsigned int a = 0; a < n_active; ++a)
       {
@@ -597,11 +598,17 @@ namespace DynamicContact
           x.equilibrium_squares += e * e;
         }
       NewtonMeasure m;
-      m.residual =
-        std::max(x.equilibrium / w_scale, x.law_residual / x.f_scale);
+      m.residual  = residual(x);
       m.merit     = merit(x, x);
       m.signature = x.signature;
       return m;
+    }
+
+    /** The relative residual of an evaluated iterate. */
+    double
+    residual(const Iterate &x) const
+    {
+      return std::max(x.equilibrium / w_scale, x.law_residual / x.f_scale);
     }
 
     /** With the force scale of the current iterate. */
@@ -633,7 +640,11 @@ namespace DynamicContact
       for (unsigned int a = 0; a < x.active.size(); ++a)
         r[a] = response[x.active[a]] - x.w[x.active[a]];
       full.lambda = x.lambda;
-      solver.dense_step(x, r, dw, full.lambda, new_forces);
+      // Far from the solution the step's round-off does not matter (the
+      // next residual is of the order of the square of this one): its
+      // refinement is left out while the residual is above 1e-3.
+      solver.dense_step(
+        x, r, dw, full.lambda, new_forces, residual(x) < refinement_below);
       solver.compliance_response(solver.w_free_nodes,
                                  new_forces,
                                  x.active,
@@ -658,6 +669,7 @@ namespace DynamicContact
     }
 
   private:
+    static constexpr double     refinement_below = 1e-3;
     CondensedNewton<dim>       &solver;
     const double                w_scale;
     Result                     &result;
