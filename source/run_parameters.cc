@@ -161,11 +161,12 @@ namespace DynamicContact
       require(spectral_radius >= 0 && spectral_radius <= 1,
               "Time/Spectral radius at infinity must lie in [0, 1], got " +
                 str(spectral_radius) + ".");
-      require(spectral_radius == 0 || scheme == Scheme::bathe ||
-                scheme == Scheme::sdirk,
-              "Time/Spectral radius at infinity = " + str(spectral_radius) +
-                " needs Time/Scheme = bathe or sdirk (backward Euler has 0, the "
-                "trapezoidal rule 1, and neither has a parameter).");
+      require(
+        spectral_radius == 0 || scheme == Scheme::bathe ||
+          scheme == Scheme::sdirk,
+        "Time/Spectral radius at infinity = " + str(spectral_radius) +
+          " needs Time/Scheme = bathe or sdirk (backward Euler has 0, the "
+          "trapezoidal rule 1, and neither has a parameter).");
       composite = CompositeScheme(spectral_radius);
       sdirk     = SdirkScheme(spectral_radius);
       require(!adaptive || scheme != Scheme::trapezoidal,
@@ -206,15 +207,25 @@ namespace DynamicContact
           "built once per mesh and time step; with direct: the Newton matrix "
           "factorized when it changes, as in deal.II's step-42). 'auto': "
           "condensed while dim times the number of contact nodes is at most "
-          "Condensed limit, else assembled with the iterative linear solver "
+          "Condensed limit (one process) or Condensed limit on several "
+          "processes, else assembled with the iterative linear solver "
           "(decided per mesh).");
         prm.declare_entry(
           "Condensed limit",
-          "4000",
+          "8200",
           Patterns::Integer(0),
-          "Contact solver = auto: the largest dim times the number of "
-          "contact nodes for which the condensed solver is chosen (the "
-          "measured crossover, README 'Choosing the contact solver').");
+          "Contact solver = auto on one process: the largest dim times the "
+          "number of contact nodes for which the condensed solver is chosen "
+          "(the measured crossover, README 'Choosing the contact solver').");
+        prm.declare_entry(
+          "Condensed limit on several processes",
+          "1000",
+          Patterns::Integer(0),
+          "Contact solver = auto on more than one process: the same limit. "
+          "There the compliance costs dim solves with MUMPS per contact node "
+          "and the dense tables are replicated on every process, so the "
+          "condensed solver is the faster one only on small contact "
+          "boundaries (README 'Choosing the contact solver').");
         prm.declare_entry(
           "Provisional passes",
           "true",
@@ -280,7 +291,9 @@ namespace DynamicContact
         (prm.get("Contact solver") == "assembled" ? ContactSolver::assembled :
          prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
                                                     ContactSolver::automatic);
-      condensed_limit       = prm.get_integer("Condensed limit");
+      condensed_limit = prm.get_integer("Condensed limit");
+      condensed_limit_on_several_processes =
+        prm.get_integer("Condensed limit on several processes");
       provisional_passes    = prm.get_bool("Provisional passes");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");

@@ -67,10 +67,15 @@ namespace DynamicContact
   {
     c_t      = complementarity_constant;
     using CS = Parameters::Solver::ContactSolver;
-    condensed =
-      (parameters.contact_solver == CS::condensed ||
-       (parameters.contact_solver == CS::automatic &&
-        dim * contact_boundary.n_global_nodes() <= parameters.condensed_limit));
+    // auto: the limit of one process or of several (README, "Choosing the
+    // contact solver").
+    const unsigned int limit =
+      Utilities::MPI::n_mpi_processes(discretization.comm) == 1 ?
+        parameters.condensed_limit :
+        parameters.condensed_limit_on_several_processes;
+    condensed = (parameters.contact_solver == CS::condensed ||
+                 (parameters.contact_solver == CS::automatic &&
+                  dim * contact_boundary.n_global_nodes() <= limit));
     if (!condensed)
       {
         // auto: the scalable solver is the iterative one.

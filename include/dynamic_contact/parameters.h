@@ -266,15 +266,18 @@ namespace DynamicContact
         assembled
       };
       ContactSolver contact_solver;
-      unsigned int  condensed_limit;
-      bool          provisional_passes;
-      bool          line_search;
-      double        newton_tolerance;
-      unsigned int  max_newton_iterations;
-      LinearSolver  linear_solver;
-      std::string   direct_solver_package;
-      double        linear_tolerance;
-      unsigned int  max_linear_iterations;
+      /** Contact solver = auto: the largest dim n_Gamma for condensed. */
+      unsigned int condensed_limit;
+      /** The same on more than one process. */
+      unsigned int condensed_limit_on_several_processes;
+      bool         provisional_passes;
+      bool         line_search;
+      double       newton_tolerance;
+      unsigned int max_newton_iterations;
+      LinearSolver linear_solver;
+      std::string  direct_solver_package;
+      double       linear_tolerance;
+      unsigned int max_linear_iterations;
 
       static void
       declare_parameters(ParameterHandler &prm);
