@@ -157,9 +157,10 @@ namespace DynamicContact
     ++result.factorizations;
     prepared_scheme     = problem.bulk.scheme();
     free_response_valid = false;
-    // C depends on K0: forget it.
+    // C depends on K0: forget it, and the reduced matrices made from it.
     for (auto &c : columns)
       c.clear();
+    reduced = Reduced();
     for (auto &c : full_columns)
       std::vector<double>().swap(c);
     stored_full_columns = 0;
@@ -408,7 +409,8 @@ namespace DynamicContact
     new_forces.assign(nodes.size(), Tensor<1, dim>());
     for (auto &l : lambda)
       l = Tensor<1, dim>();
-    LAPACKFullMatrix<double> matrix(size, size);
+    LAPACKFullMatrix<double> &matrix = reduced.matrix;
+    matrix.reinit(size, size);
     if (size > 0)
       {
         // Column by column (C_:j is contiguous in columns[j]).
@@ -429,7 +431,19 @@ namespace DynamicContact
           for (unsigned int q = 0; q < n_low_rank[a]; ++q)
             matrix(offset[a] + q, offset[a] + q) += 1.;
       }
-    MixedPrecisionLU lu(matrix, large_system);
+    std::vector<unsigned int> layout(active);
+    layout.insert(layout.end(), offset.begin(), offset.end());
+    // The factorization of the last reduced matrix serves while the
+    // unknowns are the same (same active nodes, same kinds) and its
+    // refinement converges (MixedPrecisionLU::reuse_for()).
+    if (reduced.lu && layout == reduced.layout && size >= large_system)
+      reduced.lu->reuse_for(matrix);
+    else
+      {
+        reduced.lu = std::make_unique<MixedPrecisionLU>(matrix, large_system);
+        reduced.layout = std::move(layout);
+      }
+    MixedPrecisionLU &lu = *reduced.lu;
 
     // The reduced system for the right-hand side @p rr and stick targets
     // @p tg: its unknowns @p xx and the velocities @p dd. dd_i = rr_i -
@@ -774,6 +788,10 @@ namespace DynamicContact
         cached_rhs          = rhs;
         w_free_nodes        = gather_values(free_response);
         free_response_valid = true;
+        // A new step: the reduced factorization starts afresh, so a step
+        // is solved the same whatever came before it (a resumed run
+        // repeats an uninterrupted one to the byte).
+        reduced = Reduced();
       }
     // A pending provisional pass of the same step (same b) is the loop's
     // last iterate; one of another step is stale (a failed step).

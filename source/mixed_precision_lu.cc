@@ -10,9 +10,29 @@ namespace DynamicContact
 {
   MixedPrecisionLU::MixedPrecisionLU(const LAPACKFullMatrix<double> &A,
                                      const unsigned int              min_size)
-    : A(A)
+    : A(&A)
     , n(A.m())
+    , min_size(min_size)
   {
+    factorize();
+  }
+
+
+  void
+  MixedPrecisionLU::reuse_for(const LAPACKFullMatrix<double> &B)
+  {
+    Assert(static_cast<types::blas_int>(B.m()) == n, ExcInternalError());
+    A     = &B;
+    stale = true;
+  }
+
+
+  void
+  MixedPrecisionLU::factorize()
+  {
+    const LAPACKFullMatrix<double> &A = *this->A;
+    in_double                         = false;
+    stale                             = false;
     if (n < static_cast<types::blas_int>(min_size))
       {
         factorize_in_double();
@@ -56,14 +76,46 @@ namespace DynamicContact
   {
     if (n == 0)
       return;
+    if (stale && in_double)
+      factorize();
     if (in_double)
       {
         double_lu.solve(x);
         return;
       }
-    const Vector<double> b        = x;
-    Vector<double>       residual = b, product(n);
-    std::vector<float>   d(n);
+    const Vector<double> b = x;
+    if (refine(b, x))
+      {
+        if (stale)
+          ++n_stale_solves;
+        return;
+      }
+    if (stale)
+      {
+        // The old factorization is too far from A: A's own.
+        factorize();
+        x = b;
+        if (in_double)
+          {
+            double_lu.solve(x);
+            return;
+          }
+        if (refine(b, x))
+          return;
+      }
+    // The refinement does not converge: in double.
+    factorize_in_double();
+    x = b;
+    double_lu.solve(x);
+  }
+
+
+  bool
+  MixedPrecisionLU::refine(const Vector<double> &b, Vector<double> &x)
+  {
+    const LAPACKFullMatrix<double> &A        = *this->A;
+    Vector<double>                  residual = b, product(n);
+    std::vector<float>              d(n);
     x                        = 0;
     double       last_change = std::numeric_limits<double>::max();
     const double epsilon     = std::numeric_limits<double>::epsilon();
@@ -88,22 +140,20 @@ namespace DynamicContact
           scaled_residual =
             std::max(scaled_residual, std::abs(row_scale[i] * residual[i]));
         if (scaled_residual <= std::sqrt(double(n)) * epsilon * norm * scaled_x)
-          return;
+          return true;
         if (!(change < 0.5 * last_change))
           break;
         last_change = change;
       }
-    // The refinement does not converge: in double.
-    factorize_in_double();
-    x = b;
-    double_lu.solve(x);
+    return false;
   }
 
 
   void
   MixedPrecisionLU::factorize_in_double()
   {
-    double_lu = A;
+    double_lu = *A;
+    stale     = false;
     if (n > 0)
       double_lu.compute_lu_factorization();
     in_double = true;

@@ -5,7 +5,9 @@
 // solve to double round-off, (b) a system single precision cannot resolve
 // (1 + 1e-9 on the diagonal of a matrix of ones: it falls back to double
 // and still agrees), (c) a matrix below the size where single precision
-// pays (factorized in double), and (d) an empty one.
+// pays (factorized in double), (d) an empty one, and (e) the factorization
+// kept for a nearby matrix (reuse_for(): the next Newton iteration's) and
+// replaced for an unrelated one.
 
 #include <dynamic_contact/mixed_precision_lu.h>
 
@@ -110,6 +112,34 @@ main()
     lu.solve(x2);
     check(relative_difference(x2, double_solve(A, b2)) < 1e-12,
           "a second right-hand side: agrees to 1e-12");
+
+    // (e) The factorization of A kept for a nearby matrix (the next Newton
+    // iteration's: every entry off by up to 1e-3 relative) ...
+    LAPACKFullMatrix<double> near = A;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        near(i, j) *= 1. + 1e-3 * u(random);
+    lu.reuse_for(near);
+    Vector<double> x3 = b;
+    lu.solve(x3);
+    check(lu.stale_solves() == 1,
+          "a matrix within 1e-3 of A: solved with A's factorization");
+    check(relative_difference(x3, double_solve(near, b)) < 1e-12,
+          "a matrix within 1e-3 of A: agrees with LAPACK's double LU of it "
+          "to 1e-12");
+    // ... and for one it does not resolve: factorized afresh.
+    const LAPACKFullMatrix<double> far =
+      matrix_of(n, [&](const unsigned int i, const unsigned int j) {
+        return (i == j ? 1. : 0.) + 2. * u(random) / std::sqrt(double(n));
+      });
+    lu.reuse_for(far);
+    Vector<double> x4 = b;
+    lu.solve(x4);
+    check(lu.stale_solves() == 1 && !lu.in_double_precision(),
+          "an unrelated matrix: factorized afresh (in single precision)");
+    check(relative_difference(x4, double_solve(far, b)) < 1e-12,
+          "an unrelated matrix: agrees with LAPACK's double LU of it to "
+          "1e-12");
   }
 
   {

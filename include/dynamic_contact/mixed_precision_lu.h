@@ -43,6 +43,25 @@ namespace DynamicContact
     void
     solve(Vector<double> &x);
 
+    /**
+     * Solve with @p B from now on (same size, outliving this object): the
+     * factorization of the matrix before serves as the refinement's
+     * preconditioner while the refinement converges with it to B's
+     * round-off (B close to the old matrix: a chord method whose answer
+     * is still that of a solve with B); at the first solve where it does
+     * not, B is factorized afresh. A factorization in double (small
+     * matrices) is always made afresh.
+     */
+    void
+    reuse_for(const LAPACKFullMatrix<double> &B);
+
+    /** Solves since the last factorization that used an older matrix. */
+    unsigned int
+    stale_solves() const
+    {
+      return n_stale_solves;
+    }
+
     /** A is (now) factorized in double, not in single precision. */
     bool
     in_double_precision() const
@@ -51,8 +70,11 @@ namespace DynamicContact
     }
 
   private:
-    const LAPACKFullMatrix<double> &A;
+    const LAPACKFullMatrix<double> *A;
     const types::blas_int           n;
+    const unsigned int              min_size;
+    bool                            stale          = false;
+    unsigned int                    n_stale_solves = 0;
     std::vector<double>             row_scale, column_scale;
     /** |R A S| (largest row sum). */
     double                       norm = 0;
@@ -63,6 +85,14 @@ namespace DynamicContact
 
     void
     factorize_in_double();
+
+    /** Equilibrate and factorize *A (in single precision if large). */
+    void
+    factorize();
+
+    /** The refinement sweeps; false if they did not converge. */
+    bool
+    refine(const Vector<double> &b, Vector<double> &x);
   };
 } // namespace DynamicContact
 
