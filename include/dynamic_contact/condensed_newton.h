@@ -295,8 +295,9 @@ namespace DynamicContact
      * unknowns). Reset with a new step or a new C. Measured on the 3D rail
      * 80 x 8 x 8, 32 steps (systems of 600 to 1050 unknowns, whose matrices
      * change by 1e-4 to 1e-1 from one Newton iteration to the next): the
-     * same 445 Newton iterations, the float LU's share of the run 19 % ->
-     * 11 %, wall time ratio 0.90.
+     * same Newton iterations to one (445, 446), the float LU's share of the
+     * run 19 % -> 11 %, wall time ratios 0.90 and 0.94 against the build
+     * without it (two series of alternating runs).
      */
     struct Reduced
     {

@@ -55,7 +55,10 @@ namespace DynamicContact
     void
     reuse_for(const LAPACKFullMatrix<double> &B);
 
-    /** Solves since the last factorization that used an older matrix. */
+    /**
+     * The number of solves made with the factorization of an earlier
+     * matrix (after reuse_for(), without factorizing afresh).
+     */
     unsigned int
     stale_solves() const
     {
