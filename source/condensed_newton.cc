@@ -355,7 +355,7 @@ namespace DynamicContact
                                    std::vector<Tensor<1, dim>>       &dw,
                                    std::vector<Tensor<1, dim>>       &lambda,
                                    std::vector<Tensor<1, dim>> &new_forces,
-                                   const bool                   refine) const
+                                   const bool far_from_solution) const
   {
     // The Newton system on the active nodes,
     //   dw_i + sum_j C_ij (B_j dw_j + T_j l_j) = r_i,
@@ -521,7 +521,7 @@ namespace DynamicContact
     // One step of iterative refinement on the unreduced system, whose
     // residual e_i = r_i - dw_i - sum_j C_ij (B_j dw_j + T_j l_j) is the
     // round-off the reconstruction left (the stick constraints hold).
-    if (refine || size < large_system)
+    if (!far_from_solution || size < large_system)
       {
         std::vector<Tensor<1, dim>> full_change(n_active), e(n_active), de;
         for (unsigned int b = 0; b < n_active; ++b)
@@ -654,11 +654,11 @@ namespace DynamicContact
       for (unsigned int a = 0; a < x.active.size(); ++a)
         r[a] = response[x.active[a]] - x.w[x.active[a]];
       full.lambda = x.lambda;
-      // Far from the solution the step's round-off does not matter (the
-      // next residual is of the order of the square of this one): its
-      // refinement is left out while the residual is above 1e-3.
+      // Far from the solution (residual above 1e-3) the step's round-off
+      // does not matter: the next residual is of the order of the square
+      // of this one.
       solver.dense_step(
-        x, r, dw, full.lambda, new_forces, residual(x) < refinement_below);
+        x, r, dw, full.lambda, new_forces, residual(x) >= far_above);
       solver.compliance_response(solver.w_free_nodes,
                                  new_forces,
                                  x.active,
@@ -683,7 +683,7 @@ namespace DynamicContact
     }
 
   private:
-    static constexpr double     refinement_below = 1e-3;
+    static constexpr double     far_above = 1e-3;
     CondensedNewton<dim>       &solver;
     const double                w_scale;
     Result                     &result;
@@ -862,13 +862,9 @@ namespace DynamicContact
   {
     TimerSection    t(problem.timer, "Contact: boundary Newton");
     BoundaryProblem boundary_problem(*this, w_scale, result);
-    NewtonPolicy    policy;
-    policy.monotone          = false;
-    policy.free_iterations   = 4;
-    policy.window            = 5;
-    policy.stagnation_factor = 0.1;
-    policy.name              = "on Gamma_3";
-    policy.tolerance         = tolerance;
+    NewtonPolicy    policy; // non-monotone, stagnation factor 0.1
+    policy.name      = "on Gamma_3";
+    policy.tolerance = tolerance;
     // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
     globalized_newton(boundary_problem,
                       it,

@@ -76,35 +76,22 @@ namespace DynamicContact
   {
     if (n == 0)
       return;
-    if (stale && in_double)
-      factorize();
-    if (in_double)
-      {
-        double_lu.solve(x);
-        return;
-      }
     const Vector<double> b = x;
-    if (refine(b, x))
+    // The factorization of an earlier matrix (reuse_for()) first.
+    if (stale && !in_double && refine(b, x))
       {
-        if (stale)
-          ++n_stale_solves;
+        ++n_stale_solves;
         return;
       }
     if (stale)
+      factorize(); // A's own
+    if (!in_double)
       {
-        // The old factorization is too far from A: A's own.
-        factorize();
-        x = b;
-        if (in_double)
-          {
-            double_lu.solve(x);
-            return;
-          }
         if (refine(b, x))
           return;
+        // Single precision cannot resolve A: in double.
+        factorize_in_double();
       }
-    // The refinement does not converge: in double.
-    factorize_in_double();
     x = b;
     double_lu.solve(x);
   }
@@ -153,7 +140,6 @@ namespace DynamicContact
   MixedPrecisionLU::factorize_in_double()
   {
     double_lu = *A;
-    stale     = false;
     if (n > 0)
       double_lu.compute_lu_factorization();
     in_double = true;

@@ -88,10 +88,7 @@ namespace DynamicContact
     // The active sets are found here, on the whole system: full steps first
     // (set changes may raise the residual while Newton converges), then
     // non-monotone Armijo (doc/algorithms.md, "Globalization").
-    NewtonPolicy policy;
-    policy.monotone          = false;
-    policy.free_iterations   = 4;
-    policy.window            = 5;
+    NewtonPolicy policy; // non-monotone
     policy.stagnation_factor = 0.5;
     policy.name              = "whole system";
     {

@@ -89,9 +89,9 @@ namespace DynamicContact
       std::max(x.residual_norm / x.scale, x.law_residual / x.f_scale);
     if (velocity_scale > 0)
       {
-        x.stick_rate = Utilities::MPI::max(stick_rate, comm);
         x.relative_residual =
-          std::max(x.relative_residual, x.stick_rate / velocity_scale);
+          std::max(x.relative_residual,
+                   Utilities::MPI::max(stick_rate, comm) / velocity_scale);
       }
     m.residual                     = x.relative_residual;
     m.merit                        = merit(x, x);

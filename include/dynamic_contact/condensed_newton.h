@@ -263,8 +263,8 @@ namespace DynamicContact
      * (every node) and the new linearized forces (every node). One step
      * of iterative refinement on the unreduced system removes the
      * round-off of the reduction (a second reduced solve and one more
-     * product with C on the active nodes); without @p refine it is left
-     * out where the reduced system has large_system unknowns or more.
+     * product with C on the active nodes); if @p far_from_solution, it is
+     * left out where the reduced system has large_system unknowns or more.
      * Measured with the caller's rule (phase 1 refines below a residual of
      * 1e-3): the 3D rail 80 x 8 x 8, 32 steps, 3 to 7 % faster with the
      * same 445 Newton iterations, the rail 110 x 11 x 11, 4 steps, 3 %;
@@ -278,7 +278,7 @@ namespace DynamicContact
                std::vector<Tensor<1, dim>>       &dw,
                std::vector<Tensor<1, dim>>       &lambda,
                std::vector<Tensor<1, dim>>       &new_forces,
-               const bool                         refine = true) const;
+               const bool far_from_solution = false) const;
 
     /**
      * Reduced systems of this many unknowns or more are factorized in

@@ -46,13 +46,10 @@ namespace DynamicContact
     /** |R|. */
     double residual_norm = 0;
     /**
-     * Largest slip rate |w_e,tau| of a stick node (all ranks; measured only
-     * with SystemNewton::velocity_scale set).
-     */
-    double stick_rate = 0;
-    /**
-     * max(|R|/scale, law_residual/f_scale), and stick_rate/velocity_scale
-     * if SystemNewton::velocity_scale is set: the stopping test's measure.
+     * max(|R|/scale, law_residual/f_scale), and if
+     * SystemNewton::velocity_scale is set the largest slip rate |w_e,tau|
+     * of a stick node (all ranks) relative to it: the stopping test's
+     * measure.
      */
     double relative_residual = 0;
   };
