@@ -84,6 +84,8 @@ def executable():
 
 # A run that is measured, not watched: no progress lines, no timings.
 QUIET = ["Output/Progress every=0", "Output/Print timings=false"]
+# No VTU and no contact CSV files: time_series.csv only.
+NO_OUTPUT_FILES = ["Output/Write VTU=false", "Output/Output every=0", "Output/Output times="]
 
 
 def output_times_entry(times):
@@ -161,6 +163,17 @@ def run_scene(exe, prm, overrides, directory, log=None, ranks=1):
 
 
 run_scene.last_cpu_time = None
+
+
+def run_measured(exe, prm, overrides, directory, ranks=1, who="benchmark"):
+    """One quiet run of `prm` (a path) without output files but
+    time_series.csv; exits naming `who` if it fails. Returns (wall time in
+    s, the rows of time_series.csv after the initial state)."""
+    wall, code, tail, command = run_scene(exe, prm, NO_OUTPUT_FILES + QUIET + list(overrides),
+                                          directory, ranks=ranks)
+    if code != 0:
+        sys.exit("%s: run failed:\n  %s\n%s" % (who, " ".join(command), tail))
+    return wall, read_time_series(directory)[1:]
 
 
 def run_status(directory):
