@@ -6,9 +6,11 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/condensed_newton.h>
+#include <dynamic_contact/largest_eigenvalue.h>
 #include <dynamic_contact/mixed_precision_lu.h>
 #include <dynamic_contact/newton_driver.h>
 #include <dynamic_contact/timing.h>
+#include <dynamic_contact/weakening_limit.h>
 
 #include <algorithm>
 #include <array>
@@ -43,6 +45,8 @@ namespace DynamicContact
     for (unsigned int i = 0; i < global.size(); ++i)
       owned_index[global[i]] = i;
     prepared_scheme     = TimeScheme();
+    limits_scheme       = TimeScheme();
+    weakening_limits.clear();
     free_response_valid = false;
     regularized.reinit(problem.bulk.sparsity_pattern());
     choose_spring_nodes();
@@ -278,7 +282,8 @@ namespace DynamicContact
                                                     w_old[i],
                                                     w_nodes[i],
                                                     lambda[i],
-                                                    mu.empty() ? 0. : mu[i]);
+                                                    mu,
+                                                    i);
         const auto               &l = it.lin[i] = e.lin;
         it.forces[i]                            = e.force;
         it.base_true[i]                         = e.base;
@@ -665,6 +670,17 @@ namespace DynamicContact
                                  full.w);
     }
 
+    /** Drop the coupled linearization's weakening limits (newton_driver.h). */
+    /** The weakening limit acted at a node of @p x (newton_driver.h). */
+    bool
+    safeguarded(const Iterate &x) const
+    {
+      for (const auto &l : x.lin)
+        if (l.friction.limited)
+          return true;
+      return false;
+    }
+
     void
     combine(const Iterate &x,
             const Iterate &full,
@@ -697,7 +713,7 @@ namespace DynamicContact
   CondensedNewton<dim>::solve(const Vector_t                    &rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
                               const std::vector<Tensor<1, dim>> &w_old,
-                              const std::vector<double>         &mu,
+                              const FrictionCoefficients        &mu,
                               std::vector<Tensor<1, dim>>       &lambda,
                               Vector_t                          &w)
   {
@@ -711,7 +727,7 @@ namespace DynamicContact
     const Vector_t                    &rhs,
     const std::vector<Tensor<1, dim>> &u_old,
     const std::vector<Tensor<1, dim>> &w_old,
-    const std::vector<double>         &mu,
+    const FrictionCoefficients        &mu,
     std::vector<Tensor<1, dim>>       &lambda,
     Vector_t                          &w,
     const double                       velocity_accuracy)
@@ -730,6 +746,87 @@ namespace DynamicContact
 
 
   template <int dim>
+  const std::vector<double> &
+  CondensedNewton<dim>::coupled_limits(Result &result)
+  {
+    if (limits_scheme == prepared_scheme && !weakening_limits.empty())
+      return weakening_limits;
+    const auto         &all = gathered.all_nodes();
+    std::vector<double> local(all.size(), 0.), stiffness(all.size());
+    for (unsigned int i = 0; i < all.size(); ++i)
+      if (owned_index[i] >= 0 && all[i].unconstrained)
+        local[i] = WeakeningLimit::tangential_stiffness(
+          all[i], problem.bulk.newton_matrix());
+    Utilities::MPI::max(local, problem.discretization.comm, stiffness);
+    // Every process holds every node: the same sample everywhere.
+    weakening_limits = WeakeningLimit::limits(
+      all,
+      stiffness,
+      [&](const int j) {
+        compute_columns({static_cast<unsigned int>(j)}, result);
+        return WeakeningLimit::tangential_compliance(all[j], columns[j][j]);
+      },
+      MPI_COMM_SELF);
+    limits_scheme = prepared_scheme;
+    return weakening_limits;
+  }
+
+
+  template <int dim>
+  double
+  CondensedNewton<dim>::compliance_radius(
+    const std::vector<Tensor<2, dim>> &roots)
+  {
+    // The roots of every node: each process fills its own, a sum gathers.
+    const auto                 &all = gathered.all_nodes();
+    std::vector<double>         local(all.size() * dim * dim, 0.),
+      every(all.size() * dim * dim);
+    for (unsigned int i = 0; i < all.size(); ++i)
+      if (owned_index[i] >= 0)
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            local[(i * dim + a) * dim + b] = roots[owned_index[i]][a][b];
+    Utilities::MPI::sum(local, problem.discretization.comm, every);
+    std::vector<unsigned int>   nodes;
+    std::vector<Tensor<2, dim>> S;
+    for (unsigned int i = 0; i < all.size(); ++i)
+      {
+        Tensor<2, dim> r;
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            r[a][b] = every[(i * dim + a) * dim + b];
+        if (r.norm_square() > 0)
+          {
+            nodes.push_back(i);
+            S.push_back(r);
+          }
+      }
+    if (nodes.empty())
+      return 0;
+    Result result;
+    compute_columns(nodes, result);
+    const unsigned int          n = nodes.size();
+    std::vector<Tensor<1, dim>> z(n);
+    const auto apply = [&](const std::vector<double> &x,
+                           std::vector<double>       &y) {
+      for (unsigned int b = 0; b < n; ++b)
+        z[b] = S[b] * nodal_entries<dim>(x, b);
+      for (unsigned int a = 0; a < n; ++a)
+        {
+          Tensor<1, dim> sum;
+          for (unsigned int b = 0; b < n; ++b)
+            sum += columns[nodes[b]][nodes[a]] * z[b];
+          set_nodal_entries<dim>(S[a] * sum, a, y);
+        }
+    };
+    std::vector<double> start(dim * n);
+    for (unsigned int a = 0; a < n; ++a)
+      set_nodal_entries<dim>(S[a] * lanczos_start(all[nodes[a]]), a, start);
+    return largest_eigenvalue(apply, start, [](const double v) { return v; });
+  }
+
+
+  template <int dim>
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::finalize(Vector_t                    &w,
                                  std::vector<Tensor<1, dim>> &lambda,
@@ -743,7 +840,7 @@ namespace DynamicContact
     pending.reset();
     u_old_all = gathered.gather(p.u_old);
     w_old_all = gathered.gather(p.w_old);
-    mu_all    = gathered.gather(p.mu);
+    mu_all    = gather_coefficients(p.mu);
     if (!p.loose)
       polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
     else
@@ -763,7 +860,7 @@ namespace DynamicContact
   CondensedNewton<dim>::solve(const Vector_t                    &rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
                               const std::vector<Tensor<1, dim>> &w_old,
-                              const std::vector<double>         &mu,
+                              const FrictionCoefficients        &mu,
                               std::vector<Tensor<1, dim>>       &lambda,
                               Vector_t                          &w,
                               const bool                         provisional,
@@ -811,7 +908,15 @@ namespace DynamicContact
       }
     u_old_all = gathered.gather(u_old);
     w_old_all = gathered.gather(w_old);
-    mu_all    = gathered.gather(mu);
+    // The coupled linearization's limits (WeakeningLimit): at every node
+    // for phase 1, at the owned ones for phase 2.
+    FrictionCoefficients owned_mu = mu;
+    mu_all                        = gather_coefficients(mu);
+    if (mu.coupled())
+      {
+        mu_all.weakening_limit   = coupled_limits(result);
+        owned_mu.weakening_limit = gathered.owned_part(mu_all.weakening_limit);
+      }
 
     // Phase 1, on Gamma_3 only: w_i = w_free,i - sum_j C_ij f_j, from the
     // initial guess given (w_{n-1}, or the last convexification pass). No
@@ -841,14 +946,14 @@ namespace DynamicContact
         pending.emplace(
           Pending{u_old,
                   w_old,
-                  mu,
+                  owned_mu,
                   std::move(it),
                   w_scale,
                   loose_tolerance > problem.parameters.newton_tolerance});
         result.provisional = true;
         return result;
       }
-    polish(it, u_old, w_old, mu, lambda, w, result);
+    polish(it, u_old, w_old, owned_mu, lambda, w, result);
     return result;
   }
 
@@ -880,7 +985,7 @@ namespace DynamicContact
   CondensedNewton<dim>::polish(const Iterate                     &it,
                                const std::vector<Tensor<1, dim>> &u_old,
                                const std::vector<Tensor<1, dim>> &w_old,
-                               const std::vector<double>         &mu,
+                               const FrictionCoefficients        &mu,
                                std::vector<Tensor<1, dim>>       &lambda,
                                Vector_t                          &w,
                                Result                            &result,

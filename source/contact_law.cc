@@ -99,7 +99,9 @@ namespace DynamicContact
                     const Tensor<1, dim>   &lambda,
                     const double            mu,
                     const double            c,
-                    const double            effective_derivative)
+                    const double            effective_derivative,
+                    const double            dmu_ds,
+                    const double            weakening_limit)
   {
     FrictionResponse<dim> r;
     r.threshold = mu * node.weight * normal.pressure;
@@ -132,9 +134,21 @@ namespace DynamicContact
 
     r.state     = FrictionState::slip;
     r.direction = z / norm;
-    // d g / d w = mu m (k p' + q') nu.
-    const Tensor<1, dim> dg =
-      (mu * node.weight * normal.dpressure_dw) * node.normal;
+    // d g / d w = mu m (k p' + q') nu, and with mu = mu(|w_tau|) of the
+    // iterate also mu'(s) m (p + q) theta w_tau/s (t at s = 0).
+    Tensor<1, dim> dg = (mu * node.weight * normal.dpressure_dw) * node.normal;
+    if (dmu_ds != 0)
+      {
+        const double slip = w_tau.norm();
+        double       slope =
+          dmu_ds * node.weight * normal.pressure * effective_derivative;
+        if (-slope > weakening_limit)
+          {
+            slope     = -weakening_limit;
+            r.limited = true;
+          }
+        dg += slope * (slip > 0 ? w_tau / slip : r.direction);
+      }
     r.value    = r.threshold * r.direction;
     r.jacobian = outer_product(r.direction, dg);
     if (dim == 3)
@@ -178,12 +192,16 @@ namespace DynamicContact
                     const Tensor<1, 2> &,
                     const double,
                     const double,
+                    const double,
+                    const double,
                     const double);
   template FrictionResponse<3>
   friction_response(const ContactNode<3> &,
                     const NormalResponse &,
                     const Tensor<1, 3> &,
                     const Tensor<1, 3> &,
+                    const double,
+                    const double,
                     const double,
                     const double,
                     const double);

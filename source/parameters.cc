@@ -512,6 +512,38 @@ namespace DynamicContact
                           "the minimum time step it is kept, with a warning "
                           "and convexification_converged = 0.");
         prm.declare_entry(
+          "Linearization",
+          "frozen",
+          Patterns::Selection("frozen|coupled"),
+          "How a slip-rate dependent coefficient mu(|w_tau|) enters the "
+          "semismooth Newton iteration of the convexification loop "
+          "(doc/theory.md sections 4 and 5.1). 'frozen': every pass freezes "
+          "mu_i (the paper's algorithm). 'coupled': the first pass takes "
+          "mu(|w_tau|) of the iterate itself and its derivative into the "
+          "Newton linearization (the weakening limited to half the "
+          "body's tangential stiffness at the node) and lands on a fixed "
+          "point of the loop, which the next, frozen, pass confirms: most "
+          "steps take two passes and, on the 3D rail, half the Newton "
+          "iterations. But where a step has several solutions (the "
+          "Uniqueness monitor's bound above 1: the paper's scenes at every "
+          "step) it may end at another one than the frozen loop, chosen by "
+          "details as small as round-off: its answers then depend on the "
+          "contact solver and the number of processes. A coupled pass that "
+          "does not converge sends the step back to its start, for the "
+          "frozen loop (counted in coupled_fallbacks).");
+        prm.declare_entry(
+          "Uniqueness monitor",
+          "auto",
+          Patterns::Selection("auto|always|never"),
+          "When a slip-rate dependent law's uniqueness measures are "
+          "evaluated after a step (doc/theory.md section 5.2; the columns "
+          "uniqueness_bound and contraction_factor of time_series.csv, -1 "
+          "where not evaluated): 'auto' where the condensed contact solver "
+          "solves the step (from its compliance table, a few ms), 'always' "
+          "(with the assembled solver each costs a few dozen solves with K0 "
+          "by CG), 'never' (no columns). Time/Cut back where not unique "
+          "needs them at every step.");
+        prm.declare_entry(
           "Complementarity constant",
           "0",
           Patterns::Double(),
@@ -547,6 +579,12 @@ namespace DynamicContact
         acceleration_depth        = prm.get_integer("Acceleration depth");
         max_convexification_iterations =
           prm.get_integer("Maximum convexification iterations");
+        coupled_linearization    = prm.get("Linearization") == "coupled";
+        const std::string monitor = prm.get("Uniqueness monitor");
+        uniqueness_monitor =
+          monitor == "always" ? Monitor::always :
+          monitor == "never"  ? Monitor::never :
+                                Monitor::automatic;
         complementarity_constant = prm.get_double("Complementarity constant");
         allow_velocity_strengthening =
           prm.get("Velocity strengthening") == "allow";

@@ -127,6 +127,20 @@ namespace DynamicContact
         Patterns::Double(0),
         "With Adaptive = true: the largest k (0: no bound but the End "
         "time).");
+      prm.declare_entry(
+        "Cut back where not unique",
+        "false",
+        Patterns::Bool(),
+        "With a slip-rate dependent friction law: true treats a step whose "
+        "solution has a contraction factor of 1 or more (the frozen-"
+        "coefficient loop is repelled from it and the step has other "
+        "solutions, doc/theory.md section 5.2) as a failed step, retried "
+        "with half the time step; at Minimum time step it is kept and "
+        "counted in the summary. A smaller k restores the factor below 1 "
+        "only where inertia dominates the step's compliance (k below the "
+        "periods of the modes of the contact boundary): above them the "
+        "compliance grows as k falls. Evaluates Friction/Uniqueness monitor "
+        "at every step (its 'never' is refused).");
       prm.leave_subsection();
     }
 
@@ -151,6 +165,7 @@ namespace DynamicContact
       maximum_time_step  = prm.get_double("Maximum time step");
       if (maximum_time_step == 0)
         maximum_time_step = end_time;
+      cut_back_where_not_unique = prm.get_bool("Cut back where not unique");
       prm.leave_subsection();
       require(std::isfinite(end_time) && end_time > 0,
               "Time/End time must be positive, got " + str(end_time) + ".");
@@ -527,6 +542,15 @@ namespace DynamicContact
     solver.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
+    // The cut-back for uniqueness needs the measures at every step.
+    if (time.cut_back_where_not_unique)
+      {
+        require(friction.uniqueness_monitor !=
+                  Parameters::Friction::Monitor::never,
+                "Time/Cut back where not unique = true needs the uniqueness "
+                "measures: Friction/Uniqueness monitor must not be 'never'.");
+        friction.uniqueness_monitor = Parameters::Friction::Monitor::always;
+      }
   }
 
 

@@ -12,14 +12,22 @@
 namespace DynamicContact
 {
   void
-  RunTotals::add(const unsigned int cutbacks,
-                 const unsigned int convexification_iterations,
-                 const double       coefficient_residual)
+  RunTotals::add(const Step &step)
   {
-    this->cutbacks += cutbacks;
-    convexification += convexification_iterations;
+    cutbacks += step.cutbacks;
+    convexification += step.convexification_iterations;
     max_coefficient_residual =
-      std::max(max_coefficient_residual, coefficient_residual);
+      std::max(max_coefficient_residual, step.coefficient_residual);
+    coupled_fallbacks += step.coupled_fallbacks;
+    if (step.contraction_factor >= 1)
+      non_unique_steps.push_back(step.step);
+    max_contraction = std::max(max_contraction, step.contraction_factor);
+    if (step.uniqueness_bound >= 0)
+      {
+        ++bound_steps;
+        unique_steps += step.uniqueness_bound < 1;
+      }
+    max_uniqueness_bound = std::max(max_uniqueness_bound, step.uniqueness_bound);
   }
 
 
@@ -41,15 +49,22 @@ namespace DynamicContact
         if (values.size() != header.size() || values[0] == "0")
           continue; // row 0 is the initial state
         // The counts of the end summary, by column name.
+        const auto has = [&](const std::string &name) {
+          return std::find(header.begin(), header.end(), name) != header.end();
+        };
         const auto value = [&](const std::string &name) {
           const auto c = std::find(header.begin(), header.end(), name);
           return c == header.end() ?
                    0. :
                    std::strtod(values[c - header.begin()].c_str(), nullptr);
         };
-        add(static_cast<unsigned int>(value("cutbacks")),
-            static_cast<unsigned int>(value("convexification_iterations")),
-            value("coefficient_residual"));
+        add({static_cast<unsigned int>(value("step")),
+             static_cast<unsigned int>(value("cutbacks")),
+             static_cast<unsigned int>(value("convexification_iterations")),
+             value("coefficient_residual"),
+             static_cast<unsigned int>(value("coupled_fallbacks")),
+             has("uniqueness_bound") ? value("uniqueness_bound") : -1.,
+             has("contraction_factor") ? value("contraction_factor") : -1.});
       }
   }
 
@@ -105,6 +120,35 @@ namespace DynamicContact
             << " (Friction/Coefficient tolerance "
             << parameters.friction.coefficient_tolerance << ")";
     pcout << std::endl;
+    if (friction && parameters.friction.coupled_linearization &&
+        !parameters.friction.law->is_constant())
+      pcout << "  coupled linearization: fell back to the frozen loop in "
+            << coupled_fallbacks << " step" << (coupled_fallbacks == 1 ? "" : "s")
+            << std::endl;
+    if (friction && (bound_steps > 0 || max_contraction >= 0))
+      {
+        // Whether the steps had one solution (doc/theory.md section 5.2).
+        pcout << "  uniqueness: the paper's bound theta rho(C L N) < 1 (one "
+                 "solution) at "
+              << unique_steps << " of " << bound_steps
+              << " steps evaluated (largest " << sig6(max_uniqueness_bound)
+              << "); contraction factor at the solution >= 1 (more than one "
+                 "solution) at "
+              << non_unique_steps.size() << " step"
+              << (non_unique_steps.size() == 1 ? "" : "s");
+        if (!non_unique_steps.empty())
+          {
+            pcout << ":";
+            const std::size_t shown =
+              std::min<std::size_t>(non_unique_steps.size(), 10);
+            for (std::size_t i = 0; i < shown; ++i)
+              pcout << " " << non_unique_steps[i];
+            if (shown < non_unique_steps.size())
+              pcout << " ...";
+          }
+        pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"
+              << std::endl;
+      }
 
     // An honest ending: completed, or completed with what did not hold.
     std::vector<std::string> warnings;

@@ -291,6 +291,16 @@ namespace DynamicContact
 
 
   template <int dim>
+  bool
+  Simulator<dim>::uniqueness_columns() const
+  {
+    return parameters.friction.law && !parameters.friction.law->is_constant() &&
+           parameters.friction.uniqueness_monitor !=
+             Parameters::Friction::Monitor::never;
+  }
+
+
+  template <int dim>
   StepRecord<dim>
   Simulator<dim>::initial_record()
   {
@@ -302,6 +312,7 @@ namespace DynamicContact
     record.dofs            = discretization.dof_handler.n_dofs();
     record.cells         = discretization.triangulation.n_global_active_cells();
     record.adaptive_time = parameters.time.adaptive; // the columns, 0
+    record.uniqueness_monitor = uniqueness_columns();  // -1: not evaluated
     return record;
   }
 
@@ -412,6 +423,14 @@ namespace DynamicContact
     statistics =
       step_solver.solve(rhs, u_start, w_start, w, accept_unconverged_loop);
     last_newton_residual = statistics.residual;
+    // Time/Cut back where not unique (doc/theory.md section 5.2); at the
+    // smallest time step the step is kept, and the summary lists it.
+    if (parameters.time.cut_back_where_not_unique &&
+        statistics.contraction_factor >= 1 && !accept_unconverged_loop)
+      throw StepFailure("the contraction factor of the step's solution is " +
+                        sig6(statistics.contraction_factor) +
+                        " >= 1: the step has more than one solution (Time/Cut "
+                        "back where not unique)");
 
     if (!std::isfinite(w.l2_norm()))
       throw StepFailure("the solution is not finite");
@@ -550,6 +569,7 @@ namespace DynamicContact
         record.adaptive_time = true;
         record.rejected      = rejected;
       }
+    record.uniqueness_monitor = uniqueness_columns();
     record_errors(record, t);
     record.dofs     = discretization.dof_handler.n_dofs();
     record.cells    = discretization.triangulation.n_global_active_cells();

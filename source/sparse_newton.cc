@@ -1,9 +1,12 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_gmres.h>
 
+#include <dynamic_contact/largest_eigenvalue.h>
 #include <dynamic_contact/sparse_newton.h>
 #include <dynamic_contact/timing.h>
+#include <dynamic_contact/weakening_limit.h>
 
 #include <algorithm>
 #include <array>
@@ -58,7 +61,9 @@ namespace DynamicContact
     for (auto *v : {&increment, &scratch, &scratch2, &base_residual})
       problem.discretization.reinit_owned(*v);
     amg.reset();
-    amg_scheme = TimeScheme();
+    amg_scheme    = TimeScheme();
+    limits_scheme = TimeScheme();
+    weakening_limits.clear();
     direct.reset();
     factorized_scheme = TimeScheme();
     factorized_blocks.clear();
@@ -76,12 +81,16 @@ namespace DynamicContact
   SparseNewton<dim>::solve(const Vector_t                    &rhs,
                            const std::vector<Tensor<1, dim>> &u_old,
                            const std::vector<Tensor<1, dim>> &w_old,
-                           const std::vector<double>         &mu,
+                           const FrictionCoefficients        &mu,
                            std::vector<Tensor<1, dim>>       &lambda,
                            Vector_t                          &w)
   {
-    Result             result;
-    SystemNewton<dim>  system(problem, rhs, u_old, w_old, mu, *this, result);
+    Result               result;
+    FrictionCoefficients coefficients = mu;
+    if (mu.coupled())
+      coefficients.weakening_limit = coupled_limits();
+    SystemNewton<dim> system(
+      problem, rhs, u_old, w_old, coefficients, *this, result);
     SystemIterate<dim> x;
     x.w      = w;
     x.lambda = lambda;
@@ -289,6 +298,113 @@ namespace DynamicContact
 
   template <int dim>
   void
+  SparseNewton<dim>::prepare_amg()
+  {
+    if (amg && amg_scheme == problem.bulk.scheme())
+      return;
+    TimerSection t(problem.timer, "Newton: AMG setup");
+    amg = std::make_unique<BulkAMG>();
+    amg->initialize(problem.bulk.newton_matrix(), problem.discretization);
+    amg_scheme = problem.bulk.scheme();
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::solve_bulk(const Vector_t &b,
+                                Vector_t       &x,
+                                const double    tolerance)
+  {
+    prepare_amg();
+    if (x.size() != b.size())
+      problem.discretization.reinit_owned(x);
+    x = 0;
+    const double norm = b.l2_norm();
+    if (norm == 0)
+      return;
+    SolverControl      control(problem.parameters.max_linear_iterations,
+                          tolerance * norm);
+    SolverCG<Vector_t> cg(control);
+    cg.solve(problem.bulk.newton_matrix(), x, b, *amg);
+    problem.discretization.constraints.set_zero(x);
+  }
+
+
+  template <int dim>
+  const std::vector<double> &
+  SparseNewton<dim>::coupled_limits()
+  {
+    if (limits_scheme == problem.bulk.scheme() && !weakening_limits.empty())
+      return weakening_limits;
+    const auto         &nodes = problem.boundary.nodes();
+    std::vector<double> stiffness(nodes.size(), 0.);
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (nodes[i].unconstrained)
+        stiffness[i] = WeakeningLimit::tangential_stiffness(
+          nodes[i], problem.bulk.newton_matrix());
+    Vector_t load, response;
+    problem.discretization.reinit_owned(load);
+    // The compliance of sample node j: K0^{-1} P_j^T t for its tangents t.
+    const auto compliance = [&](const int j) {
+      Tensor<2, dim> C;
+      for (unsigned int a = 0; a < dim - 1; ++a)
+        {
+          load = 0;
+          problem.boundary.add_nodal_forces(
+            [&](const unsigned int i) {
+              return static_cast<int>(i) == j ? nodes[i].tangents[a] :
+                                                Tensor<1, dim>();
+            },
+            1.,
+            load);
+          solve_bulk(load, response, 1e-10);
+          if (j >= 0)
+            C += outer_product(nodes[j].value(response), nodes[j].tangents[a]);
+        }
+      return j >= 0 ? WeakeningLimit::tangential_compliance(nodes[j], C) : 0.;
+    };
+    weakening_limits = WeakeningLimit::limits(
+      nodes, stiffness, compliance, problem.discretization.comm);
+    limits_scheme = problem.bulk.scheme();
+    return weakening_limits;
+  }
+
+
+  template <int dim>
+  double
+  SparseNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots)
+  {
+    const auto        &nodes = problem.boundary.nodes();
+    const unsigned int n     = nodes.size();
+    const MPI_Comm     comm  = problem.discretization.comm;
+    Vector_t           load, response;
+    problem.discretization.reinit_owned(load);
+    // y = S P K0^{-1} P^T S x; the CG tolerance is well below the
+    // eigenvalue's.
+    const auto apply = [&](const std::vector<double> &x,
+                           std::vector<double>       &y) {
+      load = 0;
+      problem.boundary.add_nodal_forces(
+        [&](const unsigned int i) {
+          return roots[i] * nodal_entries<dim>(x, i);
+        },
+        1.,
+        load);
+      solve_bulk(load, response, 1e-8);
+      for (unsigned int i = 0; i < n; ++i)
+        set_nodal_entries<dim>(roots[i] * nodes[i].value(response), i, y);
+    };
+    std::vector<double> start(dim * n);
+    for (unsigned int i = 0; i < n; ++i)
+      set_nodal_entries<dim>(roots[i] * lanczos_start(nodes[i]), i, start);
+    return largest_eigenvalue(apply, start, [comm](const double v) {
+      return Utilities::MPI::sum(v, comm);
+    });
+  }
+
+
+  template <int dim>
+  void
   SparseNewton<dim>::solve_iterative(const NodalSystem        &system,
                                      const SystemNewton<dim>  &newton,
                                      const SystemIterate<dim> &x,
@@ -297,13 +413,7 @@ namespace DynamicContact
   {
     const auto  &nodes = problem.boundary.nodes();
     const double theta = problem.bulk.scheme().effective_derivative();
-    if (!amg || amg_scheme != problem.bulk.scheme())
-      {
-        TimerSection t(problem.timer, "Newton: AMG setup");
-        amg = std::make_unique<BulkAMG>();
-        amg->initialize(problem.bulk.newton_matrix(), problem.discretization);
-        amg_scheme = problem.bulk.scheme();
-      }
+    prepare_amg();
     TimerSection t(problem.timer, "Newton: iterative solve");
 
     // dw = dw0 + delta: dw0 holds the prescribed tangential increments of

@@ -49,11 +49,11 @@ namespace DynamicContact
     , timer(timer)
     , details(details)
     , friction(law_has_friction(friction_law))
-    , mu_slope(friction && !friction_law->is_constant() ?
-                 std::max(friction_law->one_sided_lipschitz_constant(
-                            friction_parameters.maximum_slip_rate),
-                          1e-300) :
-                 1.)
+    , lipschitz_constant(friction && !friction_law->is_constant() ?
+                           friction_law->one_sided_lipschitz_constant(
+                             friction_parameters.maximum_slip_rate) :
+                           0.)
+    , mu_slope(std::max(lipschitz_constant, 1e-300))
   {}
 
 
@@ -391,6 +391,20 @@ namespace DynamicContact
         return density(lambda, n);
       }
 
+      /**
+       * After a coupled pass: the coefficients it ended with, mu_i =
+       * mu(|w_tau,i|) of its nodal velocities @p values, at every node (the
+       * frozen coefficients of the passes after it).
+       */
+      void
+      coefficients_at(const std::vector<Tensor<1, dim>> &values,
+                      std::vector<double>               &mu) const
+      {
+        const auto n = iterate(values);
+        for (unsigned int i = 0; i < all.size(); ++i)
+          mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
+      }
+
       /** Before a pass: u^(m) = u_old + k w of the last iterate. */
       void
       remember(const Vector_t &u_old, const double k, const Vector_t &w)
@@ -571,16 +585,24 @@ namespace DynamicContact
                                comm);
     const unsigned int max_passes =
       loop ? friction_parameters.max_convexification_iterations : 1;
-    std::vector<Tensor<1, dim>> xi_previous;
-    if (loop)
+
+    // The slip-rate law inside Newton's linearization (Friction/
+    // Linearization = coupled, doc/theory.md section 5.1): the first pass
+    // takes mu(|w_tau|) of the iterate and its derivative, and lands on a
+    // fixed point of the loop, which the frozen pass after it confirms (the
+    // loop's own stopping rule decides). If it does not converge, the step
+    // goes back to its start, for the frozen loop alone (a fallback,
+    // counted).
+    bool coupling = loop && friction_parameters.coupled_linearization;
+    FrictionCoefficients        coefficients;
+    Vector_t                    w_start;
+    std::vector<Tensor<1, dim>> lambda_start;
+    if (coupling)
       {
-        TimerSection t(timer, "Friction: convexification update");
-        xi_previous = measures.start(w, lambda, mu);
+        w_start      = w;
+        lambda_start = lambda;
       }
 
-    AndersonMixing mixing(friction_parameters.acceleration_depth,
-                          friction_parameters.relaxation,
-                          comm);
     // In the loop, a pass may be provisional (the condensed solver's
     // boundary iteration: the velocities at the nodes of Gamma_3 only, no
     // solve with K0): enough to decide whether the loop goes on, while the
@@ -592,14 +614,32 @@ namespace DynamicContact
     // (finalize()), the whole velocity of the pass before it computed (one
     // solve) if that one was provisional too, and the pass measured again
     // by the whole rule; the passes after it are exact.
-    bool   allow_provisional = loop && parameters.provisional_passes;
+    bool   allow_provisional = false;
     bool   provisional       = false;
     double best_residual     = std::numeric_limits<double>::max();
-    using Measures           = typename LoopMeasures<dim>::Measures;
-    auto measure             = [&](const unsigned int pass) {
+    std::vector<Tensor<1, dim>> xi_previous;
+    std::unique_ptr<AndersonMixing> mixing;
+    // The loop's state at its start (again after a fallback).
+    const auto start_loop = [&]() {
+      allow_provisional = loop && parameters.provisional_passes;
+      provisional       = false;
+      best_residual     = std::numeric_limits<double>::max();
+      mixing            = std::make_unique<AndersonMixing>(
+        friction_parameters.acceleration_depth,
+        friction_parameters.relaxation,
+        comm);
+      if (loop)
+        {
+          TimerSection t(timer, "Friction: convexification update");
+          xi_previous = measures.start(w, lambda, mu);
+        }
+    };
+    start_loop();
+    using Measures = typename LoopMeasures<dim>::Measures;
+    auto measure   = [&](const unsigned int pass) {
       TimerSection t(timer, "Friction: convexification update");
       return provisional ?
-                           measures.measure(u_old,
+               measures.measure(u_old,
                                 k,
                                 nullptr,
                                 newton.provisional_velocities(),
@@ -608,7 +648,7 @@ namespace DynamicContact
                                 xi_previous,
                                 pass,
                                 details) :
-                           measures.measure(
+               measures.measure(
                  u_old, k, &w, {}, lambda, mu, xi_previous, pass, details);
     };
     Vector_t w_previous; // the whole velocity of a provisional pass
@@ -624,28 +664,61 @@ namespace DynamicContact
         // rate that moves mu by at most the smallest coefficient residual
         // so far (the next pass moves the coefficients by about that much;
         // finalize() finishes a pass to the Newton tolerance before it
-        // counts). Measured (3D rail 80 x 8 x 8, 32 steps): 445 Newton
-        // iterations instead of 491; a tenth of it, 467; the paper's scene
-        // 443 solves with K0 instead of 439, 432 with a tenth.
+        // counts).
         const double provisional_accuracy =
           best_residual < std::numeric_limits<double>::max() ?
             best_residual / mu_slope :
             0.;
-        const auto result =
-          allow_provisional ?
-            newton.solve_provisional(rhs,
-                                     u_old_nodes,
-                                     w_old_nodes,
-                                     mu,
-                                     lambda,
-                                     w,
-                                     provisional_accuracy) :
-            newton.solve(rhs, u_old_nodes, w_old_nodes, mu, lambda, w);
-        statistics.add_newton(result);
-        provisional = result.provisional;
+        coefficients.frozen = mu;
+        const bool coupled  = coupling && pass == 0;
+        coefficients.law    = coupled ? friction_law : nullptr;
+        try
+          {
+            const auto result =
+              allow_provisional ?
+                newton.solve_provisional(rhs,
+                                         u_old_nodes,
+                                         w_old_nodes,
+                                         coefficients,
+                                         lambda,
+                                         w,
+                                         provisional_accuracy) :
+                newton.solve(
+                  rhs, u_old_nodes, w_old_nodes, coefficients, lambda, w);
+            statistics.add_newton(result);
+            provisional = result.provisional;
+          }
+        catch (const StepFailure &failure)
+          {
+            if (!coupled)
+              throw;
+            // The fallback: the frozen loop from the step's start.
+            details << "  coupled pass failed (" << failure.what()
+                    << "): the frozen-coefficient loop from the start"
+                    << std::endl;
+            statistics.newton_iterations += failure.newton_iterations;
+            ++statistics.convexification_iterations;
+            ++statistics.coupled_fallbacks;
+            w        = w_start;
+            lambda   = lambda_start;
+            coupling = false;
+            start_loop();
+            pass = static_cast<unsigned int>(-1); // the loop's first pass next
+            continue;
+          }
         ++statistics.convexification_iterations;
         if (!loop)
           break;
+        if (coupled)
+          {
+            // The coefficients the coupled pass ended with: the frozen ones
+            // of the passes after it.
+            TimerSection t(timer, "Friction: convexification update");
+            measures.coefficients_at(provisional ?
+                                       newton.provisional_velocities() :
+                                       contact_boundary.values(w),
+                                     mu);
+          }
 
         Measures m = measure(pass);
         if (provisional && (m.converged || pass + 1 == max_passes ||
@@ -661,7 +734,10 @@ namespace DynamicContact
             allow_provisional = false;
             m                 = measure(pass);
           }
-        best_residual = std::min(best_residual, m.coefficient_residual);
+        // A coupled pass's coefficient residual is 0 by construction: it
+        // says nothing of how far the loop is from its end.
+        if (!coupled)
+          best_residual = std::min(best_residual, m.coefficient_residual);
         statistics.coefficient_residual = m.coefficient_residual;
         if (m.converged)
           break;
@@ -683,14 +759,74 @@ namespace DynamicContact
         // The next frozen coefficients: the relaxed update, accelerated.
         TimerSection t(timer, "Friction: convexification update");
         measures.complete_coefficients(m);
-        mixing.update(mu, m.mu_new);
+        mixing->update(mu, m.mu_new);
         xi_previous = std::move(m.xi);
       }
     if (provisional)
       statistics.add_newton(newton.finalize(w, lambda));
 
     update_states(u_old_nodes, w_old_nodes, w, statistics);
+    if (loop && (friction_parameters.uniqueness_monitor ==
+                   Parameters::Friction::Monitor::always ||
+                 (friction_parameters.uniqueness_monitor ==
+                    Parameters::Friction::Monitor::automatic &&
+                  condensed)))
+      measure_uniqueness(newton, statistics);
     return statistics;
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::measure_uniqueness(ContactNewton<dim> &newton,
+                                      Statistics         &statistics)
+  {
+    // doc/theory.md section 5.2: with L the law's one-sided Lipschitz
+    // constant, N_i the normal forces and theta = d w_e/d w_n,
+    //   bound:       rho(S C S), S_i = sqrt(theta L N_i) P_tau,i (every
+    //                node with friction);
+    //   contraction: rho(S C S), S_i = sqrt(theta |mu'(s_i)| N_i) n_i n_i^T
+    //                (slip nodes, n_i the slip direction).
+    TimerSection        t(timer, "Friction: uniqueness measures");
+    const auto         &nodes = contact_boundary.nodes();
+    const unsigned int  n     = nodes.size();
+    const double        theta = bulk.scheme().effective_derivative();
+    std::vector<Tensor<2, dim>> bound(n), contraction(n);
+    bool                        any_bound = false, any_contraction = false;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto  &node  = nodes[i];
+        const auto  &state = contact_state.nodes[i];
+        const double N     = state.normal_force(node.weight);
+        if (!node.unconstrained || !(N > 0))
+          continue;
+        if (lipschitz_constant > 0)
+          {
+            Tensor<2, dim> P = unit_symmetric_tensor<dim>();
+            P -= outer_product(node.normal, node.normal);
+            bound[i]  = std::sqrt(theta * lipschitz_constant * N) * P;
+            any_bound = true;
+          }
+        const double weakening =
+          state.state == FrictionState::slip && state.slip_rate > 0 ?
+            -friction_law->derivative(state.slip_rate) * N * theta :
+            0.;
+        if (weakening > 0)
+          {
+            const Tensor<1, dim> d = state.slip_velocity / state.slip_rate;
+            contraction[i]  = std::sqrt(weakening) * outer_product(d, d);
+            any_contraction = true;
+          }
+      }
+    const MPI_Comm comm = discretization.comm;
+    statistics.uniqueness_bound =
+      Utilities::MPI::max(any_bound ? 1 : 0, comm) == 1 ?
+        newton.compliance_radius(bound) :
+        0.;
+    statistics.contraction_factor =
+      Utilities::MPI::max(any_contraction ? 1 : 0, comm) == 1 ?
+        newton.compliance_radius(contraction) :
+        0.;
   }
 
 

@@ -12,7 +12,7 @@ namespace DynamicContact
                                   const Vector_t                    &rhs,
                                   const std::vector<Tensor<1, dim>> &u_old,
                                   const std::vector<Tensor<1, dim>> &w_old,
-                                  const std::vector<double>         &mu,
+                                  const FrictionCoefficients        &mu,
                                   LinearBackend<dim>                &backend,
                                   ContactNewtonResult               &result)
     : problem(problem)
@@ -60,7 +60,8 @@ namespace DynamicContact
                                                     w_old[i],
                                                     nodes[i].value(x.w),
                                                     x.lambda[i],
-                                                    mu.empty() ? 0. : mu[i]);
+                                                    mu,
+                                                    i);
         x.lin[i]                    = e.lin;
         x.forces[i]                 = e.force;
         x.base[i]                   = e.base;
@@ -115,6 +116,18 @@ namespace DynamicContact
     trial.lambda.resize(x.lambda.size());
     for (unsigned int i = 0; i < x.lambda.size(); ++i)
       trial.lambda[i] = x.lambda[i] + alpha * (full.lambda[i] - x.lambda[i]);
+  }
+
+
+  template <int dim>
+  bool
+  SystemNewton<dim>::safeguarded(const Iterate &x) const
+  {
+    bool limited = false;
+    for (const auto &l : x.lin)
+      limited = limited || l.friction.limited;
+    return Utilities::MPI::max(limited ? 1 : 0,
+                               problem.discretization.comm) == 1;
   }
 
 

@@ -67,7 +67,7 @@ namespace DynamicContact
     solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double>         &mu,
+          const FrictionCoefficients        &mu,
           std::vector<Tensor<1, dim>>       &lambda,
           Vector_t                          &w) override;
 
@@ -81,7 +81,7 @@ namespace DynamicContact
     solve_provisional(const Vector_t                    &rhs,
                       const std::vector<Tensor<1, dim>> &u_old,
                       const std::vector<Tensor<1, dim>> &w_old,
-                      const std::vector<double>         &mu,
+                      const FrictionCoefficients        &mu,
                       std::vector<Tensor<1, dim>>       &lambda,
                       Vector_t                          &w,
                       const double velocity_accuracy = 0) override;
@@ -98,6 +98,10 @@ namespace DynamicContact
 
     std::vector<Tensor<1, dim>>
     provisional_velocities() const override;
+
+    /** From the dense compliance C of Gamma_3 (every node, replicated). */
+    double
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots) override;
 
     /** The whole-system Newton step by condensation (phase 2). */
     void
@@ -128,7 +132,7 @@ namespace DynamicContact
 
     /** The data of the current solve at every node. */
     std::vector<Tensor<1, dim>> u_old_all, w_old_all;
-    std::vector<double>         mu_all;
+    FrictionCoefficients        mu_all;
 
     /**
      * The whole responses K0'^{-1} P_j^T e_c (owned entries, index
@@ -200,7 +204,7 @@ namespace DynamicContact
     struct Pending
     {
       std::vector<Tensor<1, dim>> u_old, w_old;
-      std::vector<double>         mu;
+      FrictionCoefficients        mu;
       Iterate                     it;
       /** The velocity scale of phase 1, and whether it stopped early. */
       double w_scale = 0;
@@ -222,7 +226,7 @@ namespace DynamicContact
     solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double>         &mu,
+          const FrictionCoefficients        &mu,
           std::vector<Tensor<1, dim>>       &lambda,
           Vector_t                          &w,
           const bool                         provisional,
@@ -251,7 +255,7 @@ namespace DynamicContact
     polish(const Iterate                     &it,
            const std::vector<Tensor<1, dim>> &u_old,
            const std::vector<Tensor<1, dim>> &w_old,
-           const std::vector<double>         &mu,
+           const FrictionCoefficients        &mu,
            std::vector<Tensor<1, dim>>       &lambda,
            Vector_t                          &w,
            Result                            &result,
@@ -289,6 +293,16 @@ namespace DynamicContact
     static constexpr unsigned int large_system = 512;
 
     /**
+     * The coupled linearization's limits of every node (WeakeningLimit),
+     * for the K0 they were measured with.
+     */
+    std::vector<double> weakening_limits;
+    TimeScheme          limits_scheme;
+    /** Measure them if K0 changed (collective). */
+    const std::vector<double> &
+    coupled_limits(Result &result);
+
+    /**
      * The last reduced matrix of the step, its factorization (possibly of
      * an earlier matrix of the same layout: MixedPrecisionLU::reuse_for())
      * and its layout (the active nodes, then the offsets of their
@@ -312,6 +326,17 @@ namespace DynamicContact
     add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
                      const double                       factor,
                      Vector_t                          &v) const;
+
+    /** The coefficients of the owned nodes at every node (collective). */
+    FrictionCoefficients
+    gather_coefficients(const FrictionCoefficients &mu) const
+    {
+      return {gathered.gather(mu.frozen),
+              mu.law,
+              mu.weakening_limit.empty() ?
+                std::vector<double>() :
+                gathered.gather(mu.weakening_limit)};
+    }
 
     /** The nodal values of a vector at every node (collective). */
     std::vector<Tensor<1, dim>>

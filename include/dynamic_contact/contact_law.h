@@ -5,7 +5,11 @@
 
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/foundation.h>
+#include <dynamic_contact/friction_law.h>
 #include <dynamic_contact/time_scheme.h>
+
+#include <limits>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -151,6 +155,8 @@ namespace DynamicContact
     Tensor<1, dim> direction;     // t (slip)
     Tensor<1, dim> value;
     Tensor<2, dim> jacobian;
+    /** The weakening limit cut the slip-rate term of the Jacobian. */
+    bool limited = false;
   };
 
   /**
@@ -162,6 +168,14 @@ namespace DynamicContact
    * TimeScheme::effective_derivative(); normal.dpressure_dw already is).
    * Nodes with a constrained
    * component are frictionless (their tangential motion is prescribed).
+   *
+   * @p dmu_ds is the derivative mu'(s) of the coefficient at the slip rate
+   * s = |w_tau| of @p w when @p mu is mu(s) of the iterate itself (the
+   * coupled linearization, doc/theory.md section 5.1): the threshold g =
+   * mu(s) m (p + q) then also depends on w_tau, dg/dw_tau = mu'(s) m (p +
+   * q) w_tau/s (times effective_derivative), and on slip nodes that term
+   * enters the Jacobian (at s = 0 the direction t of the slip force stands
+   * for w_tau/s: a Clarke derivative). 0 for a frozen coefficient.
    */
   template <int dim>
   FrictionResponse<dim>
@@ -171,7 +185,10 @@ namespace DynamicContact
                     const Tensor<1, dim>   &lambda,
                     const double            mu,
                     const double            c,
-                    const double            effective_derivative = 1);
+                    const double            effective_derivative = 1,
+                    const double            dmu_ds               = 0,
+                    const double            weakening_limit =
+                      std::numeric_limits<double>::infinity());
 
   /**
    * The friction force the law assigns to (lambda, w): the projection of
@@ -185,6 +202,33 @@ namespace DynamicContact
                            const Tensor<1, dim>   &w,
                            const Tensor<1, dim>   &lambda,
                            const double            c);
+
+
+  /**
+   * The friction coefficients of one Newton solve (Friction/Linearization,
+   * doc/theory.md sections 4 and 5.1). Frozen: mu_i = frozen[i] at every
+   * iterate, the convexification loop's coefficients (the nodes in the
+   * order of the solver's node vectors). Coupled (@p law set): mu_i =
+   * mu(|w_e,tau,i|) of the iterate itself, whose derivative enters the
+   * Newton linearization, so that one solve lands on the fixed point of
+   * the loop; frozen is then not used.
+   */
+  struct FrictionCoefficients
+  {
+    std::vector<double> frozen;
+    const FrictionLaw  *law = nullptr;
+    /**
+     * Coupled: the largest weakening -mu'(s) m (p + q) theta (a force per
+     * velocity) the linearization takes at node i, empty for no limit.
+     */
+    std::vector<double> weakening_limit;
+
+    bool
+    coupled() const
+    {
+      return law != nullptr;
+    }
+  };
 
 
   /**
@@ -223,16 +267,26 @@ namespace DynamicContact
                  const bool              friction,
                  const Tensor<1, dim>   &lambda,
                  const double            mu,
-                 const double            c)
+                 const double            c,
+                 const double            dmu_ds = 0)
   {
-    return linearize_node(
-      foundation, node, u_old, w, w, TimeScheme(k), friction, lambda, mu, c);
+    return linearize_node(foundation,
+                          node,
+                          u_old,
+                          w,
+                          w,
+                          TimeScheme(k),
+                          friction,
+                          lambda,
+                          mu,
+                          c,
+                          dmu_ds);
   }
 
   /**
    * The theta-scheme version: @p w_old is w_{n-1} at the node, the laws act
    * on u_n and w_e = theta w + (1 - theta) w_old, the block is the derivative
-   * with respect to w (= w_n).
+   * with respect to w (= w_n). @p dmu_ds: friction_response().
    */
   template <int dim>
   NodeLinearization<dim>
@@ -245,7 +299,10 @@ namespace DynamicContact
                  const bool              friction,
                  const Tensor<1, dim>   &lambda,
                  const double            mu,
-                 const double            c)
+                 const double            c,
+                 const double            dmu_ds = 0,
+                 const double            weakening_limit =
+                   std::numeric_limits<double>::infinity())
   {
     NodeLinearization<dim> l;
     const Tensor<1, dim>   w_e = scheme.weighted(w, w_old);
@@ -256,8 +313,15 @@ namespace DynamicContact
               outer_product(node.normal, node.normal);
     if (friction)
       {
-        l.friction = friction_response(
-          node, l.normal, w_e, lambda, mu, c, scheme.effective_derivative());
+        l.friction = friction_response(node,
+                                       l.normal,
+                                       w_e,
+                                       lambda,
+                                       mu,
+                                       c,
+                                       scheme.effective_derivative(),
+                                       dmu_ds,
+                                       weakening_limit);
         l.force += l.friction.value;
         l.block += l.friction.jacobian;
       }

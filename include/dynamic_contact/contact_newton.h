@@ -26,9 +26,14 @@ namespace DynamicContact
   class StepFailure : public std::runtime_error
   {
   public:
-    explicit StepFailure(const std::string &what)
+    explicit StepFailure(const std::string &what,
+                         const unsigned int newton_iterations = 0)
       : std::runtime_error(what)
+      , newton_iterations(newton_iterations)
     {}
+
+    /** The Newton iterations spent on the failed solve (if known). */
+    unsigned int newton_iterations;
   };
 
   /**
@@ -48,7 +53,8 @@ namespace DynamicContact
         "the semismooth Newton iteration did not converge in Solver/Maximum "
         "Newton iterations = " +
         std::to_string(parameters.max_newton_iterations) +
-        " iterations (relative residual " + scientific(residual) + ")");
+        " iterations (relative residual " + scientific(residual) + ")",
+        iterations);
   }
 
   /** What a Newton solver for one step needs to know. */
@@ -124,18 +130,19 @@ namespace DynamicContact
     reinit() = 0;
 
     /**
-     * Solve one frozen-coefficient problem. Every per-node vector is
-     * aligned with ContactBoundary::nodes() (the nodes this process owns):
-     * @p u_old and @p w_old hold u_{n-1} and w_{n-1}, @p mu the frozen
-     * coefficients, @p lambda the friction forces (in: initial guess, out:
-     * result); @p w the initial guess and the result (master form). Throws
-     * StepFailure if the iteration does not converge.
+     * Solve one pass of the step. Every per-node vector is aligned with
+     * ContactBoundary::nodes() (the nodes this process owns): @p u_old and
+     * @p w_old hold u_{n-1} and w_{n-1}, @p mu the friction coefficients
+     * (frozen, or coupled: mu(|w_e,tau|) of the iterate, linearized too),
+     * @p lambda the friction forces (in: initial guess, out: result); @p w
+     * the initial guess and the result (master form). Throws StepFailure
+     * if the iteration does not converge.
      */
     virtual Result
     solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double>         &mu,
+          const FrictionCoefficients        &mu,
           std::vector<Tensor<1, dim>>       &lambda,
           Vector_t                          &w) = 0;
 
@@ -153,7 +160,7 @@ namespace DynamicContact
     solve_provisional(const Vector_t                    &rhs,
                       const std::vector<Tensor<1, dim>> &u_old,
                       const std::vector<Tensor<1, dim>> &w_old,
-                      const std::vector<double>         &mu,
+                      const FrictionCoefficients        &mu,
                       std::vector<Tensor<1, dim>>       &lambda,
                       Vector_t                          &w,
                       const double /*velocity_accuracy*/ = 0)
@@ -175,6 +182,18 @@ namespace DynamicContact
     {
       return Result();
     }
+
+    /**
+     * The largest eigenvalue of S C S: C the compliance of the nodes of
+     * Gamma_3 under K0 (the response of the nodal velocities to nodal
+     * forces, C_ij = P_i [K0^{-1}]_ij P_j^T: inertia, viscosity and
+     * elasticity in it, the contact laws not), S the block diagonal of the
+     * symmetric @p roots of the owned nodes (zero leaves a node out). The
+     * uniqueness measures of a step (doc/theory.md section 5.2) are of this
+     * form. Lanczos to about 1e-4 (largest_eigenvalue()); collective.
+     */
+    virtual double
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots) = 0;
 
     /**
      * After a provisional solve: its velocities at the nodes this process

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace DynamicContact
@@ -76,6 +77,17 @@ namespace DynamicContact
    *   void newton_step(Iterate &x, Iterate &full); // x evaluated; full step
    *   void combine(const Iterate &x, const Iterate &full, double alpha,
    *                Iterate &trial);           // x + alpha (full - x)
+   *   bool safeguarded(const Iterate &x);     // see below (collective)
+   *
+   * A linearization with a safeguard (the coupled friction linearization's
+   * weakening limit, WeakeningLimit) is not the derivative of the merit
+   * function where the safeguard acts: its step is not a descent
+   * direction there, and it is meant to move a node away from a zero of
+   * the merit function that the safeguard keeps the iteration from (a
+   * slip rate at the onset of slip, where the law weakens faster than the
+   * body resists). A line search would undo that, step after step (the
+   * 3D rail: 28 iterations at 1/64 of a step). So a step from an iterate
+   * where the safeguard acts is taken in full unless the iteration cycles.
    *
    * @p x is the starting iterate on entry and the solution on exit; @p
    * result counts iterations, cycles and line-search steps and holds the
@@ -138,10 +150,12 @@ namespace DynamicContact
           *std::max_element(merits.end() - std::min<std::size_t>(merits.size(),
                                                                  policy.window),
                             merits.end());
-        const bool backtrack =
+        const bool rejected =
           parameters.line_search &&
           (cycling || (monotone && merit_full > (1 - 1e-4) * merit_now) ||
            (iteration >= policy.free_iterations && merit_full > reference));
+        const bool backtrack =
+          rejected && (cycling || !problem.safeguarded(x));
         if (backtrack)
           {
             // Armijo backtracking along the step, down to 1/128 of it.
@@ -222,21 +236,32 @@ namespace DynamicContact
   /**
    * The one per-node evaluation of the Newton back-ends (condensed and
    * whole-system): the laws of @p problem at node @p node with the old
-   * values @p u_old, @p w_old, the iterate @p w, @p lambda and the frozen
-   * coefficient @p mu.
+   * values @p u_old, @p w_old, the iterate @p w, @p lambda and node @p i's
+   * coefficient of @p mu (frozen, or mu(|w_e,tau|) of the iterate with its
+   * derivative in the linearization: FrictionCoefficients).
    */
   template <int dim>
   NodeEvaluation<dim>
-  evaluate_node(const ContactProblem<dim> &problem,
-                const ContactNode<dim>    &node,
-                const Tensor<1, dim>      &u_old,
-                const Tensor<1, dim>      &w_old,
-                const Tensor<1, dim>      &w,
-                const Tensor<1, dim>      &lambda,
-                const double               mu)
+  evaluate_node(const ContactProblem<dim>  &problem,
+                const ContactNode<dim>     &node,
+                const Tensor<1, dim>       &u_old,
+                const Tensor<1, dim>       &w_old,
+                const Tensor<1, dim>       &w,
+                const Tensor<1, dim>       &lambda,
+                const FrictionCoefficients &mu,
+                const unsigned int          i)
   {
     const TimeScheme   &scheme = problem.bulk.scheme();
     const double        c      = problem.c_t * scheme.time_step();
+    double              mu_i = 0, dmu_ds = 0;
+    if (problem.friction && mu.coupled())
+      {
+        const double s = node.tangential(scheme.weighted(w, w_old)).norm();
+        mu_i           = mu.law->value(s);
+        dmu_ds         = mu.law->derivative(s);
+      }
+    else if (problem.friction && !mu.frozen.empty())
+      mu_i = mu.frozen[i];
     NodeEvaluation<dim> e;
     e.lin = linearize_node(problem.foundation,
                            node,
@@ -246,8 +271,12 @@ namespace DynamicContact
                            scheme,
                            problem.friction,
                            lambda,
-                           problem.friction ? mu : 0.,
-                           c);
+                           mu_i,
+                           c,
+                           dmu_ds,
+                           mu.coupled() && !mu.weakening_limit.empty() ?
+                             mu.weakening_limit[i] :
+                             std::numeric_limits<double>::infinity());
     const Tensor<1, dim> normal_force =
       e.lin.normal.pressure * node.weight * node.normal;
     e.force = normal_force + lambda;

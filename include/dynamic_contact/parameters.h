@@ -143,6 +143,25 @@ namespace DynamicContact
       double       relaxation;
       unsigned int acceleration_depth;
       unsigned int max_convexification_iterations;
+      /**
+       * Friction/Linearization = coupled: the first pass of the loop
+       * linearizes mu(|w_tau|) inside Newton's method (doc/theory.md
+       * section 5.1); frozen: every pass freezes it (the paper's loop).
+       */
+      bool coupled_linearization;
+      /**
+       * Friction/Uniqueness monitor: when the uniqueness measures of a step
+       * are evaluated (doc/theory.md section 5.2): auto with the condensed
+       * solver (from its compliance table, cheap), always (with the
+       * assembled one they cost solves with K0), never.
+       */
+      enum class Monitor
+      {
+        automatic,
+        always,
+        never
+      };
+      Monitor uniqueness_monitor;
 
       // Complementarity constant c_t; 0 means "E/h".
       double complementarity_constant;
@@ -210,6 +229,12 @@ namespace DynamicContact
       bool   adaptive;
       double adaptive_tolerance;
       double maximum_time_step;
+      /**
+       * Time/Cut back where not unique: a step whose contraction factor is
+       * 1 or more is retried with half the time step (doc/theory.md
+       * section 5.2).
+       */
+      bool cut_back_where_not_unique;
       /**
        * The composite scheme of Time/Scheme = bathe, with its spectral
        * radius at infinity (Time/Spectral radius at infinity).

@@ -7,6 +7,7 @@
 #include <dynamic_contact/parameters.h>
 
 #include <string>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -15,20 +16,44 @@ namespace DynamicContact
   /**
    * The counts of a run's end summary that come from the rows of
    * time_series.csv (those before a resume included): cut-backs,
-   * convexification passes, and the largest coefficient residual
-   * max_i |mu_i - mu(|w_tau,i|)| of a step.
+   * convexification passes, the largest coefficient residual
+   * max_i |mu_i - mu(|w_tau,i|)| of a step, the fallbacks of the coupled
+   * linearization and the steps not known to have one solution.
    */
   struct RunTotals
   {
     unsigned int cutbacks                 = 0;
     unsigned int convexification          = 0;
     double       max_coefficient_residual = 0;
+    /** Coupled passes that fell back to the frozen loop. */
+    unsigned int coupled_fallbacks = 0;
+    /**
+     * The uniqueness measures (doc/theory.md section 5.2): the steps whose
+     * contraction factor was 1 or more (a solution with other solutions
+     * beside it), the steps where the paper's bound was evaluated and where
+     * it was below 1 (one solution), and the largest of each.
+     */
+    std::vector<unsigned int> non_unique_steps;
+    unsigned int              bound_steps          = 0;
+    unsigned int              unique_steps         = 0;
+    double                    max_uniqueness_bound = -1;
+    double                    max_contraction      = -1;
+
+    /** What a step adds: a row of time_series.csv, by column. */
+    struct Step
+    {
+      unsigned int step;
+      unsigned int cutbacks;
+      unsigned int convexification_iterations;
+      double       coefficient_residual;
+      unsigned int coupled_fallbacks;
+      double       uniqueness_bound;   // -1: not evaluated
+      double       contraction_factor; // -1: not evaluated
+    };
 
     /** Add the counts of one step. */
     void
-    add(const unsigned int cutbacks,
-        const unsigned int convexification_iterations,
-        const double       coefficient_residual);
+    add(const Step &step);
 
     /** Add the steps of a time_series.csv (its text; row 0 left out). */
     void

@@ -116,6 +116,13 @@ namespace DynamicContact
     /** The time series row of step 0: the initial state's energy. */
     StepRecord<dim>
     initial_record();
+
+    /**
+     * time_series.csv has the uniqueness measures' columns (a slip-rate
+     * dependent law, Friction/Uniqueness monitor not never).
+     */
+    bool
+    uniqueness_columns() const;
     /** @} */
 
     /** @name The steps of the scheme */

@@ -51,9 +51,13 @@ namespace DynamicContact
     solve(const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
-          const std::vector<double>         &mu,
+          const FrictionCoefficients        &mu,
           std::vector<Tensor<1, dim>>       &lambda,
           Vector_t                          &w) override;
+
+    /** By solves with K0 (CG, preconditioned with the AMG of K0). */
+    double
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots) override;
 
     void
     newton_step(const SystemNewton<dim>  &system,
@@ -97,6 +101,25 @@ namespace DynamicContact
     // Iterative: the AMG of K0, for the time step it was built for.
     std::unique_ptr<BulkAMG> amg;
     TimeScheme               amg_scheme;
+    /** Build the AMG of the current K0 unless it is built. */
+    void
+    prepare_amg();
+    /**
+     * x = K0^{-1} b by CG with the AMG of K0, to @p tolerance relative to
+     * |b| (constrained entries zero).
+     */
+    void
+    solve_bulk(const Vector_t &b, Vector_t &x, const double tolerance);
+
+    /**
+     * The coupled linearization's limits of the owned nodes
+     * (WeakeningLimit), for the K0 they were measured with.
+     */
+    std::vector<double> weakening_limits;
+    TimeScheme          limits_scheme;
+    /** Measure them if K0 changed (collective). */
+    const std::vector<double> &
+    coupled_limits();
 
     // Direct: the Newton matrix and its factorization, and what it was made
     // of (reused while unchanged).

@@ -48,6 +48,11 @@ namespace DynamicContact
     unsigned long long                   cells                = 0;
     bool                                 has_errors           = false;
     Errors                               errors;
+    /**
+     * The uniqueness measures are columns (a slip-rate dependent law,
+     * Friction/Uniqueness monitor not never).
+     */
+    bool uniqueness_monitor = false;
     /** Time/Adaptive: the step's error estimate and its rejected tries. */
     bool         adaptive_time = false;
     double       time_error    = 0;
@@ -103,6 +108,13 @@ namespace DynamicContact
       r.add_integer("convexification_converged",
                     statistics.convexification_converged ? 1 : 0);
       r.add("coefficient_residual", statistics.coefficient_residual);
+      r.add_integer("coupled_fallbacks", statistics.coupled_fallbacks);
+      if (uniqueness_monitor)
+        {
+          // doc/theory.md section 5.2; -1 where not evaluated.
+          r.add("uniqueness_bound", statistics.uniqueness_bound);
+          r.add("contraction_factor", statistics.contraction_factor);
+        }
       r.add_integer("factorizations", statistics.factorizations);
       r.add_integer("active_set_cycles", statistics.cycles);
       r.add_integer("line_search_steps", statistics.line_search_steps);

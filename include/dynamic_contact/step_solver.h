@@ -50,6 +50,21 @@ namespace DynamicContact
       double       residual          = 0;
       /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
       double       coefficient_residual = 0;
+      /**
+       * Coupled passes (Friction/Linearization = coupled) that did not
+       * converge, after which the step was solved by the frozen loop.
+       */
+      unsigned int coupled_fallbacks = 0;
+      /**
+       * The uniqueness measures of the solution (doc/theory.md section
+       * 5.2), -1 where they were not evaluated (Friction/Uniqueness
+       * monitor): the paper's smallness condition theta rho(C L N) (below
+       * 1 the step has one solution), and the contraction factor theta
+       * rho(C D) of the frozen-coefficient loop at the solution (1 or more:
+       * the loop is repelled from it, and the step has other solutions).
+       */
+      double uniqueness_bound   = -1;
+      double contraction_factor = -1;
       unsigned int n_contact            = 0;
       unsigned int n_stick              = 0;
       unsigned int n_slip               = 0;
@@ -87,6 +102,10 @@ namespace DynamicContact
         linear_iterations += earlier.linear_iterations;
         coefficient_residual =
           std::max(coefficient_residual, earlier.coefficient_residual);
+        coupled_fallbacks += earlier.coupled_fallbacks;
+        uniqueness_bound = std::max(uniqueness_bound, earlier.uniqueness_bound);
+        contraction_factor =
+          std::max(contraction_factor, earlier.contraction_factor);
       }
     };
 
@@ -151,6 +170,12 @@ namespace DynamicContact
     const bool                  friction;
     double                      c_t = 0;
     /**
+     * The law's one-sided Lipschitz constant max(0, -min mu') on
+     * [0, Friction/Maximum slip rate] (0 without a law that depends on s):
+     * the L of the uniqueness bound.
+     */
+    const double lipschitz_constant;
+    /**
      * How fast mu can change with the slip rate: max(0, -min mu') on
      * [0, Friction/Maximum slip rate], the law's one-sided Lipschitz
      * constant (1 without a law that depends on s). What a provisional pass
@@ -175,6 +200,13 @@ namespace DynamicContact
     /** The condensed solver is in use; else the sparse one with: */
     bool               condensed = true;
     Parameters::Solver problem_parameters;
+
+    /**
+     * The uniqueness measures of the solved step into @p statistics
+     * (Statistics::uniqueness_bound, contraction_factor; collective).
+     */
+    void
+    measure_uniqueness(ContactNewton<dim> &newton, Statistics &statistics);
 
     /** Evaluate the owned nodes' states at the converged (w, lambda). */
     void

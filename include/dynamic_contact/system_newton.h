@@ -99,7 +99,7 @@ namespace DynamicContact
                  const Vector_t                    &rhs,
                  const std::vector<Tensor<1, dim>> &u_old,
                  const std::vector<Tensor<1, dim>> &w_old,
-                 const std::vector<double>         &mu,
+                 const FrictionCoefficients        &mu,
                  LinearBackend<dim>                &backend,
                  ContactNewtonResult               &result);
 
@@ -131,6 +131,14 @@ namespace DynamicContact
             const double   alpha,
             Iterate       &trial) const;
 
+    /** Drop the coupled linearization's weakening limits (newton_driver.h). */
+    /**
+     * The coupled linearization's weakening limit acted at a node of
+     * @p x (newton_driver.h; collective).
+     */
+    bool
+    safeguarded(const Iterate &x) const;
+
     /**
      * residual = K0 w - b + sum_i P_i^T f_i for forces @p owned_forces of
      * the owned nodes; returns the residual's l2 norm.
@@ -151,7 +159,7 @@ namespace DynamicContact
     const Vector_t                    &rhs;
     const std::vector<Tensor<1, dim>> &u_old;
     const std::vector<Tensor<1, dim>> &w_old;
-    const std::vector<double>         &mu;
+    const FrictionCoefficients        &mu;
 
     /**
      * If positive, the stopping test also measures the stick condition in
