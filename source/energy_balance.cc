@@ -18,7 +18,7 @@ namespace DynamicContact
                        compliance :
                        std::numeric_limits<double>::infinity(),
                      damping,
-                     friction});
+                     friction + friction_slack});
   }
 
 
@@ -53,7 +53,8 @@ namespace DynamicContact
     t.viscous    = first.viscous + second.viscous;
     t.compliance = first.compliance + second.compliance;
     t.damping    = first.damping + second.damping;
-    t.friction   = first.friction + second.friction;
+    t.friction       = first.friction + second.friction;
+    t.friction_slack = first.friction_slack + second.friction_slack;
     t.close(previous_energy);
     return t;
   }
@@ -77,6 +78,8 @@ namespace DynamicContact
     t.viscous   = weight * (first.viscous + second.viscous);
     t.damping   = weight * (first.damping + second.damping);
     t.friction  = weight * (first.friction + second.friction);
+    t.friction_slack =
+      std::abs(weight) * (first.friction_slack + second.friction_slack);
     // A stage's compliance power p(U_i) (U_i - start_i) is its term plus
     // the change of Pi over the stage.
     const double power =
@@ -165,7 +168,7 @@ namespace DynamicContact
     // Nodal terms, with the states of the converged solve.
     const auto &nodes      = contact_boundary.nodes();
     const auto &p          = foundation.compliance();
-    double      compliance = 0, damping = 0, friction = 0;
+    double compliance = 0, damping = 0, friction = 0, friction_slack = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const double m    = nodes[i].weight;
@@ -190,10 +193,14 @@ namespace DynamicContact
         const Tensor<1, dim> w_e =
           scheme.weighted(nodes[i].value(w), nodes[i].value(w_old));
         friction += k * (states[i].friction_force * nodes[i].tangential(w_e));
+        if (states[i].state == FrictionState::stick)
+          friction_slack += k * states[i].friction_force.norm() *
+                            nodes[i].tangential(w_e).norm();
       }
     t.compliance = Utilities::MPI::sum(compliance, comm);
     t.damping    = Utilities::MPI::sum(damping, comm);
-    t.friction   = Utilities::MPI::sum(friction, comm);
+    t.friction       = Utilities::MPI::sum(friction, comm);
+    t.friction_slack = Utilities::MPI::sum(friction_slack, comm);
 
     t.close(previous_energy);
     return t;

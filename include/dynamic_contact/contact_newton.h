@@ -190,7 +190,7 @@ namespace DynamicContact
      * elasticity in it, the contact laws not), S the block diagonal of the
      * symmetric @p roots of the owned nodes (zero leaves a node out). The
      * uniqueness measures of a step (doc/theory.md section 5.2) are of this
-     * form. Lanczos to about 1e-4 (largest_eigenvalue()); collective.
+     * form. Lanczos (largest_eigenvalue()); collective.
      */
     virtual double
     compliance_radius(const std::vector<Tensor<2, dim>> &roots) = 0;

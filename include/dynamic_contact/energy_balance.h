@@ -48,6 +48,14 @@ namespace DynamicContact
          // 0), TimeScheme::compliance_force in between
     double damping  = 0; // k sum m_i q(w_e,nu) w_e,nu
     double friction = 0; // k sum lambda_i . w_e,tau,i
+    /**
+     * k sum |lambda_i| |w_e,tau,i| over the stick nodes: there w_e,tau = 0
+     * holds to the Newton tolerance only, so that part of the friction
+     * term is the solver's residual, of either sign. The friction term
+     * counts as >= 0 (min_dissipation_term()) if it is above -slack; a slip
+     * node whose force does work against its slip is no part of it.
+     */
+    double friction_slack = 0;
     double defect   = 0; // E_n - E_{n-1} + D_n - W_n
     /**
      * Whether the compliance term is >= 0 by the theory: true for the

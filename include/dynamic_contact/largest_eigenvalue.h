@@ -18,9 +18,11 @@ namespace DynamicContact
    * vector @p start: the largest Ritz value, once it changes by less than
    * @p tolerance (relative) from one step to the next, the Krylov space is
    * exhausted, or @p max_steps steps are taken. A Ritz value is never above
-   * the largest eigenvalue, and the largest converges first and fast (the
-   * uniqueness factor of a step, doc/theory.md section 5.2, needs it to a
-   * few digits).
+   * the largest eigenvalue, and the largest converges first and fast: the
+   * uniqueness measures of a step (doc/theory.md section 5.2) need a few
+   * digits, but to the default tolerance they are the same whatever the
+   * number of processes (a run resumed on another number of processes
+   * repeats them).
    *
    * @p apply(x, y) sets y = A x. The vectors may be distributed over the
    * processes: @p sum turns a process's part of a dot product into the
@@ -33,8 +35,8 @@ namespace DynamicContact
                              std::vector<double> &)> &apply,
     const std::vector<double>                        &start,
     const std::function<double(double)>              &sum,
-    const double                                      tolerance = 1e-4,
-    const unsigned int                                max_steps = 40);
+    const double                                      tolerance = 1e-10,
+    const unsigned int                                max_steps = 60);
 
 
   /** Node @p i's entries of a vector of dim entries per node. */
