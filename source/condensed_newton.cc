@@ -46,6 +46,7 @@ namespace DynamicContact
       owned_index[global[i]] = i;
     prepared_scheme     = TimeScheme();
     limits_scheme       = TimeScheme();
+    correction_scheme   = TimeScheme();
     weakening_limits.clear();
     free_response_valid = false;
     regularized.reinit(problem.bulk.sparsity_pattern());
@@ -746,6 +747,73 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  CondensedNewton<dim>::apply_k0_compliance(
+    const std::vector<unsigned int>   &nodes,
+    const std::vector<Tensor<1, dim>> &f,
+    std::vector<Tensor<1, dim>>       &v,
+    Result                            &result)
+  {
+    const auto &all = gathered.all_nodes();
+    if (correction_scheme != prepared_scheme || spring_dofs.empty())
+      {
+        spring_dofs.clear();
+        for (const unsigned int j : spring_nodes)
+          if (spring_stiffness[j] > 0)
+            for (unsigned int c = 0; c < dim; ++c)
+              if (all[j].constraint_map[c][c] == 1)
+                spring_dofs.emplace_back(j, c);
+      }
+    std::vector<unsigned int> needed(nodes);
+    for (const auto &[j, c] : spring_dofs)
+      needed.push_back(j);
+    compute_columns(needed, result);
+    const unsigned int m = spring_dofs.size();
+    if (correction_scheme != prepared_scheme)
+      {
+        // W = S^{-1} - P C' P^T, inverted (m <= 3 dim).
+        FullMatrix<double> W(m, m);
+        for (unsigned int a = 0; a < m; ++a)
+          {
+            const auto [j, c] = spring_dofs[a];
+            for (unsigned int b = 0; b < m; ++b)
+              {
+                const auto [l, d] = spring_dofs[b];
+                W(a, b)           = -columns[l][j][c][d];
+              }
+            W(a, a) += 1. / spring_stiffness[j];
+          }
+        spring_correction.reinit(m, m);
+        if (m > 0)
+          spring_correction.invert(W);
+        correction_scheme = prepared_scheme;
+      }
+    // v = C' f, then + C' P^T W^{-1} P C' f.
+    v.assign(nodes.size(), Tensor<1, dim>());
+    for (unsigned int a = 0; a < nodes.size(); ++a)
+      for (unsigned int b = 0; b < nodes.size(); ++b)
+        v[a] += columns[nodes[b]][nodes[a]] * f[b];
+    if (m == 0)
+      return;
+    Vector<double> at_springs(m), r(m);
+    for (unsigned int e = 0; e < m; ++e)
+      {
+        const auto [j, c] = spring_dofs[e];
+        for (unsigned int b = 0; b < nodes.size(); ++b)
+          at_springs(e) += (columns[nodes[b]][j] * f[b])[c];
+      }
+    spring_correction.vmult(r, at_springs);
+    for (unsigned int e = 0; e < m; ++e)
+      {
+        const auto [j, c] = spring_dofs[e];
+        for (unsigned int a = 0; a < nodes.size(); ++a)
+          for (unsigned int q = 0; q < dim; ++q)
+            v[a][q] += columns[j][nodes[a]][q][c] * r(e);
+      }
+  }
+
+
+  template <int dim>
   const std::vector<double> &
   CondensedNewton<dim>::coupled_limits(Result &result)
   {
@@ -759,12 +827,23 @@ namespace DynamicContact
           all[i], problem.bulk.newton_matrix());
     Utilities::MPI::max(local, problem.discretization.comm, stiffness);
     // Every process holds every node: the same sample everywhere.
+    // The sample's compliance under K0, as the assembled solver sees it.
     weakening_limits = WeakeningLimit::limits(
       all,
       stiffness,
       [&](const int j) {
-        compute_columns({static_cast<unsigned int>(j)}, result);
-        return WeakeningLimit::tangential_compliance(all[j], columns[j][j]);
+        const std::vector<unsigned int> node = {static_cast<unsigned int>(j)};
+        Tensor<2, dim>                  C;
+        std::vector<Tensor<1, dim>>     v;
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            std::vector<Tensor<1, dim>> e(1);
+            e[0][c] = 1;
+            apply_k0_compliance(node, e, v, result);
+            for (unsigned int q = 0; q < dim; ++q)
+              C[q][c] = v[0][q];
+          }
+        return WeakeningLimit::tangential_compliance(all[j], C);
       },
       MPI_COMM_SELF);
     limits_scheme = prepared_scheme;
@@ -803,21 +882,16 @@ namespace DynamicContact
       }
     if (nodes.empty())
       return 0;
-    Result result;
-    compute_columns(nodes, result);
+    Result                      result;
     const unsigned int          n = nodes.size();
-    std::vector<Tensor<1, dim>> z(n);
+    std::vector<Tensor<1, dim>> z(n), v;
     const auto apply = [&](const std::vector<double> &x,
                            std::vector<double>       &y) {
       for (unsigned int b = 0; b < n; ++b)
         z[b] = S[b] * nodal_entries<dim>(x, b);
+      apply_k0_compliance(nodes, z, v, result);
       for (unsigned int a = 0; a < n; ++a)
-        {
-          Tensor<1, dim> sum;
-          for (unsigned int b = 0; b < n; ++b)
-            sum += columns[nodes[b]][nodes[a]] * z[b];
-          set_nodal_entries<dim>(S[a] * sum, a, y);
-        }
+        set_nodal_entries<dim>(S[a] * v[a], a, y);
     };
     std::vector<double> start(dim * n);
     for (unsigned int a = 0; a < n; ++a)

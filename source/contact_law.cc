@@ -139,15 +139,19 @@ namespace DynamicContact
     Tensor<1, dim> dg = (mu * node.weight * normal.dpressure_dw) * node.normal;
     if (dmu_ds != 0)
       {
-        const double slip = w_tau.norm();
-        double       slope =
-          dmu_ds * node.weight * normal.pressure * effective_derivative;
+        // d|w_tau|/dw_tau = w_tau/|w_tau|; where the slip velocity does
+        // not matter in z (round-off at the onset of slip, as for the
+        // reversal rule above) the slip force's direction t stands for it.
+        const double slip     = w_tau.norm();
+        const bool   slipping = c_node * slip >
+                              1e-6 * std::max(r.threshold, lambda_tau.norm());
+        double slope = dmu_ds * node.weight * normal.pressure * effective_derivative;
         if (-slope > weakening_limit)
           {
             slope     = -weakening_limit;
             r.limited = true;
           }
-        dg += slope * (slip > 0 ? w_tau / slip : r.direction);
+        dg += slope * (slipping ? w_tau / slip : r.direction);
       }
     r.value    = r.threshold * r.direction;
     r.jacobian = outer_product(r.direction, dg);

@@ -1,6 +1,8 @@
 #ifndef dynamic_contact_condensed_newton_h
 #define dynamic_contact_condensed_newton_h
 
+#include <deal.II/lac/full_matrix.h>
+
 #include <dynamic_contact/bulk_solver.h>
 #include <dynamic_contact/contact_newton.h>
 #include <dynamic_contact/mixed_precision_lu.h>
@@ -366,6 +368,27 @@ namespace DynamicContact
     /** Make sure C_:j exists for every j of @p nodes (one block solve). */
     void
     compute_columns(const std::vector<unsigned int> &nodes, Result &result);
+
+    /**
+     * The compliance of K0 itself (not of K0' = K0 + S) between nodes of
+     * Gamma_3: @p v[a] = sum_b [K0^{-1}]_{nodes[a] nodes[b]} @p f[b], from
+     * C' = K0'^{-1} (the table) and the springs removed by the Woodbury
+     * identity, K0^{-1} = C' + C' P^T (S^{-1} - P C' P^T)^{-1} P C' (P the
+     * springs' DoFs): what the uniqueness measures and the weakening limit
+     * see, as the assembled solver does. Makes the columns it needs.
+     */
+    void
+    apply_k0_compliance(const std::vector<unsigned int>   &nodes,
+                        const std::vector<Tensor<1, dim>> &f,
+                        std::vector<Tensor<1, dim>>       &v,
+                        Result                            &result);
+    /**
+     * (S^{-1} - P C' P^T)^{-1} of apply_k0_compliance() and the springs'
+     * (node, component) pairs, for the K0' they were made with.
+     */
+    FullMatrix<double>                                 spring_correction;
+    std::vector<std::pair<unsigned int, unsigned int>> spring_dofs;
+    TimeScheme                                         correction_scheme;
 
     /** w_i = w_free,i - sum_j C_ij f_j over the nodes with a force. */
     void

@@ -1,0 +1,401 @@
+// The slip-rate law inside the Newton linearization (Friction/Linearization
+// = coupled) and the uniqueness measures of a step (doc/theory.md sections
+// 5.1 and 5.2):
+//
+// 1. The coupled slip Jacobian against finite differences of the friction
+//    force lambda(w) = mu(|w_tau|) m (p + q) t: 2D, and 3D on the slip
+//    manifold (with t = w_tau/|w_tau| there), for a law whose derivative
+//    matters (mu(s) = 0.3 exp(-2 s) + 0.5 at s = 0.6); at the onset of slip
+//    (w_tau = 0) the direction of the slip force stands for w_tau/|w_tau|;
+//    the weakening limit cuts the slip-rate term to minus the limit.
+// 2. largest_eigenvalue() on a matrix with known eigenvalues.
+// 3. A block sliding at v0 = 2 m/s, sheared by T and pressed by P, on one
+//    step (prm/sliding_block.prm with a slip-weakening law, T = 4e5 Pa,
+//    P = 1e6 Pa): as a rigid body
+//    of mass M, the step's slip rate s solves (M/k)(s - v0) = T - mu(s) N,
+//    and it may stick if T + M v0/k <= mu(0) N. With mu = 0.2 exp(-2000 s)
+//    + 0.4 the step has three solutions (stick, a slip rate near the onset,
+//    s = 2 m/s); the paper's bound theta rho(C L N) must say >= 1, at or
+//    somewhat above its rigid-body value L N k/M = 2e4 (the elastic block is
+//    more compliant than the rigid one). The frozen loop finds the fast
+//    slip and the coupled linearization, from the same start, the stick
+//    solution: two solutions of one step; the contraction factor is < 1 at
+//    both (each attracts the frozen loop).
+//    With mu = 0.2 exp(-0.01 s) + 0.4 the block can only stop: the bound
+//    must be below 1 (near 0.1) and the run must stick.
+// 4. The paper's small scene with the coupled linearization, on both contact
+//    solvers: completed, the loop's stopping rule met at every step, two
+//    passes a step (the coupled one and the frozen one that confirms it),
+//    fewer passes than the frozen loop, the energy balance. (Its Newton
+//    iterations are not fewer on this coarse scene: 625 against 549.)
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/largest_eigenvalue.h>
+
+#include "test_tools.h"
+
+#include <cmath>
+
+using namespace DynamicContact;
+using test_tools::check;
+using test_tools::digits;
+using test_tools::out;
+
+namespace
+{
+  const double k = 0.1, m = 0.5, c = 2.;
+
+  Foundation
+  foundation()
+  {
+    return Foundation(CappedRamp(2., 3.), CappedRamp(0.5, 0.25), false);
+  }
+
+  template <int dim>
+  ContactNode<dim>
+  make_node()
+  {
+    ContactNode<dim> node{};
+    node.constraint_map = unit_symmetric_tensor<dim>();
+    node.unconstrained  = true;
+    node.weight         = m;
+    node.gap            = 0;
+    if (dim == 2)
+      {
+        node.normal[0]      = 0.6;
+        node.normal[1]      = -0.8;
+        node.tangents[0][0] = 0.8;
+        node.tangents[0][1] = 0.6;
+      }
+    else
+      {
+        node.normal[1]           = 0.6;
+        node.normal[dim - 1]     = -0.8;
+        node.tangents[0][0]      = 1;
+        node.tangents[dim - 2][1] = 0.8;
+        node.tangents[dim - 2][dim - 1] = 0.6;
+      }
+    return node;
+  }
+
+  /** The coupled friction response at (u_old, w, lambda). */
+  template <int dim>
+  FrictionResponse<dim>
+  coupled_response(const ContactNode<dim> &node,
+                   const FrictionLaw      &law,
+                   const Tensor<1, dim>   &u_old,
+                   const Tensor<1, dim>   &w,
+                   const Tensor<1, dim>   &lambda,
+                   const double            limit =
+                     std::numeric_limits<double>::infinity())
+  {
+    const double s = node.tangential(w).norm();
+    return friction_response(node,
+                             normal_response(foundation(), node, u_old, w, k),
+                             w,
+                             lambda,
+                             law.value(s),
+                             c,
+                             1.,
+                             law.derivative(s),
+                             limit);
+  }
+
+  template <int dim, typename F>
+  Tensor<2, dim>
+  finite_difference(const F &f, const Tensor<1, dim> &w)
+  {
+    const double   h = 1e-6;
+    Tensor<2, dim> J;
+    for (unsigned int j = 0; j < dim; ++j)
+      {
+        Tensor<1, dim> e;
+        e[j]                   = h;
+        const Tensor<1, dim> d = (f(w + e) - f(w - e)) / (2 * h);
+        for (unsigned int i = 0; i < dim; ++i)
+          J[i][j] = d[i];
+      }
+    return J;
+  }
+
+
+  template <int dim>
+  void
+  test_jacobian()
+  {
+    const std::string      d    = std::to_string(dim) + "D: ";
+    const ContactNode<dim> node = make_node<dim>();
+    ExponentialFriction    law(0.8, 0.5, 2.);
+    // u_nu = 1, w_nu = 0.22 (p = 2, q = 0.11): N = m 2.11.
+    const Tensor<1, dim> u_old = 0.978 * node.normal + 0.3 * node.tangents[0];
+    Tensor<1, dim>       t     = node.tangents[0];
+    if (dim == 3)
+      t = std::cos(0.7) * node.tangents[0] +
+          std::sin(0.7) * node.tangents[dim - 2];
+    const Tensor<1, dim> w = 0.22 * node.normal + 0.6 * t;
+    // On the slip manifold: lambda = g t, g = mu(0.6) m 2.11.
+    const double         g      = law.value(0.6) * m * 2.11;
+    const Tensor<1, dim> lambda = g * t;
+    const auto           r      = coupled_response(node, law, u_old, w, lambda);
+    check(r.state == FrictionState::slip &&
+            (r.value - lambda).norm() <= 1e-14 * g && !r.limited,
+          d + "slip on the manifold, value g t with g = mu(|w_tau|) N");
+    // The exact slip force near w: mu(|v_tau|) N(v) v_tau/|v_tau|.
+    const auto exact = [&](const Tensor<1, dim> &v) {
+      const Tensor<1, dim> v_tau = node.tangential(v);
+      const double         s     = v_tau.norm();
+      return (law.value(s) * m *
+              normal_response(foundation(), node, u_old, v, k).pressure / s) *
+             v_tau;
+    };
+    const Tensor<2, dim> fd = finite_difference<dim>(exact, w);
+    out() << d << "|jacobian - finite differences| = "
+          << digits((r.jacobian - fd).norm() < 1e-9 ? 0. :
+                                                      (r.jacobian - fd).norm(),
+                    2)
+          << ", slip-rate term t . J t = " << digits(t * (r.jacobian * t), 6)
+          << std::endl;
+    check((r.jacobian - fd).norm() <= 1e-8 * r.jacobian.norm(),
+          d + "coupled jacobian = finite differences of mu(|w_tau|) N t");
+    // The slip-rate term is mu'(s) N: t . J t = mu'(0.6) m 2.11 (+ the
+    // frozen part, zero along t: dg/dw is normal then).
+    check(std::abs(t * (r.jacobian * t) - law.derivative(0.6) * m * 2.11) <=
+            1e-12,
+          d + "t . J t = mu'(s) m (p + q)");
+
+    // The weakening limit: the slip-rate term is cut to minus the limit.
+    const double limit   = 0.1;
+    const auto   limited = coupled_response(node, law, u_old, w, lambda, limit);
+    check(limited.limited &&
+            std::abs(t * (limited.jacobian * t) + limit) <= 1e-12,
+          d + "weakening limit 0.1: t . J t = -0.1, flagged");
+
+    // The onset of slip: w_tau = 0, lambda beyond the static threshold
+    // mu(0) N: slip along t, the slip-rate term along t (mu'(0) N).
+    const Tensor<1, dim> w0    = 0.22 * node.normal;
+    const double         above = 1.2 * law.value(0) * m * 2.11;
+    const auto onset = coupled_response(node, law, u_old, w0, above * t);
+    check(onset.state == FrictionState::slip &&
+            (onset.direction - t).norm() <= 1e-14 &&
+            std::abs(t * (onset.jacobian * t) -
+                     law.derivative(0) * m * 2.11) <= 1e-12,
+          d + "onset of slip (w_tau = 0): slip along t, the slip-rate term "
+              "along t");
+    // Stick: no Jacobian (lambda is a multiplier).
+    const auto stick =
+      coupled_response(node, law, u_old, w0, (0.5 * law.value(0) * m) * t);
+    check(stick.state == FrictionState::stick && stick.jacobian.norm() == 0,
+          d + "stick below mu(0) N: no jacobian");
+  }
+
+
+  void
+  test_eigenvalue()
+  {
+    // A = Q diag(4, 1, 0.5, 0) Q^T with Q the (orthogonal, symmetric)
+    // discrete sine transform: largest eigenvalue 4.
+    const unsigned int n = 4;
+    FullMatrix<double> Q(n, n), A(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        Q(i, j) = std::sqrt(2. / (n + 1)) *
+                  std::sin(M_PI * (i + 1) * (j + 1) / (n + 1));
+    const double lambda[] = {4, 1, 0.5, 0};
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        for (unsigned int p = 0; p < n; ++p)
+          A(i, j) += Q(i, p) * lambda[p] * Q(j, p);
+    const auto apply = [&](const std::vector<double> &x,
+                           std::vector<double>       &y) {
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          y[i] = 0;
+          for (unsigned int j = 0; j < n; ++j)
+            y[i] += A(i, j) * x[j];
+        }
+    };
+    const auto   identity = [](const double v) { return v; };
+    const double largest =
+      largest_eigenvalue(apply, {1., 0.2, -0.3, 0.5}, identity);
+    check(std::abs(largest - 4) <= 1e-12,
+          "largest_eigenvalue: 4 of Q diag(4, 1, 0.5, 0) Q^T");
+    check(largest_eigenvalue(apply, {0., 0., 0., 0.}, identity) == 0,
+          "largest_eigenvalue: 0 from a zero start");
+  }
+
+
+  /** The sliding block's step 1 (doc of this file, item 3). */
+  StepRecord<2>
+  block_step(const std::string &name,
+             const double       decay_rate,
+             const std::string &linearization)
+  {
+    const auto series =
+      test_tools::run<2>(
+        test_tools::scene("sliding_block.prm"),
+        {"Output/Directory=output-" + name,
+         "Time/End time=0.01",
+         "Boundary conditions/Traction function/Function constants=P=1e6, "
+         "T=4e5",
+         "Initial conditions/Velocity/Function expression=2; 0",
+         "Friction/Law=exponential",
+         "Friction/Exponential/Static coefficient=0.6",
+         "Friction/Exponential/Dynamic coefficient=0.4",
+         "Friction/Exponential/Decay rate=" + std::to_string(decay_rate),
+         "Friction/Linearization=" + linearization,
+         "Time/Cut back where not unique=true"})
+        ->time_series();
+    return series.back();
+  }
+
+
+  void
+  test_block()
+  {
+    const double M = 1000 * 0.2 * 1, dt = 0.01, v0 = 2, T = 4e5;
+    for (const double alpha : {2000., 0.01})
+      {
+        const bool        steep = alpha > 1;
+        const std::string law   = steep ? "steep law (alpha = 2000): " :
+                                          "mild law (alpha = 0.01): ";
+        const double      L     = alpha * 0.2;
+        for (const std::string linearization : {"frozen", "coupled"})
+          {
+            const auto r = block_step(std::string(steep ? "steep" : "mild") +
+                                        "-" + linearization,
+                                      alpha,
+                                      linearization);
+            const double N = r.normal_force;
+            const auto   mu = [&](const double s) {
+              return 0.2 * std::exp(-alpha * s) + 0.4;
+            };
+            // The rigid block's solutions: stick if the friction it needs
+            // stays below mu(0) N; slip rates where h(s) = (M/k)(s - v0) - T
+            // + mu(s) N changes sign.
+            const bool   can_stick = T + M * v0 / dt <= mu(0) * N;
+            unsigned int roots     = 0;
+            double       previous  = M / dt * (0 - v0) - T + mu(0) * N;
+            double       fast      = 0;
+            for (double s = 1e-6; s < 20; s *= 1.001)
+              {
+                const double h = M / dt * (s - v0) - T + mu(s) * N;
+                if ((h > 0) != (previous > 0))
+                  {
+                    ++roots;
+                    fast = s;
+                  }
+                previous = h;
+              }
+            const unsigned int solutions = roots + (can_stick ? 1 : 0);
+            const double       rigid     = L * N * dt / M;
+            // The block's velocity from its kinetic energy (M s^2/2).
+            const double slip_rate =
+              std::sqrt(2 * r.terms.energy.kinetic / M);
+            const std::string  prefix    = law + linearization + ": ";
+            out() << prefix << "the rigid block has " << solutions
+                  << " solution(s); block velocity " << digits(slip_rate, 2)
+                  << " m/s, bound " << digits(r.statistics.uniqueness_bound, 3)
+                  << " (rigid body " << digits(rigid, 3) << "), contraction "
+                  << digits(r.statistics.contraction_factor < 1e-6 ?
+                              0. :
+                              r.statistics.contraction_factor,
+                            2)
+                  << ", slip nodes " << r.statistics.n_slip
+                  << ", stick nodes " << r.statistics.n_stick << std::endl;
+            check(steep ? solutions == 3 : solutions == 1,
+                  prefix + (steep ? "three solutions (stick, two slip rates)" :
+                                    "one solution (stick)"));
+            // The rigid translation's Rayleigh quotient is L N k/M; the
+            // block's deformation only adds compliance.
+            check(r.statistics.uniqueness_bound >= (1 - 1e-9) * rigid &&
+                    r.statistics.uniqueness_bound <= 1.25 * rigid,
+                  prefix + "bound between L N k/M (the rigid translation) "
+                           "and 1.25 times it");
+            check((r.statistics.uniqueness_bound >= 1) == (solutions > 1),
+                  prefix + (steep ? "bound >= 1: flagged not unique" :
+                                    "bound < 1: one solution"));
+            check(r.statistics.contraction_factor < 1 && r.cutbacks == 0,
+                  prefix + "contraction factor < 1 at the solution found, "
+                           "no cut-back");
+            if (steep && linearization == "frozen")
+              check(r.statistics.n_stick == 0 &&
+                      std::abs(slip_rate - fast) <= 0.02 * fast,
+                    prefix + "the fast slip found, s = " + digits(fast, 2) +
+                      " m/s to 2 %");
+            else if (steep)
+              // The same step, another of its solutions: the coupled
+              // Newton iteration, from the same start, ends at stick.
+              check(r.statistics.n_slip == 0 && r.statistics.n_stick > 0 &&
+                      slip_rate < 0.05 * fast &&
+                      r.relative_energy_defect() < 1e-8,
+                    prefix + "another solution of the same step found: the "
+                             "block sticks (its kinetic energy that of a "
+                             "velocity below 5 % of the fast slip)");
+            else
+              check(r.statistics.n_slip == 0 && r.statistics.n_stick > 0,
+                    prefix + "the block sticks");
+          }
+      }
+  }
+
+
+  void
+  test_paper_scene()
+  {
+    std::vector<std::vector<StepRecord<2>>> frozen, coupled;
+    for (const std::string solver : {"condensed", "assembled"})
+      for (const std::string linearization : {"frozen", "coupled"})
+        (linearization == "frozen" ? frozen : coupled)
+          .push_back(test_tools::run<2>(
+                       test_tools::scene("barboteu_danan_2016_small.prm"),
+                       {"Solver/Contact solver=" + solver,
+                        "Friction/Linearization=" + linearization,
+                        "Output/Directory=output-paper-" + solver + "-" +
+                          linearization})
+                       ->time_series());
+    for (unsigned int s = 0; s < 2; ++s)
+      {
+        const std::string name =
+          std::string("paper small, ") + (s == 0 ? "condensed" : "assembled");
+        const auto  &series = coupled[s];
+        unsigned int passes = 0, passes_frozen = 0, two = 0, fallbacks = 0;
+        bool rule = true, balance = true;
+        for (unsigned int n = 1; n < series.size(); ++n)
+          {
+            const auto &st = series[n].statistics;
+            passes += st.convexification_iterations;
+            two += st.convexification_iterations <= 2;
+            fallbacks += st.coupled_fallbacks;
+            rule = rule && st.convexification_converged &&
+                   st.coefficient_residual <= 1e-6;
+            balance = balance && series[n].relative_energy_defect() < 1e-8 &&
+                      series[n].relative_min_dissipation() >= -1e-12;
+          }
+        for (unsigned int n = 1; n < frozen[s].size(); ++n)
+          passes_frozen += frozen[s][n].statistics.convexification_iterations;
+        const unsigned int steps = series.size() - 1;
+        check(steps == 128 && rule,
+              name + ": 128 steps, each with the loop's stopping rule met");
+        check(two >= steps * 9 / 10 && fallbacks <= steps / 20,
+              name + ": two passes in at least 90 % of the steps, fallbacks "
+                     "in at most 5 %");
+        check(passes < 0.75 * passes_frozen,
+              name + ": under 3/4 of the frozen loop's passes");
+        check(balance, name + ": energy balance closed, dissipation >= 0");
+      }
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  test_jacobian<2>();
+  test_jacobian<3>();
+  test_eigenvalue();
+  test_block();
+  test_paper_scene();
+}
