@@ -1,6 +1,7 @@
 // The friction law holds node by node, to solver tolerance (relative to the
 // largest contact pressure, the scale the solver's tolerance refers to), in
-// the paper's frictional scene
+// the paper's frictional scene, solved by the frozen convexification loop
+// and by the coupled linearization (Friction/Linearization)
 // (prm/barboteu_danan_2016_small.prm, mu(s) = 0.5 exp(-2000 s) + 0.5), at
 // every step, read back from the contact_NNNNN.csv files the run writes:
 //   slip nodes:  |tangential_traction| = mu normal_pressure, the traction
@@ -18,16 +19,17 @@
 
 using namespace DynamicContact;
 
-int
-main(int argc, char *argv[])
+void
+check_law(const std::string &linearization)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::string                directory = "output-friction";
+  const std::string directory = "output-friction-" + linearization;
+  const std::string prefix    = linearization + ": ";
   test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
                      {"Output/Directory=" + directory,
-                      "Output/Output every=1"});
+                      "Output/Output every=1",
+                      "Friction/Linearization=" + linearization});
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
-    return 0;
+    return;
 
   const auto mu = [](const double s) {
     return 0.5 * std::exp(-2000 * s) + 0.5;
@@ -43,14 +45,14 @@ main(int argc, char *argv[])
       std::snprintf(name, sizeof(name), "/contact_%05u.csv", step);
       const auto rows = test_tools::read_csv(directory + name);
       if (rows.empty())
-        test_tools::check(false, std::string("read ") + name);
+        test_tools::check(false, prefix + "read " + name);
       if (step == 1)
         test_tools::check(rows[0] == test_tools::split("time,x,y,u_nu,w_nu,"
                                                        "normal_pressure,w_tau,"
                                                        "tangential_traction,mu,"
                                                        "u_x,u_y,state",
                                                        ','),
-                          "contact CSV header");
+                          prefix + "contact CSV header");
       // The time of the step, in every row.
       const double time = rows.size() > 1 ? std::stod(rows[1][0]) : 0;
       time_increases    = time_increases && time > last_time;
@@ -82,18 +84,28 @@ main(int argc, char *argv[])
         }
     }
   test_tools::check(one_time && time_increases,
-                    "the time column: one time per file, increasing with "
+                    prefix + "the time column: one time per file, increasing with "
                     "the step");
   test_tools::check(count["slip"] > 100 && count["stick"] > 10,
-                    "many slip and stick node-steps");
+                    prefix + "many slip and stick node-steps");
   test_tools::check(slip_law < 1e-8 * p_max,
-                    "slip: |traction| = mu p to 1e-8 of the largest pressure");
-  test_tools::check(opposes, "slip: the traction opposes the slip velocity");
+                    prefix + "slip: |traction| = mu p to 1e-8 of the largest pressure");
+  test_tools::check(opposes,
+                    prefix + "slip: the traction opposes the slip velocity");
   test_tools::check(slip_coefficient < 1e-6,
-                    "slip: mu = mu(|w_tau|) to the coefficient tolerance 1e-6");
+                    prefix + "slip: mu = mu(|w_tau|) to the coefficient tolerance 1e-6");
   test_tools::check(stick_excess < 1e-8 * p_max,
-                    "stick: |traction| <= mu(0) p");
+                    prefix + "stick: |traction| <= mu(0) p");
   test_tools::check(stick_velocity < 1e-10 * slip_max,
-                    "stick: w_tau = 0 to 1e-10 of the largest slip rate");
-  test_tools::check(free_traction == 0, "free: no traction");
+                    prefix + "stick: w_tau = 0 to 1e-10 of the largest slip rate");
+  test_tools::check(free_traction == 0, prefix + "free: no traction");
+}
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check_law("frozen");
+  check_law("coupled");
 }
