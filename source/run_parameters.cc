@@ -132,9 +132,10 @@ namespace DynamicContact
         "false",
         Patterns::Bool(),
         "With a slip-rate dependent friction law: true treats a step whose "
-        "solution has a contraction factor of 1 or more (the frozen-"
-        "coefficient loop is repelled from it and the step has other "
-        "solutions, doc/theory.md section 5.2) as a failed step, retried "
+        "solution has a contraction factor of 1 or more (a bound of the "
+        "frozen-coefficient loop's: the loop may be repelled from it, and "
+        "other solutions may lie beside it, doc/theory.md section 5.2) as a "
+        "failed step, retried "
         "with half the time step; at Minimum time step it is kept and "
         "counted in the summary. A smaller k restores the factor below 1 "
         "only where inertia dominates the step's compliance (k below the "

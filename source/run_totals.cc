@@ -132,8 +132,8 @@ namespace DynamicContact
                  "solution) at "
               << unique_steps << " of " << bound_steps
               << " steps evaluated (largest " << sig6(max_uniqueness_bound)
-              << "); contraction factor at the solution >= 1 (more than one "
-                 "solution) at "
+              << "); contraction factor at the solution >= 1 (the frozen "
+                 "loop may be repelled, solutions may lie beside it) at "
               << non_unique_steps.size() << " step"
               << (non_unique_steps.size() == 1 ? "" : "s");
         if (!non_unique_steps.empty())

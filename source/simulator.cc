@@ -429,8 +429,8 @@ namespace DynamicContact
         statistics.contraction_factor >= 1 && !accept_unconverged_loop)
       throw StepFailure("the contraction factor of the step's solution is " +
                         sig6(statistics.contraction_factor) +
-                        " >= 1: the step has more than one solution (Time/Cut "
-                        "back where not unique)");
+                        " >= 1: the step's solution may not be unique "
+                        "(Time/Cut back where not unique)");
 
     if (!std::isfinite(w.l2_norm()))
       throw StepFailure("the solution is not finite");

@@ -37,6 +37,7 @@ main()
                                           "setup_time",
                                           "wall_time_per_step",
                                           "newton_per_step",
+                                          "passes_per_step",
                                           "linear_iterations_per_newton",
                                           "peak_memory_mb"},
              "scaling_quick.csv has the documented columns");

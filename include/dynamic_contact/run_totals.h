@@ -29,9 +29,9 @@ namespace DynamicContact
     unsigned int coupled_fallbacks = 0;
     /**
      * The uniqueness measures (doc/theory.md section 5.2): the steps whose
-     * contraction factor was 1 or more (a solution with other solutions
-     * beside it), the steps where the paper's bound was evaluated and where
-     * it was below 1 (one solution), and the largest of each.
+     * contraction factor was 1 or more (the frozen loop may be repelled
+     * from the solution), the steps where the paper's bound was evaluated
+     * and where it was below 1 (one solution), and the largest of each.
      */
     std::vector<unsigned int> non_unique_steps;
     unsigned int              bound_steps          = 0;

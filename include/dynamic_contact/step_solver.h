@@ -59,9 +59,10 @@ namespace DynamicContact
        * The uniqueness measures of the solution (doc/theory.md section
        * 5.2), -1 where they were not evaluated (Friction/Uniqueness
        * monitor): the paper's smallness condition theta rho(C L N) (below
-       * 1 the step has one solution), and the contraction factor theta
-       * rho(C D) of the frozen-coefficient loop at the solution (1 or more:
-       * the loop is repelled from it, and the step has other solutions).
+       * 1 the step has one solution), and theta rho(C D) at the solution,
+       * a bound of the frozen-coefficient loop's contraction factor there
+       * (below 1: the loop is attracted to it; 1 or more: it may be
+       * repelled, and other solutions may lie beside it).
        */
       double uniqueness_bound   = -1;
       double contraction_factor = -1;
