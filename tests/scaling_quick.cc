@@ -47,13 +47,15 @@ main()
     {
       const auto &row = rows[r];
       sensible =
-        sensible && row.size() == 11 && std::stod(row[1]) > 0 &&
+        sensible && row.size() == 12 && std::stod(row[1]) > 0 &&
         std::stod(row[2]) > 0 && row[4] == "2" && std::stod(row[7]) > 0 &&
-        std::stod(row[8]) >= 1 && std::stod(row[10]) > 0 &&
-        (row[5] == "condensed" ? row[9].empty() : std::stod(row[9]) >= 1);
+        std::stod(row[8]) >= 1 && std::stod(row[9]) >= 1 &&
+        std::stod(row[11]) > 0 &&
+        (row[5] == "condensed" ? row[10].empty() : std::stod(row[10]) >= 1);
     }
   checks.add(sensible,
              "every row: DoFs, contact nodes, 2 steps, time, Newton "
-             "iterations, memory, and Krylov iterations for the sparse solver");
+             "iterations, passes, memory, and Krylov iterations for the "
+             "sparse solver");
   checks.assert_all();
 }
