@@ -145,7 +145,8 @@ namespace DynamicContact
         const double slip     = w_tau.norm();
         const bool   slipping = c_node * slip >
                               1e-6 * std::max(r.threshold, lambda_tau.norm());
-        double slope = dmu_ds * node.weight * normal.pressure * effective_derivative;
+        double slope =
+          dmu_ds * node.weight * normal.pressure * effective_derivative;
         if (-slope > weakening_limit)
           {
             slope     = -weakening_limit;

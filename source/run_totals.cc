@@ -27,7 +27,8 @@ namespace DynamicContact
         ++bound_steps;
         unique_steps += step.uniqueness_bound < 1;
       }
-    max_uniqueness_bound = std::max(max_uniqueness_bound, step.uniqueness_bound);
+    max_uniqueness_bound =
+      std::max(max_uniqueness_bound, step.uniqueness_bound);
   }
 
 
@@ -123,7 +124,8 @@ namespace DynamicContact
     if (friction && parameters.friction.coupled_linearization &&
         !parameters.friction.law->is_constant())
       pcout << "  coupled linearization: fell back to the frozen loop in "
-            << coupled_fallbacks << " step" << (coupled_fallbacks == 1 ? "" : "s")
+            << coupled_fallbacks << " step"
+            << (coupled_fallbacks == 1 ? "" : "s")
             << std::endl;
     if (friction && (bound_steps > 0 || max_contraction >= 0))
       {

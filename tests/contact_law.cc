@@ -163,23 +163,6 @@ namespace
       node, normal_response(foundation, node, u_old, w, k), w, lambda, mu_i, c);
   }
 
-  /** d f/d w by central differences, f a vector function of w. */
-  template <int dim, typename F>
-  Tensor<2, dim>
-  finite_difference(const F &f, const Tensor<1, dim> &w)
-  {
-    const double   h = 1e-6;
-    Tensor<2, dim> J;
-    for (unsigned int j = 0; j < dim; ++j)
-      {
-        Tensor<1, dim> e;
-        e[j]                   = h;
-        const Tensor<1, dim> d = (f(w + e) - f(w - e)) / (2 * h);
-        for (unsigned int i = 0; i < dim; ++i)
-          J[i][j] = d[i];
-      }
-    return J;
-  }
 
 
   void
@@ -383,7 +366,7 @@ namespace
         const auto         lambda_of = [&](const Tensor<1, 2> &v) {
           return respond(node, u0, v, zero).value;
         };
-        const Tensor<2, 2> fd = finite_difference<2>(lambda_of, w);
+        const Tensor<2, 2> fd = test_tools::finite_difference<2>(lambda_of, w);
         out() << "  u_nu = " << digits(u_old_nu + 0.022, 6)
               << "  jacobian = " << in_frame(node, r.jacobian)
               << "  finite differences = " << in_frame(node, fd, 1e-8)
@@ -515,7 +498,7 @@ namespace
               v_tau.norm()) *
              v_tau;
     };
-    const Tensor<2, 3> fd = finite_difference<3>(exact, w);
+    const Tensor<2, 3> fd = test_tools::finite_difference<3>(exact, w);
     check(near(r.jacobian, fd, 1e-8),
           "3D manifold: jacobian = finite differences of g(w) w_tau/|w_tau|");
 
@@ -649,7 +632,7 @@ namespace
       const auto force_of = [&](const Tensor<1, 2> &v) {
         return linearize_node(f, node, u_old, v, k, true, zero, mu, c).force;
       };
-      check(near(l.block, finite_difference<2>(force_of, w), 1e-8),
+      check(near(l.block, test_tools::finite_difference<2>(force_of, w), 1e-8),
             "2D slip: block = finite differences of the force");
 
       const auto normal_only =
@@ -731,7 +714,7 @@ namespace
         return Tensor<1, 3>(m * r.pressure * n3.normal +
                             (mu * m * r.pressure / v_tau.norm()) * v_tau);
       };
-      check(near(l.block, finite_difference<3>(force_of, w), 1e-8),
+      check(near(l.block, test_tools::finite_difference<3>(force_of, w), 1e-8),
             "3D slip: block = finite differences of m p n + g w_tau/|w_tau|");
     }
   }

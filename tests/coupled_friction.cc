@@ -103,22 +103,6 @@ namespace
                              limit);
   }
 
-  template <int dim, typename F>
-  Tensor<2, dim>
-  finite_difference(const F &f, const Tensor<1, dim> &w)
-  {
-    const double   h = 1e-6;
-    Tensor<2, dim> J;
-    for (unsigned int j = 0; j < dim; ++j)
-      {
-        Tensor<1, dim> e;
-        e[j]                   = h;
-        const Tensor<1, dim> d = (f(w + e) - f(w - e)) / (2 * h);
-        for (unsigned int i = 0; i < dim; ++i)
-          J[i][j] = d[i];
-      }
-    return J;
-  }
 
 
   template <int dim>
@@ -150,7 +134,7 @@ namespace
               normal_response(foundation(), node, u_old, v, k).pressure / s) *
              v_tau;
     };
-    const Tensor<2, dim> fd = finite_difference<dim>(exact, w);
+    const Tensor<2, dim> fd = test_tools::finite_difference<dim>(exact, w);
     out() << d << "|jacobian - finite differences| = "
           << digits((r.jacobian - fd).norm() < 1e-9 ? 0. :
                                                       (r.jacobian - fd).norm(),

@@ -84,20 +84,24 @@ check_law(const std::string &linearization)
         }
     }
   test_tools::check(one_time && time_increases,
-                    prefix + "the time column: one time per file, increasing with "
-                    "the step");
+                    prefix +
+                      "the time column: one time per file, increasing with "
+                      "the step");
   test_tools::check(count["slip"] > 100 && count["stick"] > 10,
                     prefix + "many slip and stick node-steps");
   test_tools::check(slip_law < 1e-8 * p_max,
-                    prefix + "slip: |traction| = mu p to 1e-8 of the largest pressure");
+                    prefix +
+                      "slip: |traction| = mu p to 1e-8 of the largest pressure");
   test_tools::check(opposes,
                     prefix + "slip: the traction opposes the slip velocity");
   test_tools::check(slip_coefficient < 1e-6,
-                    prefix + "slip: mu = mu(|w_tau|) to the coefficient tolerance 1e-6");
+                    prefix + "slip: mu = mu(|w_tau|) to the coefficient "
+                             "tolerance 1e-6");
   test_tools::check(stick_excess < 1e-8 * p_max,
                     prefix + "stick: |traction| <= mu(0) p");
   test_tools::check(stick_velocity < 1e-10 * slip_max,
-                    prefix + "stick: w_tau = 0 to 1e-10 of the largest slip rate");
+                    prefix +
+                      "stick: w_tau = 0 to 1e-10 of the largest slip rate");
   test_tools::check(free_traction == 0, prefix + "free: no traction");
 }
 

@@ -136,6 +136,24 @@ namespace test_tools
     return buffer;
   }
 
+  /** d f/d w by central differences (step 1e-6), f a vector function of w. */
+  template <int dim, typename F>
+  dealii::Tensor<2, dim>
+  finite_difference(const F &f, const dealii::Tensor<1, dim> &w)
+  {
+    const double           h = 1e-6;
+    dealii::Tensor<2, dim> J;
+    for (unsigned int j = 0; j < dim; ++j)
+      {
+        dealii::Tensor<1, dim> e;
+        e[j]                           = h;
+        const dealii::Tensor<1, dim> d = (f(w + e) - f(w - e)) / (2 * h);
+        for (unsigned int i = 0; i < dim; ++i)
+          J[i][j] = d[i];
+      }
+    return J;
+  }
+
   /** A quantity of a step: its name (for messages) and its value. */
   template <int dim>
   struct Quantity
