@@ -118,7 +118,11 @@ namespace DynamicContact
                     << " nodes by " << rhs.size() << " solves" << std::endl;
     bulk_solver.solve_columns(rhs, rows, values, keep, dim * nodes_per_block);
     if (store)
-      stored_full_columns += rhs.size();
+      {
+        stored_full_columns += rhs.size();
+        for (const unsigned int j : missing)
+          full_column_stored[j] = true;
+      }
     result.bulk_solves += rhs.size();
 
     std::vector<double> packed;

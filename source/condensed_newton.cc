@@ -35,6 +35,7 @@ namespace DynamicContact
     const auto &all = gathered.all_nodes();
     columns.assign(all.size(), {});
     full_columns.assign(dim * all.size(), {});
+    full_column_stored.assign(all.size(), false);
     stored_full_columns = 0;
     pending.reset();
     max_owned_dofs =
@@ -168,6 +169,7 @@ namespace DynamicContact
     reduced = Reduced();
     for (auto &c : full_columns)
       std::vector<double>().swap(c);
+    full_column_stored.assign(full_column_stored.size(), false);
     stored_full_columns = 0;
   }
 
@@ -207,7 +209,7 @@ namespace DynamicContact
     Vector_t                          &x) const
   {
     for (const unsigned int j : nodes)
-      if (full_columns[dim * j].empty())
+      if (!full_column_stored[j])
         return false;
     TimerSection t(problem.timer, "Bulk: sums of compliance columns");
     x            = 0;

@@ -146,6 +146,11 @@ namespace DynamicContact
      */
     std::vector<std::vector<double>> full_columns;
     std::size_t                      stored_full_columns = 0;
+    /**
+     * Node j's whole responses are stored (the same on every process: a
+     * process that owns no DoF stores empty ones).
+     */
+    std::vector<bool> full_column_stored;
     /** The largest number of owned DoFs of a process. */
     types::global_dof_index      max_owned_dofs     = 0;
     static constexpr std::size_t full_column_budget = std::size_t(512) << 20;
