@@ -53,7 +53,6 @@ namespace DynamicContact
                            friction_law->one_sided_lipschitz_constant(
                              friction_parameters.maximum_slip_rate) :
                            0.)
-    , mu_slope(std::max(lipschitz_constant, 1e-300))
   {}
 
 
@@ -386,8 +385,7 @@ namespace DynamicContact
             std::vector<double>               &mu) const
       {
         const auto n = iterate(boundary.values(w));
-        for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
+        coefficients_of(n, mu);
         return density(lambda, n);
       }
 
@@ -400,7 +398,13 @@ namespace DynamicContact
       coefficients_at(const std::vector<Tensor<1, dim>> &values,
                       std::vector<double>               &mu) const
       {
-        const auto n = iterate(values);
+        coefficients_of(iterate(values), mu);
+      }
+
+      /** mu_i = mu(|w_tau,i|) of @p n at every node. */
+      void
+      coefficients_of(const NodalIterate &n, std::vector<double> &mu) const
+      {
         for (unsigned int i = 0; i < all.size(); ++i)
           mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
       }
@@ -667,7 +671,7 @@ namespace DynamicContact
         // counts).
         const double provisional_accuracy =
           best_residual < std::numeric_limits<double>::max() ?
-            best_residual / mu_slope :
+            best_residual / std::max(lipschitz_constant, 1e-300) :
             0.;
         coefficients.frozen = mu;
         const bool coupled  = coupling && pass == 0;

@@ -173,17 +173,11 @@ namespace DynamicContact
     /**
      * The law's one-sided Lipschitz constant max(0, -min mu') on
      * [0, Friction/Maximum slip rate] (0 without a law that depends on s):
-     * the L of the uniqueness bound.
+     * the L of the uniqueness bound, and how fast mu can change with the
+     * slip rate: what a provisional pass of the convexification loop may
+     * leave of the slip rate is measured by it.
      */
     const double lipschitz_constant;
-    /**
-     * How fast mu can change with the slip rate: max(0, -min mu') on
-     * [0, Friction/Maximum slip rate], the law's one-sided Lipschitz
-     * constant (1 without a law that depends on s). What a provisional pass
-     * of the convexification loop may leave of the slip rate is measured
-     * by it.
-     */
-    const double mu_slope;
 
     /**
      * The Newton solver of each kind of (sub-)step: [0] theta > 1/2
