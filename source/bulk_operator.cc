@@ -14,6 +14,7 @@ namespace DynamicContact
                                   const KelvinVoigtMaterial<dim> &material)
     : discretization(d)
     , material(material)
+    , face_quadrature(d)
   {}
 
 
@@ -189,17 +190,11 @@ namespace DynamicContact
     const auto                          &fe = discretization.fe;
     const unsigned int                   n  = fe.n_dofs_per_cell();
     const QGauss<dim>                    quadrature(fe.degree + 2);
-    const QGauss<dim - 1>                face_quadrature(fe.degree + 2);
     FEValues<dim>                        fe_values(discretization.mapping,
                             fe,
                             quadrature,
                             update_values | update_quadrature_points |
                               update_JxW_values);
-    FEFaceValues<dim>                    fe_face(discretization.mapping,
-                              fe,
-                              face_quadrature,
-                              update_values | update_quadrature_points |
-                                update_JxW_values);
     Vector<double>                       local(n);
     Vector<double>                       value(dim);
     std::vector<types::global_dof_index> dofs(n);
@@ -207,15 +202,29 @@ namespace DynamicContact
     if (loaded_cells_scene != &scene)
       {
         loaded_cells.clear();
+        loaded_faces.clear();
+        loaded_face_cell.clear();
         for (const auto &cell :
              discretization.dof_handler.active_cell_iterators())
           if (cell->is_locally_owned() && scene.carries_load(cell))
-            loaded_cells.push_back(cell);
+            {
+              for (const auto f : cell->face_indices())
+                if (Function<dim> *const g = scene.face_load(cell, f))
+                  {
+                    loaded_faces.push_back({cell, f, g});
+                    loaded_face_cell.push_back(loaded_cells.size());
+                  }
+              loaded_cells.push_back(cell);
+            }
         loaded_cells_scene = &scene;
       }
-    for (const auto &cell : loaded_cells)
+    // The surface loads, face by face, to their tolerance (collective).
+    face_quadrature.integrate(scene, t, loaded_faces, face_values);
+    unsigned int face = 0;
+    for (unsigned int c = 0; c < loaded_cells.size(); ++c)
       {
-        local = 0;
+        const auto &cell = loaded_cells[c];
+        local            = 0;
         if (body_force)
           {
             fe_values.reinit(cell);
@@ -232,23 +241,9 @@ namespace DynamicContact
                   }
               }
           }
-        for (const auto f : cell->face_indices())
-          if (Function<dim> *const load_function = scene.face_load(cell, f))
-            {
-              Function<dim> &g = *load_function;
-              fe_face.reinit(cell, f);
-              for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                {
-                  g.vector_value(fe_face.quadrature_point(q), value);
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      const unsigned int c =
-                        fe.system_to_component_index(i).first;
-                      local(i) +=
-                        value(c) * fe_face.shape_value(i, q) * fe_face.JxW(q);
-                    }
-                }
-            }
+        for (; face < loaded_faces.size() && loaded_face_cell[face] == c;
+             ++face)
+          local += face_values[face];
         // Every listed cell carries a load (a body force, a loaded face).
         cell->get_dof_indices(dofs);
         discretization.constraints.distribute_local_to_global(local,

@@ -30,6 +30,7 @@ namespace DynamicContact
     : discretization(discretization)
     , material(material)
     , scene(scene)
+    , face_quadrature(discretization)
   {}
 
 
@@ -66,6 +67,8 @@ namespace DynamicContact
     // The component of each owned DoF, and the cells with work.
     component.assign(d.locally_owned.n_elements(), 0);
     cells.clear();
+    faces.clear();
+    face_cell.clear();
     for (const auto &cell : d.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -79,7 +82,15 @@ namespace DynamicContact
               has_support = has_support || supported(d, dofs[i]);
             }
           if (has_support || scene.carries_load(cell))
-            cells.push_back({cell, has_support});
+            {
+              for (const auto f : cell->face_indices())
+                if (Function<dim> *const g = scene.face_load(cell, f))
+                  {
+                    faces.push_back({cell, f, g});
+                    face_cell.push_back(cells.size());
+                  }
+              cells.push_back({cell, has_support});
+            }
         }
 
     // Where each owned DoF sits in a ghosted vector.
@@ -112,17 +123,11 @@ namespace DynamicContact
     const auto                      &fe = d.fe;
     const unsigned int               n  = fe.n_dofs_per_cell();
     const QGauss<dim>                quadrature(fe.degree + 2);
-    const QGauss<dim - 1>            face_quadrature(fe.degree + 2);
     FEValues<dim>                    fe_values(d.mapping,
                             fe,
                             quadrature,
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
-    FEFaceValues<dim>                fe_face(d.mapping,
-                              fe,
-                              face_quadrature,
-                              update_values | update_quadrature_points |
-                                update_JxW_values);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<1, dim>>      w_q(quadrature.size()),
       w_old_q(quadrature.size());
@@ -140,8 +145,22 @@ namespace DynamicContact
           b.applied[c] += value(c) * JxW;
       };
 
-    for (const auto &[cell, has_support] : cells)
+    // The surface loads of the step, face by face: theta F(t) + (1 -
+    // theta) F(t - k), integrated as the load vector integrates them.
+    face_quadrature.integrate(scene, t, faces, face_values);
+    if (!scheme.is_backward_euler())
       {
+        face_quadrature.integrate(scene,
+                                  t - scheme.time_step(),
+                                  faces,
+                                  old_face_values);
+        for (unsigned int f = 0; f < faces.size(); ++f)
+          scheme.weigh(face_values[f], old_face_values[f]);
+      }
+    unsigned int face = 0;
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        const auto &[cell, has_support] = cells[c];
         fe_values.reinit(cell);
         if (has_support)
           {
@@ -179,21 +198,15 @@ namespace DynamicContact
                   }
               }
           }
-        for (const auto f : cell->face_indices())
-          if (Function<dim> *const load_function = scene.face_load(cell, f))
+        // The shape functions sum to one: a face's force is the sum of its
+        // integrals per component.
+        for (; face < faces.size() && face_cell[face] == c; ++face)
+          for (unsigned int i = 0; i < n; ++i)
             {
-              fe_face.reinit(cell, f);
-              for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                {
-                  load_at(*load_function,
-                          fe_face.quadrature_point(q),
-                          fe_face.JxW(q));
-                  if (has_support)
-                    for (unsigned int i = 0; i < n; ++i)
-                      residual(i) -=
-                        value(fe.system_to_component_index(i).first) *
-                        fe_face.shape_value(i, q) * fe_face.JxW(q);
-                }
+              const double F_i = face_values[face](i);
+              b.applied[fe.system_to_component_index(i).first] += F_i;
+              if (has_support)
+                residual(i) -= F_i;
             }
         // At a supported DoF the equation is balanced by the support's
         // force (the boundary term of the weak form): it is the residual.

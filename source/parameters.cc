@@ -293,6 +293,16 @@ namespace DynamicContact
                           "",
                           ids,
                           "Boundary ids without load (zero traction).");
+        prm.declare_entry(
+          "Load quadrature tolerance",
+          "1e-6",
+          Patterns::Double(0, 1),
+          "How accurately the traction and the contact source are integrated "
+          "on each face: Gauss rules of degree + 2 points per direction on "
+          "1, 2, 4, ... subintervals, until two in a row agree to this "
+          "tolerance times the largest load times the face's area (a load "
+          "narrower than the cells needs several). 0: one Gauss rule of "
+          "degree + 2 points per direction.");
         declare_function(prm,
                          "Traction function",
                          dim,
@@ -318,6 +328,7 @@ namespace DynamicContact
     {
       std::optional<std::map<std::string, types::boundary_id>> names;
       prm.enter_subsection("Boundary conditions");
+      load_quadrature_tolerance = prm.get_double("Load quadrature tolerance");
       const std::string text[] = {prm.get("Clamped"),
                                   prm.get("Roller"),
                                   prm.get("Traction"),

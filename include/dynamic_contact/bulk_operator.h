@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/face_load_quadrature.h>
 #include <dynamic_contact/linear_algebra.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
@@ -137,6 +138,11 @@ namespace DynamicContact
     mutable std::vector<typename DoFHandler<dim>::active_cell_iterator>
                               loaded_cells;
     mutable const Scene<dim> *loaded_cells_scene = nullptr;
+    /** Their loaded faces, and the index of each face's cell in the list. */
+    mutable std::vector<typename FaceLoadQuadrature<dim>::Face> loaded_faces;
+    mutable std::vector<unsigned int> loaded_face_cell;
+    mutable std::vector<Vector<double>> face_values;
+    FaceLoadQuadrature<dim>             face_quadrature;
     TimeScheme                current;
     mutable Vector_t          tmp;
   };

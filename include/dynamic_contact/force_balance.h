@@ -6,6 +6,7 @@
 #include <dynamic_contact/contact_boundary.h>
 #include <dynamic_contact/contact_law.h>
 #include <dynamic_contact/discretization.h>
+#include <dynamic_contact/face_load_quadrature.h>
 #include <dynamic_contact/material.h>
 #include <dynamic_contact/scene.h>
 #include <dynamic_contact/time_scheme.h>
@@ -105,6 +106,11 @@ namespace DynamicContact
       bool                                           has_support;
     };
     std::vector<CellWork> cells;
+    /** Their loaded faces, and the index of each face's cell in cells. */
+    std::vector<typename FaceLoadQuadrature<dim>::Face> faces;
+    std::vector<unsigned int>                           face_cell;
+    FaceLoadQuadrature<dim>                             face_quadrature;
+    mutable std::vector<Vector<double>> face_values, old_face_values;
   };
 } // namespace DynamicContact
 

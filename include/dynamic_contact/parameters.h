@@ -74,6 +74,8 @@ namespace DynamicContact
       std::vector<types::boundary_id> traction; // Gamma_2: sigma n = f_2
       std::vector<types::boundary_id> contact;  // Gamma_3: foundation
       std::vector<types::boundary_id> free;     // sigma n = 0
+      /** Of the surface loads' quadrature (FaceLoadQuadrature). */
+      double load_quadrature_tolerance = 1e-6;
 
       static void
       declare_parameters(ParameterHandler &prm, const unsigned int dim);
