@@ -10,7 +10,11 @@ data made by hand whose answers are known:
   in time, read from contact CSVs;
 - the Output times a run needs hit or bracket t = 0.2, ..., 0.8;
 - the history and profile errors are the relative maxima they are defined
-  to be.
+  to be;
+- the same for the 3D rail's measures (benchmarks/rail_error.py, used by
+  benchmarks/work-precision-3d): the observed order with unequal
+  refinement ratios, the centre-line pressure and the largest deflection
+  read from 3D contact CSVs, the errors.
 
     engineering_error.py --source-dir REPO --work-dir DIR
 
@@ -154,10 +158,70 @@ def main():
     check(all(np.allclose(back[k][1], ref[k][1]) for k in ee.HISTORIES)
           and np.allclose(back["pressure"][0.6][1], ref["pressure"][0.6][1]),
           "reference_histories.csv and reference_profiles.csv read back")
+    rail(args.work_dir)
     if failures:
         print("%d check(s) failed" % len(failures))
         sys.exit(1)
     print("all checks passed")
+
+
+def rail(work_dir):
+    """benchmarks/rail_error.py (the 3D rail's measures, work-precision-3d)."""
+    import rail_error as re3
+
+    # Observed order with the ratios of the space sequence 80, 120, 160.
+    def q(n):
+        return np.array([1.0, 2.0]) + 0.7 * (1.0 / n) ** 2
+    p = re3.observed_order(q(80), q(120), q(160), 1.5, 4.0 / 3)
+    check(abs(p - 2.0) < 1e-6, "rail: observed order with ratios 3/2, 4/3: %.8f (2)" % p)
+    p = re3.observed_order(q(40), q(80), q(160))
+    check(abs(p - 2.0) < 1e-6, "rail: observed order with ratio 2: %.8f (2)" % p)
+    check(re3.observed_order(q(160), q(80), q(40)) != re3.observed_order(q(160), q(80), q(40)),
+          "rail: no order for a sequence that diverges")
+    check(re3.used(float("nan")) == 2.0 and re3.used(0.4) == 1.0 and re3.used(5) == 4.0,
+          "rail: orders used clipped to [1, 4], 2 where none was observed")
+
+    # A 3D run written by hand: Gamma_3 nodes at z = 0, 0.05, 0.1; steps at
+    # t = j/32; the pressure on the centre line z = 0.05 is 10 t + x, and
+    # -u_y = t + x + z (largest at x = 2, z = 0.1).
+    run = os.path.join(work_dir, "rail")
+    os.makedirs(run, exist_ok=True)
+    for name in os.listdir(run):
+        os.remove(os.path.join(run, name))
+    times = [j / 32 for j in range(0, 9)]
+    lines = ["step,time,normal_force,tangential_force,total_energy"]
+    for s, t in enumerate(times):
+        lines.append("%d,%.17g,%.17g,%.17g,%.17g" % (s, t, 1 + t, 2 * t, 3 - t))
+    write(os.path.join(run, "time_series.csv"), "\n".join(lines) + "\n")
+    for s, t in enumerate(times):
+        rows = ["time,x,y,z,normal_pressure,u_y"]
+        for x in (1.0, 0.0, 2.0):  # not sorted: extract() sorts by x
+            for z in (0.0, 0.05, 0.1):
+                pressure = 10 * t + x if z == 0.05 else -1.0
+                rows.append("%.17g,%g,0,%g,%.17g,%.17g" % (t, x, z, pressure, -(t + x + z)))
+        write(os.path.join(run, "contact_%05d.csv" % s), "\n".join(rows) + "\n")
+    write(os.path.join(run, "run_status"), "completed\n")
+    data = re3.extract(run)
+    x, pressure = data["pressure"][0.125]
+    check(np.allclose(x, [0, 1, 2]) and np.allclose(pressure, 1.25 + x),
+          "rail: centre-line pressure at t = 0.125, sorted by x (%s)" % pressure)
+    td, d = data["deflection"]
+    check(np.allclose(td, times[1:]) and np.allclose(d, np.array(times[1:]) + 2.1),
+          "rail: largest deflection max(-u_y) at every contact CSV")
+    ref = {"normal_force": (np.array(re3.GRID), 1 + np.array(re3.GRID) * 1.01),
+           "friction_force": (np.array(re3.GRID), 2 * np.array(re3.GRID)),
+           "energy": (np.array(re3.GRID), 3 - np.array(re3.GRID)),
+           "deflection": (np.array(re3.GRID), np.array(re3.GRID) + 2.1),
+           "pressure": {T: (np.array([0.0, 2.0]), 10 * T + np.array([0.0, 2.0]) + 0.1)
+                        for T in re3.PROFILE_TIMES}}
+    e = re3.errors(data, ref)
+    # N: run 1 + t, reference 1 + 1.01 t: largest 0.01 t / max(1 + 1.01 t) at
+    # t = 0.25 (the samples from t = 1/16 on).
+    check(abs(e["normal_force"] - 0.0025 / 1.2525) < 1e-12 and e["energy"] < 1e-12
+          and e["deflection"] < 1e-12 and e["friction_force"] < 1e-12,
+          "rail: history errors (N %.6g)" % e["normal_force"])
+    check(abs(e["pressure"] - 0.1 / 4.6) < 1e-12,
+          "rail: pressure error 0.1 / max|p_ref| (%.6g)" % e["pressure"])
 
 
 if __name__ == "__main__":
