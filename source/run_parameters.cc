@@ -213,9 +213,10 @@ namespace DynamicContact
           "iterates, to the Newton tolerance). 'condensed': static "
           "condensation onto Gamma_3 - the bulk matrix K0 is factorized once "
           "per mesh and time step, the compliance of the contact nodes "
-          "computed from it (on one process from the Schur complement on "
-          "Gamma_3, on several by dim solves per node), and each iteration "
-          "is a "
+          "computed from it (from the Schur complement on Gamma_3: on one "
+          "process from the Cholesky factor, on several in 3D from a MUMPS "
+          "factorization where it agrees with the solves, else by dim "
+          "solves per node), and each iteration is a "
           "dense solve on the active contact nodes; Gamma_3 is replicated on "
           "every process. 'assembled': the sparse Newton system of the whole "
           "body, per process only its own part (with Linear solver = "
@@ -238,9 +239,10 @@ namespace DynamicContact
           "1000",
           Patterns::Integer(0),
           "Contact solver = auto on more than one process: the same limit. "
-          "There the compliance costs dim solves with MUMPS per contact node "
-          "and the dense tables are replicated on every process, so the "
-          "condensed solver is the faster one only on small contact "
+          "There the dense tables are replicated on every process, and in "
+          "2D (or where MUMPS's Schur complement does not agree with its "
+          "solves) the compliance costs dim solves per contact node, so "
+          "the condensed solver is the faster one only on small contact "
           "boundaries (README 'Choosing the contact solver').");
         prm.declare_entry(
           "Provisional passes",

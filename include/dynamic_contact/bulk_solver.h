@@ -160,14 +160,18 @@ namespace DynamicContact
 
     /**
      * The block of A^{-1} at the trailing rows of initialize(), in their
-     * order, column-major in @p inverse (m^2 entries for m rows): with the
-     * Cholesky factorization, the inverse of their Schur complement from
-     * the trailing block of the factor, O(m^3) dense work instead of m
-     * solves. False (and nothing computed) without trailing rows or
-     * without the Cholesky factorization (several processes, MUMPS, AMG).
+     * order, column-major in @p inverse (m^2 entries for m rows), the
+     * inverse of their Schur complement, O(m^3) dense work instead of m
+     * solves: with the Cholesky factorization from the trailing block of
+     * the factor; with MUMPS (several processes) from a distributed
+     * factorization of its own that returns the Schur complement (if its
+     * m^2 entries fit in schur_budget bytes, and if it agrees with a solve
+     * to a tenth of the Newton tolerance). Collective. False without
+     * trailing rows, with AMG, if MUMPS fails or the check does not pass
+     * (and then for this factorization without trying again).
      */
     bool
-    inverse_block(std::vector<double> &inverse) const;
+    inverse_block(std::vector<double> &inverse);
 
     /**
      * About how many numbers a solve with one right-hand side reads (the
@@ -181,6 +185,13 @@ namespace DynamicContact
   private:
     const Parameters::Solver parameters;
     const Matrix_t          *matrix = nullptr;
+
+    /**
+     * The trailing rows of initialize() (Amesos only; emptied when the
+     * Schur complement could not serve).
+     */
+    std::vector<dealii::types::global_dof_index> schur_rows;
+    static constexpr std::size_t schur_budget = std::size_t(1) << 30;
 
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    direct;
