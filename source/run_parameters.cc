@@ -236,14 +236,16 @@ namespace DynamicContact
           "(the measured crossover, README 'Choosing the contact solver').");
         prm.declare_entry(
           "Condensed limit on several processes",
-          "1000",
-          Patterns::Integer(0),
-          "Contact solver = auto on more than one process: the same limit. "
-          "There the dense tables are replicated on every process, and in "
-          "2D (or where MUMPS's Schur complement does not agree with its "
-          "solves) the compliance costs dim solves per contact node, so "
-          "the condensed solver is the faster one only on small contact "
-          "boundaries (README 'Choosing the contact solver').");
+          "auto",
+          Patterns::Anything(),
+          "Contact solver = auto on more than one process: the same limit, "
+          "an integer >= 0 or 'auto'. In 2D the compliance costs dim solves "
+          "per contact node there, so the condensed solver is the faster "
+          "one only on small contact boundaries: 'auto' is 1000. In 3D it "
+          "comes from MUMPS's Schur complement and a step costs about what "
+          "it costs on one process: 'auto' is Condensed limit (README "
+          "'Choosing the contact solver'). Every process holds the dense "
+          "tables (8 bytes x (dim n_Gamma)^2 twice).");
         prm.declare_entry(
           "Provisional passes",
           "true",
@@ -310,8 +312,27 @@ namespace DynamicContact
          prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
                                                     ContactSolver::automatic);
       condensed_limit = prm.get_integer("Condensed limit");
-      condensed_limit_on_several_processes =
-        prm.get_integer("Condensed limit on several processes");
+      {
+        const std::string limit =
+          prm.get("Condensed limit on several processes");
+        if (limit == "auto")
+          condensed_limit_on_several_processes.reset();
+        else
+          {
+            std::size_t end   = 0;
+            long        value = -1;
+            try
+              {
+                value = std::stol(limit, &end);
+              }
+            catch (...)
+              {}
+            require(value >= 0 && end == limit.size(),
+                    "Solver/Condensed limit on several processes: '" + limit +
+                      "' is neither an integer >= 0 nor 'auto'.");
+            condensed_limit_on_several_processes = value;
+          }
+      }
       provisional_passes    = prm.get_bool("Provisional passes");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");

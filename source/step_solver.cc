@@ -67,11 +67,14 @@ namespace DynamicContact
     c_t      = complementarity_constant;
     using CS = Parameters::Solver::ContactSolver;
     // auto: the limit of one process or of several (README, "Choosing the
-    // contact solver").
+    // contact solver"); on several, 'auto' is the limit of one process in
+    // 3D (the compliance from MUMPS's Schur complement), 1000 in 2D (by
+    // dim solves per node).
     const unsigned int limit =
       Utilities::MPI::n_mpi_processes(discretization.comm) == 1 ?
         parameters.condensed_limit :
-        parameters.condensed_limit_on_several_processes;
+        parameters.condensed_limit_on_several_processes.value_or(
+          dim == 3 ? parameters.condensed_limit : 1000);
     condensed = (parameters.contact_solver == CS::condensed ||
                  (parameters.contact_solver == CS::automatic &&
                   dim * contact_boundary.n_global_nodes() <= limit));

@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -295,8 +296,11 @@ namespace DynamicContact
       ContactSolver contact_solver;
       /** Contact solver = auto: the largest dim n_Gamma for condensed. */
       unsigned int condensed_limit;
-      /** The same on more than one process. */
-      unsigned int condensed_limit_on_several_processes;
+      /**
+       * The same on more than one process; std::nullopt for 'auto' (2D:
+       * 1000; 3D: condensed_limit).
+       */
+      std::optional<unsigned int> condensed_limit_on_several_processes;
       bool         provisional_passes;
       bool         line_search;
       double       newton_tolerance;
