@@ -215,13 +215,6 @@ namespace DynamicContact
     void
     write_status(const std::string &status);
 
-    /** Whether this run has written run_status (taken over the results). */
-    bool
-    status_written() const
-    {
-      return status_file.is_open();
-    }
-
     /** Whether @p name is one of the names the program writes. */
     static bool
     is_result_name(const std::string &name);

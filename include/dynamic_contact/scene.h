@@ -69,13 +69,10 @@ namespace DynamicContact
       return *initial_velocity_function;
     }
 
-    /** The additional traction s(x, t) on Gamma_3 (manufactured solutions). */
-    Function<dim> &
-    contact_source() const
-    {
-      return *contact_source_function;
-    }
-
+    /**
+     * Whether there is an additional traction s(x, t) on Gamma_3
+     * (manufactured solutions; face_load() gives it).
+     */
     bool
     has_contact_source() const
     {
