@@ -66,7 +66,6 @@ namespace DynamicContact
         for (const auto &[i, c] : dofs)
           result(i) += value(c) * fe_face.shape_value(i, p) * JxW;
       }
-    last_evaluations += fe_face.n_quadrature_points;
     return g_max;
   }
 
@@ -81,8 +80,6 @@ namespace DynamicContact
     scene.set_time(t);
     const double tolerance =
       scene.boundary_conditions().load_quadrature_tolerance;
-    last_evaluations         = 0;
-    last_largest_subdivision = 1;
     values.resize(faces.size());
     if (tolerance == 0)
       {
@@ -126,8 +123,6 @@ namespace DynamicContact
             integrate_with(1 + level, faces[f], values[f], area);
             difference = max_difference(values[f], coarse);
           }
-        last_largest_subdivision =
-          std::max(last_largest_subdivision, 1u << level);
       }
   }
 

@@ -64,21 +64,7 @@ namespace DynamicContact
               const std::vector<Face>     &faces,
               std::vector<Vector<double>> &values) const;
 
-    /** The most subintervals per direction that the last call used. */
-    unsigned int
-    largest_subdivision() const
-    {
-      return last_largest_subdivision;
-    }
-
-    /** The number of load evaluations of the last call (this process). */
-    std::size_t
-    evaluations() const
-    {
-      return last_evaluations;
-    }
-
-    /** The most subintervals per direction of any face. */
+    /** At most 2^max_level subintervals per direction on a face. */
     static constexpr unsigned int max_level = dim == 2 ? 7 : 4;
 
   private:
@@ -96,9 +82,6 @@ namespace DynamicContact
     /** For each face of a cell: its shape functions and their components. */
     mutable std::vector<std::vector<std::pair<unsigned int, unsigned int>>>
       face_dofs;
-
-    mutable unsigned int last_largest_subdivision = 1;
-    mutable std::size_t  last_evaluations         = 0;
 
     /**
      * Integrate face @p face with rule @p rule into @p result; returns the
