@@ -7,6 +7,8 @@
 
 #include <dynamic_contact/bulk_solver.h>
 #include <dynamic_contact/cholmod_views.h>
+#include <dynamic_contact/mpi_gather.h>
+#include <dynamic_contact/solver_plan.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -244,7 +246,10 @@ namespace DynamicContact
   class BulkSolver::Cholesky
   {
   public:
-    Cholesky()
+    explicit Cholesky(const MPI_Comm comm)
+      : comm(comm)
+      , n_processes(Utilities::MPI::n_mpi_processes(comm))
+      , rank(Utilities::MPI::this_mpi_process(comm))
     {
       cholmod_l_start(&common);
       common.print      = 0; // errors are reported by the checks below
@@ -264,39 +269,74 @@ namespace DynamicContact
     operator=(const Cholesky &) = delete;
 
     /**
-     * Factorize @p A (one process: every row is owned), with the rows
-     * @p trailing (local indices, distinct) last if there are any.
+     * Factorize @p A, with the rows @p trailing (global indices, distinct)
+     * last if there are any. On several processes every process gathers
+     * the whole matrix and factorizes it (collective).
      */
     void
     factorize(const Epetra_CrsMatrix              &A,
               const std::vector<SuiteSparse_long> &trailing)
     {
       // The upper triangle, column by column: row r of the (symmetric)
-      // matrix read as column r, its entries with index <= r.
-      const SuiteSparse_long        n = A.NumMyRows();
-      std::vector<SuiteSparse_long> start(1, 0), index;
-      std::vector<double>           value;
-      index.reserve(A.NumMyNonzeros() / 2 + n);
-      value.reserve(A.NumMyNonzeros() / 2 + n);
+      // matrix read as column r, its entries with index <= r; each process
+      // packs its rows (global row, count, columns, values), every process
+      // gets every row.
+      std::vector<double> packed;
+      packed.reserve(A.NumMyNonzeros() + 2 * A.NumMyRows());
       std::vector<std::pair<SuiteSparse_long, double>> row;
-      for (int r = 0; r < n; ++r)
+      for (int r = 0; r < A.NumMyRows(); ++r)
         {
-          int     count;
-          double *values;
-          int    *indices;
+          const SuiteSparse_long global_row = A.GRID(r);
+          int                    count;
+          double                *values;
+          int                   *indices;
           A.ExtractMyRowView(r, count, values, indices);
           row.clear();
           for (int k = 0; k < count; ++k)
             {
               const SuiteSparse_long c = A.GCID(indices[k]);
-              if (c <= r)
+              if (c <= global_row)
                 row.emplace_back(c, values[k]);
             }
           std::sort(row.begin(), row.end());
-          for (const auto &[c, v] : row)
+          packed.push_back(global_row);
+          packed.push_back(row.size());
+          for (const auto &entry : row)
+            packed.push_back(entry.first);
+          for (const auto &entry : row)
+            packed.push_back(entry.second);
+        }
+      const SuiteSparse_long n = A.NumGlobalRows();
+      std::vector<const double *> row_data(n, nullptr);
+      const auto                  parts = all_gather_values(comm, packed);
+      gathered_rows.clear();
+      counts.assign(n_processes, 0);
+      displacements.assign(n_processes, 0);
+      for (unsigned int p = 0; p < parts.size(); ++p)
+        {
+          displacements[p] = gathered_rows.size();
+          for (std::size_t k = 0; k < parts[p].size();
+               k += 2 + 2 * static_cast<std::size_t>(parts[p][k + 1]))
             {
-              index.push_back(c);
-              value.push_back(v);
+              gathered_rows.push_back(parts[p][k]);
+              row_data[gathered_rows.back()] = &parts[p][k];
+            }
+          counts[p] = gathered_rows.size() - displacements[p];
+        }
+      in_order = true;
+      for (SuiteSparse_long k = 0; k < n; ++k)
+        in_order = in_order && gathered_rows[k] == k;
+      std::vector<SuiteSparse_long> start(1, 0), index;
+      std::vector<double>           value;
+      index.reserve(packed.size());
+      value.reserve(packed.size());
+      for (SuiteSparse_long r = 0; r < n; ++r)
+        {
+          const std::size_t count = row_data[r][1];
+          for (std::size_t k = 0; k < count; ++k)
+            {
+              index.push_back(row_data[r][2 + k]);
+              value.push_back(row_data[r][2 + count + k]);
             }
           start.push_back(index.size());
         }
@@ -328,6 +368,48 @@ namespace DynamicContact
                     common.status == CHOLMOD_OK,
                   ExcMessage("The factorization of the bulk matrix failed "
                              "(CHOLMOD: it is not positive definite)."));
+    }
+
+    /** The factorization is repeated on every process of several. */
+    bool
+    replicated() const
+    {
+      return n_processes > 1;
+    }
+
+    /**
+     * X = A^{-1} B for @p n_columns columns given by their owned entries,
+     * @p n_owned per column, column-major (B and X may not overlap). On
+     * several processes each column is gathered whole, solved and its
+     * owned entries kept.
+     */
+    void
+    solve_owned(const double      *B,
+                double            *X,
+                const unsigned int n_columns,
+                const std::size_t  n_owned)
+    {
+      if (!replicated())
+        {
+          solve(B, X, n_columns);
+          return;
+        }
+      const std::size_t   n = factor->n;
+      std::vector<double> whole_B(n * n_columns), whole_X(n * n_columns);
+      for (unsigned int c = 0; c < n_columns; ++c)
+        gather(B + c * n_owned, whole_B.data() + c * n);
+      solve(whole_B.data(), whole_X.data(), n_columns);
+      for (unsigned int c = 0; c < n_columns; ++c)
+        owned_part(whole_X.data() + c * n, X + c * n_owned);
+    }
+
+    /** The owned entries (in the order of the owned rows) of @p whole. */
+    void
+    owned_part(const double *whole, double *owned) const
+    {
+      const SuiteSparse_long *rows = gathered_rows.data() + displacements[rank];
+      for (int k = 0; k < counts[rank]; ++k)
+        owned[k] = whole[rows[k]];
     }
 
     /**
@@ -381,8 +463,16 @@ namespace DynamicContact
     {
       Assert(factor != nullptr && factor->is_super && trailing_used,
              ExcInternalError());
-      const SuiteSparse_long n     = factor->n;
-      const SuiteSparse_long m     = trailing_rows.size();
+      const SuiteSparse_long n = factor->n;
+      const SuiteSparse_long m = trailing_rows.size();
+      // Replicated: process 0's block for all, so that every process's
+      // dense Newton iteration sees the same numbers.
+      if (rank != 0)
+        {
+          inverse.resize(m * m);
+          MPI_Bcast(inverse.data(), m * m, MPI_DOUBLE, 0, comm);
+          return;
+        }
       const SuiteSparse_long first = n - m;
       // L_22, column-major. Supernode s holds the columns super[s] ..
       // super[s+1] - 1, their rows s[pi[s]] .. s[pi[s+1] - 1] (the supernode's
@@ -422,9 +512,23 @@ namespace DynamicContact
       AssertThrow(info == 0,
                   ExcMessage("The inversion of the Schur complement of the "
                              "bulk matrix on Gamma_3 failed (LAPACK potrs)."));
+      if (replicated())
+        MPI_Bcast(inverse.data(), m * m, MPI_DOUBLE, 0, comm);
     }
 
   private:
+    const MPI_Comm     comm;
+    const unsigned int n_processes, rank;
+    /**
+     * The global rows in the order of an MPI_Allgatherv of every process's
+     * owned entries (counts and displacements per process), and whether
+     * that order is the global one.
+     */
+    std::vector<SuiteSparse_long> gathered_rows;
+    std::vector<int>              counts, displacements;
+    bool                          in_order = true;
+    std::vector<double>           gather_buffer;
+
     cholmod_common                common;
     cholmod_factor               *factor = nullptr;
     cholmod_dense                *x = nullptr, *y = nullptr, *e = nullptr;
@@ -451,14 +555,33 @@ namespace DynamicContact
       std::vector<char>      trailing(n, 0);
       for (const SuiteSparse_long r : trailing_rows)
         trailing[r] = 1;
-      const auto *fill_order = static_cast<SuiteSparse_long *>(factor->Perm);
-      std::vector<SuiteSparse_long> order;
-      order.reserve(n);
-      for (SuiteSparse_long k = 0; k < n; ++k)
-        if (!trailing[fill_order[k]])
-          order.push_back(fill_order[k]);
-      order.insert(order.end(), trailing_rows.begin(), trailing_rows.end());
       const double fill_entries = common.lnz;
+      // Two orders with the trailing rows last, in the order given: the
+      // fill-reducing order of the analysis with these rows moved to the
+      // end, and a constrained minimum degree order (CAMD, the trailing
+      // rows as the set ordered last), which is often much better where
+      // the moved rows would leave a large separator behind; the one with
+      // the smaller factor is kept.
+      const auto with_trailing_last = [&](const SuiteSparse_long *base) {
+        std::vector<SuiteSparse_long> order;
+        order.reserve(n);
+        for (SuiteSparse_long k = 0; k < n; ++k)
+          if (!trailing[base[k]])
+            order.push_back(base[k]);
+        order.insert(order.end(), trailing_rows.begin(), trailing_rows.end());
+        return order;
+      };
+      std::vector<std::vector<SuiteSparse_long>> orders;
+      orders.push_back(
+        with_trailing_last(static_cast<SuiteSparse_long *>(factor->Perm)));
+      {
+        std::vector<SuiteSparse_long> member(trailing.begin(),
+                                             trailing.end()),
+          camd_order(n);
+        if (cholmod_l_camd(
+              &S, nullptr, 0, member.data(), camd_order.data(), &common))
+          orders.push_back(with_trailing_last(camd_order.data()));
+      }
 
       const int nmethods        = common.nmethods;
       const int ordering        = common.method[0].ordering;
@@ -468,26 +591,44 @@ namespace DynamicContact
       common.method[0].ordering = CHOLMOD_GIVEN;
       common.postorder          = false;
       common.supernodal         = CHOLMOD_SUPERNODAL;
-      cholmod_factor *with_trailing =
-        cholmod_l_analyze_p(&S, order.data(), nullptr, 0, &common);
+      cholmod_factor *with_trailing = nullptr;
+      double          entries       = 0;
+      for (auto &order : orders)
+        {
+          cholmod_factor *candidate =
+            cholmod_l_analyze_p(&S, order.data(), nullptr, 0, &common);
+          AssertThrow(candidate != nullptr && common.status == CHOLMOD_OK &&
+                        std::equal(order.begin(),
+                                   order.end(),
+                                   static_cast<SuiteSparse_long *>(
+                                     candidate->Perm)),
+                      ExcMessage("The analysis of the bulk matrix for its "
+                                 "factorization (CHOLMOD) failed."));
+          if (with_trailing == nullptr || common.lnz < entries)
+            {
+              if (with_trailing != nullptr)
+                cholmod_l_free_factor(&with_trailing, &common);
+              with_trailing = candidate;
+              entries       = common.lnz;
+            }
+          else
+            cholmod_l_free_factor(&candidate, &common);
+        }
+      common.lnz                = entries;
       common.nmethods           = nmethods;
       common.method[0].ordering = ordering;
       common.postorder          = postorder;
       common.supernodal         = supernodal;
-      AssertThrow(with_trailing != nullptr && common.status == CHOLMOD_OK &&
-                    std::equal(order.begin(),
-                               order.end(),
-                               static_cast<SuiteSparse_long *>(
-                                 with_trailing->Perm)),
-                  ExcMessage("The analysis of the bulk matrix for its "
-                             "factorization (CHOLMOD) failed."));
       // The dense trailing block makes every solve dearer: taken while it
       // at most doubles the factor (measured per solve: the paper's scene
       // 1.07 times, the 3D rail 80 x 8 x 8 1.5 times, where the compliance
       // columns it saves cost 300 solves; the paper domain 256 x 16, a
       // strip 16 cells deep under 514 DoFs of Gamma_3, 3.3 times, and 12 %
       // more wall time than the columns by solves).
-      trailing_used = common.lnz <= max_growth * fill_entries;
+      // The same choice on every process (a collective path follows it).
+      trailing_used =
+        Utilities::MPI::min(int(common.lnz <= max_growth * fill_entries),
+                            comm) == 1;
       if (trailing_used)
         {
           cholmod_l_free_factor(&factor, &common);
@@ -498,6 +639,29 @@ namespace DynamicContact
           cholmod_l_free_factor(&with_trailing, &common);
           common.lnz = fill_entries;
         }
+    }
+
+    /** The whole vector from every process's owned entries (collective). */
+    void
+    gather(const double *owned, double *whole)
+    {
+      double *target = whole;
+      if (!in_order)
+        {
+          gather_buffer.resize(factor->n);
+          target = gather_buffer.data();
+        }
+      MPI_Allgatherv(owned,
+                     counts[rank],
+                     MPI_DOUBLE,
+                     target,
+                     counts.data(),
+                     displacements.data(),
+                     MPI_DOUBLE,
+                     comm);
+      if (!in_order)
+        for (std::size_t k = 0; k < gathered_rows.size(); ++k)
+          whole[gathered_rows[k]] = gather_buffer[k];
     }
 
     void
@@ -539,20 +703,16 @@ namespace DynamicContact
     direct.reset();
     amg.reset();
     problem.reset();
-    const bool one_process =
-      Utilities::MPI::n_mpi_processes(A.get_mpi_communicator()) == 1;
     if (parameters.linear_solver == Parameters::Solver::LinearSolver::direct &&
-        one_process && parameters.direct_solver_package == "auto")
+        bulk_factorization(parameters, dim, A.m(), A.get_mpi_communicator()) !=
+          SolverPlan::Factorization::amesos)
       {
         // Keep the analysis of the last factorization (same pattern).
         if (!cholesky)
-          cholesky = std::make_unique<Cholesky>();
-        // One process: the local index of a row is the row.
-        const Epetra_Map             &map = A.trilinos_matrix().DomainMap();
-        std::vector<SuiteSparse_long> trailing(trailing_rows.size());
-        for (std::size_t i = 0; i < trailing_rows.size(); ++i)
-          trailing[i] = map.LID(static_cast<int>(trailing_rows[i]));
-        cholesky->factorize(A.trilinos_matrix(), trailing);
+          cholesky = std::make_unique<Cholesky>(A.get_mpi_communicator());
+        cholesky->factorize(A.trilinos_matrix(),
+                            std::vector<SuiteSparse_long>(trailing_rows.begin(),
+                                                          trailing_rows.end()));
       }
     else if (parameters.linear_solver ==
              Parameters::Solver::LinearSolver::direct)
@@ -605,7 +765,10 @@ namespace DynamicContact
   {
     Assert(matrix != nullptr, ExcNotInitialized());
     if (cholesky)
-      cholesky->solve(b.trilinos_vector()[0], x.trilinos_vector()[0], 1);
+      cholesky->solve_owned(b.trilinos_vector()[0],
+                            x.trilinos_vector()[0],
+                            1,
+                            b.locally_owned_size());
     else if (direct)
       {
         problem->SetLHS(&x.trilinos_vector());
@@ -636,12 +799,11 @@ namespace DynamicContact
           solve(*b[c], *x[c]);
         return;
       }
-    // One process: the owned entries are the whole vector.
     const std::size_t   n = b[0]->locally_owned_size();
     std::vector<double> B(n * b.size()), X(n * b.size());
     for (unsigned int c = 0; c < b.size(); ++c)
       std::memcpy(&B[c * n], b[c]->trilinos_vector()[0], sizeof(double) * n);
-    cholesky->solve(B.data(), X.data(), b.size());
+    cholesky->solve_owned(B.data(), X.data(), b.size(), n);
     for (unsigned int c = 0; c < x.size(); ++c)
       std::memcpy(x[c]->trilinos_vector()[0], &X[c * n], sizeof(double) * n);
   }
@@ -722,9 +884,11 @@ namespace DynamicContact
     const Epetra_Map &map = matrix->trilinos_matrix().DomainMap();
     if (cholesky)
       {
-        // One process: the local index of a row is the row.
-        const std::size_t   n = map.NumMyElements();
-        std::vector<double> B, X;
+        // The whole columns (every process solves all of them), the global
+        // index of a row is its place.
+        const std::size_t   n       = matrix->m();
+        const std::size_t   n_owned = map.NumMyElements();
+        std::vector<double> B, X, owned(cholesky->replicated() ? n_owned : 0);
         for (unsigned int first = 0; first < columns.size(); first += block)
           {
             const unsigned int m =
@@ -733,14 +897,19 @@ namespace DynamicContact
             X.resize(n * m);
             for (unsigned int c = 0; c < m; ++c)
               for (const auto &[row, value] : columns[first + c])
-                B[c * n + map.LID(static_cast<int>(row))] = value;
+                B[c * n + row] = value;
             cholesky->solve(B.data(), X.data(), m);
             for (unsigned int c = 0; c < m; ++c)
               {
                 const double *x = X.data() + c * n;
                 for (unsigned int i = 0; i < rows.size(); ++i)
-                  values[first + c][i] = x[map.LID(static_cast<int>(rows[i]))];
-                if (store)
+                  values[first + c][i] = x[rows[i]];
+                if (store && cholesky->replicated())
+                  {
+                    cholesky->owned_part(x, owned.data());
+                    store(first + c, owned.data());
+                  }
+                else if (store)
                   store(first + c, x);
               }
           }

@@ -46,7 +46,7 @@ namespace DynamicContact
       return;
     TimerSection t(problem.timer, "Bulk: compliance columns");
 
-    // With the Cholesky factor (one process), which has the DoFs of
+    // With the Cholesky factor (the whole one), which has the DoFs of
     // Gamma_3 last (prepare()): the compliance of every node at once, from
     // the inverse of their Schur complement (BulkSolver::inverse_block()),
     // dense work of order (dim n)^3 instead of dim solves per node. The

@@ -238,13 +238,15 @@ namespace DynamicContact
           "Condensed limit on several processes",
           "auto",
           Patterns::Anything(),
-          "Contact solver = auto on more than one process: the same limit, "
-          "an integer >= 0 or 'auto'. In 2D the compliance costs dim solves "
-          "per contact node there, so the condensed solver is the faster "
-          "one only on small contact boundaries: 'auto' is 1000. In 3D it "
-          "comes from MUMPS's Schur complement and a step costs about what "
-          "it costs on one process: 'auto' is Condensed limit (README "
-          "'Choosing the contact solver'). Every process holds the dense "
+          "Contact solver = auto on more than one process where K0 is "
+          "factorized by MUMPS over the processes (Direct solver package): "
+          "the same limit, an integer >= 0 or 'auto'. In 2D the compliance "
+          "then costs dim solves per contact node, so the condensed solver "
+          "is the faster one only on small contact boundaries: 'auto' is "
+          "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "
+          "Condensed limit. Where every process factorizes the whole K0 "
+          "(a small K0, Direct solver package = auto), Condensed limit "
+          "applies as on one process. Every process holds the dense "
           "tables (8 bytes x (dim n_Gamma)^2 twice).");
         prm.declare_entry(
           "Provisional passes",
@@ -276,19 +278,24 @@ namespace DynamicContact
                           "solve; reaching it is an error.");
         prm.declare_entry(
           "Linear solver",
-          "direct",
-          Patterns::Selection("direct|iterative"),
-          "'direct': sparse LU of the Newton matrix (package chosen below). "
-          "'iterative': GMRES preconditioned with algebraic multigrid, for "
-          "problems too large for a direct solver.");
+          "auto",
+          Patterns::Selection("auto|direct|iterative"),
+          "'direct': sparse direct factorization (package chosen below). "
+          "'iterative': Krylov (CG or GMRES) preconditioned with algebraic "
+          "multigrid, for problems too large for a direct solver. 'auto': "
+          "direct, except where Contact solver = auto chooses the assembled "
+          "solver (a large contact boundary), which then solves "
+          "iteratively. The choice is printed with the solver plan "
+          "(log.txt).");
         prm.declare_entry(
           "Direct solver package",
           "auto",
           Patterns::Selection("auto|Amesos_Mumps|Amesos_Klu"),
-          "The sparse direct solver. 'auto': the condensed solver on one "
-          "process factorizes K0 by sparse Cholesky (SuiteSparse CHOLMOD, "
-          "several times faster than MUMPS there), everything else by "
-          "MUMPS; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
+          "The sparse direct solver. 'auto': SuiteSparse CHOLMOD (sparse "
+          "Cholesky) for the condensed solver on one process, and on "
+          "several while K0 is small (up to 1e5 DoFs in 2D, 3e4 in 3D: "
+          "every process factorizes the whole matrix), MUMPS everywhere "
+          "else; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
           "package everywhere.");
         prm.declare_entry("Linear tolerance",
                           "1e-12",
@@ -339,7 +346,8 @@ namespace DynamicContact
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");
       linear_solver =
         (prm.get("Linear solver") == "iterative" ? LinearSolver::iterative :
-                                                   LinearSolver::direct);
+         prm.get("Linear solver") == "direct"    ? LinearSolver::direct :
+                                                   LinearSolver::automatic);
       direct_solver_package = prm.get("Direct solver package");
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");

@@ -64,29 +64,14 @@ namespace DynamicContact
   void
   StepSolver<dim>::reinit(const double complementarity_constant)
   {
-    c_t      = complementarity_constant;
-    using CS = Parameters::Solver::ContactSolver;
-    // auto: the limit of one process or of several (README, "Choosing the
-    // contact solver"); on several, 'auto' is the limit of one process in
-    // 3D (the compliance from MUMPS's Schur complement), 1000 in 2D (by
-    // dim solves per node).
-    const unsigned int limit =
-      Utilities::MPI::n_mpi_processes(discretization.comm) == 1 ?
-        parameters.condensed_limit :
-        parameters.condensed_limit_on_several_processes.value_or(
-          dim == 3 ? parameters.condensed_limit : 1000);
-    condensed = (parameters.contact_solver == CS::condensed ||
-                 (parameters.contact_solver == CS::automatic &&
-                  dim * contact_boundary.n_global_nodes() <= limit));
-    if (!condensed)
-      {
-        // auto: the scalable solver is the iterative one.
-        Parameters::Solver sparse_parameters = parameters;
-        if (parameters.contact_solver == CS::automatic)
-          sparse_parameters.linear_solver =
-            Parameters::Solver::LinearSolver::iterative;
-        problem_parameters = sparse_parameters;
-      }
+    c_t  = complementarity_constant;
+    plan = plan_solver(parameters,
+                       dim,
+                       discretization.dof_handler.n_dofs(),
+                       contact_boundary.n_global_nodes(),
+                       discretization.comm);
+    planned_parameters = plan.solver_parameters(parameters);
+    details << "  solver plan: " << plan.description() << std::endl;
     for (auto &newton : newtons)
       newton.reset();
 
@@ -106,32 +91,18 @@ namespace DynamicContact
                                           bulk,
                                           contact_boundary,
                                           foundation,
-                                          condensed ? parameters :
-                                                      problem_parameters,
+                                          planned_parameters,
                                           timer,
                                           details,
                                           friction,
                                           c_t};
-        if (condensed)
+        if (plan.condensed)
           newton = std::make_unique<CondensedNewton<dim>>(problem);
         else
           newton = std::make_unique<SparseNewton<dim>>(problem);
         newton->reinit();
       }
     return *newton;
-  }
-
-
-  template <int dim>
-  std::string
-  StepSolver<dim>::solver_name() const
-  {
-    if (condensed)
-      return "condensed";
-    return problem_parameters.linear_solver ==
-               Parameters::Solver::LinearSolver::iterative ?
-             "assembled (iterative)" :
-             "assembled (direct)";
   }
 
 
@@ -777,7 +748,7 @@ namespace DynamicContact
                    Parameters::Friction::Monitor::always ||
                  (friction_parameters.uniqueness_monitor ==
                     Parameters::Friction::Monitor::automatic &&
-                  condensed)))
+                  plan.condensed)))
       measure_uniqueness(newton, statistics);
     return statistics;
   }

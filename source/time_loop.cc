@@ -118,10 +118,12 @@ namespace DynamicContact
     const std::string provenance =
       "  " +
       provenance_line(Utilities::MPI::n_mpi_processes(comm), start_time) + "\n";
+    // With the solver plan (it names the number of processes).
+    const std::string plan = "  solver plan: " + model.solver_plan() + "\n";
     if (parameters.output.print_timings)
-      pcout << provenance;
+      pcout << provenance << plan;
     else if (Utilities::MPI::this_mpi_process(comm) == 0)
-      screen_log.log_only(provenance);
+      screen_log.log_only(provenance + plan);
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
             << ", parameter file: " << parameters.parameter_file

@@ -260,22 +260,28 @@ main(int argc, char **argv)
         << std::endl;
     checks.add(has_overrides, "parameters.prm holds the --set values");
 
-    // log.txt: the screen output and one provenance line.
-    std::string  rest;
-    unsigned int provenance_lines = 0;
+    // log.txt: the screen output, one provenance line and the solver plan
+    // (which contact solver, which factorization, why).
+    const std::regex plan_line(R"(  solver plan: (condensed|assembled).*)");
+    std::string      rest;
+    unsigned int     provenance_lines = 0, plan_lines = 0;
     for (const auto &line : lines_of(read_text("original/log.txt")))
       if (std::regex_match(line, provenance_line))
         ++provenance_lines;
+      else if (std::regex_match(line, plan_line))
+        ++plan_lines;
       else
         rest += line + "\n";
     std::string screen;
     for (const auto &line : lines_of(original.out))
       screen += line + "\n";
-    out << "  log.txt: " << provenance_lines
-        << " provenance line(s); the rest is the screen output: "
+    out << "  log.txt: " << provenance_lines << " provenance line(s), "
+        << plan_lines
+        << " solver plan line(s); the rest is the screen output: "
         << yes_no(rest == screen) << std::endl;
     checks.add(original.succeeded(), "original: exit code 0");
     checks.add(provenance_lines == 1, "log.txt has one provenance line");
+    checks.add(plan_lines == 1, "log.txt has the solver plan");
     checks.add(rest == screen && !screen.empty(),
                "log.txt is a copy of the screen output");
     checks.add(!std::regex_search(original.out, std::regex("started [0-9]")),
@@ -305,7 +311,8 @@ main(int argc, char **argv)
     for (const auto &line : lines_of(log))
       {
         resume_marks += (line == "==== --resume ====");
-        if (!std::regex_match(line, provenance_line))
+        if (!std::regex_match(line, provenance_line) &&
+            !std::regex_match(line, plan_line))
           log_without += line + "\n";
       }
     const bool kept    = log_without.rfind(first_screen, 0) == 0;

@@ -78,8 +78,7 @@ namespace DynamicContact
 
   /**
    * The Trilinos Amesos package of Solver/Direct solver package ('auto':
-   * MUMPS; the condensed solver's BulkSolver uses CHOLMOD instead on one
-   * process).
+   * MUMPS, where bulk_factorization() does not choose CHOLMOD).
    */
   inline std::string
   amesos_package(const Parameters::Solver &parameters)
@@ -93,14 +92,14 @@ namespace DynamicContact
   /**
    * Solves with one (symmetric positive definite) matrix, many times: a
    * sparse direct factorization made once, or CG with algebraic multigrid
-   * built once. The factorization is a supernodal Cholesky factorization
-   * (SuiteSparse CHOLMOD) on one process with Solver/Direct solver package
-   * = auto, else Trilinos Amesos (MUMPS or KLU)
-   * (benchmarks/direct_comparison.cc: on the paper's scene CHOLMOD factorizes
-   * and solves several times faster than MUMPS; README, "Choosing the contact
-   * solver"). Unlike deal.II's TrilinosWrappers::SolverDirect it solves blocks
-   * of right-hand sides in one call, which a direct solver does at the speed of
-   * dense matrix products rather than one triangular solve after the other.
+   * built once. How it factorizes is bulk_factorization()'s choice
+   * (solver_plan.h): a supernodal Cholesky factorization (SuiteSparse
+   * CHOLMOD) on one process, or of the whole matrix on every process of
+   * several, else Trilinos Amesos (MUMPS or KLU) over the processes. Unlike
+   * deal.II's TrilinosWrappers::SolverDirect it solves blocks of
+   * right-hand sides in one call, which a direct solver does at the speed
+   * of dense matrix products rather than one triangular solve after the
+   * other.
    */
   class BulkSolver
   {
@@ -196,7 +195,10 @@ namespace DynamicContact
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    direct;
     std::unique_ptr<BulkAMG>              amg;
-    /** The CHOLMOD factorization (one process; defined in the .cc). */
+    /**
+     * The CHOLMOD factorization (of the whole matrix on every process;
+     * defined in the .cc).
+     */
     class Cholesky;
     std::unique_ptr<Cholesky> cholesky;
   };

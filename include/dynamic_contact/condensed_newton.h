@@ -24,10 +24,11 @@ namespace DynamicContact
    * Newton iteration solves a dense system on the active nodes (stick
    * constraints as equations with the tangential forces as unknowns);
    * nothing of size of the mesh is factorized more than once per mesh and
-   * time step. On one process C is the inverse of the Schur complement of
-   * K0' on Gamma_3, all of it at once (the factorization eliminates the
-   * DoFs of Gamma_3 last: BulkSolver::inverse_block()); on several in 3D
-   * likewise from MUMPS's Schur complement where it agrees with the solves;
+   * time step. With a CHOLMOD factor (one process, or the whole factor on
+   * every process) C is the inverse of the Schur complement of K0' on
+   * Gamma_3, all of it at once (the factorization eliminates the DoFs of
+   * Gamma_3 last: BulkSolver::inverse_block()); with MUMPS in 3D likewise
+   * from MUMPS's Schur complement where it agrees with the solves;
    * else the columns of C are computed when a node first becomes active
    * (dim solves with the factorized K0 each). C is kept while K0 is
    * unchanged. A step costs a solve with K0 for w_free, one for the

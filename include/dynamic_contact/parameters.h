@@ -284,6 +284,7 @@ namespace DynamicContact
     {
       enum class LinearSolver
       {
+        automatic,
         direct,
         iterative
       };

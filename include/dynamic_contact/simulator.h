@@ -216,6 +216,13 @@ namespace DynamicContact
     {
       return step_solver.solver_name();
     }
+
+    /** The solver plan of the current mesh, in words (log.txt). */
+    std::string
+    solver_plan() const
+    {
+      return step_solver.solver_plan().description();
+    }
     bool
     has_friction() const
     {

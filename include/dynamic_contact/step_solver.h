@@ -11,6 +11,7 @@
 #include <dynamic_contact/contact_state.h>
 #include <dynamic_contact/foundation.h>
 #include <dynamic_contact/friction_law.h>
+#include <dynamic_contact/solver_plan.h>
 
 #include <algorithm>
 #include <array>
@@ -148,7 +149,17 @@ namespace DynamicContact
 
     /** The contact solver in use (Solver/Contact solver, auto resolved). */
     std::string
-    solver_name() const;
+    solver_name() const
+    {
+      return plan.contact_solver_name();
+    }
+
+    /** How the steps are solved on the current mesh, and why. */
+    const SolverPlan &
+    solver_plan() const
+    {
+      return plan;
+    }
 
     /** True if the scene has friction (a law with a nonzero coefficient). */
     bool
@@ -192,9 +203,10 @@ namespace DynamicContact
     /** The solver for the scheme of bulk.scheme(). */
     ContactNewton<dim> &
     newton_for_scheme();
-    /** The condensed solver is in use; else the sparse one with: */
-    bool               condensed = true;
-    Parameters::Solver problem_parameters;
+    /** How the steps are solved (made by reinit()). */
+    SolverPlan plan;
+    /** The parameters with the plan's choices, which the solvers keep. */
+    Parameters::Solver planned_parameters;
 
     /**
      * The uniqueness measures of the solved step into @p statistics
