@@ -168,7 +168,6 @@ namespace DynamicContact
                             "Friction/Convexification tolerance",
                             "Friction/Coefficient tolerance",
                             "Friction/Relaxation",
-                            "Friction/Acceleration depth",
                             "Friction/Maximum convexification iterations",
                             "Friction/Maximum slip rate",
                             "Friction/Complementarity constant",

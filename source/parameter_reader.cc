@@ -288,6 +288,10 @@ namespace DynamicContact
     std::string
     unknown_entry(const std::string &path, const std::string &file)
     {
+      const auto removed = removed_entries().find(path);
+      if (removed != removed_entries().end())
+        return "there is no parameter '" + path + "': it was removed (" +
+               removed->second + ").";
       const std::string moved = moved_entry(path);
       if (moved.empty())
         return "there is no parameter '" + path +
@@ -564,6 +568,18 @@ namespace DynamicContact
       {"Mesh refinement/Coarsen fraction",
        "Mesh refinement/Error indicator/Coarsen fraction"}};
     return moves;
+  }
+
+
+  const std::map<std::string, std::string> &
+  removed_entries()
+  {
+    static const std::map<std::string, std::string> removed = {
+      {"Friction/Acceleration depth",
+       "Anderson acceleration of the convexification loop, which was "
+       "slower than the plain loop in every scene measured; delete the "
+       "line: the loop relaxes by Friction/Relaxation alone"}};
+    return removed;
   }
 
 

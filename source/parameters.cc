@@ -506,14 +506,6 @@ namespace DynamicContact
                           "Relaxation factor theta in (0, 1] of the frozen "
                           "coefficients: mu_i <- (1-theta) mu_i + theta "
                           "mu(|w_tau,i|).");
-        prm.declare_entry(
-          "Acceleration depth",
-          "0",
-          Patterns::Integer(0, 20),
-          "Anderson acceleration of the convexification loop's fixed point "
-          "mu = mu(|w_tau(mu)|): the next frozen coefficients combine the "
-          "last this many passes (with the relaxation above as mixing "
-          "factor); 0: the relaxed fixed-point iteration alone.");
         prm.declare_entry("Maximum convexification iterations",
                           "50",
                           Patterns::Integer(1),
@@ -587,7 +579,6 @@ namespace DynamicContact
         convexification_tolerance = prm.get_double("Convexification tolerance");
         coefficient_tolerance     = prm.get_double("Coefficient tolerance");
         relaxation                = prm.get_double("Relaxation");
-        acceleration_depth        = prm.get_integer("Acceleration depth");
         max_convexification_iterations =
           prm.get_integer("Maximum convexification iterations");
         coupled_linearization    = prm.get("Linearization") == "coupled";

@@ -175,128 +175,6 @@ namespace DynamicContact
   namespace
   {
     /**
-     * Anderson acceleration (type II) of a fixed point x = G(x) of vectors
-     * distributed over the processes (each holds its part): the next
-     * iterate combines the last @p depth iterates so as to minimize the
-     * linearized residual G(x) - x, mixed with the factor @p beta (the
-     * relaxation); with no history, or a singular or non-finite
-     * combination, it is the relaxed step x + beta (G(x) - x). Iterates are
-     * kept >= 0 (friction coefficients).
-     */
-    class AndersonMixing
-    {
-    public:
-      AndersonMixing(const unsigned int depth,
-                     const double       beta,
-                     const MPI_Comm     comm)
-        : depth(depth)
-        , beta(beta)
-        , comm(comm)
-      {}
-
-      /** @p x: the current iterate, replaced by the next; @p g = G(x). */
-      void
-      update(std::vector<double> &x, const std::vector<double> &g)
-      {
-        const std::size_t   n = x.size();
-        std::vector<double> f(n);
-        for (std::size_t i = 0; i < n; ++i)
-          f[i] = g[i] - x[i];
-        if (!previous_x.empty())
-          {
-            dX.emplace_back(n);
-            dF.emplace_back(n);
-            for (std::size_t i = 0; i < n; ++i)
-              {
-                dX.back()[i] = x[i] - previous_x[i];
-                dF.back()[i] = f[i] - previous_f[i];
-              }
-            if (dX.size() > depth)
-              {
-                dX.erase(dX.begin());
-                dF.erase(dF.begin());
-              }
-          }
-        previous_x = x;
-        previous_f = f;
-
-        std::vector<double> next(n);
-        for (std::size_t i = 0; i < n; ++i)
-          next[i] = x[i] + beta * f[i];
-        const unsigned int m = dF.size();
-        if (m > 0)
-          {
-            // Normal equations of min |f - dF gamma|, summed over the
-            // processes in one reduction.
-            std::vector<double> local(m * m + m, 0.);
-            for (unsigned int a = 0; a < m; ++a)
-              {
-                for (unsigned int b = 0; b < m; ++b)
-                  for (std::size_t i = 0; i < n; ++i)
-                    local[a * m + b] += dF[a][i] * dF[b][i];
-                for (std::size_t i = 0; i < n; ++i)
-                  local[m * m + a] += dF[a][i] * f[i];
-              }
-            std::vector<double> sums(local.size());
-            MPI_Allreduce(local.data(),
-                          sums.data(),
-                          static_cast<int>(local.size()),
-                          MPI_DOUBLE,
-                          MPI_SUM,
-                          comm);
-            FullMatrix<double> A(m, m);
-            Vector<double>     rhs(m), gamma(m);
-            double             trace = 0;
-            for (unsigned int a = 0; a < m; ++a)
-              {
-                for (unsigned int b = 0; b < m; ++b)
-                  A(a, b) = sums[a * m + b];
-                rhs(a) = sums[m * m + a];
-                trace += A(a, a);
-              }
-            for (unsigned int a = 0; a < m; ++a)
-              A(a, a) += 1e-12 * trace;
-            bool ok = trace > 0;
-            if (ok)
-              {
-                try
-                  {
-                    FullMatrix<double> inverse(m, m);
-                    inverse.invert(A);
-                    inverse.vmult(gamma, rhs);
-                  }
-                catch (...)
-                  {
-                    ok = false;
-                  }
-              }
-            for (unsigned int a = 0; a < m && ok; ++a)
-              ok = std::isfinite(gamma(a));
-            if (ok)
-              for (std::size_t i = 0; i < n; ++i)
-                {
-                  double correction = 0;
-                  for (unsigned int a = 0; a < m; ++a)
-                    correction += gamma(a) * (dX[a][i] + beta * dF[a][i]);
-                  next[i] = std::max(0., next[i] - correction);
-                }
-          }
-        x = next;
-      }
-
-    private:
-      const unsigned int               depth;
-      const double                     beta;
-      const MPI_Comm                   comm;
-      std::vector<double>              previous_x, previous_f;
-      std::vector<std::vector<double>> dX, dF;
-    };
-  } // namespace
-
-
-  namespace
-  {
-    /**
      * What the convexification loop measures of an iterate w of a step
      * (doc/theory.md section 4), at the owned nodes of Gamma_3: the slip
      * rate of the effective velocity w_e = theta w + (1 - theta) w_old and
@@ -596,16 +474,11 @@ namespace DynamicContact
     bool   provisional       = false;
     double best_residual     = std::numeric_limits<double>::max();
     std::vector<Tensor<1, dim>> xi_previous;
-    std::unique_ptr<AndersonMixing> mixing;
     // The loop's state at its start (again after a fallback).
     const auto start_loop = [&]() {
       allow_provisional = loop && parameters.provisional_passes;
       provisional       = false;
       best_residual     = std::numeric_limits<double>::max();
-      mixing            = std::make_unique<AndersonMixing>(
-        friction_parameters.acceleration_depth,
-        friction_parameters.relaxation,
-        comm);
       if (loop)
         {
           TimerSection t(timer, "Friction: convexification update");
@@ -734,10 +607,12 @@ namespace DynamicContact
                             std::to_string(max_passes) +
                             " passes (max |mu_i - mu(|w_tau,i|)| = " +
                             scientific(m.coefficient_residual) + ")");
-        // The next frozen coefficients: the relaxed update, accelerated.
+        // The next frozen coefficients: the relaxed update.
         TimerSection t(timer, "Friction: convexification update");
         measures.complete_coefficients(m);
-        mixing->update(mu, m.mu_new);
+        const double theta = friction_parameters.relaxation;
+        for (std::size_t i = 0; i < mu.size(); ++i)
+          mu[i] = mu[i] + theta * (m.mu_new[i] - mu[i]);
         xi_previous = std::move(m.xi);
       }
     if (provisional)

@@ -270,6 +270,12 @@ main(int argc, char **argv)
       1,
       {"scene.prm", "Material/Foo"})
     .line_of = "set Foo = 1";
+  add("removed_entry",
+      scene + "\nsubsection Friction\n  set Acceleration depth = 2\nend\n",
+      file,
+      1,
+      {"scene.prm", "Friction/Acceleration depth", "removed"})
+    .line_of = "set Acceleration depth = 2";
   add("unknown_subsection",
       change("subsection Foundation", "subsection Fundation"),
       file,
@@ -660,6 +666,11 @@ main(int argc, char **argv)
       with({"--set", "Material/Foo=1"}),
       1,
       {"--set", "Material/Foo"});
+  add("set_removed_entry",
+      scene,
+      with({"--set", "Friction/Acceleration depth=2"}),
+      1,
+      {"--set", "Friction/Acceleration depth", "removed"});
   add("set_unknown_subsection",
       scene,
       with({"--set", "Foo/Bar=1"}),

@@ -144,7 +144,6 @@ namespace DynamicContact
       double       convexification_tolerance; // epsilon_conv, eq. (85)
       double       coefficient_tolerance;     // max_i |mu_i - mu(|w_tau,i|)|
       double       relaxation;
-      unsigned int acceleration_depth;
       unsigned int max_convexification_iterations;
       /**
        * Friction/Linearization = coupled: the first pass of the loop
@@ -396,6 +395,14 @@ namespace DynamicContact
    */
   const std::map<std::string, std::string> &
   moved_entries();
+
+  /**
+   * The parameters of earlier versions that were removed: path -> why and
+   * what to do instead. A parameter file that sets one gets an error that
+   * says so.
+   */
+  const std::map<std::string, std::string> &
+  removed_entries();
 
   /** The formats of a parameter file (deal.II's ParameterHandler). */
   enum class ParameterFormat
