@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <dynamic_contact/failure.h>
+#include <dynamic_contact/fault_injection.h>
 #include <dynamic_contact/output_directory.h>
 
 #include <fcntl.h>
@@ -83,99 +84,11 @@ namespace DynamicContact
   // ------------------------------------------------------ fault injection
   namespace
   {
-    /** DYNAMIC_CONTACT_DISK_FULL, see the header. */
-    struct DiskFullInjection
-    {
-      bool           active      = false;
-      bool           budget_mode = false;
-      std::uintmax_t budget      = 0;
-      std::string    name;
-      unsigned int   nth   = 1;
-      int            rank  = -1;
-      unsigned int   count = 0;
-      bool           full  = false;
-
-      DiskFullInjection()
-      {
-        const char *value = std::getenv("DYNAMIC_CONTACT_DISK_FULL");
-        if (value == nullptr || *value == '\0')
-          return;
-        active = true;
-        std::string text(value);
-        if (std::all_of(text.begin(), text.end(), ::isdigit))
-          {
-            budget_mode = true;
-            budget      = std::stoull(text);
-            return;
-          }
-        const auto at = text.find('@');
-        if (at != std::string::npos)
-          {
-            rank = std::stoi(text.substr(at + 1));
-            text = text.substr(0, at);
-          }
-        const auto colon = text.find(':');
-        if (colon != std::string::npos)
-          {
-            nth  = std::stoul(text.substr(colon + 1));
-            text = text.substr(0, colon);
-          }
-        name = text;
-      }
-
-      static int
-      this_rank()
-      {
-        int initialized = 0, finalized = 0;
-        MPI_Initialized(&initialized);
-        MPI_Finalized(&finalized);
-        int r = 0;
-        if (initialized && !finalized)
-          MPI_Comm_rank(MPI_COMM_WORLD, &r);
-        return r;
-      }
-
-      /** How many of @p n bytes a write to @p file may store. */
-      std::size_t
-      allowance(const std::string &file, const std::size_t n)
-      {
-        if (!active)
-          return n;
-        if (budget_mode)
-          {
-            const std::size_t allowed =
-              static_cast<std::size_t>(std::min<std::uintmax_t>(n, budget));
-            budget -= allowed;
-            return allowed;
-          }
-        if (full)
-          return 0;
-        if (fs::path(file).filename() == name &&
-            (rank < 0 || rank == this_rank()) && ++count == nth)
-          {
-            full = true;
-            return n / 2;
-          }
-        return n;
-      }
-
-      /** Whether @p bytes would fit (without writing them). */
-      bool
-      fits(const std::string &file, const std::uintmax_t bytes)
-      {
-        if (!active)
-          return true;
-        if (budget_mode)
-          return bytes <= budget;
-        return allowance(file, 2) == 2;
-      }
-    };
-
-    DiskFullInjection &
+    /** DYNAMIC_CONTACT_DISK_FULL (FaultInjection::DiskFull). */
+    FaultInjection::DiskFull &
     injection()
     {
-      static DiskFullInjection i;
-      return i;
+      return FaultInjection::instance().disk_full;
     }
 
     [[noreturn]] void

@@ -227,10 +227,7 @@ namespace DynamicContact
                           saved,
                           parameters_of_run,
                           parameters.checkpoint.keep,
-                          [this]() {
-                            if (faults.kill_in_checkpoint == state.step)
-                              std::raise(SIGKILL);
-                          });
+                          [this]() { faults.in_checkpoint(state.step); });
     last_checkpoint_step = state.step;
   }
 

@@ -18,14 +18,12 @@ namespace DynamicContact
    * leaves no partial file behind. These functions are local (one process);
    * the callers make the outcome collective (check_collectively).
    *
-   * Fault injection for the tests (environment variable
-   * DYNAMIC_CONTACT_DISK_FULL), so that a full disk can be tested without
-   * root: "BYTES" lets this process write that many bytes, then every write
-   * fails with "No space left on device"; "NAME[:N][@R]" fills the disk
-   * during the N-th write (default 1) to a file called NAME (its base name)
-   * on rank R (default: any): that write stores half of its bytes and fails,
-   * and so does every later one. Rewriting run_status in the space reserved
-   * for it (StatusFile) still works on a full disk, as it does on a real one.
+   * Fault injection for the tests (DYNAMIC_CONTACT_DISK_FULL, read by
+   * FaultInjection::DiskFull), so that a full disk can be tested without
+   * root: a budget of bytes, or the N-th write to a named file on a given
+   * rank fails half-written, and so does every later one. Rewriting
+   * run_status in the space reserved for it (StatusFile) still works on a
+   * full disk, as it does on a real one.
    */
 
   /** CRC-32 (IEEE 802.3; zlib's crc32, Python's zlib.crc32) of @p n bytes. */

@@ -206,7 +206,7 @@ namespace DynamicContact
     unsigned int vtu_files            = 0;
     double       vtu_seconds_at_start = 0;
 
-    const FaultInjection faults;
+    const FaultInjection &faults = FaultInjection::instance();
     /** A stop signal received (on any process), and the step of the last
      *  checkpoint written. */
     int          stopping_signal      = 0;
