@@ -1,7 +1,7 @@
 #ifndef dynamic_contact_benchmark_material_h
 #define dynamic_contact_benchmark_material_h
 
-#include <dynamic_contact/parameters.h>
+#include <dynamic_contact/parameters/parameters.h>
 
 /**
  * The material of the paper's scene without viscosity (E = 1e11 Pa,

@@ -23,12 +23,12 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <dynamic_contact/bulk_operator.h>
-#include <dynamic_contact/bulk_solver.h>
-#include <dynamic_contact/cholmod_views.h>
-#include <dynamic_contact/discretization.h>
-#include <dynamic_contact/material.h>
-#include <dynamic_contact/parameters.h>
+#include <dynamic_contact/bulk/bulk_operator.h>
+#include <dynamic_contact/bulk/bulk_solver.h>
+#include <dynamic_contact/bulk/cholmod_views.h>
+#include <dynamic_contact/bulk/discretization.h>
+#include <dynamic_contact/laws/material.h>
+#include <dynamic_contact/parameters/parameters.h>
 
 #include "benchmark_material.h"
 

@@ -14,7 +14,7 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <dynamic_contact/contact_law.h>
+#include <dynamic_contact/laws/contact_law.h>
 
 #include "test_tools.h"
 

@@ -31,8 +31,8 @@
 
 #include <deal.II/lac/full_matrix.h>
 
-#include <dynamic_contact/contact_law.h>
-#include <dynamic_contact/largest_eigenvalue.h>
+#include <dynamic_contact/laws/contact_law.h>
+#include <dynamic_contact/contact/largest_eigenvalue.h>
 
 #include "test_tools.h"
 

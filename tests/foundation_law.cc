@@ -4,7 +4,7 @@
 // contact". Expected values are written out by hand for
 //   c_nu = 2, c3 = 3 (kink at 1.5),  d_nu = 0.5, c4 = 0.25 (kink at 0.5).
 
-#include <dynamic_contact/foundation.h>
+#include <dynamic_contact/laws/foundation.h>
 
 #include "test_tools.h"
 

@@ -4,8 +4,8 @@
 // differences, is_constant, the one-sided Lipschitz constant
 // max(0, -min mu'), check_nonnegative, FrictionLaw::create and its errors.
 
-#include <dynamic_contact/error_messages.h>
-#include <dynamic_contact/friction_law.h>
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/laws/friction_law.h>
 
 #include "test_tools.h"
 

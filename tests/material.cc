@@ -8,7 +8,7 @@
 
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include <dynamic_contact/material.h>
+#include <dynamic_contact/laws/material.h>
 
 #include "test_tools.h"
 

@@ -9,7 +9,7 @@
 // kept for a nearby matrix (reuse_for(): the next Newton iteration's) and
 // replaced for an unrelated one.
 
-#include <dynamic_contact/mixed_precision_lu.h>
+#include <dynamic_contact/contact/mixed_precision_lu.h>
 
 #include <random>
 

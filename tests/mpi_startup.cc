@@ -17,7 +17,7 @@
 // daemon's PMIx variables into its environment, which a program it starts
 // would take for a launcher's.
 
-#include <dynamic_contact/mpi_startup.h>
+#include <dynamic_contact/run/mpi_startup.h>
 
 #include "program_tools.h"
 

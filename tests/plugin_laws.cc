@@ -6,9 +6,9 @@
 // that is never reached, uniform refinement), and the new names are in the
 // patterns of the entries that choose them.
 
-#include <dynamic_contact/foundation.h>
-#include <dynamic_contact/friction_law.h>
-#include <dynamic_contact/refinement_strategy.h>
+#include <dynamic_contact/laws/foundation.h>
+#include <dynamic_contact/laws/friction_law.h>
+#include <dynamic_contact/mesh/refinement_strategy.h>
 
 #include "test_tools.h"
 

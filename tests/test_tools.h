@@ -8,8 +8,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <dynamic_contact/parameters.h>
-#include <dynamic_contact/time_loop.h>
+#include <dynamic_contact/parameters/parameters.h>
+#include <dynamic_contact/time/time_loop.h>
 
 #include <cmath>
 #include <cstdio>

@@ -7,8 +7,8 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <dynamic_contact/discretization.h>
-#include <dynamic_contact/mesh_adaptation.h>
+#include <dynamic_contact/bulk/discretization.h>
+#include <dynamic_contact/mesh/mesh_adaptation.h>
 
 #include "test_tools.h"
 

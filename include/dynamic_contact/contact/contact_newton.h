@@ -1,0 +1,213 @@
+#ifndef dynamic_contact_contact_newton_h
+#define dynamic_contact_contact_newton_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <dynamic_contact/bulk/bulk_operator.h>
+#include <dynamic_contact/contact/contact_boundary.h>
+#include <dynamic_contact/laws/contact_law.h>
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/laws/foundation.h>
+#include <dynamic_contact/parameters/parameters.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * A step the solver could not solve (Newton did not converge, or the
+   * solution is not finite): the time loop answers with a shorter step.
+   * Thrown on every process alike (the decisions use global quantities).
+   */
+  class StepFailure : public std::runtime_error
+  {
+  public:
+    explicit StepFailure(const std::string &what,
+                         const unsigned int newton_iterations = 0)
+      : std::runtime_error(what)
+      , newton_iterations(newton_iterations)
+    {}
+
+    /** The Newton iterations spent on the failed solve (if known). */
+    unsigned int newton_iterations;
+  };
+
+  /**
+   * The Newton iteration's stopping rule on failure, shared by both
+   * implementations: throw StepFailure once @p iterations reach
+   * Solver/Maximum Newton iterations or the relative @p residual is not
+   * finite.
+   */
+  inline void
+  check_newton_cap(const unsigned int        iterations,
+                   const double              residual,
+                   const Parameters::Solver &parameters)
+  {
+    if (iterations >= parameters.max_newton_iterations ||
+        !std::isfinite(residual))
+      throw StepFailure(
+        "the semismooth Newton iteration did not converge in Solver/Maximum "
+        "Newton iterations = " +
+        std::to_string(parameters.max_newton_iterations) +
+        " iterations (relative residual " + scientific(residual) + ")",
+        iterations);
+  }
+
+  /** What a Newton solver for one step needs to know. */
+  template <int dim>
+  struct ContactProblem
+  {
+    const Discretization<dim>  &discretization;
+    const BulkOperator<dim>    &bulk;
+    const ContactBoundary<dim> &boundary;
+    const Foundation           &foundation;
+    const Parameters::Solver   &parameters;
+    TimerOutput                &timer;
+    /** Per-iteration diagnostics (Output/Solver details), rank 0 only. */
+    const ConditionalOStream &details;
+    /** Friction is on (a law other than none). */
+    bool friction;
+    /**
+     * The complementarity constant c_t of friction (Pa/m, like E/h); the
+     * nodal laws use c = c_t k.
+     */
+    double c_t;
+    // The time scheme of the step (k, theta) is bulk.scheme(): the laws act
+    // on u_n and w_e = theta w_n + (1 - theta) w_{n-1} (TimeScheme).
+  };
+
+
+  /** What one Newton solve did (summed into the step's statistics). */
+  struct ContactNewtonResult
+  {
+    unsigned int iterations     = 0;
+    unsigned int factorizations = 0;
+    unsigned int bulk_solves    = 0;
+    /** Krylov iterations of the iterative linear solver. */
+    unsigned int linear_iterations = 0;
+    double       residual          = 0;
+    /** Iterations whose active sets had been seen before (cycling). */
+    unsigned int cycles = 0;
+    /** Damped trial steps of the line search. */
+    unsigned int line_search_steps = 0;
+    /**
+     * The solve was provisional (the condensed solver's boundary iteration
+     * without its whole-system polish): w is left as it was, the nodal
+     * velocities are provisional_velocities(), and finalize() must follow
+     * before w is used as the step's solution.
+     */
+    bool provisional = false;
+  };
+
+
+  /**
+   * The primal-dual active set / semismooth Newton iteration of
+   * doc/theory.md section 5 for frozen friction coefficients: find w and the
+   * friction forces lambda with K0 w + sum_i P_i^T (N_i(w) nu_i + lambda_i) =
+   * b, lambda_i = P_B(0, mu_i N_i)(lambda_i + c_t w_tau,i)  at every node. Two
+   * implementations share one globalized Newton driver (globalized_newton(),
+   * newton_driver.h) and differ in the linear algebra: CondensedNewton (static
+   * condensation onto Gamma_3: K0 factorized once, dense systems on the active
+   * nodes; replicates Gamma_3 on every process) and SparseNewton (the sparse
+   * Newton system of the whole body, by a direct factorization or by GMRES
+   * preconditioned with algebraic multigrid of K0; O(N) per iteration, nothing
+   * replicated).
+   */
+  template <int dim>
+  class ContactNewton
+  {
+  public:
+    using Result = ContactNewtonResult;
+
+    virtual ~ContactNewton() = default;
+
+    /** The mesh (or the boundary) changed. */
+    virtual void
+    reinit() = 0;
+
+    /**
+     * Solve one pass of the step. Every per-node vector is aligned with
+     * ContactBoundary::nodes() (the nodes this process owns): @p u_old and
+     * @p w_old hold u_{n-1} and w_{n-1}, @p mu the friction coefficients
+     * (frozen, or coupled: mu(|w_e,tau|) of the iterate, linearized too),
+     * @p lambda the friction forces (in: initial guess, out: result); @p w
+     * the initial guess and the result (master form). Throws StepFailure
+     * if the iteration does not converge.
+     */
+    virtual Result
+    solve(const Vector_t                    &rhs,
+          const std::vector<Tensor<1, dim>> &u_old,
+          const std::vector<Tensor<1, dim>> &w_old,
+          const FrictionCoefficients        &mu,
+          std::vector<Tensor<1, dim>>       &lambda,
+          Vector_t                          &w) = 0;
+
+    /**
+     * The same, where the caller may accept a provisional answer (a pass
+     * of the convexification loop that is probably not the last): a solver
+     * that finds the velocities at the nodes more cheaply than the whole w
+     * does so, leaves @p w as it was and sets Result::provisional; it may
+     * stop once its nodal velocities are accurate to about
+     * @p velocity_accuracy (m/s) if that is coarser than the Newton
+     * tolerance (finalize() then iterates on to the Newton tolerance). The
+     * default solves.
+     */
+    virtual Result
+    solve_provisional(const Vector_t                    &rhs,
+                      const std::vector<Tensor<1, dim>> &u_old,
+                      const std::vector<Tensor<1, dim>> &w_old,
+                      const FrictionCoefficients        &mu,
+                      std::vector<Tensor<1, dim>>       &lambda,
+                      Vector_t                          &w,
+                      const double /*velocity_accuracy*/ = 0)
+    {
+      return solve(rhs, u_old, w_old, mu, lambda, w);
+    }
+
+    /**
+     * After a provisional solve: the solution itself, from the same data
+     * (the last solve's). With @p previous given (only if the provisional
+     * solve followed another one of the same step): also the whole
+     * velocity of that earlier pass into @p previous (what rule (85)
+     * compares the finished pass with). The default has nothing to do.
+     */
+    virtual Result
+    finalize(Vector_t & /*w*/,
+             std::vector<Tensor<1, dim>> & /*lambda*/,
+             Vector_t * /*previous*/ = nullptr)
+    {
+      return Result();
+    }
+
+    /**
+     * The largest eigenvalue of S C S: C the compliance of the nodes of
+     * Gamma_3 under K0 (the response of the nodal velocities to nodal
+     * forces, C_ij = P_i [K0^{-1}]_ij P_j^T: inertia, viscosity and
+     * elasticity in it, the contact laws not), S the block diagonal of the
+     * symmetric @p roots of the owned nodes (zero leaves a node out). The
+     * uniqueness measures of a step (doc/theory.md section 5.2) are of this
+     * form. Lanczos (largest_eigenvalue()); collective.
+     */
+    virtual double
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots) = 0;
+
+    /**
+     * After a provisional solve: its velocities at the nodes this process
+     * owns (aligned with ContactBoundary::nodes()). A provisional solve
+     * leaves the whole w untouched; the nodes are what the
+     * convexification loop measures of a pass.
+     */
+    virtual std::vector<Tensor<1, dim>>
+    provisional_velocities() const
+    {
+      Assert(false, ExcInternalError());
+      return {};
+    }
+  };
+} // namespace DynamicContact
+
+#endif

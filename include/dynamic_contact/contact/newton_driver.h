@@ -1,0 +1,304 @@
+#ifndef dynamic_contact_newton_driver_h
+#define dynamic_contact_newton_driver_h
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <dynamic_contact/contact/contact_newton.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * What an iterate of a semismooth Newton iteration measures of itself:
+   * the relative residual (the stopping test), the merit function that the
+   * line search decreases, and a fingerprint of its active sets (cycling,
+   * stagnation).
+   */
+  struct NewtonMeasure
+  {
+    double        residual  = 0;
+    double        merit     = 0;
+    std::uint64_t signature = 0;
+  };
+
+
+  /**
+   * How the globalization of one Newton iteration behaves (doc/algorithms.md,
+   * "Globalization").
+   */
+  struct NewtonPolicy
+  {
+    /**
+     * Armijo from the first iteration on (a step must lower the merit of the
+     * current iterate); otherwise the first @p free_iterations steps are
+     * taken in full (active-set changes may raise the merit while Newton
+     * converges) and later ones must stay below the largest merit of the
+     * last @p window iterates (non-monotone). A detected cycle makes the
+     * rule monotone for the rest of the iteration either way.
+     */
+    bool         monotone        = false;
+    unsigned int free_iterations = 4;
+    unsigned int window          = 5;
+    /**
+     * Stagnation: an iterate reached by a full step, whose active sets are
+     * those of the last one, whose residual fell by less than this factor,
+     * and which is below sqrt(tolerance) is accepted (round-off, not a wrong
+     * set; a damped step that gains little is no sign of round-off).
+     */
+    double stagnation_factor = 0.1;
+    /** Name of the phase in the per-iteration diagnostics. */
+    const char *name = "";
+    /**
+     * Stop below this relative residual if it is larger than
+     * Solver/Newton tolerance (a provisional pass of the convexification
+     * loop; the stagnation test keeps the Newton tolerance).
+     */
+    double tolerance = 0;
+  };
+
+
+  /**
+   * One globalized semismooth Newton iteration, shared by every solver of
+   * the step (the condensed solver's boundary phase, the whole-system
+   * iteration with either linear back-end): stopping test, stagnation
+   * acceptance, the cap (StepFailure, which the time loop answers with a
+   * cut-back), active-set cycling detection, and the (non-)monotone Armijo
+   * backtracking line search along the Newton step. What an iterate is, and
+   * how the Newton step is computed, is the @p Problem's:
+   *
+   *   typename Problem::Iterate;
+   *   NewtonMeasure evaluate(Iterate &x);     // linearize x, measure it
+   *   double merit(const Iterate &trial, const Iterate &current);
+   *   void newton_step(Iterate &x, Iterate &full); // x evaluated; full step
+   *   void combine(const Iterate &x, const Iterate &full, double alpha,
+   *                Iterate &trial);           // x + alpha (full - x)
+   *   bool safeguarded(const Iterate &x);     // see below (collective)
+   *
+   * A linearization with a safeguard (the coupled friction linearization's
+   * weakening limit, WeakeningLimit) is not the derivative of the merit
+   * function where the safeguard acts: its step is not a descent
+   * direction there, and it is meant to move a node away from a zero of
+   * the merit function that the safeguard keeps the iteration from (a
+   * slip rate at the onset of slip, where the law weakens faster than the
+   * body resists). A line search would undo that, step after step (the
+   * 3D rail: 28 iterations at 1/64 of a step). So a step from an iterate
+   * where the safeguard acts is taken in full unless the iteration cycles.
+   *
+   * @p x is the starting iterate on entry and the solution on exit; @p
+   * result counts iterations, cycles and line-search steps and holds the
+   * last residual.
+   */
+  template <typename Problem, typename Result>
+  void
+  globalized_newton(Problem                   &problem,
+                    typename Problem::Iterate &x,
+                    const NewtonPolicy        &policy,
+                    const Parameters::Solver  &parameters,
+                    const ConditionalOStream  &details,
+                    Result                    &result)
+  {
+    using Iterate         = typename Problem::Iterate;
+    const double tol      = parameters.newton_tolerance;
+    const double stop_tol = std::max(tol, policy.tolerance);
+
+    Iterate                    full, trial;
+    NewtonMeasure              current = problem.evaluate(x);
+    std::vector<std::uint64_t> history; // active sets of the past iterates
+    std::vector<double>        merits;
+    bool                       monotone          = policy.monotone;
+    double                     previous_residual = 0;
+    bool                       last_step_full    = false;
+
+    for (unsigned int iteration = 0;; ++iteration)
+      {
+        details << "    Newton " << result.iterations << " (" << policy.name
+                << "): residual " << current.residual << std::endl;
+        const bool stagnated =
+          iteration > 0 && last_step_full &&
+          current.signature == history.back() &&
+          current.residual > policy.stagnation_factor * previous_residual &&
+          current.residual < std::sqrt(tol);
+        result.residual = current.residual;
+        if (current.residual <= stop_tol || stagnated)
+          break;
+        check_newton_cap(result.iterations, current.residual, parameters);
+        previous_residual = current.residual;
+
+        // Active-set cycling: a return to sets seen before, with other sets
+        // in between (keeping the last sets, as a damped step does, is no
+        // cycle). The line search then damps the step (the remedy).
+        const bool cycling =
+          history.size() >= 2 && current.signature != history.back() &&
+          std::find(history.begin(), history.end() - 1, current.signature) !=
+            history.end() - 1;
+        result.cycles += cycling;
+        monotone = monotone || cycling;
+        history.push_back(current.signature);
+        const double merit_now = current.merit;
+        merits.push_back(merit_now);
+
+        // The full semismooth Newton step, and the merit where it lands.
+        problem.newton_step(x, full);
+        NewtonMeasure accepted   = problem.evaluate(full);
+        const double  merit_full = problem.merit(full, x);
+        const double  reference =
+          *std::max_element(merits.end() - std::min<std::size_t>(merits.size(),
+                                                                 policy.window),
+                            merits.end());
+        const bool rejected =
+          parameters.line_search &&
+          (cycling || (monotone && merit_full > (1 - 1e-4) * merit_now) ||
+           (iteration >= policy.free_iterations && merit_full > reference));
+        const bool backtrack =
+          rejected && (cycling || !problem.safeguarded(x));
+        if (backtrack)
+          {
+            // Armijo backtracking along the step, down to 1/128 of it.
+            for (double alpha = 0.5;; alpha *= 0.5)
+              {
+                problem.combine(x, full, alpha, trial);
+                accepted = problem.evaluate(trial);
+                ++result.line_search_steps;
+                if (problem.merit(trial, x) <= (1 - 1e-4 * alpha) * merit_now ||
+                    alpha < 1. / 64)
+                  break;
+              }
+            std::swap(x, trial);
+          }
+        else
+          std::swap(x, full);
+        last_step_full = !backtrack;
+        current        = accepted;
+        ++result.iterations;
+      }
+  }
+
+
+  /**
+   * The friction law's part of a merit function: the sum of the squared law
+   * residuals relative to the force scale @p f_scale (0 where there is no
+   * law residual, even if no force acts yet).
+   */
+  inline double
+  law_merit(const double law_squares, const double f_scale)
+  {
+    return law_squares == 0 ? 0. : law_squares / (f_scale * f_scale);
+  }
+
+
+  /**
+   * A fingerprint of the active sets: the sum over the nodes of a hash of
+   * (the node's first DoF, its set signature), so that it is the same
+   * whatever the order of the nodes and the number of processes (the sum
+   * over the processes is taken by the caller).
+   */
+  inline std::uint64_t
+  node_set_hash(const std::uint64_t key, const unsigned int signature)
+  {
+    // SplitMix64 of the combined value.
+    std::uint64_t z = key * 0x9E3779B97F4A7C15ull + signature + 1;
+    z               = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z               = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+
+
+  /**
+   * What every Newton back-end needs to know about one node of Gamma_3 at
+   * an iterate (w_i, lambda_i): the linearized laws, the nodal force at the
+   * iterate (normal law at w plus the friction force as it stands), the
+   * part of the linearized force that does not depend on the unknowns of
+   * the Newton step, the residual of the friction law, and the hash of the
+   * node's sets.
+   */
+  template <int dim>
+  struct NodeEvaluation
+  {
+    NodeLinearization<dim> lin;
+    Tensor<1, dim>         force;
+    Tensor<1, dim>         base;
+    /** |lambda_i - P(lambda_i + c w_e,tau)| (0 without friction). */
+    double law_residual = 0;
+    /**
+     * |w_e,tau| at a stick node (else 0): the stick condition in velocity
+     * units. In the law residual it is c m_i |w_e,tau|, a force that
+     * vanishes with the time step (c = c_t k).
+     */
+    double        stick_rate = 0;
+    std::uint64_t signature  = 0;
+  };
+
+  /**
+   * The one per-node evaluation of the Newton back-ends (condensed and
+   * whole-system): the laws of @p problem at node @p node with the old
+   * values @p u_old, @p w_old, the iterate @p w, @p lambda and node @p i's
+   * coefficient of @p mu (frozen, or mu(|w_e,tau|) of the iterate with its
+   * derivative in the linearization: FrictionCoefficients).
+   */
+  template <int dim>
+  NodeEvaluation<dim>
+  evaluate_node(const ContactProblem<dim>  &problem,
+                const ContactNode<dim>     &node,
+                const Tensor<1, dim>       &u_old,
+                const Tensor<1, dim>       &w_old,
+                const Tensor<1, dim>       &w,
+                const Tensor<1, dim>       &lambda,
+                const FrictionCoefficients &mu,
+                const unsigned int          i)
+  {
+    const TimeScheme   &scheme = problem.bulk.scheme();
+    const double        c      = problem.c_t * scheme.time_step();
+    double              mu_i = 0, dmu_ds = 0;
+    if (problem.friction && mu.coupled())
+      {
+        const double s = node.tangential(scheme.weighted(w, w_old)).norm();
+        mu_i           = mu.law->value(s);
+        dmu_ds         = mu.law->derivative(s);
+      }
+    else if (problem.friction && !mu.frozen.empty())
+      mu_i = mu.frozen[i];
+    NodeEvaluation<dim> e;
+    e.lin = linearize_node(problem.foundation,
+                           node,
+                           u_old,
+                           w_old,
+                           w,
+                           scheme,
+                           problem.friction,
+                           lambda,
+                           mu_i,
+                           c,
+                           dmu_ds,
+                           mu.coupled() && !mu.weakening_limit.empty() ?
+                             mu.weakening_limit[i] :
+                             std::numeric_limits<double>::infinity());
+    const Tensor<1, dim> normal_force =
+      e.lin.normal.pressure * node.weight * node.normal;
+    e.force = normal_force + lambda;
+    e.base  = normal_force;
+    if (e.lin.friction.state == FrictionState::slip)
+      e.base += e.lin.friction.value;
+    if (problem.friction)
+      e.law_residual =
+        (lambda - projected_friction_force(node,
+                                           e.lin.friction.threshold,
+                                           scheme.weighted(w, w_old),
+                                           lambda,
+                                           c))
+          .norm();
+    if (e.lin.friction.state == FrictionState::stick)
+      e.stick_rate = node.tangential(scheme.weighted(w, w_old)).norm();
+    e.signature =
+      node_set_hash(node.dofs[0],
+                    e.lin.normal.set_signature() +
+                      16 * static_cast<unsigned int>(e.lin.friction.state));
+    return e;
+  }
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,85 @@
+#ifndef dynamic_contact_solver_plan_h
+#define dynamic_contact_solver_plan_h
+
+#include <deal.II/base/types.h>
+
+#include <dynamic_contact/parameters/parameters.h>
+
+#include <mpi.h>
+
+#include <string>
+
+namespace DynamicContact
+{
+  /**
+   * How a step is solved, chosen in one place from the parameters and the
+   * problem (made by plan_solver() whenever the mesh or Gamma_3 changes):
+   * which contact solver (condensed or assembled), how its linear systems
+   * are solved (sparse direct or Krylov with algebraic multigrid), which
+   * direct solver factorizes, and why. The parameters given are kept as
+   * they are; 'auto' values are resolved here.
+   */
+  struct SolverPlan
+  {
+    enum class Factorization
+    {
+      /** SuiteSparse CHOLMOD, one process. */
+      cholmod,
+      /** CHOLMOD on every process, each with the whole matrix. */
+      cholmod_on_every_process,
+      /** Trilinos Amesos (MUMPS or KLU), distributed. */
+      amesos,
+      /** No factorization: CG or GMRES with algebraic multigrid. */
+      none
+    };
+
+    /** The condensed solver; else the assembled one. */
+    bool condensed = true;
+    /** Direct or iterative (Solver/Linear solver with auto resolved). */
+    Parameters::Solver::LinearSolver linear_solver =
+      Parameters::Solver::LinearSolver::direct;
+    Factorization factorization = Factorization::cholmod;
+    /** Why the contact solver and the factorization were chosen. */
+    std::string reason;
+
+    /** The solver parameters the chosen solver works with. */
+    Parameters::Solver
+    solver_parameters(const Parameters::Solver &given) const;
+
+    /** "condensed" or "assembled (direct|iterative)". */
+    std::string
+    contact_solver_name() const;
+
+    /** One line: the choices and why. */
+    std::string
+    description() const;
+  };
+
+  /**
+   * The plan for a problem of @p n_dofs bulk DoFs and @p n_contact_nodes
+   * nodes on Gamma_3 on the processes of @p comm (every process decides
+   * alike).
+   */
+  SolverPlan
+  plan_solver(const Parameters::Solver          &parameters,
+              const unsigned int                 dim,
+              const dealii::types::global_dof_index n_dofs,
+              const unsigned int                 n_contact_nodes,
+              const MPI_Comm                     comm);
+
+  /**
+   * How a bulk matrix of @p n_dofs rows is factorized with these
+   * parameters on the processes of @p comm (Solver/Direct solver package
+   * = auto: CHOLMOD on one process; on several, CHOLMOD on every process
+   * while the matrix is small, see the definition for the measured
+   * limits, else MUMPS over the processes). Linear solver = iterative:
+   * none.
+   */
+  SolverPlan::Factorization
+  bulk_factorization(const Parameters::Solver             &parameters,
+                     const unsigned int                    dim,
+                     const dealii::types::global_dof_index n_dofs,
+                     const MPI_Comm                        comm);
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,197 @@
+#ifndef dynamic_contact_friction_law_h
+#define dynamic_contact_friction_law_h
+
+#include <deal.II/base/function_parser.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <dynamic_contact/laws/plugins.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * The friction coefficient mu(s) of the slip rate s = |u'_tau| (eq. (18)):
+   * an interface with the implementations 'constant', the paper's
+   * slip-weakening 'exponential' (eq. (90)) and 'expression' (a function of
+   * s), chosen by Friction/Law. A new law is a class derived from this one
+   * with declare_parameters/parse_parameters for its own subsection
+   * Friction/<Name>, registered with DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+   * Class, "name", "description") (doc/extending.md).
+   */
+  class FrictionLaw
+  {
+  public:
+    virtual ~FrictionLaw() = default;
+
+    /** mu(s), s >= 0. */
+    virtual double
+    value(const double s) const = 0;
+
+    /** mu'(s) (one-sided at kinks). */
+    virtual double
+    derivative(const double s) const = 0;
+
+    /** True if mu does not depend on s: one convexification pass suffices. */
+    virtual bool
+    is_constant() const = 0;
+
+    /** A short description for logs, e.g. "mu(s) = 0.5 exp(-2000 s) + 0.5". */
+    virtual std::string
+    description() const = 0;
+
+    /**
+     * The one-sided Lipschitz constant lambda of H(mu)(c): the smallest
+     * lambda >= 0 with mu(s1) - mu(s2) >= -lambda (s1 - s2) for
+     * s1 > s2 >= 0 in [0, s_max], i.e. max(0, -min mu'). Sampled densely on
+     * [0, s_max] (exact for the built-in laws).
+     */
+    virtual double
+    one_sided_lipschitz_constant(const double s_max) const;
+
+    /**
+     * Throws an ExcMessage naming the parameter if mu is negative or not
+     * finite somewhere on [0, s_max] (sampled).
+     */
+    void
+    check_nonnegative(const double s_max) const;
+
+    /**
+     * Where the laws are checked on [0, s_max]: 0, a geometric sequence from
+     * 1e-9 (dense near 0, where laws change fastest) and 1000 equal steps,
+     * sorted.
+     */
+    static std::vector<double>
+    sample_points(const double s_max);
+
+    /** Parse the law's own subsection (called inside it). */
+    virtual void
+    parse_parameters(ParameterHandler &prm) = 0;
+
+    /**
+     * Declare, inside subsection Friction, the entry Law (every registered
+     * name, and 'none') and the subsection of every registered law.
+     */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The law that Friction/Law names, with its parameters (called inside
+     * subsection Friction); nullptr for Law = none.
+     */
+    static std::unique_ptr<FrictionLaw>
+    create(ParameterHandler &prm);
+  };
+
+
+  class ConstantFriction : public FrictionLaw
+  {
+  public:
+    ConstantFriction() = default;
+    explicit ConstantFriction(const double mu)
+      : mu(mu)
+    {}
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
+    double
+    value(const double) const override
+    {
+      return mu;
+    }
+    double
+    derivative(const double) const override
+    {
+      return 0;
+    }
+    bool
+    is_constant() const override
+    {
+      return true;
+    }
+    std::string
+    description() const override;
+    double
+    one_sided_lipschitz_constant(const double) const override
+    {
+      return 0;
+    }
+
+  private:
+    double mu = 0;
+  };
+
+
+  /** mu(s) = (a - b) exp(-alpha s) + b, eq. (90). */
+  class ExponentialFriction : public FrictionLaw
+  {
+  public:
+    ExponentialFriction() = default;
+    ExponentialFriction(const double a, const double b, const double alpha)
+      : a(a)
+      , b(b)
+      , alpha(alpha)
+    {}
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
+    double
+    value(const double s) const override;
+    double
+    derivative(const double s) const override;
+    bool
+    is_constant() const override
+    {
+      return a == b || alpha == 0;
+    }
+    std::string
+    description() const override;
+    /** alpha (a - b): the steepest descent, at s = 0 (0 if mu grows). */
+    double
+    one_sided_lipschitz_constant(const double) const override
+    {
+      return std::max(0., alpha * (a - b));
+    }
+
+  private:
+    double a = 1, b = 0.5, alpha = 2000;
+  };
+
+
+  /** mu(s) from a muparser expression in the variable s. */
+  class ExpressionFriction : public FrictionLaw
+  {
+  public:
+    ExpressionFriction();
+    ExpressionFriction(const std::string &expression,
+                       const std::string &constants);
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm) override;
+    double
+    value(const double s) const override;
+    double
+    derivative(const double s) const override;
+    bool
+    is_constant() const override;
+    std::string
+    description() const override;
+
+  private:
+    /** Parse @p expression with the constants "name=value, ...". */
+    void
+    initialize(const std::string &expression, const std::string &constants);
+
+    std::string                        expression;
+    std::unique_ptr<FunctionParser<1>> parser;
+  };
+} // namespace DynamicContact
+
+#endif

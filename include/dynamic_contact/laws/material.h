@@ -1,0 +1,124 @@
+#ifndef dynamic_contact_material_h
+#define dynamic_contact_material_h
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <dynamic_contact/parameters/parameters.h>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  /** Isotropic fourth-order tensor lambda I (x) I + 2 mu I^sym. */
+  template <int dim>
+  SymmetricTensor<4, dim>
+  isotropic_tensor(const double lambda, const double mu);
+
+  /**
+   * The first Lame constant that a 2D model uses: lambda itself in plane
+   * strain (and in 3D), 2 lambda mu / (lambda + 2 mu) in plane stress (the
+   * out-of-plane stress eliminated).
+   */
+  double
+  effective_lambda(const double                           lambda,
+                   const double                           mu,
+                   const Parameters::Material::PlaneModel model,
+                   const unsigned int                     dim);
+
+  /**
+   * The Kelvin-Voigt law sigma = C eps(u') + E eps(u), eq. (13): isotropic
+   * elasticity tensor E from Young's modulus and Poisson's ratio (eq. (87)),
+   * isotropic viscosity tensor C from its two constants; both reduced to the
+   * 2D plane model.
+   */
+  template <int dim>
+  class KelvinVoigtMaterial
+  {
+  public:
+    explicit KelvinVoigtMaterial(const Parameters::Material &parameters);
+
+    double
+    density() const
+    {
+      return rho;
+    }
+
+    /** The elasticity tensor E. */
+    const SymmetricTensor<4, dim> &
+    elasticity() const
+    {
+      return elasticity_tensor;
+    }
+
+    /** The viscosity tensor C (zero in the paper's example). */
+    const SymmetricTensor<4, dim> &
+    viscosity() const
+    {
+      return viscosity_tensor;
+    }
+
+    bool
+    has_viscosity() const
+    {
+      return viscous;
+    }
+
+    /** Lame constants of E as the plane model uses them. */
+    double
+    lambda() const
+    {
+      return lame_lambda;
+    }
+    double
+    mu() const
+    {
+      return lame_mu;
+    }
+
+    /**
+     * The constrained (P-wave) modulus lambda + 2 mu of the model: the
+     * stiffness of uniaxial strain, sigma_yy = M eps_yy.
+     */
+    double
+    constrained_modulus() const
+    {
+      return lame_lambda + 2 * lame_mu;
+    }
+
+    /** sigma = C eps(w) + E eps(u). */
+    SymmetricTensor<2, dim>
+    stress(const SymmetricTensor<2, dim> &strain,
+           const SymmetricTensor<2, dim> &strain_rate) const;
+
+    /**
+     * In 2D, the stress sigma_zz normal to the plane: lambda tr eps(u) +
+     * lambda_v tr eps(w) in plane strain, 0 in plane stress (and in 3D).
+     */
+    double
+    out_of_plane_stress(const SymmetricTensor<2, dim> &strain,
+                        const SymmetricTensor<2, dim> &strain_rate) const;
+
+  private:
+    double                  rho;
+    bool                    plane_strain;
+    double                  lame_lambda;
+    double                  viscous_lambda;
+    double                  lame_mu;
+    bool                    viscous;
+    SymmetricTensor<4, dim> elasticity_tensor;
+    SymmetricTensor<4, dim> viscosity_tensor;
+  };
+
+  /**
+   * Von Mises equivalent stress sqrt(3/2 s:s), s the deviator of the 3D
+   * stress; in 2D the stress normal to the plane is @p out_of_plane (zero in
+   * plane stress, KelvinVoigtMaterial::out_of_plane_stress() in plane
+   * strain).
+   */
+  template <int dim>
+  double
+  von_mises_stress(const SymmetricTensor<2, dim> &stress,
+                   const double                   out_of_plane = 0);
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,227 @@
+#ifndef dynamic_contact_step_solver_h
+#define dynamic_contact_step_solver_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <dynamic_contact/bulk/bulk_operator.h>
+#include <dynamic_contact/contact/contact_boundary.h>
+#include <dynamic_contact/laws/contact_law.h>
+#include <dynamic_contact/contact/contact_newton.h>
+#include <dynamic_contact/contact/contact_state.h>
+#include <dynamic_contact/laws/foundation.h>
+#include <dynamic_contact/laws/friction_law.h>
+#include <dynamic_contact/contact/solver_plan.h>
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  /**
+   * One time step of the scheme (doc/theory.md sections 2, 4 and 5): given K0
+   * for the current k, the right-hand side b = (rho/k) M w_{n-1} - B u_{n-1}
+   * + f_n and u_{n-1}, find w_n. With a slip-rate dependent friction law,
+   * the convexification loop freezes mu_i = mu(|w_tau,i|) of the previous
+   * iterate, solves the frozen problem by semismooth Newton (a
+   * ContactNewton), and stops by the rule (85) together with
+   * max_i |mu_i - mu(|w_tau,i|)| <= tol. Without friction, or with a
+   * constant coefficient, there is one pass and no friction work.
+   */
+  template <int dim>
+  class StepSolver
+  {
+  public:
+    struct Statistics
+    {
+      unsigned int newton_iterations          = 0;
+      unsigned int convexification_iterations = 0;
+      bool         convexification_converged  = true;
+      unsigned int factorizations             = 0;
+      unsigned int bulk_solves                = 0;
+      unsigned int cycles                     = 0;
+      unsigned int line_search_steps          = 0;
+      /** Krylov iterations (Solver/Linear solver = iterative). */
+      unsigned int linear_iterations = 0;
+      double       residual          = 0;
+      /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
+      double       coefficient_residual = 0;
+      /**
+       * Coupled passes (Friction/Linearization = coupled) that did not
+       * converge, after which the step was solved by the frozen loop.
+       */
+      unsigned int coupled_fallbacks = 0;
+      /**
+       * The uniqueness measures of the solution (doc/theory.md section
+       * 5.2), -1 where they were not evaluated (Friction/Uniqueness
+       * monitor): the paper's smallness condition theta rho(C L N) (below
+       * 1 the step has one solution), and theta rho(C D) at the solution,
+       * a bound of the frozen-coefficient loop's contraction factor there
+       * (below 1: the loop is attracted to it; 1 or more: it may be
+       * repelled, and other solutions may lie beside it).
+       */
+      double uniqueness_bound   = -1;
+      double contraction_factor = -1;
+      unsigned int n_contact            = 0;
+      unsigned int n_stick              = 0;
+      unsigned int n_slip               = 0;
+
+      /** Add the work of a Newton solve; its residual is the last. */
+      void
+      add_newton(const ContactNewtonResult &r)
+      {
+        newton_iterations += r.iterations;
+        factorizations += r.factorizations;
+        bulk_solves += r.bulk_solves;
+        cycles += r.cycles;
+        line_search_steps += r.line_search_steps;
+        linear_iterations += r.linear_iterations;
+        residual = r.residual;
+      }
+
+      /**
+       * Add the work of an earlier sub-step of the same step (a composite
+       * scheme): the counts add up, the loop converged only if both did,
+       * the coefficient residual is the larger; the residual and the node
+       * counts stay those of this (the last) solve.
+       */
+      void
+      add_work(const Statistics &earlier)
+      {
+        newton_iterations += earlier.newton_iterations;
+        convexification_iterations += earlier.convexification_iterations;
+        convexification_converged =
+          convexification_converged && earlier.convexification_converged;
+        factorizations += earlier.factorizations;
+        bulk_solves += earlier.bulk_solves;
+        cycles += earlier.cycles;
+        line_search_steps += earlier.line_search_steps;
+        linear_iterations += earlier.linear_iterations;
+        coefficient_residual =
+          std::max(coefficient_residual, earlier.coefficient_residual);
+        coupled_fallbacks += earlier.coupled_fallbacks;
+        uniqueness_bound = std::max(uniqueness_bound, earlier.uniqueness_bound);
+        contraction_factor =
+          std::max(contraction_factor, earlier.contraction_factor);
+      }
+    };
+
+    StepSolver(const Discretization<dim>  &discretization,
+               const BulkOperator<dim>    &bulk,
+               const ContactBoundary<dim> &contact_boundary,
+               ContactState<dim>          &contact_state,
+               const Foundation           &foundation,
+               const FrictionLaw          *friction_law,
+               const Parameters::Solver   &solver_parameters,
+               const Parameters::Friction &friction_parameters,
+               TimerOutput                &timer,
+               const ConditionalOStream   &details);
+    ~StepSolver();
+
+    /**
+     * After a change of the mesh (or of Gamma_3): size the Gamma_3 solution
+     * (ContactState::reinit); @p c_t is the complementarity constant of
+     * friction.
+     */
+    void
+    reinit(const double complementarity_constant);
+
+    /**
+     * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
+     * in master form; the ContactState holds the friction forces of the
+     * last step (the warm start) and returns those of w_n, with the frozen
+     * coefficients and the node states. Throws StepFailure if Newton does not
+     * converge, and if the convexification loop reaches its cap unless
+     * @p accept_unconverged_loop (the smallest time step: the step is then
+     * kept, with Statistics::convexification_converged = false).
+     */
+    Statistics
+    solve(const Vector_t &rhs,
+          const Vector_t &u_old,
+          const Vector_t &w_old,
+          Vector_t       &w,
+          const bool      accept_unconverged_loop = false);
+
+    /** The contact solver in use (Solver/Contact solver, auto resolved). */
+    std::string
+    solver_name() const
+    {
+      return plan.contact_solver_name();
+    }
+
+    /** How the steps are solved on the current mesh, and why. */
+    const SolverPlan &
+    solver_plan() const
+    {
+      return plan;
+    }
+
+    /** True if the scene has friction (a law with a nonzero coefficient). */
+    bool
+    has_friction() const
+    {
+      return friction;
+    }
+
+  private:
+    const Discretization<dim>  &discretization;
+    const BulkOperator<dim>    &bulk;
+    const ContactBoundary<dim> &contact_boundary;
+    ContactState<dim>          &contact_state;
+    const Foundation           &foundation;
+    const FrictionLaw          *friction_law;
+    const Parameters::Solver    parameters;
+    const Parameters::Friction  friction_parameters;
+    TimerOutput                &timer;
+    const ConditionalOStream   &details;
+    const bool                  friction;
+    double                      c_t = 0;
+    /**
+     * The law's one-sided Lipschitz constant max(0, -min mu') on
+     * [0, Friction/Maximum slip rate] (0 without a law that depends on s):
+     * the L of the uniqueness bound, and how fast mu can change with the
+     * slip rate: what a provisional pass of the convexification loop may
+     * leave of the slip rate is measured by it.
+     */
+    const double lipschitz_constant;
+
+    /**
+     * The Newton solver of each kind of (sub-)step: [0] theta > 1/2
+     * (backward Euler, the composite scheme's second sub-step), [1] theta
+     * = 1/2 (trapezoidal), made when first needed. A composite scheme
+     * (Time/Scheme = bathe) alternates the two kinds, each with its own K0
+     * (at rho_inf = 1 both sub-steps are trapezoidal over k/2: one K0);
+     * one solver each keeps its factorization (and the condensed solver's
+     * compliance columns) from step to step.
+     */
+    std::array<std::unique_ptr<ContactNewton<dim>>, 2> newtons;
+    /** The solver for the scheme of bulk.scheme(). */
+    ContactNewton<dim> &
+    newton_for_scheme();
+    /** How the steps are solved (made by reinit()). */
+    SolverPlan plan;
+    /** The parameters with the plan's choices, which the solvers keep. */
+    Parameters::Solver planned_parameters;
+
+    /**
+     * The uniqueness measures of the solved step into @p statistics
+     * (Statistics::uniqueness_bound, contraction_factor; collective).
+     */
+    void
+    measure_uniqueness(ContactNewton<dim> &newton, Statistics &statistics);
+
+    /** Evaluate the owned nodes' states at the converged (w, lambda). */
+    void
+    update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
+                  const std::vector<Tensor<1, dim>> &w_old_nodes,
+                  const Vector_t                    &w,
+                  Statistics                        &statistics);
+  };
+} // namespace DynamicContact
+
+#endif

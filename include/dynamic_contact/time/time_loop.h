@@ -1,0 +1,311 @@
+#ifndef dynamic_contact_time_loop_h
+#define dynamic_contact_time_loop_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <dynamic_contact/output/checkpoint.h>
+#include <dynamic_contact/base/fault_injection.h>
+#include <dynamic_contact/output/output.h>
+#include <dynamic_contact/output/output_directory.h>
+#include <dynamic_contact/output/output_schedule.h>
+#include <dynamic_contact/parameters/parameters.h>
+#include <dynamic_contact/parameters/provenance.h>
+#include <dynamic_contact/output/resume.h>
+#include <dynamic_contact/run/run_totals.h>
+#include <dynamic_contact/run/simulator.h>
+#include <dynamic_contact/time/step_record.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * Runs a Simulator through time and owns the run state alone: the time,
+   * the step and its length (cut-backs, Time/Adaptive's controller), when
+   * results and checkpoints are written, the progress lines and the end
+   * summary, the output directory and run_status, the screen log, and
+   * resuming from a checkpoint. The loop state that a checkpoint carries
+   * is one RunState (checkpoint.h), kept here as it is saved.
+   *
+   * run() = initialize(), then advance() until it returns false, then
+   * finish() (or stop() after a signal); tests drive them themselves to
+   * look between steps.
+   *
+   * What can go wrong around the solver is handled here (README, "What can
+   * go wrong"): the output directory is the run's own (OutputDirectory),
+   * every write is checked, the input is checked for non-finite values and
+   * for the resources it needs before anything is allocated or written, a
+   * resumed run continues exactly the problem of its checkpoint or refuses,
+   * a failed step is retried from its restore point with a shorter time
+   * step, and a signal stops the run after the current step with a
+   * checkpoint.
+   */
+  template <int dim>
+  class TimeLoop
+  {
+  public:
+    TimeLoop(const RunParameters &parameters,
+             ParameterHandler    &prm,
+             const MPI_Comm       comm);
+    ~TimeLoop();
+
+    /**
+     * Run the whole simulation; with @p resume from the newest good
+     * checkpoint in the output directory. Returns the exit code: 0, or
+     * 128 + N after a stop by signal N (stop()).
+     */
+    int
+    run(const bool resume = false);
+
+    /**
+     * Build the mesh (refined for the initial load when adaptive), check the
+     * input, prepare the output directory, set the initial state and write
+     * step 0. With @p resume: load the newest complete checkpoint of the
+     * output directory instead, and continue its time_series.csv.
+     */
+    void
+    initialize(const bool resume = false);
+
+    /**
+     * --validate: everything initialize() does before the first result is
+     * written (the mesh and its boundary ids, the resources, the functions
+     * of the scene and the friction law sampled, the operators set up, the
+     * initial state), and nothing more: the output directory is not
+     * touched. Throws the error the run would stop with; returns
+     * "2D, Q1 elements, N cells, M DoFs, K contact nodes".
+     */
+    std::string
+    validate();
+
+    /**
+     * One time step; false (and nothing done) once the end time is reached
+     * or a process received a stop signal.
+     */
+    bool
+    advance();
+
+    /**
+     * Print the summary and mark the output as complete: run_status
+     * "completed", or "completed with warnings: ..." if steps were kept
+     * with an unconverged convexification loop (or the energy balance did
+     * not hold).
+     */
+    void
+    finish();
+
+    /**
+     * After a stop signal: write a checkpoint (with Checkpoint/Every > 0)
+     * and run_status "stopped: signal N at step S".
+     */
+    void
+    stop();
+
+    /** The signal that stopped the run (0: none). */
+    int
+    stop_signal() const
+    {
+      return stopping_signal;
+    }
+
+    /**
+     * After a failure: mark the output as failed (if this run had taken it
+     * over) and silence the timer summary. A failure every process knows is
+     * written by rank 0; one of this process @p alone (the others may wait
+     * in a collective operation) by this process.
+     */
+    void
+    abandon(const std::string &reason, const bool alone = false);
+
+    /** The steps written to time_series.csv so far (step 0 first). */
+    const std::vector<StepRecord<dim>> &
+    time_series() const
+    {
+      return rows;
+    }
+
+    /** The time of the last step done (0 before the first). */
+    double
+    time() const
+    {
+      return state.time;
+    }
+
+    /** The discrete problem: mesh, fields, Gamma_3. */
+    const Simulator<dim> &
+    simulator() const
+    {
+      return model;
+    }
+
+  private:
+    const RunParameters parameters;
+    MPI_Comm            comm;
+    /** The screen output, and its copy log.txt (rank 0). */
+    mutable ScreenLog screen_log;
+    /** When the run started (UTC, ISO 8601), for the header. */
+    std::string        start_time;
+    ConditionalOStream pcout;
+    ConditionalOStream details;
+
+    /**
+     * The discrete problem. Constructed before the timer it is given (it
+     * only keeps the reference until then): its scene parses the input,
+     * and an error there must leave no timer behind to complain about an
+     * exception in flight.
+     */
+    Simulator<dim> model;
+    TimerOutput    timer;
+
+    /** Created in the constructor, opened (locked, checked) by initialize. */
+    std::unique_ptr<OutputDirectory> output_directory;
+    /** Whether this run has written run_status (taken over the results). */
+    bool took_over = false;
+    /** validate(): initialize() stops before the output directory. */
+    bool validate_only = false;
+    /** The parameters of the run as text (checkpoints, --resume). */
+    std::string parameters_of_run;
+    /** parameters.prm and parameters.json of the run. */
+    ParameterFiles                    parameter_files;
+    std::unique_ptr<TimeSeriesWriter> time_series_writer;
+    std::unique_ptr<VtuWriter<dim>>   vtu_writer;
+    std::vector<StepRecord<dim>>      rows;
+    /** What each step writes. */
+    const OutputSchedule schedule;
+
+    /**
+     * The loop state a checkpoint carries: step, time, the current time
+     * step (steps of the nominal Time/Time step, or shorter after a
+     * cut-back, growing back after good steps), the run's balances and
+     * counts. Its vtu_records are filled from the VTU writer when saved.
+     */
+    RunState state;
+
+    std::chrono::steady_clock::time_point wall_start;
+    /**
+     * Wall clock and simulated time when the first step of this run (since
+     * its start or resume) ended: the estimate of the time left is the wall
+     * time per simulated second since then (cut-backs included) times the
+     * simulated time left; set-up and the one-off work of the first step
+     * are left out.
+     */
+    std::optional<std::pair<std::chrono::steady_clock::time_point, double>>
+      stepping_start;
+    /**
+     * Wall time spent writing VTU files (and how many were written), in all
+     * and when stepping_start was set: the estimate of the time left counts
+     * the VTU files still to come at their mean cost instead of spreading
+     * the bursts of the ones written so far over the steps.
+     */
+    double       vtu_seconds          = 0;
+    unsigned int vtu_files            = 0;
+    double       vtu_seconds_at_start = 0;
+
+    const FaultInjection &faults = FaultInjection::instance();
+    /** A stop signal received (on any process), and the step of the last
+     *  checkpoint written. */
+    int          stopping_signal      = 0;
+    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
+    /** The end summary's counts (those before a resume included). */
+    RunTotals totals;
+
+    /** The step k of the next try: the current one, shortened to end at
+     *  the Output times and at T (Time/Adaptive), no sliver of a step. */
+    double
+    next_step_length() const;
+    /**
+     * Time/Adaptive's controller after a step of @p k whose error estimate
+     * is @p error (relative to the tolerance): whether the step is
+     * accepted, and the next k (of the next step, or of the next try of a
+     * rejected one), on the grid Time step * 2^j.
+     */
+    std::pair<bool, double>
+    controlled_step_length(const double k, const double error) const;
+    /**
+     * Try the next step, with cut-backs and rejections, until one is
+     * accepted; returns its record, its length @p k and (Time/Adaptive)
+     * the length @p k_next of the step after it. Stops the run (with the
+     * last good state written) if no step can be had.
+     */
+    StepRecord<dim>
+    take_step(const double remesh_energy_change, double &k, double &k_next);
+    /**
+     * After an accepted step of @p k: the time, the next time step
+     * (@p k_next with Time/Adaptive), the run's totals.
+     */
+    void
+    accept(const StepRecord<dim> &record, const double k, const double k_next);
+
+    /** Whether a step of size @p k that fails may be retried with k/2
+     *  (Time/Minimum time step). */
+    bool
+    can_cut_back(const double k) const;
+    /** Write the contact CSV and/or the VTU fields of the current step. */
+    void
+    output_results(const unsigned int step,
+                   const double       t,
+                   const bool         contact_csv,
+                   const bool         vtu);
+    void
+    print_header() const;
+    void
+    print_progress(const StepRecord<dim> &record) const;
+
+    /** Write a checkpoint of the current state (Checkpoint/Every). */
+    void
+    checkpoint();
+    /**
+     * A step produced no good state: the simulator is back at @p good;
+     * write it out (contact CSV, VTU, a checkpoint) and throw @p message
+     * (collective).
+     */
+    [[noreturn]] void
+    stop_with_last_good_state(const std::string &message);
+
+    /** --resume: load the newest good checkpoint, or refuse and say why. */
+    void
+    resume_from_checkpoint();
+    /** Collective: write run_status (a failure is a CollectiveError). */
+    void
+    write_status(const std::string &status);
+    /**
+     * Collective: open log.txt (with the screen output so far) and write
+     * parameters.prm and parameters.json; with @p resume continue log.txt.
+     */
+    void
+    write_provenance(const bool resume);
+    /** Collective: write the screen output since the last call to log.txt;
+     *  with @p close close it (before the final run_status). */
+    void
+    write_log(const bool close = false);
+    /** Rank 0 after an error: the message into log.txt, and close it. */
+    void
+    close_log_after_error(const std::string &reason);
+  };
+
+
+  /**
+   * Read the parameters and run the simulation in the dimension they name;
+   * returns the exit code (0, or 128 + N after a stop by signal N). An
+   * error every process knows propagates as an AgreedError (main prints it
+   * and returns 1); an error of some processes only ends the job from
+   * there (abort_run). @p resume_auto: resume if Output/Directory holds a
+   * checkpoint (damaged or not: a damaged one is then named), else a new
+   * run. @p validate: only check the scene (TimeLoop::validate()), print
+   * that it is valid and return 0.
+   */
+  int
+  run_simulation(const std::string              &parameter_file,
+                 const std::vector<std::string> &overrides,
+                 const MPI_Comm                  comm,
+                 const bool                      resume      = false,
+                 const bool                      resume_auto = false,
+                 const bool                      validate    = false);
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,147 @@
+#include <deal.II/base/mpi.h>
+
+#include <dynamic_contact/base/failure.h>
+
+#include <chrono>
+#include <csignal>
+#include <iostream>
+#include <thread>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  std::string
+  collective_message(const MPI_Comm comm, const std::string &local_message)
+  {
+    const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
+    if (n_processes == 1)
+      return local_message;
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int first =
+      Utilities::MPI::min(local_message.empty() ? n_processes : rank, comm);
+    if (first == n_processes)
+      return "";
+    return Utilities::MPI::broadcast(comm, local_message, first);
+  }
+
+
+  void
+  check_collectively(const MPI_Comm comm, const std::string &local_error)
+  {
+    const std::string message = collective_message(comm, local_error);
+    if (!message.empty())
+      throw CollectiveError(message);
+  }
+
+
+  namespace
+  {
+    MPI_Comm error_communicator = MPI_COMM_NULL;
+
+    volatile std::sig_atomic_t stop_signal = 0;
+
+    extern "C" void
+    record_stop_signal(int signal)
+    {
+      if (stop_signal == 0)
+        stop_signal = signal;
+    }
+  } // namespace
+
+
+  void
+  initialize_error_handling(const MPI_Comm world)
+  {
+    if (error_communicator == MPI_COMM_NULL)
+      MPI_Comm_dup(world, &error_communicator);
+  }
+
+
+  bool
+  every_process_failed(const double timeout)
+  {
+    if (error_communicator == MPI_COMM_NULL)
+      return true;
+    int size = 1;
+    MPI_Comm_size(error_communicator, &size);
+    if (size == 1)
+      return true;
+    MPI_Request request;
+    MPI_Ibarrier(error_communicator, &request);
+    const auto start = std::chrono::steady_clock::now();
+    for (;;)
+      {
+        int done = 0;
+        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+        if (done)
+          return true;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                          start)
+              .count() > timeout)
+          return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+  }
+
+
+  void
+  abort_run(const std::string &message, const int exit_code)
+  {
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    std::cerr << "dynamic-contact: error: " << message;
+    if (size > 1)
+      std::cerr << " (on process " << rank << " of " << size
+                << " only: ending all of them)";
+    std::cerr << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, exit_code);
+    std::_Exit(exit_code); // not reached
+  }
+
+
+  void
+  install_stop_signal_handlers()
+  {
+    struct sigaction action = {};
+    action.sa_handler       = record_stop_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    for (const int s : {SIGTERM, SIGINT, SIGHUP, SIGUSR1})
+      sigaction(s, &action, nullptr);
+  }
+
+
+  int
+  received_stop_signal()
+  {
+    return stop_signal;
+  }
+
+
+  int
+  signal_to_stop(const MPI_Comm comm)
+  {
+    return Utilities::MPI::max(static_cast<int>(stop_signal), comm);
+  }
+
+
+  std::string
+  signal_name(const int signal)
+  {
+    switch (signal)
+      {
+        case SIGTERM:
+          return "SIGTERM";
+        case SIGINT:
+          return "SIGINT";
+        case SIGHUP:
+          return "SIGHUP";
+        case SIGUSR1:
+          return "SIGUSR1";
+        default:
+          return "signal " + std::to_string(signal);
+      }
+  }
+} // namespace DynamicContact

@@ -1,0 +1,92 @@
+#include <deal.II/base/mpi.h>
+
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/failure.h>
+#include <dynamic_contact/base/resources.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace DynamicContact
+{
+  void
+  check_resources(const RunParameters &parameters,
+                  const unsigned int   dim,
+                  const double         n_coarse_cells,
+                  const MPI_Comm       comm)
+  {
+    // Estimates for the mesh after Geometry/Global refinements (an
+    // adaptive mesh may grow beyond it; Mesh refinement/Cell budget bounds
+    // it). DoFs as on a box; memory: the four sparse matrices (M, B, A, K0)
+    // and at least as much for the factorization of K0, 12 bytes per entry
+    // (value and column index): a lower bound, so that no scene that fits
+    // is refused.
+    const double refinements = parameters.geometry.global_refinements;
+    const double cells       = n_coarse_cells * std::pow(2., dim * refinements);
+    const double p           = parameters.finite_element.degree;
+    const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
+    const double entries_per_row = dim * std::pow(2 * p + 1, dim);
+    const double bytes           = 5 * 12 * entries_per_row * dofs;
+
+    // The memory available: MemAvailable of every host of the run, once.
+    double available = 0;
+    {
+      std::ifstream meminfo("/proc/meminfo");
+      std::string   key;
+      double        kb = 0;
+      std::string   unit;
+      while (meminfo >> key >> kb >> unit)
+        if (key == "MemAvailable:")
+          {
+            available = kb * 1024;
+            break;
+          }
+      if (available == 0)
+        available = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) *
+                    static_cast<double>(sysconf(_SC_PAGESIZE));
+    }
+    char host[MPI_MAX_PROCESSOR_NAME] = {};
+    int  length                       = 0;
+    MPI_Get_processor_name(host, &length);
+    std::map<std::string, double> hosts;
+    for (const auto &[name, a] : Utilities::MPI::all_gather(
+           comm, std::make_pair(std::string(host, length), available)))
+      hosts[name] = std::max(hosts[name], a);
+    double total = 0;
+    for (const auto &h : hosts)
+      total += h.second;
+
+    const auto giga = [](const double b) {
+      std::ostringstream s;
+      s << std::setprecision(3) << b / 1e9 << " GB";
+      return s.str();
+    };
+    const std::string estimate =
+      "about " + scientific(cells, 1) + " cells and " + scientific(dofs, 1) +
+      " DoFs (Geometry: " + scientific(n_coarse_cells, 1) + " coarse cells, " +
+      std::to_string(parameters.geometry.global_refinements) +
+      " global refinements; Q" +
+      std::to_string(parameters.finite_element.degree) + ")";
+    const std::string fix =
+      " Reduce Geometry/Repetitions, Geometry/Global refinements or Finite "
+      "element/Polynomial degree.";
+    // deal.II (this build: 32-bit indices) counts cells and DoFs in 32 bits.
+    const double index_limit = 4294967295.;
+    if (cells >= index_limit || dofs >= index_limit)
+      throw CollectiveError("The scene is too large: " + estimate +
+                            ", more than this build of deal.II can count "
+                            "(4.3e+09)." +
+                            fix);
+    if (bytes > total)
+      throw CollectiveError(
+        "The scene does not fit into memory: " + estimate + " need at least " +
+        giga(bytes) + " for the matrices alone, and " + giga(total) +
+        " are available on the " + std::to_string(hosts.size()) + " host" +
+        (hosts.size() > 1 ? "s" : "") + " of this run." + fix);
+  }
+} // namespace DynamicContact

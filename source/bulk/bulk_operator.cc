@@ -1,0 +1,259 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <set>
+
+#include <dynamic_contact/bulk/bulk_operator.h>
+
+namespace DynamicContact
+{
+  template <int dim>
+  BulkOperator<dim>::BulkOperator(const Discretization<dim>      &d,
+                                  const KelvinVoigtMaterial<dim> &material)
+    : discretization(d)
+    , material(material)
+    , face_quadrature(d)
+  {}
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::reinit()
+  {
+    const auto &dof_handler = discretization.dof_handler;
+    const auto &fe          = discretization.fe;
+    loaded_cells_scene      = nullptr; // the mesh changed
+
+    pattern.reinit(discretization.locally_owned,
+                   discretization.locally_owned,
+                   discretization.locally_relevant,
+                   discretization.comm);
+    DoFTools::make_sparsity_pattern(dof_handler,
+                                    pattern,
+                                    discretization.constraints,
+                                    /*keep_constrained_dofs=*/false,
+                                    Utilities::MPI::this_mpi_process(
+                                      discretization.comm));
+    pattern.compress();
+
+    mass_matrix.reinit(pattern);
+    elasticity_matrix.reinit(pattern);
+    strain_matrix.reinit(pattern);
+    if (material.has_viscosity())
+      viscosity_matrix.reinit(pattern);
+
+    const QGauss<dim>  quadrature(fe.degree + 1);
+    FEValues<dim>      fe_values(discretization.mapping,
+                            fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    FullMatrix<double> local_mass(n, n), local_elasticity(n, n),
+      local_viscosity(n, n), local_strain(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<SymmetricTensor<2, dim>> eps(n);
+    std::vector<Tensor<1, dim>>          phi(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    const auto                          &E = material.elasticity();
+    const auto                          &C = material.viscosity();
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          local_mass       = 0;
+          local_elasticity = 0;
+          local_viscosity  = 0;
+          local_strain     = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  eps[i] = fe_values[displacement].symmetric_gradient(i, q);
+                  phi[i] = fe_values[displacement].value(i, q);
+                }
+              const double JxW = fe_values.JxW(q);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const auto E_eps_i = E * eps[i];
+                  const auto C_eps_i =
+                    material.has_viscosity() ? C * eps[i] : E_eps_i;
+                  for (unsigned int j = 0; j < n; ++j)
+                    {
+                      local_mass(i, j) += phi[i] * phi[j] * JxW;
+                      local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
+                      local_strain(i, j) += (eps[i] * eps[j]) * JxW;
+                      if (material.has_viscosity())
+                        local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
+                    }
+                }
+            }
+          cell->get_dof_indices(dofs);
+          const auto &constraints = discretization.constraints;
+          constraints.distribute_local_to_global(local_mass, dofs, mass_matrix);
+          constraints.distribute_local_to_global(local_elasticity,
+                                                 dofs,
+                                                 elasticity_matrix);
+          constraints.distribute_local_to_global(local_strain,
+                                                 dofs,
+                                                 strain_matrix);
+          if (material.has_viscosity())
+            constraints.distribute_local_to_global(local_viscosity,
+                                                   dofs,
+                                                   viscosity_matrix);
+        }
+    mass_matrix.compress(VectorOperation::add);
+    elasticity_matrix.compress(VectorOperation::add);
+    strain_matrix.compress(VectorOperation::add);
+    if (material.has_viscosity())
+      viscosity_matrix.compress(VectorOperation::add);
+
+    bulk_matrix.reinit(pattern);
+    current = TimeScheme();
+    discretization.reinit_owned(tmp);
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::set_time_step(const TimeScheme &scheme)
+  {
+    Assert(scheme.time_step() > 0,
+           ExcMessage("The time step must be positive."));
+    if (scheme == current)
+      return;
+    // K0 = (rho/k) M + theta A + theta^2 k B.
+    bulk_matrix.copy_from(elasticity_matrix);
+    bulk_matrix *= scheme.elasticity_coefficient();
+    bulk_matrix.add(scheme.mass_coefficient(material.density()), mass_matrix);
+    if (material.has_viscosity())
+      bulk_matrix.add(scheme.viscosity_coefficient(), viscosity_matrix);
+    current = scheme;
+  }
+
+
+  template <int dim>
+  double
+  BulkOperator<dim>::mass_product(const Vector_t &x, const Vector_t &y) const
+  {
+    mass_matrix.vmult(tmp, y);
+    return x * tmp;
+  }
+
+  template <int dim>
+  double
+  BulkOperator<dim>::elastic_product(const Vector_t &x, const Vector_t &y) const
+  {
+    elasticity_matrix.vmult(tmp, y);
+    return x * tmp;
+  }
+
+  template <int dim>
+  double
+  BulkOperator<dim>::viscous_product(const Vector_t &x, const Vector_t &y) const
+  {
+    if (!material.has_viscosity())
+      return 0;
+    viscosity_matrix.vmult(tmp, y);
+    return x * tmp;
+  }
+
+
+  template <int dim>
+  double
+  BulkOperator<dim>::strain_product(const Vector_t &x, const Vector_t &y) const
+  {
+    strain_matrix.vmult(tmp, y);
+    return x * tmp;
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::assemble_load_vector(const Scene<dim> &scene,
+                                          const double      t,
+                                          Vector_t         &load) const
+  {
+    load                  = 0;
+    const bool body_force = scene.has_body_force();
+    const bool traction =
+      scene.has_traction() && !scene.boundary_conditions().traction.empty();
+    const bool source = scene.has_contact_source() &&
+                        !scene.boundary_conditions().contact.empty();
+    if (!body_force && !traction && !source)
+      return;
+    scene.set_time(t);
+
+    const auto                          &fe = discretization.fe;
+    const unsigned int                   n  = fe.n_dofs_per_cell();
+    const QGauss<dim>                    quadrature(fe.degree + 2);
+    FEValues<dim>                        fe_values(discretization.mapping,
+                            fe,
+                            quadrature,
+                            update_values | update_quadrature_points |
+                              update_JxW_values);
+    Vector<double>                       local(n);
+    Vector<double>                       value(dim);
+    std::vector<types::global_dof_index> dofs(n);
+
+    if (loaded_cells_scene != &scene)
+      {
+        loaded_cells.clear();
+        loaded_faces.clear();
+        loaded_face_cell.clear();
+        for (const auto &cell :
+             discretization.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() && scene.carries_load(cell))
+            {
+              for (const auto f : cell->face_indices())
+                if (Function<dim> *const g = scene.face_load(cell, f))
+                  {
+                    loaded_faces.push_back({cell, f, g});
+                    loaded_face_cell.push_back(loaded_cells.size());
+                  }
+              loaded_cells.push_back(cell);
+            }
+        loaded_cells_scene = &scene;
+      }
+    // The surface loads, face by face, to their tolerance (collective).
+    face_quadrature.integrate(scene, t, loaded_faces, face_values);
+    unsigned int face = 0;
+    for (unsigned int c = 0; c < loaded_cells.size(); ++c)
+      {
+        const auto &cell = loaded_cells[c];
+        local            = 0;
+        if (body_force)
+          {
+            fe_values.reinit(cell);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                scene.body_force().vector_value(fe_values.quadrature_point(q),
+                                                value);
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    const unsigned int c =
+                      fe.system_to_component_index(i).first;
+                    local(i) +=
+                      value(c) * fe_values.shape_value(i, q) * fe_values.JxW(q);
+                  }
+              }
+          }
+        for (; face < loaded_faces.size() && loaded_face_cell[face] == c;
+             ++face)
+          local += face_values[face];
+        // Every listed cell carries a load (a body force, a loaded face).
+        cell->get_dof_indices(dofs);
+        discretization.constraints.distribute_local_to_global(local,
+                                                              dofs,
+                                                              load);
+      }
+    load.compress(VectorOperation::add);
+  }
+
+
+  template class BulkOperator<2>;
+  template class BulkOperator<3>;
+} // namespace DynamicContact

@@ -1,0 +1,164 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/vector.h>
+
+#include <dynamic_contact/contact/condensed_newton.h>
+#include <dynamic_contact/base/mpi_gather.h>
+#include <dynamic_contact/contact/newton_driver.h>
+#include <dynamic_contact/base/timing.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+
+namespace DynamicContact
+{
+  // CondensedNewton<dim>::compute_columns, in a file of its own (the rest of
+  // the class is in condensed_newton.cc).
+  template <int dim>
+  void
+  CondensedNewton<dim>::compute_columns(const std::vector<unsigned int> &nodes,
+                                        Result                          &result)
+  {
+    std::vector<unsigned int> missing;
+    // Whole blocks of nodes_per_block consecutive nodes, each solved as one
+    // block of right-hand sides: a block solve's round-off depends on the
+    // block's composition (BLAS 3 in CHOLMOD), which is so fixed, and a run
+    // resumed from a checkpoint gets the columns of the uninterrupted one.
+    const auto        &all             = gathered.all_nodes();
+    const unsigned int nodes_per_block = 64 / dim;
+    std::vector<bool>  wanted(all.size(), false);
+    for (const unsigned int j : nodes)
+      if (columns[j].empty())
+        wanted[j / nodes_per_block * nodes_per_block] = true;
+    for (unsigned int first = 0; first < all.size(); first += nodes_per_block)
+      if (wanted[first])
+        for (unsigned int j = first;
+             j < std::min<unsigned int>(first + nodes_per_block, all.size());
+             ++j)
+          if (columns[j].empty())
+            missing.push_back(j);
+    if (missing.empty())
+      return;
+    TimerSection t(problem.timer, "Bulk: compliance columns");
+
+    // With the Cholesky factor (the whole one), which has the DoFs of
+    // Gamma_3 last (prepare()): the compliance of every node at once, from
+    // the inverse of their Schur complement (BulkSolver::inverse_block()),
+    // dense work of order (dim n)^3 instead of dim solves per node. The
+    // whole columns are not kept: with a Cholesky factor a solve reads
+    // fewer numbers than their sum.
+    {
+      std::vector<double> X;
+      if (bulk_solver.inverse_block(X))
+        {
+          const std::size_t m = dim * all.size();
+          for (unsigned int j = 0; j < all.size(); ++j)
+            {
+              columns[j].assign(all.size(), Tensor<2, dim>());
+              for (unsigned int i = 0; i < all.size(); ++i)
+                {
+                  Tensor<2, dim> X_ij;
+                  for (unsigned int a = 0; a < dim; ++a)
+                    for (unsigned int b = 0; b < dim; ++b)
+                      X_ij[a][b] = X[(dim * i + a) + (dim * j + b) * m];
+                  columns[j][i] = all[i].constraint_map * X_ij *
+                                  transpose(all[j].constraint_map);
+                }
+            }
+          problem.details << "    compliance of Gamma_3: the inverse of its "
+                             "Schur complement ("
+                          << m << " DoFs)" << std::endl;
+          return;
+        }
+    }
+
+    // One right-hand side per missing node and direction: a unit force in
+    // direction c at node j, through the node's constraints (P_j^T e_c).
+    std::vector<BulkSolver::SparseColumn> rhs;
+    for (const unsigned int j : missing)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          BulkSolver::SparseColumn column;
+          for (unsigned int r = 0; r < dim; ++r)
+            if (all[j].constraint_map[c][r] != 0)
+              column.emplace_back(all[j].dofs[r], all[j].constraint_map[c][r]);
+          rhs.push_back(column);
+        }
+    // The responses at the owned nodes, then at every node.
+    const auto                          &owned  = problem.boundary.nodes();
+    const auto                          &global = gathered.global_indices();
+    std::vector<types::global_dof_index> rows;
+    for (const auto &node : owned)
+      for (unsigned int r = 0; r < dim; ++r)
+        rows.push_back(node.dofs[r]);
+    std::vector<std::vector<double>> values;
+    // Keep the whole columns while they fit (the same decision everywhere).
+    // Keep the whole columns while they fit, and only if a sum of all of
+    // them reads fewer numbers than a solve (the same decision everywhere):
+    // with a Cholesky factor a solve is cheaper (on the paper's scene about
+    // as fast, on the paper domain 256 x 16 ten times faster).
+    const bool store =
+      (stored_full_columns + rhs.size()) * max_owned_dofs * sizeof(double) <=
+        full_column_budget &&
+      double(dim) * all.size() * max_owned_dofs <= bulk_solver.solve_cost();
+    const std::size_t n_owned =
+      problem.discretization.locally_owned.n_elements();
+    std::function<void(unsigned int, const double *)> keep;
+    if (store)
+      keep = [&](const unsigned int column, const double *entries) {
+        full_columns[dim * missing[column / dim] + column % dim].assign(
+          entries, entries + n_owned);
+      };
+    problem.details << "    compliance of Gamma_3: " << missing.size()
+                    << " nodes by " << rhs.size() << " solves" << std::endl;
+    bulk_solver.solve_columns(rhs, rows, values, keep, dim * nodes_per_block);
+    if (store)
+      {
+        stored_full_columns += rhs.size();
+        for (const unsigned int j : missing)
+          full_column_stored[j] = true;
+      }
+    result.bulk_solves += rhs.size();
+
+    std::vector<double> packed;
+    for (unsigned int m = 0; m < missing.size(); ++m)
+      for (unsigned int c = 0; c < dim; ++c)
+        for (unsigned int i = 0; i < owned.size(); ++i)
+          {
+            Tensor<1, dim> raw;
+            for (unsigned int r = 0; r < dim; ++r)
+              raw[r] = values[dim * m + c][dim * i + r];
+            const Tensor<1, dim> response = owned[i].constraint_map * raw;
+            packed.push_back(m);
+            packed.push_back(c);
+            packed.push_back(global[i]);
+            for (unsigned int r = 0; r < dim; ++r)
+              packed.push_back(response[r]);
+          }
+    for (const unsigned int j : missing)
+      columns[j].assign(all.size(), Tensor<2, dim>());
+    for (const auto &part :
+         all_gather_values(problem.discretization.comm, packed))
+      for (std::size_t p = 0; p < part.size(); p += 3 + dim)
+        {
+          const unsigned int j = missing[static_cast<unsigned int>(part[p])];
+          const unsigned int c = static_cast<unsigned int>(part[p + 1]);
+          const unsigned int i = static_cast<unsigned int>(part[p + 2]);
+          for (unsigned int r = 0; r < dim; ++r)
+            columns[j][i][r][c] = part[p + 3 + r];
+        }
+  }
+
+
+  template void
+  CondensedNewton<2>::compute_columns(const std::vector<unsigned int> &,
+                                      Result &);
+  template void
+  CondensedNewton<3>::compute_columns(const std::vector<unsigned int> &,
+                                      Result &);
+} // namespace DynamicContact

@@ -1,0 +1,631 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_gmres.h>
+
+#include <dynamic_contact/contact/largest_eigenvalue.h>
+#include <dynamic_contact/contact/sparse_newton.h>
+#include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/contact/weakening_limit.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    /** The raw (DoF) values of a node, without its constraint map. */
+    template <int dim>
+    Tensor<1, dim>
+    raw_values(const ContactNode<dim> &node, const Vector_t &v)
+    {
+      Tensor<1, dim> r;
+      for (unsigned int c = 0; c < dim; ++c)
+        r[c] = v[node.dofs[c]];
+      return r;
+    }
+
+    template <int dim>
+    void
+    set_raw_values(const ContactNode<dim> &node,
+                   const Tensor<1, dim>   &r,
+                   Vector_t               &v)
+    {
+      for (unsigned int c = 0; c < dim; ++c)
+        v(node.dofs[c]) = r[c];
+    }
+
+    /** The normal part nu (nu . v) of a nodal vector. */
+    template <int dim>
+    Tensor<1, dim>
+    normal_part(const ContactNode<dim> &node, const Tensor<1, dim> &v)
+    {
+      return (v * node.normal) * node.normal;
+    }
+  } // namespace
+
+
+  template <int dim>
+  SparseNewton<dim>::SparseNewton(const ContactProblem<dim> &problem)
+    : problem(problem)
+  {}
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::reinit()
+  {
+    for (auto *v : {&increment, &scratch, &scratch2, &base_residual})
+      problem.discretization.reinit_owned(*v);
+    amg.reset();
+    amg_scheme    = TimeScheme();
+    limits_scheme = TimeScheme();
+    weakening_limits.clear();
+    direct.reset();
+    factorized_scheme = TimeScheme();
+    factorized_blocks.clear();
+    factorized_stick.clear();
+    if (problem.parameters.linear_solver ==
+        Parameters::Solver::LinearSolver::direct)
+      system_matrix.reinit(problem.bulk.sparsity_pattern());
+    else
+      system_matrix.clear();
+  }
+
+
+  template <int dim>
+  typename SparseNewton<dim>::Result
+  SparseNewton<dim>::solve(const Vector_t                    &rhs,
+                           const std::vector<Tensor<1, dim>> &u_old,
+                           const std::vector<Tensor<1, dim>> &w_old,
+                           const FrictionCoefficients        &mu,
+                           std::vector<Tensor<1, dim>>       &lambda,
+                           Vector_t                          &w)
+  {
+    Result               result;
+    FrictionCoefficients coefficients = mu;
+    if (mu.coupled())
+      coefficients.weakening_limit = coupled_limits();
+    SystemNewton<dim> system(
+      problem, rhs, u_old, w_old, coefficients, *this, result);
+    SystemIterate<dim> x;
+    x.w      = w;
+    x.lambda = lambda;
+    // The active sets are found here, on the whole system: full steps first
+    // (set changes may raise the residual while Newton converges), then
+    // non-monotone Armijo (doc/algorithms.md, "Globalization").
+    NewtonPolicy policy; // non-monotone
+    policy.stagnation_factor = 0.5;
+    policy.name              = "whole system";
+    {
+      TimerSection t(problem.timer, "Contact: sparse Newton");
+      globalized_newton(
+        system, x, policy, problem.parameters, problem.details, result);
+    }
+    w      = x.w;
+    lambda = x.lambda;
+    return result;
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::newton_step(const SystemNewton<dim>  &newton,
+                                 const SystemIterate<dim> &x,
+                                 SystemIterate<dim>       &full,
+                                 Result                   &result)
+  {
+    const auto        &nodes = problem.boundary.nodes();
+    const unsigned int n     = nodes.size();
+    const Matrix_t    &K0    = problem.bulk.newton_matrix();
+
+    NodalSystem system;
+    system.blocks.resize(n);
+    system.stick.resize(n);
+    system.diagonal.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Tensor<2, dim> &P = nodes[i].constraint_map;
+        system.blocks[i]        = transpose(P) * x.lin[i].block * P;
+        system.stick[i] = (x.lin[i].friction.state == FrictionState::stick);
+        double d        = 0;
+        for (unsigned int c = 0; c < dim; ++c)
+          d += K0.diag_element(nodes[i].dofs[c]);
+        system.diagonal[i] = d / dim;
+      }
+
+    // The residual of the linearization's constant part: the slip force by
+    // its value g t (its dependence on w is in the blocks), no stick force
+    // (the tangential equations of stick nodes are replaced).
+    base_residual = x.residual;
+    problem.boundary.add_nodal_forces(
+      [&](const unsigned int i) { return x.base[i] - x.forces[i]; },
+      1.,
+      base_residual);
+    if (problem.parameters.linear_solver ==
+        Parameters::Solver::LinearSolver::iterative)
+      solve_iterative(system, newton, x, increment, result);
+    else
+      solve_direct(system, newton, x, increment, result);
+    problem.discretization.constraints.set_zero(increment);
+
+    full.w = x.w;
+    full.w += increment;
+
+    // The friction forces the linearized laws give at the new velocity:
+    // slip nodes from the linearization, stick nodes (multipliers) from the
+    // tangential residual of the linearized system without friction.
+    full.lambda.assign(n, Tensor<1, dim>());
+    if (!problem.friction)
+      return;
+    std::vector<Tensor<1, dim>> new_base(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Tensor<1, dim> dw = nodes[i].value(increment);
+        const auto          &l  = x.lin[i];
+        new_base[i] = l.normal.pressure * nodes[i].weight * nodes[i].normal +
+                      (l.block - l.friction.jacobian) * dw;
+        if (l.friction.state == FrictionState::slip)
+          {
+            full.lambda[i] = l.friction.value + l.friction.jacobian * dw;
+            new_base[i] += full.lambda[i];
+          }
+      }
+    newton.residual_of(full.w, new_base, scratch);
+    for (unsigned int i = 0; i < n; ++i)
+      if (system.stick[i])
+        full.lambda[i] = -nodes[i].tangential(raw_values(nodes[i], scratch));
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::apply_jacobian(const NodalSystem &system,
+                                    const Vector_t    &x,
+                                    Vector_t          &y) const
+  {
+    const auto     &nodes = problem.boundary.nodes();
+    const IndexSet &owned = problem.discretization.locally_owned;
+    problem.bulk.newton_matrix().vmult(y, x);
+    double       *yy = y.trilinos_vector()[0];
+    const double *xx = x.trilinos_vector()[0];
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (system.blocks[i].norm_square() > 0)
+        {
+          std::array<unsigned int, dim> local;
+          Tensor<1, dim>                xi;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              local[c] = owned.index_within_set(nodes[i].dofs[c]);
+              xi[c]    = xx[local[c]];
+            }
+          const Tensor<1, dim> add = system.blocks[i] * xi;
+          for (unsigned int c = 0; c < dim; ++c)
+            yy[local[c]] += add[c];
+        }
+  }
+
+
+  namespace
+  {
+    /**
+     * The projection of the whole-system Newton step onto the complement of
+     * the stick nodes' tangential components (their increments are
+     * prescribed): the projected operator and preconditioner act as the
+     * identity scaled by K0's diagonal there. It acts on the owned entries
+     * directly (the stick nodes' DoFs are owned).
+     */
+    template <int dim>
+    class StickProjection
+    {
+    public:
+      StickProjection(const std::vector<ContactNode<dim>> &nodes,
+                      const std::vector<unsigned int>     &stick_nodes,
+                      const std::vector<double>           &diagonal,
+                      const IndexSet                      &locally_owned)
+      {
+        for (const unsigned int i : stick_nodes)
+          {
+            StickNode n;
+            for (unsigned int c = 0; c < dim; ++c)
+              n.local[c] = locally_owned.index_within_set(nodes[i].dofs[c]);
+            n.normal   = nodes[i].normal;
+            n.diagonal = diagonal[i];
+            sticks.push_back(n);
+          }
+      }
+
+      /** @p projected = @p v without the stick nodes' tangential parts. */
+      void
+      project(const Vector_t &v, Vector_t &projected) const
+      {
+        projected        = v;
+        double       *p  = projected.trilinos_vector()[0];
+        const double *vv = v.trilinos_vector()[0];
+        for (const auto &n : sticks)
+          {
+            const Tensor<1, dim> t = nodal(vv, n);
+            set_nodal(p, n, (t * n.normal) * n.normal);
+          }
+      }
+
+      /** y = projection of y, plus diagonal^power times v's tangential part. */
+      void
+      add_tangential(const Vector_t &v, const double power, Vector_t &y) const
+      {
+        double       *yy = y.trilinos_vector()[0];
+        const double *vv = v.trilinos_vector()[0];
+        for (const auto &n : sticks)
+          {
+            const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
+            set_nodal(yy,
+                      n,
+                      (yi * n.normal) * n.normal +
+                        std::pow(n.diagonal, power) *
+                          (vi - (vi * n.normal) * n.normal));
+          }
+      }
+
+    private:
+      struct StickNode
+      {
+        std::array<unsigned int, dim> local; // indices into the owned entries
+        Tensor<1, dim>                normal;
+        double                        diagonal;
+      };
+      std::vector<StickNode> sticks;
+
+      static Tensor<1, dim>
+      nodal(const double *v, const StickNode &n)
+      {
+        Tensor<1, dim> t;
+        for (unsigned int c = 0; c < dim; ++c)
+          t[c] = v[n.local[c]];
+        return t;
+      }
+      static void
+      set_nodal(double *v, const StickNode &n, const Tensor<1, dim> &t)
+      {
+        for (unsigned int c = 0; c < dim; ++c)
+          v[n.local[c]] = t[c];
+      }
+    };
+  } // namespace
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::prepare_amg()
+  {
+    if (amg && amg_scheme == problem.bulk.scheme())
+      return;
+    TimerSection t(problem.timer, "Newton: AMG setup");
+    amg = std::make_unique<BulkAMG>();
+    amg->initialize(problem.bulk.newton_matrix(), problem.discretization);
+    amg_scheme = problem.bulk.scheme();
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::solve_bulk(const Vector_t &b,
+                                Vector_t       &x,
+                                const double    tolerance)
+  {
+    prepare_amg();
+    if (x.size() != b.size())
+      problem.discretization.reinit_owned(x);
+    x = 0;
+    const double norm = b.l2_norm();
+    if (norm == 0)
+      return;
+    SolverControl      control(problem.parameters.max_linear_iterations,
+                          tolerance * norm);
+    SolverCG<Vector_t> cg(control);
+    cg.solve(problem.bulk.newton_matrix(), x, b, *amg);
+    problem.discretization.constraints.set_zero(x);
+  }
+
+
+  template <int dim>
+  const std::vector<double> &
+  SparseNewton<dim>::coupled_limits()
+  {
+    if (limits_scheme == problem.bulk.scheme() && !weakening_limits.empty())
+      return weakening_limits;
+    const auto         &nodes = problem.boundary.nodes();
+    std::vector<double> stiffness(nodes.size(), 0.);
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (nodes[i].unconstrained)
+        stiffness[i] = WeakeningLimit::tangential_stiffness(
+          nodes[i], problem.bulk.newton_matrix());
+    Vector_t load, response;
+    problem.discretization.reinit_owned(load);
+    // The compliance of sample node j: K0^{-1} P_j^T t for its tangents t.
+    const auto compliance = [&](const int j) {
+      Tensor<2, dim> C;
+      for (unsigned int a = 0; a < dim - 1; ++a)
+        {
+          load = 0;
+          problem.boundary.add_nodal_forces(
+            [&](const unsigned int i) {
+              return static_cast<int>(i) == j ? nodes[i].tangents[a] :
+                                                Tensor<1, dim>();
+            },
+            1.,
+            load);
+          solve_bulk(load, response, 1e-10);
+          if (j >= 0)
+            C += outer_product(nodes[j].value(response), nodes[j].tangents[a]);
+        }
+      return j >= 0 ? WeakeningLimit::tangential_compliance(nodes[j], C) : 0.;
+    };
+    weakening_limits = WeakeningLimit::limits(
+      nodes, stiffness, compliance, problem.discretization.comm);
+    limits_scheme = problem.bulk.scheme();
+    return weakening_limits;
+  }
+
+
+  template <int dim>
+  double
+  SparseNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots)
+  {
+    const auto        &nodes = problem.boundary.nodes();
+    const unsigned int n     = nodes.size();
+    const MPI_Comm     comm  = problem.discretization.comm;
+    Vector_t           load, response;
+    problem.discretization.reinit_owned(load);
+    // y = S P K0^{-1} P^T S x; the CG tolerance is well below the
+    // eigenvalue's.
+    const auto apply = [&](const std::vector<double> &x,
+                           std::vector<double>       &y) {
+      load = 0;
+      problem.boundary.add_nodal_forces(
+        [&](const unsigned int i) {
+          return roots[i] * nodal_entries<dim>(x, i);
+        },
+        1.,
+        load);
+      solve_bulk(load, response, 1e-8);
+      for (unsigned int i = 0; i < n; ++i)
+        set_nodal_entries<dim>(roots[i] * nodes[i].value(response), i, y);
+    };
+    std::vector<double> start(dim * n);
+    for (unsigned int i = 0; i < n; ++i)
+      set_nodal_entries<dim>(roots[i] * lanczos_start(nodes[i]), i, start);
+    return largest_eigenvalue(apply, start, [comm](const double v) {
+      return Utilities::MPI::sum(v, comm);
+    });
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::solve_iterative(const NodalSystem        &system,
+                                     const SystemNewton<dim>  &newton,
+                                     const SystemIterate<dim> &x,
+                                     Vector_t                 &dw,
+                                     Result                   &result)
+  {
+    const auto  &nodes = problem.boundary.nodes();
+    const double theta = problem.bulk.scheme().effective_derivative();
+    prepare_amg();
+    TimerSection t(problem.timer, "Newton: iterative solve");
+
+    // dw = dw0 + delta: dw0 holds the prescribed tangential increments of
+    // the stick nodes (t . dw = -(t . w_e)/theta), delta solves the system
+    // on the complement (the stick nodes' tangential components removed).
+    std::vector<unsigned int> stick_nodes;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (system.stick[i])
+        stick_nodes.push_back(i);
+    Vector_t dw0;
+    problem.discretization.reinit_owned(dw0);
+    for (const unsigned int i : stick_nodes)
+      {
+        const Tensor<1, dim> w_e =
+          newton.effective_velocity(i, nodes[i].value(x.w));
+        set_raw_values(nodes[i], -nodes[i].tangential(w_e) / theta, dw0);
+      }
+    dw0.compress(VectorOperation::insert);
+
+    // f = -R - J dw0, projected.
+    Vector_t f;
+    problem.discretization.reinit_owned(f);
+    apply_jacobian(system, dw0, f);
+    f.sadd(-1., -1., base_residual);
+    for (const unsigned int i : stick_nodes)
+      set_raw_values(nodes[i],
+                     normal_part(nodes[i], raw_values(nodes[i], f)),
+                     f);
+    f.compress(VectorOperation::insert);
+
+    // The projected operator and preconditioner.
+    const StickProjection<dim> sticks(nodes,
+                                      stick_nodes,
+                                      system.diagonal,
+                                      problem.discretization.locally_owned);
+    Vector_t                   projected;
+    problem.discretization.reinit_owned(projected);
+    struct Operator
+    {
+      std::function<void(Vector_t &, const Vector_t &)> apply;
+      void
+      vmult(Vector_t &y, const Vector_t &v) const
+      {
+        apply(y, v);
+      }
+    };
+    const Operator A{[&](Vector_t &y, const Vector_t &v) {
+      sticks.project(v, projected);
+      apply_jacobian(system, projected, y);
+      sticks.add_tangential(v, 1., y);
+    }};
+    const Operator preconditioner{[&](Vector_t &y, const Vector_t &v) {
+      sticks.project(v, projected);
+      amg->vmult(y, projected);
+      sticks.add_tangential(v, -1., y);
+    }};
+
+    // Inexact Newton: the Krylov tolerance follows the Newton residual r:
+    // 1e-2 far from the solution, 0.1 r near it (superlinear convergence),
+    // but no tighter than what takes r below the Newton tolerance in one
+    // step (tol/(2 r)), nor than Solver/Linear tolerance.
+    const double r = std::max(x.relative_residual, 1e-300);
+    const double forcing =
+      std::min(1e-2,
+               std::max({problem.parameters.linear_tolerance,
+                         0.1 * r,
+                         0.5 * problem.parameters.newton_tolerance / r}));
+    SolverControl         control(problem.parameters.max_linear_iterations,
+                          forcing * f.l2_norm());
+    SolverGMRES<Vector_t> gmres(
+      control, typename SolverGMRES<Vector_t>::AdditionalData(100, true));
+    Vector_t delta;
+    problem.discretization.reinit_owned(delta);
+    try
+      {
+        gmres.solve(A, delta, f, preconditioner);
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        throw StepFailure(
+          "GMRES did not converge in Solver/Maximum linear iterations = " +
+          std::to_string(problem.parameters.max_linear_iterations) +
+          " iterations (relative residual " +
+          scientific(e.last_residual / std::max(f.l2_norm(), 1e-300)) + ")");
+      }
+    result.linear_iterations += control.last_step();
+    dw = dw0;
+    dw += delta;
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::solve_direct(const NodalSystem        &system,
+                                  const SystemNewton<dim>  &newton,
+                                  const SystemIterate<dim> &x,
+                                  Vector_t                 &dw,
+                                  Result                   &result)
+  {
+    const auto &nodes = problem.boundary.nodes();
+
+    // The Newton matrix changes only through the nodal blocks, the stick
+    // set and K0's k: reuse the factorization if none of them changed.
+    bool same =
+      (factorized_scheme == problem.bulk.scheme() &&
+       factorized_blocks == system.blocks && factorized_stick == system.stick);
+    same = Utilities::MPI::min(same ? 1 : 0, problem.discretization.comm) == 1;
+
+    // The host row of each stick node's normal equation: the component
+    // with the largest normal entry; the others carry t_s . w = 0.
+    auto host_component = [](const ContactNode<dim> &node) {
+      unsigned int host = 0;
+      for (unsigned int c = 1; c < dim; ++c)
+        if (std::abs(node.normal[c]) > std::abs(node.normal[host]))
+          host = c;
+      return host;
+    };
+
+    if (!same)
+      {
+        TimerSection t(problem.timer, "Newton: matrix update");
+        system_matrix.copy_from(problem.bulk.newton_matrix());
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          for (unsigned int r = 0; r < dim; ++r)
+            for (unsigned int c = 0; c < dim; ++c)
+              if (system.blocks[i][r][c] != 0)
+                system_matrix.add(nodes[i].dofs[r],
+                                  nodes[i].dofs[c],
+                                  system.blocks[i][r][c]);
+        system_matrix.compress(VectorOperation::add);
+
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          if (system.stick[i])
+            {
+              const auto &node = nodes[i];
+              // Rows of one vertex have the same columns (FESystem).
+              std::vector<types::global_dof_index> columns;
+              std::vector<double>                  combined;
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  unsigned int e = 0;
+                  for (auto it = system_matrix.begin(node.dofs[c]);
+                       it != system_matrix.end(node.dofs[c]);
+                       ++it, ++e)
+                    {
+                      if (c == 0)
+                        {
+                          columns.push_back(it->column());
+                          combined.push_back(0);
+                        }
+                      Assert(columns[e] == it->column(), ExcInternalError());
+                      combined[e] += node.normal[c] * it->value();
+                    }
+                }
+              const unsigned int host = host_component(node);
+              system_matrix.set(node.dofs[host], columns, combined);
+              unsigned int s = 0;
+              for (unsigned int c = 0; c < dim; ++c)
+                if (c != host)
+                  {
+                    std::vector<double> row(columns.size(), 0.);
+                    for (unsigned int e = 0; e < columns.size(); ++e)
+                      for (unsigned int q = 0; q < dim; ++q)
+                        if (columns[e] == node.dofs[q])
+                          row[e] = node.tangents[s][q];
+                    system_matrix.set(node.dofs[c], columns, row);
+                    ++s;
+                  }
+            }
+        system_matrix.compress(VectorOperation::insert);
+      }
+
+    // Right-hand side: -R, with the stick nodes' rows replaced likewise.
+    scratch2 = base_residual;
+    scratch2 *= -1.;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (system.stick[i])
+        {
+          const auto          &node = nodes[i];
+          const Tensor<1, dim> r    = raw_values(node, scratch2);
+          // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
+          const Tensor<1, dim> w_e =
+            newton.effective_velocity(i, node.value(x.w));
+          const unsigned int host   = host_component(node);
+          scratch2(node.dofs[host]) = node.normal * r;
+          unsigned int s            = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            if (c != host)
+              scratch2(node.dofs[c]) =
+                -(node.tangents[s++] * w_e) /
+                problem.bulk.scheme().effective_derivative();
+        }
+    scratch2.compress(VectorOperation::insert);
+
+    if (!same)
+      {
+        TimerSection t(problem.timer, "Newton: factorization");
+        direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+          direct_control,
+          TrilinosWrappers::SolverDirect::AdditionalData(
+            false, amesos_package(problem.parameters)));
+        direct->initialize(system_matrix);
+        ++result.factorizations;
+        factorized_blocks = system.blocks;
+        factorized_stick  = system.stick;
+        factorized_scheme = problem.bulk.scheme();
+      }
+    TimerSection t(problem.timer, "Newton: triangular solves");
+    direct->solve(dw, scratch2);
+  }
+
+
+  template class SparseNewton<2>;
+  template class SparseNewton<3>;
+} // namespace DynamicContact

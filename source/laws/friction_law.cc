@@ -1,0 +1,309 @@
+#include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
+
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/laws/friction_law.h>
+
+#include <cctype>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace DynamicContact
+{
+  std::vector<double>
+  FrictionLaw::sample_points(const double s_max)
+  {
+    std::vector<double> s = {0.};
+    for (double x = 1e-9; x < s_max; x *= 1.02)
+      s.push_back(x);
+    for (unsigned int i = 1; i <= 1000; ++i)
+      s.push_back(s_max * i / 1000.);
+    std::sort(s.begin(), s.end());
+    return s;
+  }
+
+
+  double
+  FrictionLaw::one_sided_lipschitz_constant(const double s_max) const
+  {
+    const auto s      = sample_points(s_max);
+    double     lambda = 0;
+    for (unsigned int i = 1; i < s.size(); ++i)
+      if (s[i] > s[i - 1])
+        lambda = std::max(lambda,
+                          -(value(s[i]) - value(s[i - 1])) / (s[i] - s[i - 1]));
+    return lambda;
+  }
+
+
+  void
+  FrictionLaw::check_nonnegative(const double s_max) const
+  {
+    for (const double s : sample_points(s_max))
+      {
+        const double mu = value(s);
+        AssertThrow(std::isfinite(mu) && mu >= 0,
+                    ExcMessage("Friction: the friction coefficient must be "
+                               "finite and >= 0, but mu(" +
+                               std::to_string(s) + ") = " + std::to_string(mu) +
+                               "."));
+      }
+  }
+
+
+  namespace
+  {
+    using FrictionLaws = PluginRegistry<FrictionLaw>;
+
+    std::string
+    str(const double x)
+    {
+      std::ostringstream s;
+      s << x;
+      return s.str();
+    }
+  } // namespace
+
+
+  void
+  FrictionLaw::declare_parameters(ParameterHandler &prm)
+  {
+    const auto &laws = FrictionLaws::instance();
+    prm.declare_entry(
+      "Law",
+      "none",
+      Patterns::Selection("none|" + laws.names()),
+      "The friction coefficient mu(s) of the slip rate s = |w_tau|, with "
+      "the parameters in the subsection of the law's name: 'none' "
+      "(frictionless: no multiplier, no sets, no loop). " +
+        laws.documentation());
+    laws.declare_subsections(prm);
+  }
+
+
+  std::unique_ptr<FrictionLaw>
+  FrictionLaw::create(ParameterHandler &prm)
+  {
+    const std::string name = prm.get("Law");
+    if (name == "none")
+      return nullptr;
+    return FrictionLaws::instance().create(name, prm);
+  }
+
+
+  void
+  ConstantFriction::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Coefficient",
+                      "0",
+                      Patterns::Double(),
+                      "mu, >= 0. Zero means no friction.");
+  }
+
+  void
+  ConstantFriction::parse_parameters(ParameterHandler &prm)
+  {
+    mu = prm.get_double("Coefficient");
+    AssertThrow(std::isfinite(mu) && mu >= 0,
+                ExcMessage("Friction/Constant/Coefficient must be >= 0, got " +
+                           str(mu) + "."));
+  }
+
+  DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+                           ConstantFriction,
+                           "constant",
+                           "mu = Coefficient.");
+
+
+  void
+  ExponentialFriction::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Static coefficient",
+                      "1",
+                      Patterns::Double(),
+                      "a = mu(0).");
+    prm.declare_entry("Dynamic coefficient",
+                      "0.5",
+                      Patterns::Double(),
+                      "b = mu(infinity), 0 < b <= a.");
+    prm.declare_entry("Decay rate",
+                      "2000",
+                      Patterns::Double(),
+                      "alpha (s/m), >= 0.");
+  }
+
+  void
+  ExponentialFriction::parse_parameters(ParameterHandler &prm)
+  {
+    a     = prm.get_double("Static coefficient");
+    b     = prm.get_double("Dynamic coefficient");
+    alpha = prm.get_double("Decay rate");
+    AssertThrow(std::isfinite(b) && b > 0,
+                ExcMessage(
+                  "Friction/Exponential/Dynamic coefficient must be positive, "
+                  "got " +
+                  str(b) + "."));
+    AssertThrow(std::isfinite(a) && a >= b,
+                ExcMessage("Friction/Exponential/Static coefficient must be >= "
+                           "the dynamic coefficient (a >= b), got a = " +
+                           str(a) + "."));
+    AssertThrow(std::isfinite(alpha) && alpha >= 0,
+                ExcMessage(
+                  "Friction/Exponential/Decay rate must be >= 0, got " +
+                  str(alpha) + "."));
+  }
+
+  DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+                           ExponentialFriction,
+                           "exponential",
+                           "the paper's slip weakening, eq. (90): mu(s) = "
+                           "(a - b) exp(-alpha s) + b.");
+
+
+  void
+  ExpressionFriction::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Function expression",
+                      "0.5",
+                      Patterns::Anything(),
+                      "mu(s), a function of the slip rate s (m/s) in "
+                      "muparser syntax.");
+    prm.declare_entry("Function constants",
+                      "",
+                      Patterns::Anything(),
+                      "Constants of the expression, as name=value pairs "
+                      "separated by commas.");
+  }
+
+  void
+  ExpressionFriction::parse_parameters(ParameterHandler &prm)
+  {
+    initialize(prm.get("Function expression"), prm.get("Function constants"));
+  }
+
+  DYNAMIC_CONTACT_REGISTER(FrictionLaw,
+                           ExpressionFriction,
+                           "expression",
+                           "mu(s) given by Function expression.");
+
+
+  std::string
+  ConstantFriction::description() const
+  {
+    std::ostringstream s;
+    s << "mu = " << mu;
+    return s.str();
+  }
+
+
+  double
+  ExponentialFriction::value(const double s) const
+  {
+    return (a - b) * std::exp(-alpha * s) + b;
+  }
+
+  double
+  ExponentialFriction::derivative(const double s) const
+  {
+    return -alpha * (a - b) * std::exp(-alpha * s);
+  }
+
+  std::string
+  ExponentialFriction::description() const
+  {
+    std::ostringstream s;
+    s << "mu(s) = (" << a << " - " << b << ") exp(-" << alpha << " s) + " << b;
+    return s.str();
+  }
+
+
+  ExpressionFriction::ExpressionFriction()
+  {
+    initialize("0.5", "");
+  }
+
+
+  ExpressionFriction::ExpressionFriction(const std::string &expression,
+                                         const std::string &constants)
+  {
+    initialize(expression, constants);
+  }
+
+
+  void
+  ExpressionFriction::initialize(const std::string &expression,
+                                 const std::string &constants)
+  {
+    this->expression = expression;
+    parser           = std::make_unique<FunctionParser<1>>(1);
+    std::map<std::string, double> constant_map;
+    for (const auto &pair : Utilities::split_string_list(constants, ','))
+      {
+        const auto terms = Utilities::split_string_list(pair, '=');
+        AssertThrow(terms.size() == 2,
+                    ExcMessage("Friction/Expression/Function constants: '" +
+                               pair + "' is not of the form name=value."));
+        try
+          {
+            constant_map[terms[0]] = Utilities::string_to_double(terms[1]);
+          }
+        catch (const std::exception &)
+          {
+            AssertThrow(false,
+                        ExcMessage("Friction/Expression/Function constants: '" +
+                                   terms[1] + "' is not a number."));
+          }
+      }
+    try
+      {
+        const SilenceStderr silence;
+        parser->initialize("s", expression, constant_map);
+        parser->value(Point<1>(0.));
+      }
+    catch (const std::exception &e)
+      {
+        AssertThrow(
+          false,
+          ExcMessage("Friction/Expression/Function expression: cannot parse '" +
+                     expression + "': " + expression_error_message(e)));
+      }
+  }
+
+  double
+  ExpressionFriction::value(const double s) const
+  {
+    return parser->value(Point<1>(s));
+  }
+
+  double
+  ExpressionFriction::derivative(const double s) const
+  {
+    const double h = 1e-7 * std::max(1., s);
+    return (value(s + h) - value(std::max(0., s - h))) /
+           (s + h - std::max(0., s - h));
+  }
+
+  bool
+  ExpressionFriction::is_constant() const
+  {
+    // Constant exactly when the slip rate s does not occur in the
+    // expression as a name of its own (sampling mu at a few rates would
+    // take 0.6 + 0.1*(s > 200) for a constant and run one pass only).
+    const auto name_char = [](const char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    };
+    for (std::size_t i = 0; i < expression.size(); ++i)
+      if (expression[i] == 's' && (i == 0 || !name_char(expression[i - 1])) &&
+          (i + 1 == expression.size() || !name_char(expression[i + 1])))
+        return false;
+    return true;
+  }
+
+  std::string
+  ExpressionFriction::description() const
+  {
+    return "mu(s) = " + expression;
+  }
+} // namespace DynamicContact

@@ -1,0 +1,590 @@
+// The sections Time, Solver, Checkpoint and Output of a parameter file, and
+// the whole file (RunParameters): declared and parsed. The sections of the
+// scene are in source/parameters/parameters.cc, the reading of the files in
+// source/parameters/parameter_reader.cc.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/laws/foundation.h>
+#include <dynamic_contact/laws/friction_law.h>
+#include <dynamic_contact/mesh/gmsh_file.h>
+#include <dynamic_contact/parameters/parameters.h>
+#include <dynamic_contact/laws/plugins.h>
+
+#include "parameter_tools.h"
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <regex>
+#include <sstream>
+namespace DynamicContact
+{
+  using namespace ParameterTools;
+
+  namespace Parameters
+  {
+    // ---------------------------------------------------------------- Time
+    void
+    Time::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      prm.declare_entry("End time",
+                        "1",
+                        Patterns::Double(),
+                        "Final time T (s), > 0.");
+      prm.declare_entry("Time step",
+                        "0.0078125",
+                        Patterns::Double(),
+                        "Time step k (s), > 0. If it does not divide the "
+                        "end time, the last step is shortened to end at T.");
+      prm.declare_entry(
+        "Minimum time step",
+        "0",
+        Patterns::Double(0),
+        "A step the solver cannot solve is retried with half the time step "
+        "(again and again, down to this; 0: Time step/1024), and the time "
+        "step grows back (doubling after three good steps) to Time step. A "
+        "step that fails even at the minimum stops the run, the last good "
+        "state written. Set it equal to Time step for no cut-back.");
+      prm.declare_entry(
+        "Scheme",
+        "backward Euler",
+        Patterns::Selection("backward Euler|trapezoidal|bathe|sdirk"),
+        "'backward Euler': the paper's scheme (eqs. (52)-(54)), first order. "
+        "'trapezoidal': second order, u_n = u_{n-1} + k (w_n + w_{n-1})/2, "
+        "the equation of motion at the midpoint, the compliance force the "
+        "discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}), damping "
+        "and friction on (w_n + w_{n-1})/2: energy-consistent (no numerical "
+        "dissipation; the balance of doc/theory.md section 6 still holds "
+        "exactly, with only the physical dissipation). "
+        "'bathe': the Bathe composite scheme, second order with strong "
+        "high-frequency dissipation (spectral radius 0 at infinity, like "
+        "backward Euler, but little dissipation of the resolved modes): a "
+        "trapezoidal sub-step over k/2, then the three-point backward "
+        "difference, which is a backward-Euler step of k/3 from the "
+        "extrapolated state (4 x_{n-1/2} - x_{n-1})/3; two solves per step "
+        "(doc/theory.md section 2); its high-frequency dissipation is set "
+        "by Spectral radius at infinity. "
+        "'sdirk': a two-stage diagonally implicit Runge-Kutta scheme, second "
+        "order, with the same control of the high-frequency dissipation "
+        "(Spectral radius at infinity) and a numerical dissipation that is "
+        ">= 0 at every step whatever the load (algebraically stable): two "
+        "backward-Euler stages of gamma k (gamma = 1 - 1/sqrt(2) at "
+        "rho_inf = 0), the second from an extrapolated state, and the end "
+        "state a combination of the stages; two solves per step, one "
+        "matrix (doc/theory.md section 2.6).");
+      prm.declare_entry(
+        "Spectral radius at infinity",
+        "0",
+        Patterns::Double(),
+        "rho_inf in [0, 1] of Time/Scheme = bathe or sdirk: the amplification of a "
+        "mode far beyond the resolution (omega k -> infinity) in one step. "
+        "0 (default): the Bathe scheme as above, such modes are removed in "
+        "a step; 1: no high-frequency dissipation (two trapezoidal half "
+        "steps). In between, the step is a trapezoidal sub-step over k/2, "
+        "the linear extrapolation of u and w to t_{n-1} + s k and a "
+        "theta-step of (1 - s) k, s and theta chosen for second order and "
+        "this rho_inf (doc/theory.md section 2.4); for sdirk it sets the "
+        "stages' gamma (section 2.6). The other schemes have "
+        "their own (backward Euler 0, trapezoidal 1): a value other than "
+        "0 needs Time/Scheme = bathe or sdirk.");
+      prm.declare_entry(
+        "Adaptive",
+        "false",
+        Patterns::Bool(),
+        "true: choose each step's k from a local error estimate "
+        "(doc/theory.md section 2.5): a step whose estimate exceeds "
+        "Adaptive tolerance is rejected and repeated with a smaller k, and "
+        "the next k follows the estimate (safety factor 0.9, at most 2 times "
+        "larger, at least 0.2 times smaller, rounded down to Time step times "
+        "a power of 2 so that factorizations are reused), between Minimum "
+        "time step and Maximum time step; Time step is the first k. Steps end exactly at "
+        "the Output times. Needs Time/Scheme = bathe, sdirk or backward Euler. "
+        "time_series.csv gets the columns time_error_estimate and "
+        "rejected_steps.");
+      prm.declare_entry(
+        "Adaptive tolerance",
+        "1e-3",
+        Patterns::Double(0),
+        "The bound on the local error estimate of one step, relative to the "
+        "size of the state in the energy norm (doc/theory.md section 2.5), "
+        "> 0.");
+      prm.declare_entry(
+        "Maximum time step",
+        "0",
+        Patterns::Double(0),
+        "With Adaptive = true: the largest k (0: no bound but the End "
+        "time).");
+      prm.declare_entry(
+        "Cut back where not unique",
+        "false",
+        Patterns::Bool(),
+        "With a slip-rate dependent friction law: true treats a step whose "
+        "solution has a contraction factor of 1 or more (a bound of the "
+        "frozen-coefficient loop's: the loop may be repelled from it, and "
+        "other solutions may lie beside it, doc/theory.md section 5.2) as a "
+        "failed step, retried "
+        "with half the time step; at Minimum time step it is kept and "
+        "counted in the summary. A smaller k restores the factor below 1 "
+        "only where inertia dominates the step's compliance (k below the "
+        "periods of the modes of the contact boundary): above them the "
+        "compliance grows as k falls. Evaluates Friction/Uniqueness monitor "
+        "at every step (its 'never' is refused).");
+      prm.leave_subsection();
+    }
+
+    void
+    Time::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      end_time          = prm.get_double("End time");
+      time_step         = prm.get_double("Time step");
+      minimum_time_step = prm.get_double("Minimum time step");
+      if (minimum_time_step == 0)
+        minimum_time_step = time_step / 1024;
+      const std::string scheme_name = prm.get("Scheme");
+      scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
+                scheme_name == "bathe"       ? Scheme::bathe :
+                scheme_name == "sdirk"       ? Scheme::sdirk :
+                                               Scheme::backward_euler);
+      const double spectral_radius =
+        prm.get_double("Spectral radius at infinity");
+      adaptive           = prm.get_bool("Adaptive");
+      adaptive_tolerance = prm.get_double("Adaptive tolerance");
+      maximum_time_step  = prm.get_double("Maximum time step");
+      if (maximum_time_step == 0)
+        maximum_time_step = end_time;
+      cut_back_where_not_unique = prm.get_bool("Cut back where not unique");
+      prm.leave_subsection();
+      require(std::isfinite(end_time) && end_time > 0,
+              "Time/End time must be positive, got " + str(end_time) + ".");
+      require(std::isfinite(time_step) && time_step > 0,
+              "Time/Time step must be positive, got " + str(time_step) + ".");
+      require(minimum_time_step <= time_step,
+              "Time/Minimum time step must not exceed Time/Time step.");
+      require(spectral_radius >= 0 && spectral_radius <= 1,
+              "Time/Spectral radius at infinity must lie in [0, 1], got " +
+                str(spectral_radius) + ".");
+      require(
+        spectral_radius == 0 || scheme == Scheme::bathe ||
+          scheme == Scheme::sdirk,
+        "Time/Spectral radius at infinity = " + str(spectral_radius) +
+          " needs Time/Scheme = bathe or sdirk (backward Euler has 0, the "
+          "trapezoidal rule 1, and neither has a parameter).");
+      composite = CompositeScheme(spectral_radius);
+      sdirk     = SdirkScheme(spectral_radius);
+      require(!adaptive || scheme != Scheme::trapezoidal,
+              "Time/Adaptive = true needs Time/Scheme = bathe, sdirk or "
+              "backward Euler (the trapezoidal rule has no error estimate "
+              "here).");
+      require(!adaptive || adaptive_tolerance > 0,
+              "Time/Adaptive tolerance must be positive, got " +
+                str(adaptive_tolerance) + ".");
+      require(!adaptive || maximum_time_step >= time_step,
+              "Time/Maximum time step must not be below Time/Time step.");
+      require(end_time / time_step < 1e8,
+              "Time/Time step: " + str(end_time / time_step) +
+                " steps to reach Time/End time; at most 1e8 are allowed.");
+    }
+
+    // -------------------------------------------------------------- Solver
+    void
+    Solver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Solver");
+      {
+        prm.declare_entry(
+          "Contact solver",
+          "auto",
+          Patterns::Selection("auto|condensed|assembled"),
+          "How each semismooth Newton system is solved (all give the same "
+          "iterates, to the Newton tolerance). 'condensed': static "
+          "condensation onto Gamma_3 - the bulk matrix K0 is factorized once "
+          "per mesh and time step, the compliance of the contact nodes "
+          "computed from it (from the Schur complement on Gamma_3: on one "
+          "process from the Cholesky factor, on several in 3D from a MUMPS "
+          "factorization where it agrees with the solves, else by dim "
+          "solves per node), and each iteration is a "
+          "dense solve on the active contact nodes; Gamma_3 is replicated on "
+          "every process. 'assembled': the sparse Newton system of the whole "
+          "body, per process only its own part (with Linear solver = "
+          "iterative: GMRES preconditioned by algebraic multigrid of K0, "
+          "built once per mesh and time step; with direct: the Newton matrix "
+          "factorized when it changes, as in deal.II's step-42). 'auto': "
+          "condensed while dim times the number of contact nodes is at most "
+          "Condensed limit (one process) or Condensed limit on several "
+          "processes, else assembled with the iterative linear solver "
+          "(decided per mesh).");
+        prm.declare_entry(
+          "Condensed limit",
+          "8200",
+          Patterns::Integer(0),
+          "Contact solver = auto on one process: the largest dim times the "
+          "number of contact nodes for which the condensed solver is chosen "
+          "(the measured crossover, README 'Choosing the contact solver').");
+        prm.declare_entry(
+          "Condensed limit on several processes",
+          "auto",
+          Patterns::Anything(),
+          "Contact solver = auto on more than one process where K0 is "
+          "factorized by MUMPS over the processes (Direct solver package): "
+          "the same limit, an integer >= 0 or 'auto'. In 2D the compliance "
+          "then costs dim solves per contact node, so the condensed solver "
+          "is the faster one only on small contact boundaries: 'auto' is "
+          "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "
+          "Condensed limit. Where every process factorizes the whole K0 "
+          "(a small K0, Direct solver package = auto), Condensed limit "
+          "applies as on one process. Every process holds the dense "
+          "tables (8 bytes x (dim n_Gamma)^2 twice).");
+        prm.declare_entry(
+          "Provisional passes",
+          "true",
+          Patterns::Bool(),
+          "Condensed solver with a convexification loop: a pass that does "
+          "not end the loop takes its velocity from the stored compliance "
+          "responses, without a solve with K0 (doc/algorithms.md, "
+          "'Convexification loop'); false: every pass is solved in full.");
+        prm.declare_entry(
+          "Line search",
+          "true",
+          Patterns::Bool(),
+          "Globalize the semismooth Newton iteration (condensed solver): "
+          "when the active sets cycle (return to sets seen before) or, from "
+          "the fifth iteration on, the merit function (half the squared "
+          "residual) rises above that of the last five iterates, backtrack "
+          "along the Newton step until it decreases (Armijo).");
+        prm.declare_entry("Newton tolerance",
+                          "1e-10",
+                          Patterns::Double(),
+                          "The semismooth Newton iteration stops when the "
+                          "active sets no longer change and the residual is "
+                          "below this, relative to the right-hand side.");
+        prm.declare_entry("Maximum Newton iterations",
+                          "50",
+                          Patterns::Integer(1),
+                          "Cap on the semismooth Newton iterations of one "
+                          "solve; reaching it is an error.");
+        prm.declare_entry(
+          "Linear solver",
+          "auto",
+          Patterns::Selection("auto|direct|iterative"),
+          "'direct': sparse direct factorization (package chosen below). "
+          "'iterative': Krylov (CG or GMRES) preconditioned with algebraic "
+          "multigrid, for problems too large for a direct solver. 'auto': "
+          "direct, except where Contact solver = auto chooses the assembled "
+          "solver (a large contact boundary), which then solves "
+          "iteratively. The choice is printed with the solver plan "
+          "(log.txt).");
+        prm.declare_entry(
+          "Direct solver package",
+          "auto",
+          Patterns::Selection("auto|Amesos_Mumps|Amesos_Klu"),
+          "The sparse direct solver. 'auto': SuiteSparse CHOLMOD (sparse "
+          "Cholesky) for the condensed solver on one process, and on "
+          "several while K0 is small (up to 1e5 DoFs in 2D, 3e4 in 3D: "
+          "every process factorizes the whole matrix), MUMPS everywhere "
+          "else; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
+          "package everywhere.");
+        prm.declare_entry("Linear tolerance",
+                          "1e-12",
+                          Patterns::Double(),
+                          "Relative residual reduction of the iterative "
+                          "solver.");
+        prm.declare_entry("Maximum linear iterations",
+                          "1000",
+                          Patterns::Integer(1),
+                          "Cap on the iterations of the iterative solver.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Solver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Solver");
+      contact_solver =
+        (prm.get("Contact solver") == "assembled" ? ContactSolver::assembled :
+         prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
+                                                    ContactSolver::automatic);
+      condensed_limit = prm.get_integer("Condensed limit");
+      {
+        const std::string limit =
+          prm.get("Condensed limit on several processes");
+        if (limit == "auto")
+          condensed_limit_on_several_processes.reset();
+        else
+          {
+            std::size_t end   = 0;
+            long        value = -1;
+            try
+              {
+                value = std::stol(limit, &end);
+              }
+            catch (...)
+              {}
+            require(value >= 0 && end == limit.size(),
+                    "Solver/Condensed limit on several processes: '" + limit +
+                      "' is neither an integer >= 0 nor 'auto'.");
+            condensed_limit_on_several_processes = value;
+          }
+      }
+      provisional_passes    = prm.get_bool("Provisional passes");
+      line_search           = prm.get_bool("Line search");
+      newton_tolerance      = prm.get_double("Newton tolerance");
+      max_newton_iterations = prm.get_integer("Maximum Newton iterations");
+      linear_solver =
+        (prm.get("Linear solver") == "iterative" ? LinearSolver::iterative :
+         prm.get("Linear solver") == "direct"    ? LinearSolver::direct :
+                                                   LinearSolver::automatic);
+      direct_solver_package = prm.get("Direct solver package");
+      linear_tolerance      = prm.get_double("Linear tolerance");
+      max_linear_iterations = prm.get_integer("Maximum linear iterations");
+      prm.leave_subsection();
+      require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
+                newton_tolerance < 1,
+              "Solver/Newton tolerance must lie in (0, 1), got " +
+                str(newton_tolerance) + ".");
+      require(std::isfinite(linear_tolerance) && linear_tolerance > 0 &&
+                linear_tolerance < 1,
+              "Solver/Linear tolerance must lie in (0, 1), got " +
+                str(linear_tolerance) + ".");
+    }
+
+    // ---------------------------------------------------------- Checkpoint
+    void
+    Checkpoint::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      prm.declare_entry(
+        "Every",
+        "0",
+        Patterns::Integer(0),
+        "Write a checkpoint (mesh, fields, state) into Output/Directory every "
+        "N steps (0: never); 'dynamic-contact --resume scene.prm' continues "
+        "from the newest complete one. A checkpoint is written into a "
+        "temporary directory and renamed when complete, so a run killed while "
+        "writing leaves the previous checkpoint intact.");
+      prm.declare_entry("Keep",
+                        "2",
+                        Patterns::Integer(1),
+                        "How many complete checkpoints to keep (the newest).");
+      prm.leave_subsection();
+    }
+
+    void
+    Checkpoint::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      every = prm.get_integer("Every");
+      keep  = prm.get_integer("Keep");
+      prm.leave_subsection();
+    }
+
+    // -------------------------------------------------------------- Output
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        prm.declare_entry("Directory",
+                          "output",
+                          Patterns::Anything(),
+                          "Directory for all results (created if missing); "
+                          "relative to the working directory.");
+        prm.declare_entry("Output every",
+                          "1",
+                          Patterns::Integer(0),
+                          "Write contact_NNNNN.csv every N steps (0: only "
+                          "the initial and the final state). "
+                          "time_series.csv has every step.");
+        prm.declare_entry("Write VTU",
+                          "true",
+                          Patterns::Bool(),
+                          "Write the VTU files for ParaView: the fields "
+                          "(solution_NNNNN.pvtu, indexed by solution.pvd) "
+                          "and the contact surface (contact_surface_NNNNN"
+                          ".pvtu, indexed by contact_surface.pvd), at the "
+                          "initial state, every 'VTU every' steps, at the "
+                          "Output times and at the final state. false: no "
+                          "VTU files at all.");
+        prm.declare_entry("VTU every",
+                          "1",
+                          Patterns::Integer(0),
+                          "Write the VTU files every N steps (0: not "
+                          "periodically; the initial state, the Output "
+                          "times and the final state are written all the "
+                          "same unless Write VTU = false).");
+        prm.declare_entry("VTU subdivisions",
+                          "0",
+                          Patterns::Integer(0, 16),
+                          "Subdivisions of each cell in the VTU files (0: the "
+                          "polynomial degree, which shows Q_p fields at their "
+                          "nodes).");
+        prm.declare_entry(
+          "Output times",
+          "",
+          Patterns::List(Patterns::Double()),
+          "Times (s) at which contact_NNNNN.csv and (unless Write VTU = "
+          "false) the VTU files are written in addition: at the first step "
+          "that reaches each time. "
+          "E.g. '0.2, 0.4, 0.6, 0.8' for the paper's Figure 2.");
+        prm.declare_entry("Progress every",
+                          "1",
+                          Patterns::Integer(0),
+                          "Print a progress line every N steps (0: never).");
+        prm.declare_entry(
+          "Print timings",
+          "true",
+          Patterns::Bool(),
+          "Print the times: the elapsed time and the estimated time left in "
+          "the progress lines, the program's provenance line (version, start "
+          "time) and its parameter file in the header, and at the end the "
+          "wall time, the peak memory and the table of the timer sections "
+          "(disjoint sections that add up to the wall time). The summary of "
+          "the run (cut-backs, unconverged steps, the largest energy defect "
+          "and friction-law residual) is printed in any case.");
+        prm.declare_entry(
+          "Print iteration counts",
+          "true",
+          Patterns::Bool(),
+          "Print the Newton and convexification counts in the progress lines "
+          "and their totals at the end. Regression tests switch this and "
+          "Print timings off so that their output is deterministic: on "
+          "several processes the counts follow the round-off of the parallel "
+          "direct solver near the stopping thresholds (time_series.csv has "
+          "them in any case).");
+        prm.declare_entry("Solver details",
+                          "false",
+                          Patterns::Bool(),
+                          "Print every Newton iteration (residuals, active "
+                          "nodes) and every convexification pass.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      directory        = prm.get("Directory");
+      output_every     = prm.get_integer("Output every");
+      write_vtu        = prm.get_bool("Write VTU");
+      vtu_every        = prm.get_integer("VTU every");
+      vtu_subdivisions = prm.get_integer("VTU subdivisions");
+      output_times     = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("Output times")));
+      progress_every         = prm.get_integer("Progress every");
+      print_timings          = prm.get_bool("Print timings");
+      print_iteration_counts = prm.get_bool("Print iteration counts");
+      solver_details         = prm.get_bool("Solver details");
+      prm.leave_subsection();
+      require(!directory.empty(), "Output/Directory must not be empty.");
+    }
+  } // namespace Parameters
+
+
+  // --------------------------------------------------------- RunParameters
+  void
+  RunParameters::declare_parameters(ParameterHandler  &prm,
+                                    const unsigned int dim)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension of the problem: 2 or 3. Selects the "
+                      "instantiation of the program.");
+    Parameters::Geometry::declare_parameters(prm, dim);
+    Parameters::FiniteElement::declare_parameters(prm);
+    Parameters::BoundaryConditions::declare_parameters(prm, dim);
+    Parameters::Material::declare_parameters(prm);
+    Parameters::Foundation::declare_parameters(prm, dim);
+    Parameters::Friction::declare_parameters(prm);
+    Parameters::MeshRefinement::declare_parameters(prm);
+    Parameters::Time::declare_parameters(prm);
+    Parameters::Solver::declare_parameters(prm);
+    Parameters::Checkpoint::declare_parameters(prm);
+    Parameters::Output::declare_parameters(prm);
+
+    declare_function(prm,
+                     "Body force",
+                     dim,
+                     zeros(dim),
+                     "Body force density f_0(x, t) (N/m^3).");
+
+    prm.enter_subsection("Exact solution");
+    declare_function(prm,
+                     "Displacement",
+                     dim,
+                     "",
+                     "The exact displacement u(x, t), if known (a "
+                     "manufactured solution): empty for none. When given, "
+                     "every step records the errors of doc/theory.md "
+                     "section 7.");
+    declare_function(prm,
+                     "Velocity",
+                     dim,
+                     "",
+                     "The exact velocity du/dt(x, t) (with Displacement).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Initial conditions");
+    declare_function(prm,
+                     "Displacement",
+                     dim,
+                     zeros(dim),
+                     "Initial displacement u_0(x) (m), interpolated; the "
+                     "clamped and roller conditions are imposed on it.");
+    declare_function(prm,
+                     "Velocity",
+                     dim,
+                     zeros(dim),
+                     "Initial velocity u_1(x) (m/s), interpolated; the "
+                     "clamped and roller conditions are imposed on it.");
+    prm.leave_subsection();
+  }
+
+  void
+  RunParameters::parse_parameters(ParameterHandler &prm)
+  {
+    dimension = prm.get_integer("Dimension");
+    const std::string directory =
+      parameter_file.find('/') == std::string::npos ?
+        std::string(".") :
+        parameter_file.substr(0, parameter_file.rfind('/'));
+    geometry.parse_parameters(prm, dimension, directory);
+    finite_element.parse_parameters(prm);
+    boundary_conditions.parse_parameters(prm, geometry, dimension);
+    material.parse_parameters(prm);
+    foundation.parse_parameters(prm);
+    friction.parse_parameters(prm);
+    mesh_refinement.parse_parameters(prm, geometry.global_refinements);
+    time.parse_parameters(prm);
+    solver.parse_parameters(prm);
+    checkpoint.parse_parameters(prm);
+    output.parse_parameters(prm);
+    // The cut-back for uniqueness needs the measures at every step.
+    if (time.cut_back_where_not_unique)
+      {
+        require(friction.uniqueness_monitor !=
+                  Parameters::Friction::Monitor::never,
+                "Time/Cut back where not unique = true needs the uniqueness "
+                "measures: Friction/Uniqueness monitor must not be 'never'.");
+        friction.uniqueness_monitor = Parameters::Friction::Monitor::always;
+      }
+  }
+
+
+  // ----------------------------------------------------- reading the file
+} // namespace DynamicContact

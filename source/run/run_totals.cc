@@ -1,0 +1,181 @@
+#include <dynamic_contact/time/energy_balance.h>
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/run/run_totals.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iomanip>
+#include <vector>
+
+namespace DynamicContact
+{
+  void
+  RunTotals::add(const Step &step)
+  {
+    cutbacks += step.cutbacks;
+    convexification += step.convexification_iterations;
+    max_coefficient_residual =
+      std::max(max_coefficient_residual, step.coefficient_residual);
+    coupled_fallbacks += step.coupled_fallbacks;
+    if (step.contraction_factor >= 1)
+      non_unique_steps.push_back(step.step);
+    max_contraction = std::max(max_contraction, step.contraction_factor);
+    if (step.uniqueness_bound >= 0)
+      {
+        ++bound_steps;
+        unique_steps += step.uniqueness_bound < 1;
+      }
+    max_uniqueness_bound =
+      std::max(max_uniqueness_bound, step.uniqueness_bound);
+  }
+
+
+  void
+  RunTotals::add_rows(const std::string &time_series)
+  {
+    // The end summary covers the steps before the checkpoint too (rank 0
+    // holds the rows; only rank 0 prints).
+    const auto lines = Utilities::split_string_list(time_series, '\n');
+    std::vector<std::string> header;
+    for (const auto &line : lines)
+      {
+        const auto values = Utilities::split_string_list(line, ',');
+        if (header.empty())
+          {
+            header = values;
+            continue;
+          }
+        if (values.size() != header.size() || values[0] == "0")
+          continue; // row 0 is the initial state
+        // The counts of the end summary, by column name.
+        const auto has = [&](const std::string &name) {
+          return std::find(header.begin(), header.end(), name) != header.end();
+        };
+        const auto value = [&](const std::string &name) {
+          const auto c = std::find(header.begin(), header.end(), name);
+          return c == header.end() ?
+                   0. :
+                   std::strtod(values[c - header.begin()].c_str(), nullptr);
+        };
+        add({static_cast<unsigned int>(value("step")),
+             static_cast<unsigned int>(value("cutbacks")),
+             static_cast<unsigned int>(value("convexification_iterations")),
+             value("coefficient_residual"),
+             static_cast<unsigned int>(value("coupled_fallbacks")),
+             has("uniqueness_bound") ? value("uniqueness_bound") : -1.,
+             has("contraction_factor") ? value("contraction_factor") : -1.});
+      }
+  }
+
+
+  std::string
+  RunTotals::print_summary(const ConditionalOStream &pcout,
+                           const RunState           &state,
+                           const RunParameters      &parameters,
+                           const bool                friction) const
+  {
+    pcout << "Completed " << state.step << " steps (t = " << sig6(state.time)
+          << " s)";
+    if (parameters.output.print_iteration_counts) // see print_progress()
+      {
+        pcout << ", " << state.total_newton << " Newton iterations (mean "
+              << std::fixed << std::setprecision(2)
+              << static_cast<double>(state.total_newton) /
+                   std::max(state.step, 1u)
+              << std::defaultfloat << " per step)";
+        if (friction)
+          pcout << ", " << convexification << " convexification passes";
+      }
+    pcout << ".\n";
+    const bool balance = state.max_relative_defect < 1e-8;
+    const bool dissipation =
+      state.min_dissipation >= -EnergyBalanceTerms::roundoff;
+    pcout << "  energy balance: max relative defect "
+          << (balance ? "below 1e-8" :
+                        "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
+          << ", every dissipation term >= 0"
+          << (parameters.time.scheme == Parameters::Time::Scheme::sdirk ?
+                " (the compliance term left out: not sign-definite with "
+                "sdirk)" :
+                "")
+          << ": "
+          << (dissipation ?
+                "yes" :
+                "NO (" + sig6(state.min_dissipation) + " of the energy)")
+          << std::endl;
+    // The summary: what a user checks before trusting the results.
+    pcout << "Summary: results in " << parameters.output.directory << "/\n"
+          << "  time step cut-backs: " << cutbacks
+          << "; steps kept with an unconverged convexification loop: "
+          << state.unconverged_steps
+          << "; steps whose Newton iteration ended at stagnation (residual "
+             "below the square root of Solver/Newton tolerance): "
+          << stagnated_steps << "\n"
+          << "  largest relative energy balance defect: "
+          << scientific(state.max_relative_defect, 2);
+    if (friction)
+      pcout << "; largest friction-law residual max |mu_i - mu(|w_tau,i|)|: "
+            << scientific(max_coefficient_residual, 2)
+            << " (Friction/Coefficient tolerance "
+            << parameters.friction.coefficient_tolerance << ")";
+    pcout << std::endl;
+    if (friction && parameters.friction.coupled_linearization &&
+        !parameters.friction.law->is_constant())
+      pcout << "  coupled linearization: fell back to the frozen loop in "
+            << coupled_fallbacks << " step"
+            << (coupled_fallbacks == 1 ? "" : "s")
+            << std::endl;
+    if (friction && (bound_steps > 0 || max_contraction >= 0))
+      {
+        // Whether the steps had one solution (doc/theory.md section 5.2).
+        pcout << "  uniqueness: the paper's bound theta rho(C L N) < 1 (one "
+                 "solution) at "
+              << unique_steps << " of " << bound_steps
+              << " steps evaluated (largest " << sig6(max_uniqueness_bound)
+              << "); contraction factor at the solution >= 1 (the frozen "
+                 "loop may be repelled, solutions may lie beside it) at "
+              << non_unique_steps.size() << " step"
+              << (non_unique_steps.size() == 1 ? "" : "s");
+        if (!non_unique_steps.empty())
+          {
+            pcout << ":";
+            const std::size_t shown =
+              std::min<std::size_t>(non_unique_steps.size(), 10);
+            for (std::size_t i = 0; i < shown; ++i)
+              pcout << " " << non_unique_steps[i];
+            if (shown < non_unique_steps.size())
+              pcout << " ...";
+          }
+        pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"
+              << std::endl;
+      }
+
+    // An honest ending: completed, or completed with what did not hold.
+    std::vector<std::string> warnings;
+    if (state.unconverged_steps > 0)
+      warnings.push_back(
+        std::to_string(state.unconverged_steps) + " step" +
+        (state.unconverged_steps > 1 ? "s" : "") +
+        " kept with an unconverged convexification loop (max |mu_i - "
+        "mu(|w_tau,i|)| = " +
+        sig6(state.worst_unconverged) + " > Friction/Coefficient tolerance)");
+    if (!balance)
+      warnings.push_back("energy balance defect " +
+                         sig6(state.max_relative_defect) + " > 1e-8");
+    if (!dissipation)
+      warnings.push_back("a dissipation term below zero (" +
+                         sig6(state.min_dissipation) + " of the energy)");
+    std::string status = "completed";
+    if (!warnings.empty())
+      {
+        status += " with warnings: ";
+        for (unsigned int i = 0; i < warnings.size(); ++i)
+          status += (i ? "; " : "") + warnings[i];
+        pcout << "Warning: the run " << status
+              << ". The results do not meet the tolerances there." << std::endl;
+      }
+    return status;
+  }
+} // namespace DynamicContact
