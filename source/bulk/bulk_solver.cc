@@ -394,8 +394,9 @@ namespace DynamicContact
           solve(B, X, n_columns);
           return;
         }
-      const std::size_t   n = factor->n;
-      std::vector<double> whole_B(n * n_columns), whole_X(n * n_columns);
+      const std::size_t n = factor->n;
+      whole_B.resize(n * n_columns);
+      whole_X.resize(n * n_columns);
       for (unsigned int c = 0; c < n_columns; ++c)
         gather(B + c * n_owned, whole_B.data() + c * n);
       solve(whole_B.data(), whole_X.data(), n_columns);
@@ -527,7 +528,8 @@ namespace DynamicContact
     std::vector<SuiteSparse_long> gathered_rows;
     std::vector<int>              counts, displacements;
     bool                          in_order = true;
-    std::vector<double>           gather_buffer;
+    /** Work space of gather() and solve_owned() (kept between solves). */
+    std::vector<double> gather_buffer, whole_B, whole_X;
 
     cholmod_common                common;
     cholmod_factor               *factor = nullptr;

@@ -8,6 +8,30 @@ namespace DynamicContact
 {
   using namespace dealii;
 
+  namespace
+  {
+    /**
+     * A direct solve with K0 under these parameters factorizes by CHOLMOD:
+     * with Direct solver package = auto, on one process, and on several
+     * while K0 is small enough that the whole factor on every process is
+     * faster than MUMPS over them (the limits are the crossovers measured
+     * on two processes: benchmarks/results/replicated_factorization.txt;
+     * 2D factors are much sparser).
+     */
+    bool
+    by_cholmod(const Parameters::Solver     &parameters,
+               const unsigned int            dim,
+               const types::global_dof_index n_dofs,
+               const MPI_Comm                comm)
+    {
+      if (parameters.direct_solver_package != "auto")
+        return false;
+      const double limit = dim == 2 ? 1e5 : 3e4;
+      return Utilities::MPI::n_mpi_processes(comm) == 1 || n_dofs <= limit;
+    }
+  } // namespace
+
+
   SolverPlan::Factorization
   bulk_factorization(const Parameters::Solver     &parameters,
                      const unsigned int            dim,
@@ -17,20 +41,11 @@ namespace DynamicContact
     using F = SolverPlan::Factorization;
     if (parameters.linear_solver == Parameters::Solver::LinearSolver::iterative)
       return F::none;
-    if (parameters.direct_solver_package != "auto")
+    if (!by_cholmod(parameters, dim, n_dofs, comm))
       return F::amesos;
-    if (Utilities::MPI::n_mpi_processes(comm) == 1)
-      return F::cholmod;
-    // Several processes. Measured on 2 (benchmarks/results/
-    // replicated_factorization.txt), CHOLMOD on each process against MUMPS
-    // over both: the paper's scene (2D, 33 282 DoFs) and the rail
-    // 80 x 8 x 8 (3D, 19 683 DoFs) run about as fast as on one process
-    // with CHOLMOD on each, 1.3 to 1.7 times slower with MUMPS; at 47 952
-    // DoFs in 3D (rail 110 x 11 x 11) a MUMPS solve is already faster than
-    // CHOLMOD's, which a run of more than a few dozen steps repays. 2D
-    // factors are much sparser. Each process holds the whole factor.
-    const double limit = dim == 2 ? 1e5 : 3e4;
-    return n_dofs <= limit ? F::cholmod_on_every_process : F::amesos;
+    return Utilities::MPI::n_mpi_processes(comm) == 1 ?
+             F::cholmod :
+             F::cholmod_on_every_process;
   }
 
 
@@ -45,21 +60,17 @@ namespace DynamicContact
     using LS = Parameters::Solver::LinearSolver;
     SolverPlan         plan;
     std::ostringstream reason;
-    const bool one_process = Utilities::MPI::n_mpi_processes(comm) == 1;
+    const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
 
     // The contact solver: the condensed one while dim n_Gamma is below the
-    // measured crossover (doc/algorithms.md, "Choosing"). Where the bulk
-    // matrix is factorized whole on each process, several processes are
-    // one process as the condensed solver sees it (the compliance from
-    // the factor's trailing block); else in 3D the compliance comes from
-    // MUMPS's Schur complement (the same limit), in 2D from dim solves per
-    // node (1000).
-    Parameters::Solver direct = parameters;
-    direct.linear_solver      = LS::direct;
-    const bool whole_factor_everywhere =
-      bulk_factorization(direct, dim, n_dofs, comm) != SolverPlan::Factorization::amesos;
+    // measured crossover (doc/algorithms.md, "Choosing"): Condensed limit
+    // on one process. With a CHOLMOD factor several processes are one as
+    // the condensed solver sees it
+    // (the compliance from the factor's trailing block); with MUMPS, in 3D
+    // the compliance comes from its Schur complement (the same limit), in
+    // 2D from dim solves per node (1000).
     const unsigned int limit =
-      one_process || whole_factor_everywhere ?
+      n_processes == 1 || by_cholmod(parameters, dim, n_dofs, comm) ?
         parameters.condensed_limit :
         parameters.condensed_limit_on_several_processes.value_or(
           dim == 3 ? parameters.condensed_limit : 1000);
@@ -85,15 +96,17 @@ namespace DynamicContact
         (!plan.condensed && parameters.contact_solver == CS::automatic) ?
           LS::iterative :
           LS::direct;
-    plan.factorization =
-      bulk_factorization(plan.solver_parameters(parameters), dim, n_dofs, comm);
-    if (!plan.condensed &&
-        plan.factorization != SolverPlan::Factorization::none)
-      // The assembled solver factorizes its Newton matrix by Amesos.
-      plan.factorization = SolverPlan::Factorization::amesos;
-    reason << "; " << n_dofs << " DoFs on "
-           << Utilities::MPI::n_mpi_processes(comm) << " process"
-           << (one_process ? "" : "es");
+    // The condensed solver factorizes K0 (BulkSolver), the assembled one
+    // its Newton matrix by Amesos.
+    if (plan.condensed)
+      plan.factorization = bulk_factorization(
+        plan.solver_parameters(parameters), dim, n_dofs, comm);
+    else
+      plan.factorization = plan.linear_solver == LS::iterative ?
+                             SolverPlan::Factorization::none :
+                             SolverPlan::Factorization::amesos;
+    reason << "; " << n_dofs << " DoFs on " << n_processes << " process"
+           << (n_processes == 1 ? "" : "es");
     plan.reason = reason.str();
     return plan;
   }
