@@ -1,28 +1,21 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/lac/lapack_full_matrix.h>
-#include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/vector.h>
 
-#include <dynamic_contact/contact/condensed_newton.h>
 #include <dynamic_contact/base/mpi_gather.h>
-#include <dynamic_contact/contact/newton_driver.h>
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/contact/boundary_compliance.h>
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <functional>
 
 namespace DynamicContact
 {
-  // CondensedNewton<dim>::compute_columns, in a file of its own (the rest of
-  // the class is in condensed_newton.cc).
+  // BoundaryCompliance<dim>::compute_columns and its two ways, in a file of
+  // their own (the rest of the class is in boundary_compliance.cc).
   template <int dim>
   void
-  CondensedNewton<dim>::compute_columns(const std::vector<unsigned int> &nodes,
-                                        Result                          &result)
+  BoundaryCompliance<dim>::compute_columns(
+    const std::vector<unsigned int> &nodes,
+    Result                          &result)
   {
     std::vector<unsigned int> missing;
     // Whole blocks of nodes_per_block consecutive nodes, each solved as one
@@ -45,40 +38,56 @@ namespace DynamicContact
     if (missing.empty())
       return;
     TimerSection t(problem.timer, "Bulk: compliance columns");
+    if (!columns_from_inverse_block())
+      columns_by_solves(missing, dim * nodes_per_block, result);
+  }
 
+
+  template <int dim>
+  bool
+  BoundaryCompliance<dim>::columns_from_inverse_block()
+  {
     // With the Cholesky factor (the whole one), which has the DoFs of
     // Gamma_3 last (prepare()): the compliance of every node at once, from
     // the inverse of their Schur complement (BulkSolver::inverse_block()),
     // dense work of order (dim n)^3 instead of dim solves per node. The
     // whole columns are not kept: with a Cholesky factor a solve reads
     // fewer numbers than their sum.
-    {
-      std::vector<double> X;
-      if (bulk_solver.inverse_block(X))
-        {
-          const std::size_t m = dim * all.size();
-          for (unsigned int j = 0; j < all.size(); ++j)
-            {
-              columns[j].assign(all.size(), Tensor<2, dim>());
-              for (unsigned int i = 0; i < all.size(); ++i)
-                {
-                  Tensor<2, dim> X_ij;
-                  for (unsigned int a = 0; a < dim; ++a)
-                    for (unsigned int b = 0; b < dim; ++b)
-                      X_ij[a][b] = X[(dim * i + a) + (dim * j + b) * m];
-                  columns[j][i] = all[i].constraint_map * X_ij *
-                                  transpose(all[j].constraint_map);
-                }
-            }
-          problem.details << "    compliance of Gamma_3: the inverse of its "
-                             "Schur complement ("
-                          << m << " DoFs)" << std::endl;
-          return;
-        }
-    }
+    std::vector<double> X;
+    if (!bulk_solver.inverse_block(X))
+      return false;
+    const auto       &all = gathered.all_nodes();
+    const std::size_t m   = dim * all.size();
+    for (unsigned int j = 0; j < all.size(); ++j)
+      {
+        columns[j].assign(all.size(), Tensor<2, dim>());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          {
+            Tensor<2, dim> X_ij;
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int b = 0; b < dim; ++b)
+                X_ij[a][b] = X[(dim * i + a) + (dim * j + b) * m];
+            columns[j][i] =
+              all[i].constraint_map * X_ij * transpose(all[j].constraint_map);
+          }
+      }
+    problem.details << "    compliance of Gamma_3: the inverse of its "
+                       "Schur complement ("
+                    << m << " DoFs)" << std::endl;
+    return true;
+  }
 
+
+  template <int dim>
+  void
+  BoundaryCompliance<dim>::columns_by_solves(
+    const std::vector<unsigned int> &missing,
+    const unsigned int               block_size,
+    Result                          &result)
+  {
     // One right-hand side per missing node and direction: a unit force in
     // direction c at node j, through the node's constraints (P_j^T e_c).
+    const auto                           &all = gathered.all_nodes();
     std::vector<BulkSolver::SparseColumn> rhs;
     for (const unsigned int j : missing)
       for (unsigned int c = 0; c < dim; ++c)
@@ -97,11 +106,8 @@ namespace DynamicContact
       for (unsigned int r = 0; r < dim; ++r)
         rows.push_back(node.dofs[r]);
     std::vector<std::vector<double>> values;
-    // Keep the whole columns while they fit (the same decision everywhere).
     // Keep the whole columns while they fit, and only if a sum of all of
-    // them reads fewer numbers than a solve (the same decision everywhere):
-    // with a Cholesky factor a solve is cheaper (on the paper's scene about
-    // as fast, on the paper domain 256 x 16 ten times faster).
+    // them reads fewer numbers than a solve (the same decision everywhere).
     const bool store =
       (stored_full_columns + rhs.size()) * max_owned_dofs * sizeof(double) <=
         full_column_budget &&
@@ -116,7 +122,7 @@ namespace DynamicContact
       };
     problem.details << "    compliance of Gamma_3: " << missing.size()
                     << " nodes by " << rhs.size() << " solves" << std::endl;
-    bulk_solver.solve_columns(rhs, rows, values, keep, dim * nodes_per_block);
+    bulk_solver.solve_columns(rhs, rows, values, keep, block_size);
     if (store)
       {
         stored_full_columns += rhs.size();
@@ -156,9 +162,9 @@ namespace DynamicContact
 
 
   template void
-  CondensedNewton<2>::compute_columns(const std::vector<unsigned int> &,
-                                      Result &);
+  BoundaryCompliance<2>::compute_columns(const std::vector<unsigned int> &,
+                                         Result &);
   template void
-  CondensedNewton<3>::compute_columns(const std::vector<unsigned int> &,
-                                      Result &);
+  BoundaryCompliance<3>::compute_columns(const std::vector<unsigned int> &,
+                                         Result &);
 } // namespace DynamicContact

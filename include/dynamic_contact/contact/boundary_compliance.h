@@ -1,0 +1,210 @@
+#ifndef dynamic_contact_boundary_compliance_h
+#define dynamic_contact_boundary_compliance_h
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <dynamic_contact/bulk/bulk_solver.h>
+#include <dynamic_contact/contact/contact_boundary.h>
+#include <dynamic_contact/contact/contact_newton.h>
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * The compliance (Delassus) matrix of Gamma_3, the first part of the
+   * condensed solver (CondensedNewton): with K0 factorized, the velocity
+   * a force f_j at node j causes at node i is C_ij f_j, C_ij = P_i
+   * [K0'^{-1}]_ij P_j^T, and everything off Gamma_3 is linear.
+   *
+   * What is factorized is K0' = K0 + S, S stiff springs (s I, s the largest
+   * diagonal entry of K0 there) at two (2D) or three (3D) extreme nodes of
+   * Gamma_3: a body held only by the foundation has rigid motions that K0
+   * restrains by inertia alone, and K0 is then too ill-conditioned for the
+   * condensation to reach a tight tolerance. The springs are removed again
+   * exactly: their nodes enter the dense system with the force f - S w and
+   * the block B - S (spring_stiffness()), and apply_k0() gives the
+   * compliance of K0 itself by the Woodbury identity.
+   *
+   * With a CHOLMOD factor (one process, or the whole factor on every
+   * process) C is the inverse of the Schur complement of K0' on Gamma_3,
+   * all of it at once (the factorization eliminates the DoFs of Gamma_3
+   * last: BulkSolver::inverse_block()); with MUMPS in 3D likewise from
+   * MUMPS's Schur complement where it agrees with the solves; else the
+   * columns of C are computed when a node first becomes active (dim solves
+   * with the factorized K0 each). C is kept while K0 is unchanged.
+   *
+   * Every table is replicated on every process over the nodes of
+   * GatheredBoundary, in its order.
+   */
+  template <int dim>
+  class BoundaryCompliance
+  {
+  public:
+    using Result = ContactNewtonResult;
+
+    BoundaryCompliance(const ContactProblem<dim>   &problem,
+                       const GatheredBoundary<dim> &gathered);
+
+    /** After GatheredBoundary::reinit() (collective). */
+    void
+    reinit();
+
+    /**
+     * Factorize K0' (or build AMG) if K0 changed, and forget C if so;
+     * true if it did (collective).
+     */
+    bool
+    prepare(Result &result);
+
+    /** x = K0'^{-1} b. */
+    void
+    solve(const Vector_t &b, Vector_t &x, Result &result);
+
+    /** x_c = K0'^{-1} b_c, in one block solve where that is cheaper. */
+    void
+    solve(const std::vector<const Vector_t *> &b,
+          const std::vector<Vector_t *>       &x,
+          Result                              &result);
+
+    /** Make sure C_:j exists for every j of @p nodes (one block solve). */
+    void
+    compute_columns(const std::vector<unsigned int> &nodes, Result &result);
+
+    /** C_:j, every node (compute_columns() first). */
+    const std::vector<Tensor<2, dim>> &
+    column(const unsigned int j) const
+    {
+      return columns[j];
+    }
+
+    /** The spring's stiffness at every node (0 where there is none). */
+    double
+    spring_stiffness(const unsigned int i) const
+    {
+      return springs[i];
+    }
+
+    /** w_i -= sum_j C_ij f_j over the nodes @p nodes. */
+    void
+    subtract(const std::vector<Tensor<1, dim>> &forces,
+             const std::vector<unsigned int>   &nodes,
+             std::vector<Tensor<1, dim>>       &w) const;
+
+    /** w_i = w_free,i - sum_j C_ij f_j over the nodes with a force. */
+    void
+    response(const std::vector<Tensor<1, dim>> &w_free,
+             const std::vector<Tensor<1, dim>> &forces,
+             const std::vector<unsigned int>   &with_force,
+             std::vector<Tensor<1, dim>>       &w) const;
+
+    /**
+     * x = K0'^{-1} sum_{j in nodes} P_j^T f_j from the stored whole columns;
+     * false (and x untouched) if some column is not stored. The same answer
+     * on every process.
+     */
+    bool
+    apply_full_columns(const std::vector<Tensor<1, dim>> &f,
+                       const std::vector<unsigned int>   &nodes,
+                       Vector_t                          &x) const;
+
+    /**
+     * The compliance of K0 itself (not of K0' = K0 + S) between nodes of
+     * Gamma_3: @p v[a] = sum_b [K0^{-1}]_{nodes[a] nodes[b]} @p f[b], from
+     * C' = K0'^{-1} (the table) and the springs removed by the Woodbury
+     * identity, K0^{-1} = C' + C' P^T (S^{-1} - P C' P^T)^{-1} P C' (P the
+     * springs' DoFs): what the uniqueness measures and the weakening limit
+     * see, as the assembled solver does. Makes the columns it needs.
+     */
+    void
+    apply_k0(const std::vector<unsigned int>   &nodes,
+             const std::vector<Tensor<1, dim>> &f,
+             std::vector<Tensor<1, dim>>       &v,
+             Result                            &result);
+
+    /**
+     * The coupled linearization's limits of every node (WeakeningLimit),
+     * measured again if K0 changed (collective).
+     */
+    const std::vector<double> &
+    weakening_limits(Result &result);
+
+    /**
+     * The largest eigenvalue of R C R^T over the nodes with a root R_i in
+     * @p roots (one per owned node; collective).
+     */
+    double
+    radius(const std::vector<Tensor<2, dim>> &roots);
+
+  private:
+    const ContactProblem<dim>   &problem;
+    const GatheredBoundary<dim> &gathered;
+
+    /** K0' = K0 + S, factorized by bulk_solver. */
+    Matrix_t   regularized;
+    BulkSolver bulk_solver;
+    TimeScheme prepared_scheme;
+
+    /** The spring nodes (indices into all_nodes()) and their stiffness. */
+    std::vector<unsigned int> spring_nodes;
+    std::vector<double>       springs; // one per node of all_nodes()
+
+    /** columns[j][i] = C_ij, empty until node j was first active. */
+    std::vector<std::vector<Tensor<2, dim>>> columns;
+    /** For each node of all_nodes(): its index among the owned nodes, or -1. */
+    std::vector<int> owned_index;
+
+    /**
+     * The whole responses K0'^{-1} P_j^T e_c (owned entries, index
+     * dim j + c), kept beside C while they fit in full_column_budget bytes
+     * on every process and a sum of all of them reads fewer numbers than a
+     * solve (BulkSolver::solve_cost(): with MUMPS; with a Cholesky factor a
+     * solve is as fast or faster): with them a provisional velocity or a
+     * whole-system step is a sum of columns instead of a solve with K0'.
+     */
+    std::vector<std::vector<double>> full_columns;
+    std::size_t                      stored_full_columns = 0;
+    /**
+     * Node j's whole responses are stored (the same on every process: a
+     * process that owns no DoF stores empty ones).
+     */
+    std::vector<bool> full_column_stored;
+    /** The largest number of owned DoFs of a process. */
+    types::global_dof_index      max_owned_dofs     = 0;
+    static constexpr std::size_t full_column_budget = std::size_t(512) << 20;
+
+    /**
+     * (S^{-1} - P C' P^T)^{-1} of apply_k0() and the springs' (node,
+     * component) pairs, for the K0' they were made with.
+     */
+    FullMatrix<double>                                 spring_correction;
+    std::vector<std::pair<unsigned int, unsigned int>> spring_dofs;
+    TimeScheme                                         correction_scheme;
+
+    /** weakening_limits() for the K0 they were measured with. */
+    std::vector<double> limits;
+    TimeScheme          limits_scheme;
+
+    /** Choose the spring nodes (once per mesh). */
+    void
+    choose_spring_nodes();
+
+    /** K0' = K0 + S from the current K0 (collective). */
+    void
+    add_springs();
+
+    /** Columns from BulkSolver::inverse_block(), if it gives them. */
+    bool
+    columns_from_inverse_block();
+
+    /** The columns of @p missing nodes by dim solves each. */
+    void
+    columns_by_solves(const std::vector<unsigned int> &missing,
+                      const unsigned int               block_size,
+                      Result                          &result);
+  };
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,237 @@
+#include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/contact/condensed_newton.h>
+#include <dynamic_contact/contact/newton_driver.h>
+
+#include <algorithm>
+
+namespace DynamicContact
+{
+  // Phase 1 of CondensedNewton, the iteration on Gamma_3 alone, in a file of
+  // its own (the rest of the class is in condensed_newton.cc).
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::linearize(Iterate &it) const
+  {
+    const auto        &u_old   = u_old_all;
+    const auto        &w_old   = w_old_all;
+    const auto        &mu      = mu_all;
+    const auto        &lambda  = it.lambda;
+    const auto        &w_nodes = it.w;
+    const auto        &nodes   = gathered.all_nodes();
+    const unsigned int n       = nodes.size();
+    it.w_old                   = w_old;
+    it.lin.resize(n);
+    it.forces.resize(n);
+    it.base_true.resize(n);
+    it.g.resize(n);
+    it.base.resize(n);
+    it.signature = 0;
+    it.active.clear();
+    it.f_scale      = 1e-300;
+    it.law_residual = 0;
+    it.law_squares  = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const NodeEvaluation<dim> e = evaluate_node(problem,
+                                                    nodes[i],
+                                                    u_old[i],
+                                                    w_old[i],
+                                                    w_nodes[i],
+                                                    lambda[i],
+                                                    mu,
+                                                    i);
+        const auto               &l = it.lin[i] = e.lin;
+        it.forces[i]                            = e.force;
+        it.base_true[i]                         = e.base;
+        // Condensation with K0' = K0 + S sees the forces minus the springs'.
+        // S_i = s_i P_i, and P_i w_i = w_i (P_i diagonal, 0 or 1).
+        const double s = compliance.spring_stiffness(i);
+        it.g[i]        = it.forces[i] - s * w_nodes[i];
+        it.base[i]     = it.base_true[i] - s * w_nodes[i];
+        if (s > 0)
+          it.lin[i].block -= s * nodes[i].constraint_map;
+        it.signature += e.signature;
+        it.f_scale      = std::max(it.f_scale, e.force.norm());
+        it.law_residual = std::max(it.law_residual, e.law_residual);
+        it.law_squares += e.law_residual * e.law_residual;
+        if (l.active() || it.forces[i].norm_square() > 0 || s > 0)
+          it.active.push_back(i);
+      }
+  }
+
+
+  /**
+   * Phase 1 of CondensedNewton::solve() as globalized_newton() sees it: the
+   * iterates are the velocities and friction forces at every node of
+   * Gamma_3, the equilibrium is w_i = w_free,i - sum_j C_ij g_j, the merit
+   * half the sum of the squared equilibrium and law residuals (each relative
+   * to its scale).
+   */
+  template <int dim>
+  class CondensedNewton<dim>::BoundaryProblem
+  {
+  public:
+    using Iterate = typename CondensedNewton<dim>::Iterate;
+
+    BoundaryProblem(CondensedNewton<dim> &solver,
+                    const double          w_scale,
+                    Result               &result)
+      : solver(solver)
+      , w_scale(w_scale)
+      , result(result)
+    {}
+
+    NewtonMeasure
+    evaluate(Iterate &x)
+    {
+      solver.linearize(x);
+      solver.compliance.compute_columns(x.active, result);
+      solver.compliance.response(solver.w_free_nodes,
+                                 x.g,
+                                 x.active,
+                                 x.response);
+      const auto &response  = x.response;
+      x.equilibrium         = 0;
+      x.equilibrium_squares = 0;
+      for (unsigned int i = 0; i < x.w.size(); ++i)
+        {
+          const double e = (x.w[i] - response[i]).norm();
+          x.equilibrium  = std::max(x.equilibrium, e);
+          x.equilibrium_squares += e * e;
+        }
+      NewtonMeasure m;
+      m.residual  = residual(x);
+      m.merit     = merit(x, x);
+      m.signature = x.signature;
+      return m;
+    }
+
+    /** The relative residual of an evaluated iterate. */
+    double
+    residual(const Iterate &x) const
+    {
+      return std::max(x.equilibrium / w_scale, x.law_residual / x.f_scale);
+    }
+
+    /** With the force scale of the current iterate. */
+    double
+    merit(const Iterate &trial, const Iterate &current) const
+    {
+      const double f = current.f_scale;
+      return 0.5 * (trial.equilibrium_squares / (w_scale * w_scale) +
+                    law_merit(trial.law_squares, f));
+    }
+
+    void
+    newton_step(Iterate &x, Iterate &full)
+    {
+      // w_free - C base from evaluate()'s w_free - C g: base and g differ at
+      // the stick nodes only (the friction force, an unknown of the step).
+      response = x.response;
+      difference.clear();
+      differing.clear();
+      difference.resize(x.g.size());
+      for (const unsigned int j : x.active)
+        if ((x.base[j] - x.g[j]).norm_square() > 0)
+          {
+            difference[j] = x.base[j] - x.g[j];
+            differing.push_back(j);
+          }
+      solver.compliance.subtract(difference, differing, response);
+      r.resize(x.active.size());
+      for (unsigned int a = 0; a < x.active.size(); ++a)
+        r[a] = response[x.active[a]] - x.w[x.active[a]];
+      full.lambda = x.lambda;
+      // Far from the solution (residual above 1e-3) the step's round-off
+      // does not matter: the next residual is of the order of the square
+      // of this one.
+      solver.reduced.step(x,
+                          solver.problem.bulk.scheme(),
+                          r,
+                          dw,
+                          full.lambda,
+                          new_forces,
+                          residual(x) >= far_above);
+      solver.compliance.response(solver.w_free_nodes,
+                                 new_forces,
+                                 x.active,
+                                 full.w);
+    }
+
+    /** Drop the coupled linearization's weakening limits (newton_driver.h). */
+    /** The weakening limit acted at a node of @p x (newton_driver.h). */
+    bool
+    safeguarded(const Iterate &x) const
+    {
+      for (const auto &l : x.lin)
+        if (l.friction.limited)
+          return true;
+      return false;
+    }
+
+    void
+    combine(const Iterate &x,
+            const Iterate &full,
+            const double   alpha,
+            Iterate       &trial) const
+    {
+      const unsigned int n = x.w.size();
+      trial.w.resize(n);
+      trial.lambda.resize(n);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          trial.w[i] = x.w[i] + alpha * (full.w[i] - x.w[i]);
+          trial.lambda[i] =
+            x.lambda[i] + alpha * (full.lambda[i] - x.lambda[i]);
+        }
+    }
+
+  private:
+    static constexpr double     far_above = 1e-3;
+    CondensedNewton<dim>       &solver;
+    const double                w_scale;
+    Result                     &result;
+    std::vector<Tensor<1, dim>> response, r, dw, new_forces, difference;
+    std::vector<unsigned int>   differing;
+  };
+
+
+  template <int dim>
+  void
+  CondensedNewton<dim>::boundary_newton(Iterate     &it,
+                                        const double w_scale,
+                                        const double tolerance,
+                                        Result      &result)
+  {
+    TimerSection    t(problem.timer, "Contact: boundary Newton");
+    BoundaryProblem boundary_problem(*this, w_scale, result);
+    NewtonPolicy    policy; // non-monotone, stagnation factor 0.1
+    policy.name      = "on Gamma_3";
+    policy.tolerance = tolerance;
+    // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
+    globalized_newton(boundary_problem,
+                      it,
+                      policy,
+                      problem.parameters,
+                      problem.details,
+                      result);
+  }
+
+
+
+  template void
+  CondensedNewton<2>::linearize(Iterate &) const;
+  template void
+  CondensedNewton<3>::linearize(Iterate &) const;
+  template void
+  CondensedNewton<2>::boundary_newton(Iterate &,
+                                      const double,
+                                      const double,
+                                      Result &);
+  template void
+  CondensedNewton<3>::boundary_newton(Iterate &,
+                                      const double,
+                                      const double,
+                                      Result &);
+} // namespace DynamicContact
