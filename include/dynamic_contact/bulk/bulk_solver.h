@@ -20,6 +20,7 @@ class Epetra_LinearProblem;
 
 namespace DynamicContact
 {
+  class Cholesky;
 
   /**
    * Algebraic multigrid for the bulk matrix K0 (Trilinos ML, smoothed
@@ -28,12 +29,11 @@ namespace DynamicContact
    * dropped as weak), with the rigid-body modes of the mesh as near null
    * space: dim translations and the rotations, 3 modes in 2D and 6 in 3D.
    * Both choices are measured by benchmarks/amg-comparison (CG on K0 to
-   * 1e-10): on the 3D rail 160 x 16 x 16 the threshold 0.02 of earlier
-   * versions took 99 iterations, 0 takes 20 (6x less time); with the
-   * translations only as near null space ML needs several times more
-   * iterations. Built once per K0 (mesh and
-   * time step) and used for every solve with it and, as the preconditioner
-   * of the whole Newton system, for every Newton iteration.
+   * 1e-10; benchmarks/results/amg_comparison*.txt): a threshold above 0,
+   * or the translations alone as near null space, take several times more
+   * iterations. Built once per K0 (mesh and time step) and used for every
+   * solve with it and, as the preconditioner of the whole Newton system,
+   * for every Newton iteration.
    */
   class BulkAMG
   {
@@ -195,11 +195,7 @@ namespace DynamicContact
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    direct;
     std::unique_ptr<BulkAMG>              amg;
-    /**
-     * The CHOLMOD factorization (of the whole matrix on every process;
-     * defined in the .cc).
-     */
-    class Cholesky;
+    /** The CHOLMOD factorization (of the whole matrix on every process). */
     std::unique_ptr<Cholesky> cholesky;
   };
 } // namespace DynamicContact
