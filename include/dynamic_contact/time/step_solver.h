@@ -208,6 +208,9 @@ namespace DynamicContact
     /** The parameters with the plan's choices, which the solvers keep. */
     Parameters::Solver planned_parameters;
 
+    /** The convexification loop of one step (convexification_loop.cc). */
+    class ConvexificationLoop;
+
     /**
      * The uniqueness measures of the solved step into @p statistics
      * (Statistics::uniqueness_bound, contraction_factor; collective).

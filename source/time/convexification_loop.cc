@@ -1,0 +1,648 @@
+#include <deal.II/base/mpi.h>
+
+#include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/time/step_solver.h>
+
+#include <cmath>
+#include <limits>
+
+namespace DynamicContact
+{
+  namespace
+  {
+    /** mu(s), checked to be finite and >= 0 where it is used. */
+    double
+    checked_coefficient(const FrictionLaw &law, const double s)
+    {
+      const double mu = law.value(s);
+      AssertThrow(std::isfinite(mu) && mu >= 0,
+                  ExcMessage("Friction: the friction coefficient must be "
+                             "finite and >= 0 on the slip rates that occur, "
+                             "but mu(" +
+                             std::to_string(s) + ") = " + std::to_string(mu) +
+                             " (Friction/Law and its parameters)."));
+      return mu;
+    }
+  } // namespace
+
+
+  namespace
+  {
+    /**
+     * What the convexification loop measures of an iterate w of a step
+     * (doc/theory.md section 4), at the owned nodes of Gamma_3: the slip
+     * rate of the effective velocity w_e = theta w + (1 - theta) w_old and
+     * the normal pressure S = p + q, the friction density xi_i = lambda_i /
+     * (m_i S_i) (the selection of the subdifferential in eq. (52)), and the
+     * stopping rule (85) with the node-wise law.
+     */
+    template <int dim>
+    class LoopMeasures
+    {
+    public:
+      struct NodalIterate
+      {
+        std::vector<double> slip_rate, pressure;
+      };
+      /** The measures of a pass against the last one. */
+      struct Measures
+      {
+        bool                        converged;
+        double                      coefficient_residual;
+        NodalIterate                iterate;
+        std::vector<Tensor<1, dim>> xi;
+        std::vector<double>         mu_new;
+      };
+
+      LoopMeasures(const Discretization<dim>         &discretization,
+                   const ContactBoundary<dim>        &boundary,
+                   const Foundation                  &foundation,
+                   const FrictionLaw                 *friction_law,
+                   const BulkOperator<dim>           &bulk,
+                   const std::vector<Tensor<1, dim>> &u_old_nodes,
+                   const std::vector<Tensor<1, dim>> &w_old_nodes,
+                   const double                       tolerance,
+                   const double                       coefficient_tolerance,
+                   const MPI_Comm                     comm)
+        : all(boundary.nodes())
+        , boundary(boundary)
+        , foundation(foundation)
+        , friction_law(friction_law)
+        , bulk(bulk)
+        , scheme(bulk.scheme())
+        , u_old_nodes(u_old_nodes)
+        , w_old_nodes(w_old_nodes)
+        , eps(tolerance)
+        , coefficient_tolerance(coefficient_tolerance)
+        , comm(comm)
+      {
+        discretization.reinit_owned(u_previous);
+        discretization.reinit_owned(u_current);
+        discretization.reinit_owned(difference);
+      }
+
+      /**
+       * At the start of the loop: mu_i = mu(|w_tau,i|) of the initial
+       * guess @p w into @p mu; returns xi of @p lambda there.
+       */
+      std::vector<Tensor<1, dim>>
+      start(const Vector_t                    &w,
+            const std::vector<Tensor<1, dim>> &lambda,
+            std::vector<double>               &mu) const
+      {
+        const auto n = iterate(boundary.values(w));
+        coefficients_of(n, mu);
+        return density(lambda, n);
+      }
+
+      /**
+       * After a coupled pass: the coefficients it ended with, mu_i =
+       * mu(|w_tau,i|) of its nodal velocities @p values, at every node (the
+       * frozen coefficients of the passes after it).
+       */
+      void
+      coefficients_at(const std::vector<Tensor<1, dim>> &values,
+                      std::vector<double>               &mu) const
+      {
+        coefficients_of(iterate(values), mu);
+      }
+
+      /** mu_i = mu(|w_tau,i|) of @p n at every node. */
+      void
+      coefficients_of(const NodalIterate &n, std::vector<double> &mu) const
+      {
+        for (unsigned int i = 0; i < all.size(); ++i)
+          mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
+      }
+
+      /** Before a pass: u^(m) = u_old + k w of the last iterate. */
+      void
+      remember(const Vector_t &u_old, const double k, const Vector_t &w)
+      {
+        u_previous = u_old;
+        u_previous.add(k, w);
+      }
+
+      /**
+       * The coefficients mu(|w_tau,i|) of @p m also at the nodes out of
+       * contact (measure() leaves them out): the next frozen ones.
+       */
+      void
+      complete_coefficients(Measures &m) const
+      {
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (!(m.iterate.pressure[i] > 0))
+            m.mu_new[i] =
+              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+      }
+
+      NodalIterate
+      iterate(const std::vector<Tensor<1, dim>> &values) const
+      {
+        NodalIterate n{std::vector<double>(all.size()),
+                       std::vector<double>(all.size())};
+        for (unsigned int i = 0; i < all.size(); ++i)
+          {
+            n.slip_rate[i] =
+              all[i]
+                .tangential(scheme.weighted(values[i], w_old_nodes[i]))
+                .norm();
+            n.pressure[i] = normal_response(foundation,
+                                            all[i],
+                                            u_old_nodes[i],
+                                            w_old_nodes[i],
+                                            values[i],
+                                            scheme)
+                              .pressure;
+          }
+        return n;
+      }
+
+      std::vector<Tensor<1, dim>>
+      density(const std::vector<Tensor<1, dim>> &forces,
+              const NodalIterate                &n) const
+      {
+        std::vector<Tensor<1, dim>> xi(all.size());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (n.pressure[i] > 0)
+            xi[i] = forces[i] / (all[i].weight * n.pressure[i]);
+        return xi;
+      }
+
+      double
+      l2(const std::vector<Tensor<1, dim>> &xi) const
+      {
+        double sum = 0;
+        for (unsigned int i = 0; i < all.size(); ++i)
+          sum += all[i].weight * xi[i].norm_square();
+        return std::sqrt(Utilities::MPI::sum(sum, comm));
+      }
+
+      /**
+       * Rule (85): ||u^(m+1) - u^(m)||_V <= eps ||u^(m)||_V and
+       * ||xi^(m+1) - xi^(m)|| <= eps ||xi^(m)||, plus the node-wise law
+       * max_i |mu_i - mu(|w_tau,i|)| <= tol, of the pass @p pass that
+       * gave (@p w, @p lambda) with the frozen @p mu (u^(m+1) = u_old +
+       * k w), against the last pass (remember(), @p xi_previous). A
+       * provisional pass (@p w null) has only its velocities at the nodes,
+       * @p w_nodes: it is measured on Gamma_3 alone, and the V-norm part of
+       * the rule is left to the pass once finished.
+       */
+      Measures
+      measure(const Vector_t                    &u_old,
+              const double                       k,
+              const Vector_t                    *w,
+              const std::vector<Tensor<1, dim>> &w_nodes,
+              const std::vector<Tensor<1, dim>> &lambda,
+              const std::vector<double>         &mu,
+              const std::vector<Tensor<1, dim>> &xi_previous,
+              const unsigned int                 pass,
+              const ConditionalOStream          &details)
+      {
+        double du = 0, u_norm = 0;
+        if (w != nullptr)
+          {
+            u_current = u_old;
+            u_current.add(k, *w);
+            difference = u_current;
+            difference -= u_previous;
+            du     = std::sqrt(bulk.strain_product(difference, difference));
+            u_norm = std::sqrt(bulk.strain_product(u_previous, u_previous));
+          }
+        Measures m;
+        m.iterate = iterate(w != nullptr ? boundary.values(*w) : w_nodes);
+        m.xi      = density(lambda, m.iterate);
+        std::vector<Tensor<1, dim>> dxi(all.size());
+        for (unsigned int i = 0; i < all.size(); ++i)
+          dxi[i] = m.xi[i] - xi_previous[i];
+        const double dxi_norm = l2(dxi), xi_norm = l2(xi_previous);
+        const bool   rule_85 = du <= eps * u_norm && dxi_norm <= eps * xi_norm;
+
+        // mu(|w_tau,i|), at the nodes in contact first (the others only if
+        // the loop goes on: a node out of contact does not decide it).
+        m.mu_new.resize(all.size());
+        m.coefficient_residual = 0;
+        for (unsigned int i = 0; i < all.size(); ++i)
+          if (m.iterate.pressure[i] > 0)
+            {
+              m.mu_new[i] =
+                checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+              m.coefficient_residual =
+                std::max(m.coefficient_residual, std::abs(mu[i] - m.mu_new[i]));
+            }
+        m.coefficient_residual =
+          Utilities::MPI::max(m.coefficient_residual, comm);
+        m.converged =
+          rule_85 && m.coefficient_residual <= coefficient_tolerance;
+        details << "  convexification pass " << pass + 1;
+        if (w != nullptr)
+          details << ": |du|_V/|u|_V " << du / std::max(u_norm, 1e-300);
+        else
+          details << " (provisional, on Gamma_3)";
+        details << ", |dxi|/|xi| " << dxi_norm / std::max(xi_norm, 1e-300)
+                << ", max |mu_i - mu(|w_tau,i|)| " << m.coefficient_residual
+                << std::endl;
+        return m;
+      }
+
+    private:
+      const std::vector<ContactNode<dim>> &all;
+      const ContactBoundary<dim>          &boundary;
+      const Foundation                    &foundation;
+      const FrictionLaw                   *friction_law;
+      const BulkOperator<dim>             &bulk;
+      const TimeScheme                    &scheme;
+      const std::vector<Tensor<1, dim>>   &u_old_nodes;
+      const std::vector<Tensor<1, dim>>   &w_old_nodes;
+      const double                         eps;
+      const double                         coefficient_tolerance;
+      const MPI_Comm                       comm;
+      Vector_t                             u_previous, u_current, difference;
+    };
+  } // namespace
+
+
+  /**
+   * The convexification loop of one step (doc/theory.md section 4): the
+   * friction coefficients frozen from the previous iterate, starting from
+   * w^(0) = w_{n-1}, each pass a Newton solve (ContactNewton), until the
+   * stopping rule (85) holds.
+   *
+   * The slip-rate law inside Newton's linearization (Friction/
+   * Linearization = coupled, doc/theory.md section 5.1): the first pass
+   * takes mu(|w_tau|) of the iterate and its derivative, and lands on a
+   * fixed point of the loop, which the frozen pass after it confirms (the
+   * loop's own stopping rule decides). If it does not converge, the step
+   * goes back to its start, for the frozen loop alone (a fallback,
+   * counted).
+   *
+   * In the loop, a pass may be provisional (the condensed solver's
+   * boundary iteration: the velocities at the nodes of Gamma_3 only, no
+   * solve with K0): enough to decide whether the loop goes on, while the
+   * loop is far from its tolerances. It is measured on Gamma_3 (xi and
+   * the coefficients; the V norm needs the whole w), and only as
+   * accurately as the boundary iteration's stopping point, so a pass that
+   * would end the loop, reaches the cap, or whose coefficient residual no
+   * longer falls (the provisional accuracy reached) is finished
+   * (finalize()), the whole velocity of the pass before it computed (one
+   * solve) if that one was provisional too, and the pass measured again
+   * by the whole rule; the passes after it are exact.
+   */
+  template <int dim>
+  class StepSolver<dim>::ConvexificationLoop
+  {
+  public:
+    ConvexificationLoop(StepSolver<dim>                   &solver,
+                        ContactNewton<dim>                &newton,
+                        const Vector_t                    &rhs,
+                        const Vector_t                    &u_old,
+                        const std::vector<Tensor<1, dim>> &u_old_nodes,
+                        const std::vector<Tensor<1, dim>> &w_old_nodes,
+                        Vector_t                          &w,
+                        Statistics                        &statistics);
+
+    /** The passes, until the loop converges or reaches its cap. */
+    void
+    run(const bool accept_unconverged_loop);
+
+    /** The loop updates the friction coefficients. */
+    bool
+    active() const
+    {
+      return loop;
+    }
+
+  private:
+    using Measures = typename LoopMeasures<dim>::Measures;
+
+    StepSolver<dim>                   &solver;
+    ContactNewton<dim>                &newton;
+    const Vector_t                    &rhs, &u_old;
+    const std::vector<Tensor<1, dim>> &u_old_nodes, &w_old_nodes;
+    Vector_t                          &w;
+    Statistics                        &statistics;
+    const double                       k;
+    std::vector<double>               &mu;
+    std::vector<Tensor<1, dim>>       &lambda;
+    const bool                         loop;
+    LoopMeasures<dim>                  measures;
+    const unsigned int                 max_passes;
+
+    /** The coupled linearization is on (until a fallback). */
+    bool                        coupling;
+    FrictionCoefficients        coefficients;
+    Vector_t                    w_start;
+    std::vector<Tensor<1, dim>> lambda_start;
+
+    bool                        allow_provisional = false;
+    bool                        provisional       = false;
+    double                      best_residual;
+    std::vector<Tensor<1, dim>> xi_previous;
+    /** The whole velocity of a provisional pass. */
+    Vector_t w_previous;
+
+    /** The loop's state at its start (again after a fallback). */
+    void
+    start();
+
+    /** Measure the pass @p pass (provisional or whole). */
+    Measures
+    measure(const unsigned int pass);
+
+    /**
+     * Solve a pass (@p coupled: the coupled one); false if the coupled
+     * pass failed, and the loop starts again from the step's start, frozen.
+     */
+    bool
+    solve_pass(const bool coupled);
+
+    /**
+     * Finish a provisional pass (finalize()) and measure it again by the
+     * whole rule.
+     */
+    void
+    finish_provisional(const unsigned int pass,
+                       const bool         after_provisional,
+                       Measures          &m);
+
+    /** The next frozen coefficients: the relaxed update. */
+    void
+    relax_coefficients(Measures &m);
+  };
+
+
+  template <int dim>
+  StepSolver<dim>::ConvexificationLoop::ConvexificationLoop(
+    StepSolver<dim>                   &solver,
+    ContactNewton<dim>                &newton,
+    const Vector_t                    &rhs,
+    const Vector_t                    &u_old,
+    const std::vector<Tensor<1, dim>> &u_old_nodes,
+    const std::vector<Tensor<1, dim>> &w_old_nodes,
+    Vector_t                          &w,
+    Statistics                        &statistics)
+    : solver(solver)
+    , newton(newton)
+    , rhs(rhs)
+    , u_old(u_old)
+    , u_old_nodes(u_old_nodes)
+    , w_old_nodes(w_old_nodes)
+    , w(w)
+    , statistics(statistics)
+    , k(solver.bulk.scheme().time_step())
+    , mu(solver.contact_state.mu)
+    , lambda(solver.contact_state.lambda)
+    , loop(solver.friction && !solver.friction_law->is_constant())
+    , measures(solver.discretization,
+               solver.contact_boundary,
+               solver.foundation,
+               solver.friction_law,
+               solver.bulk,
+               u_old_nodes,
+               w_old_nodes,
+               solver.friction_parameters.convexification_tolerance,
+               solver.friction_parameters.coefficient_tolerance,
+               solver.discretization.comm)
+    , max_passes(
+        loop ? solver.friction_parameters.max_convexification_iterations : 1)
+    , coupling(loop && solver.friction_parameters.coupled_linearization)
+  {
+    if (coupling)
+      {
+        w_start      = w;
+        lambda_start = lambda;
+      }
+    start();
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::ConvexificationLoop::start()
+  {
+    allow_provisional = loop && solver.parameters.provisional_passes;
+    provisional       = false;
+    best_residual     = std::numeric_limits<double>::max();
+    if (loop)
+      {
+        TimerSection t(solver.timer, "Friction: convexification update");
+        xi_previous = measures.start(w, lambda, mu);
+      }
+  }
+
+
+  template <int dim>
+  typename StepSolver<dim>::ConvexificationLoop::Measures
+  StepSolver<dim>::ConvexificationLoop::measure(const unsigned int pass)
+  {
+    TimerSection t(solver.timer, "Friction: convexification update");
+    return provisional ? measures.measure(u_old,
+                                          k,
+                                          nullptr,
+                                          newton.provisional_velocities(),
+                                          lambda,
+                                          mu,
+                                          xi_previous,
+                                          pass,
+                                          solver.details) :
+                         measures.measure(u_old,
+                                          k,
+                                          &w,
+                                          {},
+                                          lambda,
+                                          mu,
+                                          xi_previous,
+                                          pass,
+                                          solver.details);
+  }
+
+
+  template <int dim>
+  bool
+  StepSolver<dim>::ConvexificationLoop::solve_pass(const bool coupled)
+  {
+    // A provisional pass need not be solved further than the loop is
+    // from its end: its velocities at the nodes may be off by a slip
+    // rate that moves mu by at most the smallest coefficient residual
+    // so far (the next pass moves the coefficients by about that much;
+    // finalize() finishes a pass to the Newton tolerance before it
+    // counts).
+    const double provisional_accuracy =
+      best_residual < std::numeric_limits<double>::max() ?
+        best_residual / std::max(solver.lipschitz_constant, 1e-300) :
+        0.;
+    coefficients.frozen = mu;
+    coefficients.law    = coupled ? solver.friction_law : nullptr;
+    try
+      {
+        const auto result =
+          allow_provisional ?
+            newton.solve_provisional(rhs,
+                                     u_old_nodes,
+                                     w_old_nodes,
+                                     coefficients,
+                                     lambda,
+                                     w,
+                                     provisional_accuracy) :
+            newton.solve(
+              rhs, u_old_nodes, w_old_nodes, coefficients, lambda, w);
+        statistics.add_newton(result);
+        provisional = result.provisional;
+        return true;
+      }
+    catch (const StepFailure &failure)
+      {
+        if (!coupled)
+          throw;
+        // The fallback: the frozen loop from the step's start.
+        solver.details << "  coupled pass failed (" << failure.what()
+                       << "): the frozen-coefficient loop from the start"
+                       << std::endl;
+        statistics.newton_iterations += failure.newton_iterations;
+        ++statistics.convexification_iterations;
+        ++statistics.coupled_fallbacks;
+        w        = w_start;
+        lambda   = lambda_start;
+        coupling = false;
+        start();
+        return false;
+      }
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::ConvexificationLoop::finish_provisional(
+    const unsigned int pass,
+    const bool         after_provisional,
+    Measures          &m)
+  {
+    if (after_provisional)
+      solver.discretization.reinit_owned(w_previous);
+    statistics.add_newton(
+      newton.finalize(w, lambda, after_provisional ? &w_previous : nullptr));
+    if (after_provisional)
+      measures.remember(u_old, k, w_previous);
+    provisional       = false;
+    allow_provisional = false;
+    m                 = measure(pass);
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::ConvexificationLoop::relax_coefficients(Measures &m)
+  {
+    TimerSection t(solver.timer, "Friction: convexification update");
+    measures.complete_coefficients(m);
+    const double theta = solver.friction_parameters.relaxation;
+    for (std::size_t i = 0; i < mu.size(); ++i)
+      mu[i] = mu[i] + theta * (m.mu_new[i] - mu[i]);
+    xi_previous = std::move(m.xi);
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::ConvexificationLoop::run(const bool accept_unconverged_loop)
+  {
+    for (unsigned int pass = 0; pass < max_passes; ++pass)
+      {
+        // u^(m) of rule (85): w is whole unless the last pass was
+        // provisional (then it is computed if the loop would end).
+        const bool after_provisional = provisional;
+        if (loop && !after_provisional)
+          measures.remember(u_old, k, w);
+        const bool coupled = coupling && pass == 0;
+        if (!solve_pass(coupled))
+          {
+            pass = static_cast<unsigned int>(-1); // the loop's first pass next
+            continue;
+          }
+        ++statistics.convexification_iterations;
+        if (!loop)
+          break;
+        if (coupled)
+          {
+            // The coefficients the coupled pass ended with: the frozen ones
+            // of the passes after it.
+            TimerSection t(solver.timer, "Friction: convexification update");
+            measures.coefficients_at(provisional ?
+                                       newton.provisional_velocities() :
+                                       solver.contact_boundary.values(w),
+                                     mu);
+          }
+
+        Measures m = measure(pass);
+        if (provisional && (m.converged || pass + 1 == max_passes ||
+                            m.coefficient_residual >= best_residual))
+          finish_provisional(pass, after_provisional, m);
+        // A coupled pass's coefficient residual is 0 by construction: it
+        // says nothing of how far the loop is from its end.
+        if (!coupled)
+          best_residual = std::min(best_residual, m.coefficient_residual);
+        statistics.coefficient_residual = m.coefficient_residual;
+        if (m.converged)
+          break;
+        // A loop that does not converge leaves mu_i != mu(|w_tau,i|): the
+        // friction law would not hold. The step is retried with a smaller
+        // time step instead (the fixed point contracts better with k); at
+        // the smallest one it is kept and reported.
+        if (pass + 1 == max_passes && accept_unconverged_loop)
+          {
+            statistics.convexification_converged = false;
+            break;
+          }
+        if (pass + 1 == max_passes)
+          throw StepFailure("the convexification loop did not converge in "
+                            "Friction/Maximum convexification iterations = " +
+                            std::to_string(max_passes) +
+                            " passes (max |mu_i - mu(|w_tau,i|)| = " +
+                            scientific(m.coefficient_residual) + ")");
+        relax_coefficients(m);
+      }
+    if (provisional)
+      statistics.add_newton(newton.finalize(w, lambda));
+  }
+
+
+  template <int dim>
+  typename StepSolver<dim>::Statistics
+  StepSolver<dim>::solve(const Vector_t &rhs,
+                         const Vector_t &u_old,
+                         const Vector_t &w_old,
+                         Vector_t       &w,
+                         const bool      accept_unconverged_loop)
+  {
+    Statistics          statistics;
+    ContactNewton<dim> &newton      = newton_for_scheme();
+    const auto          u_old_nodes = contact_boundary.values(u_old);
+    const auto          w_old_nodes = contact_boundary.values(w_old);
+    ConvexificationLoop loop(
+      *this, newton, rhs, u_old, u_old_nodes, w_old_nodes, w, statistics);
+    loop.run(accept_unconverged_loop);
+
+    update_states(u_old_nodes, w_old_nodes, w, statistics);
+    if (loop.active() && (friction_parameters.uniqueness_monitor ==
+                            Parameters::Friction::Monitor::always ||
+                          (friction_parameters.uniqueness_monitor ==
+                             Parameters::Friction::Monitor::automatic &&
+                           plan.condensed)))
+      measure_uniqueness(newton, statistics);
+    return statistics;
+  }
+
+
+  template typename StepSolver<2>::Statistics
+  StepSolver<2>::solve(const Vector_t &,
+                       const Vector_t &,
+                       const Vector_t &,
+                       Vector_t &,
+                       const bool);
+  template typename StepSolver<3>::Statistics
+  StepSolver<3>::solve(const Vector_t &,
+                       const Vector_t &,
+                       const Vector_t &,
+                       Vector_t &,
+                       const bool);
+} // namespace DynamicContact
