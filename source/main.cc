@@ -11,6 +11,51 @@
 
 #include <iostream>
 
+namespace
+{
+  using namespace DynamicContact;
+
+  /**
+   * --print-parameters: the declarations, the moved entries, the defaults
+   * (with the overrides) or a scene's values, on rank 0.
+   */
+  void
+  print_parameters_command(const CommandLine &command_line, const bool root)
+  {
+    PrintFormat format = PrintFormat::prm;
+    parse_print_format(command_line.print_format, format);
+    if (format == PrintFormat::markdown || format == PrintFormat::moved)
+      {
+        // The declarations (both dimensions) or the moved entries,
+        // not the values of a scene.
+        if (root)
+          print_parameters(std::cout, dealii::ParameterHandler(), format);
+        return;
+      }
+    dealii::ParameterHandler prm;
+    if (command_line.parameter_file.empty())
+      {
+        // Defaults, for the dimension an override may choose.
+        dealii::ParameterHandler dimension_only;
+        dimension_only.declare_entry("Dimension",
+                                     "2",
+                                     dealii::Patterns::Integer(2, 3));
+        for (const auto &o : command_line.overrides)
+          if (o.rfind("Dimension", 0) == 0)
+            apply_override(dimension_only, o);
+        RunParameters::declare_parameters(
+          prm, dimension_only.get_integer("Dimension"));
+        for (const auto &o : command_line.overrides)
+          apply_override(prm, o);
+      }
+    else
+      read_parameters(command_line.parameter_file, command_line.overrides, prm);
+    if (root)
+      print_parameters(std::cout, prm, format);
+  }
+} // namespace
+
+
 int
 main(int argc, char *argv[])
 {
@@ -52,38 +97,7 @@ main(int argc, char *argv[])
     {
       if (command_line.print_parameters)
         {
-          PrintFormat format = PrintFormat::prm;
-          parse_print_format(command_line.print_format, format);
-          if (format == PrintFormat::markdown || format == PrintFormat::moved)
-            {
-              // The declarations (both dimensions) or the moved entries,
-              // not the values of a scene.
-              if (root)
-                print_parameters(std::cout, dealii::ParameterHandler(), format);
-              return 0;
-            }
-          dealii::ParameterHandler prm;
-          if (command_line.parameter_file.empty())
-            {
-              // Defaults, for the dimension an override may choose.
-              dealii::ParameterHandler dimension_only;
-              dimension_only.declare_entry("Dimension",
-                                           "2",
-                                           dealii::Patterns::Integer(2, 3));
-              for (const auto &o : command_line.overrides)
-                if (o.rfind("Dimension", 0) == 0)
-                  apply_override(dimension_only, o);
-              RunParameters::declare_parameters(
-                prm, dimension_only.get_integer("Dimension"));
-              for (const auto &o : command_line.overrides)
-                apply_override(prm, o);
-            }
-          else
-            read_parameters(command_line.parameter_file,
-                            command_line.overrides,
-                            prm);
-          if (root)
-            print_parameters(std::cout, prm, format);
+          print_parameters_command(command_line, root);
           return 0;
         }
 

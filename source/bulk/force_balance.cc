@@ -107,6 +107,27 @@ namespace DynamicContact
 
   template <int dim>
   void
+  ForceBalanceEvaluator<dim>::integrate_face_loads(
+    const double      t,
+    const TimeScheme &scheme) const
+  {
+    // The surface loads of the step, face by face: theta F(t) + (1 -
+    // theta) F(t - k), integrated as the load vector integrates them.
+    face_quadrature.integrate(scene, t, faces, face_values);
+    if (!scheme.is_backward_euler())
+      {
+        face_quadrature.integrate(scene,
+                                  t - scheme.time_step(),
+                                  faces,
+                                  old_face_values);
+        for (unsigned int f = 0; f < faces.size(); ++f)
+          scheme.weigh(face_values[f], old_face_values[f]);
+      }
+  }
+
+
+  template <int dim>
+  void
   ForceBalanceEvaluator<dim>::body_forces(const double       t,
                                           const TimeScheme  &scheme,
                                           const Vector_t    &u,
@@ -145,18 +166,7 @@ namespace DynamicContact
           b.applied[c] += value(c) * JxW;
       };
 
-    // The surface loads of the step, face by face: theta F(t) + (1 -
-    // theta) F(t - k), integrated as the load vector integrates them.
-    face_quadrature.integrate(scene, t, faces, face_values);
-    if (!scheme.is_backward_euler())
-      {
-        face_quadrature.integrate(scene,
-                                  t - scheme.time_step(),
-                                  faces,
-                                  old_face_values);
-        for (unsigned int f = 0; f < faces.size(); ++f)
-          scheme.weigh(face_values[f], old_face_values[f]);
-      }
+    integrate_face_loads(t, scheme);
     unsigned int face = 0;
     for (unsigned int c = 0; c < cells.size(); ++c)
       {

@@ -45,6 +45,22 @@ namespace DynamicContact
     {
       return (v * node.normal) * node.normal;
     }
+
+    /**
+     * The host row of a stick node's normal equation in the assembled
+     * Newton matrix: the component with the largest normal entry; the
+     * others carry t_s . w = 0.
+     */
+    template <int dim>
+    unsigned int
+    host_component(const ContactNode<dim> &node)
+    {
+      unsigned int host = 0;
+      for (unsigned int c = 1; c < dim; ++c)
+        if (std::abs(node.normal[c]) > std::abs(node.normal[host]))
+          host = c;
+      return host;
+    }
   } // namespace
 
 
@@ -507,6 +523,64 @@ namespace DynamicContact
 
   template <int dim>
   void
+  SparseNewton<dim>::assemble_direct_matrix(const NodalSystem &system)
+  {
+    const auto &nodes = problem.boundary.nodes();
+    TimerSection t(problem.timer, "Newton: matrix update");
+    system_matrix.copy_from(problem.bulk.newton_matrix());
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      for (unsigned int r = 0; r < dim; ++r)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (system.blocks[i][r][c] != 0)
+            system_matrix.add(nodes[i].dofs[r],
+                              nodes[i].dofs[c],
+                              system.blocks[i][r][c]);
+    system_matrix.compress(VectorOperation::add);
+
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (system.stick[i])
+        {
+          const auto &node = nodes[i];
+          // Rows of one vertex have the same columns (FESystem).
+          std::vector<types::global_dof_index> columns;
+          std::vector<double>                  combined;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              unsigned int e = 0;
+              for (auto it = system_matrix.begin(node.dofs[c]);
+                   it != system_matrix.end(node.dofs[c]);
+                   ++it, ++e)
+                {
+                  if (c == 0)
+                    {
+                      columns.push_back(it->column());
+                      combined.push_back(0);
+                    }
+                  Assert(columns[e] == it->column(), ExcInternalError());
+                  combined[e] += node.normal[c] * it->value();
+                }
+            }
+          const unsigned int host = host_component(node);
+          system_matrix.set(node.dofs[host], columns, combined);
+          unsigned int s = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            if (c != host)
+              {
+                std::vector<double> row(columns.size(), 0.);
+                for (unsigned int e = 0; e < columns.size(); ++e)
+                  for (unsigned int q = 0; q < dim; ++q)
+                    if (columns[e] == node.dofs[q])
+                      row[e] = node.tangents[s][q];
+                system_matrix.set(node.dofs[c], columns, row);
+                ++s;
+              }
+        }
+    system_matrix.compress(VectorOperation::insert);
+  }
+
+
+  template <int dim>
+  void
   SparseNewton<dim>::solve_direct(const NodalSystem        &system,
                                   const SystemNewton<dim>  &newton,
                                   const SystemIterate<dim> &x,
@@ -522,69 +596,8 @@ namespace DynamicContact
        factorized_blocks == system.blocks && factorized_stick == system.stick);
     same = Utilities::MPI::min(same ? 1 : 0, problem.discretization.comm) == 1;
 
-    // The host row of each stick node's normal equation: the component
-    // with the largest normal entry; the others carry t_s . w = 0.
-    auto host_component = [](const ContactNode<dim> &node) {
-      unsigned int host = 0;
-      for (unsigned int c = 1; c < dim; ++c)
-        if (std::abs(node.normal[c]) > std::abs(node.normal[host]))
-          host = c;
-      return host;
-    };
-
     if (!same)
-      {
-        TimerSection t(problem.timer, "Newton: matrix update");
-        system_matrix.copy_from(problem.bulk.newton_matrix());
-        for (unsigned int i = 0; i < nodes.size(); ++i)
-          for (unsigned int r = 0; r < dim; ++r)
-            for (unsigned int c = 0; c < dim; ++c)
-              if (system.blocks[i][r][c] != 0)
-                system_matrix.add(nodes[i].dofs[r],
-                                  nodes[i].dofs[c],
-                                  system.blocks[i][r][c]);
-        system_matrix.compress(VectorOperation::add);
-
-        for (unsigned int i = 0; i < nodes.size(); ++i)
-          if (system.stick[i])
-            {
-              const auto &node = nodes[i];
-              // Rows of one vertex have the same columns (FESystem).
-              std::vector<types::global_dof_index> columns;
-              std::vector<double>                  combined;
-              for (unsigned int c = 0; c < dim; ++c)
-                {
-                  unsigned int e = 0;
-                  for (auto it = system_matrix.begin(node.dofs[c]);
-                       it != system_matrix.end(node.dofs[c]);
-                       ++it, ++e)
-                    {
-                      if (c == 0)
-                        {
-                          columns.push_back(it->column());
-                          combined.push_back(0);
-                        }
-                      Assert(columns[e] == it->column(), ExcInternalError());
-                      combined[e] += node.normal[c] * it->value();
-                    }
-                }
-              const unsigned int host = host_component(node);
-              system_matrix.set(node.dofs[host], columns, combined);
-              unsigned int s = 0;
-              for (unsigned int c = 0; c < dim; ++c)
-                if (c != host)
-                  {
-                    std::vector<double> row(columns.size(), 0.);
-                    for (unsigned int e = 0; e < columns.size(); ++e)
-                      for (unsigned int q = 0; q < dim; ++q)
-                        if (columns[e] == node.dofs[q])
-                          row[e] = node.tangents[s][q];
-                    system_matrix.set(node.dofs[c], columns, row);
-                    ++s;
-                  }
-            }
-        system_matrix.compress(VectorOperation::insert);
-      }
+      assemble_direct_matrix(system);
 
     // Right-hand side: -R, with the stick nodes' rows replaced likewise.
     scratch2 = base_residual;

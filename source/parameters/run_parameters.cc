@@ -35,6 +35,93 @@ namespace DynamicContact
 
   namespace Parameters
   {
+    namespace
+    {
+      /** Time: the entries of adaptive time steps. */
+      void
+      declare_adaptive_entries(ParameterHandler &prm)
+      {
+        prm.declare_entry(
+          "Adaptive",
+          "false",
+          Patterns::Bool(),
+          "true: choose each step's k from a local error estimate "
+          "(doc/theory.md section 2.5): a step whose estimate exceeds "
+          "Adaptive tolerance is rejected and repeated with a smaller k, and "
+          "the next k follows the estimate (safety factor 0.9, at most 2 "
+          "times larger, at least 0.2 times smaller, rounded down to Time "
+          "step times a power of 2 so that factorizations are reused), "
+          "between Minimum time step and Maximum time step; Time step is the "
+          "first k. Steps end exactly at the Output times. Needs Time/Scheme "
+          "= bathe, sdirk or backward Euler. time_series.csv gets the "
+          "columns time_error_estimate and rejected_steps.");
+        prm.declare_entry(
+          "Adaptive tolerance",
+          "1e-3",
+          Patterns::Double(0),
+          "The bound on the local error estimate of one step, relative to the "
+          "size of the state in the energy norm (doc/theory.md section 2.5), "
+          "> 0.");
+        prm.declare_entry(
+          "Maximum time step",
+          "0",
+          Patterns::Double(0),
+          "With Adaptive = true: the largest k (0: no bound but the End "
+          "time).");
+        prm.declare_entry(
+          "Cut back where not unique",
+          "false",
+          Patterns::Bool(),
+          "With a slip-rate dependent friction law: true treats a step whose "
+          "solution has a contraction factor of 1 or more (a bound of the "
+          "frozen-coefficient loop's: the loop may be repelled from it, and "
+          "other solutions may lie beside it, doc/theory.md section 5.2) as a "
+          "failed step, retried "
+          "with half the time step; at Minimum time step it is kept and "
+          "counted in the summary. A smaller k restores the factor below 1 "
+          "only where inertia dominates the step's compliance (k below the "
+          "periods of the modes of the contact boundary): above them the "
+          "compliance grows as k falls. Evaluates Friction/Uniqueness monitor "
+          "at every step (its 'never' is refused).");
+      }
+
+      /** Solver: the entries of the linear solver. */
+      void
+      declare_linear_solver_entries(ParameterHandler &prm)
+      {
+        prm.declare_entry(
+          "Linear solver",
+          "auto",
+          Patterns::Selection("auto|direct|iterative"),
+          "'direct': sparse direct factorization (package chosen below). "
+          "'iterative': Krylov (CG or GMRES) preconditioned with algebraic "
+          "multigrid, for problems too large for a direct solver. 'auto': "
+          "direct, except where Contact solver = auto chooses the assembled "
+          "solver (a large contact boundary), which then solves "
+          "iteratively. The choice is printed with the solver plan "
+          "(log.txt).");
+        prm.declare_entry(
+          "Direct solver package",
+          "auto",
+          Patterns::Selection("auto|Amesos_Mumps|Amesos_Klu"),
+          "The sparse direct solver. 'auto': SuiteSparse CHOLMOD (sparse "
+          "Cholesky) for the condensed solver on one process, and on "
+          "several while K0 is small (up to 1e5 DoFs in 2D, 3e4 in 3D: "
+          "every process factorizes the whole matrix), MUMPS everywhere "
+          "else; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
+          "package everywhere.");
+        prm.declare_entry("Linear tolerance",
+                          "1e-12",
+                          Patterns::Double(),
+                          "Relative residual reduction of the iterative "
+                          "solver.");
+        prm.declare_entry("Maximum linear iterations",
+                          "1000",
+                          Patterns::Integer(1),
+                          "Cap on the iterations of the iterative solver.");
+      }
+    } // namespace
+
     // ---------------------------------------------------------------- Time
     void
     Time::declare_parameters(ParameterHandler &prm)
@@ -89,8 +176,9 @@ namespace DynamicContact
         "Spectral radius at infinity",
         "0",
         Patterns::Double(),
-        "rho_inf in [0, 1] of Time/Scheme = bathe or sdirk: the amplification of a "
-        "mode far beyond the resolution (omega k -> infinity) in one step. "
+        "rho_inf in [0, 1] of Time/Scheme = bathe or sdirk: the "
+        "amplification of a mode far beyond the resolution (omega k -> "
+        "infinity) in one step. "
         "0 (default): the Bathe scheme as above, such modes are removed in "
         "a step; 1: no high-frequency dissipation (two trapezoidal half "
         "steps). In between, the step is a trapezoidal sub-step over k/2, "
@@ -100,48 +188,7 @@ namespace DynamicContact
         "stages' gamma (section 2.6). The other schemes have "
         "their own (backward Euler 0, trapezoidal 1): a value other than "
         "0 needs Time/Scheme = bathe or sdirk.");
-      prm.declare_entry(
-        "Adaptive",
-        "false",
-        Patterns::Bool(),
-        "true: choose each step's k from a local error estimate "
-        "(doc/theory.md section 2.5): a step whose estimate exceeds "
-        "Adaptive tolerance is rejected and repeated with a smaller k, and "
-        "the next k follows the estimate (safety factor 0.9, at most 2 times "
-        "larger, at least 0.2 times smaller, rounded down to Time step times "
-        "a power of 2 so that factorizations are reused), between Minimum "
-        "time step and Maximum time step; Time step is the first k. Steps end exactly at "
-        "the Output times. Needs Time/Scheme = bathe, sdirk or backward Euler. "
-        "time_series.csv gets the columns time_error_estimate and "
-        "rejected_steps.");
-      prm.declare_entry(
-        "Adaptive tolerance",
-        "1e-3",
-        Patterns::Double(0),
-        "The bound on the local error estimate of one step, relative to the "
-        "size of the state in the energy norm (doc/theory.md section 2.5), "
-        "> 0.");
-      prm.declare_entry(
-        "Maximum time step",
-        "0",
-        Patterns::Double(0),
-        "With Adaptive = true: the largest k (0: no bound but the End "
-        "time).");
-      prm.declare_entry(
-        "Cut back where not unique",
-        "false",
-        Patterns::Bool(),
-        "With a slip-rate dependent friction law: true treats a step whose "
-        "solution has a contraction factor of 1 or more (a bound of the "
-        "frozen-coefficient loop's: the loop may be repelled from it, and "
-        "other solutions may lie beside it, doc/theory.md section 5.2) as a "
-        "failed step, retried "
-        "with half the time step; at Minimum time step it is kept and "
-        "counted in the summary. A smaller k restores the factor below 1 "
-        "only where inertia dominates the step's compliance (k below the "
-        "periods of the modes of the contact boundary): above them the "
-        "compliance grows as k falls. Evaluates Friction/Uniqueness monitor "
-        "at every step (its 'never' is refused).");
+      declare_adaptive_entries(prm);
       prm.leave_subsection();
     }
 
@@ -276,36 +323,7 @@ namespace DynamicContact
                           Patterns::Integer(1),
                           "Cap on the semismooth Newton iterations of one "
                           "solve; reaching it is an error.");
-        prm.declare_entry(
-          "Linear solver",
-          "auto",
-          Patterns::Selection("auto|direct|iterative"),
-          "'direct': sparse direct factorization (package chosen below). "
-          "'iterative': Krylov (CG or GMRES) preconditioned with algebraic "
-          "multigrid, for problems too large for a direct solver. 'auto': "
-          "direct, except where Contact solver = auto chooses the assembled "
-          "solver (a large contact boundary), which then solves "
-          "iteratively. The choice is printed with the solver plan "
-          "(log.txt).");
-        prm.declare_entry(
-          "Direct solver package",
-          "auto",
-          Patterns::Selection("auto|Amesos_Mumps|Amesos_Klu"),
-          "The sparse direct solver. 'auto': SuiteSparse CHOLMOD (sparse "
-          "Cholesky) for the condensed solver on one process, and on "
-          "several while K0 is small (up to 1e5 DoFs in 2D, 3e4 in 3D: "
-          "every process factorizes the whole matrix), MUMPS everywhere "
-          "else; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
-          "package everywhere.");
-        prm.declare_entry("Linear tolerance",
-                          "1e-12",
-                          Patterns::Double(),
-                          "Relative residual reduction of the iterative "
-                          "solver.");
-        prm.declare_entry("Maximum linear iterations",
-                          "1000",
-                          Patterns::Integer(1),
-                          "Cap on the iterations of the iterative solver.");
+        declare_linear_solver_entries(prm);
       }
       prm.leave_subsection();
     }

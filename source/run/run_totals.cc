@@ -70,6 +70,33 @@ namespace DynamicContact
   }
 
 
+  void
+  RunTotals::print_uniqueness(const ConditionalOStream &pcout) const
+  {
+    // Whether the steps had one solution (doc/theory.md section 5.2).
+    pcout << "  uniqueness: the paper's bound theta rho(C L N) < 1 (one "
+             "solution) at "
+          << unique_steps << " of " << bound_steps
+          << " steps evaluated (largest " << sig6(max_uniqueness_bound)
+          << "); contraction factor at the solution >= 1 (the frozen "
+             "loop may be repelled, solutions may lie beside it) at "
+          << non_unique_steps.size() << " step"
+          << (non_unique_steps.size() == 1 ? "" : "s");
+    if (!non_unique_steps.empty())
+      {
+        pcout << ":";
+        const std::size_t shown =
+          std::min<std::size_t>(non_unique_steps.size(), 10);
+        for (std::size_t i = 0; i < shown; ++i)
+          pcout << " " << non_unique_steps[i];
+        if (shown < non_unique_steps.size())
+          pcout << " ...";
+      }
+    pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"
+          << std::endl;
+  }
+
+
   std::string
   RunTotals::print_summary(const ConditionalOStream &pcout,
                            const RunState           &state,
@@ -128,29 +155,7 @@ namespace DynamicContact
             << (coupled_fallbacks == 1 ? "" : "s")
             << std::endl;
     if (friction && (bound_steps > 0 || max_contraction >= 0))
-      {
-        // Whether the steps had one solution (doc/theory.md section 5.2).
-        pcout << "  uniqueness: the paper's bound theta rho(C L N) < 1 (one "
-                 "solution) at "
-              << unique_steps << " of " << bound_steps
-              << " steps evaluated (largest " << sig6(max_uniqueness_bound)
-              << "); contraction factor at the solution >= 1 (the frozen "
-                 "loop may be repelled, solutions may lie beside it) at "
-              << non_unique_steps.size() << " step"
-              << (non_unique_steps.size() == 1 ? "" : "s");
-        if (!non_unique_steps.empty())
-          {
-            pcout << ":";
-            const std::size_t shown =
-              std::min<std::size_t>(non_unique_steps.size(), 10);
-            for (std::size_t i = 0; i < shown; ++i)
-              pcout << " " << non_unique_steps[i];
-            if (shown < non_unique_steps.size())
-              pcout << " ...";
-          }
-        pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"
-              << std::endl;
-      }
+      print_uniqueness(pcout);
 
     // An honest ending: completed, or completed with what did not hold.
     std::vector<std::string> warnings;

@@ -83,6 +83,10 @@ namespace DynamicContact
                 const Vector_t    &w_old,
                 ForceBalance<dim> &b) const;
 
+    /** face_values = the step's surface load on each loaded face. */
+    void
+    integrate_face_loads(const double t, const TimeScheme &scheme) const;
+
     const Discretization<dim>      &discretization;
     const KelvinVoigtMaterial<dim> &material;
     const Scene<dim>               &scene;

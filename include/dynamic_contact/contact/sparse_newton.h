@@ -84,6 +84,14 @@ namespace DynamicContact
                     Vector_t                 &dw,
                     Result                   &result);
 
+    /**
+     * The assembled Newton matrix of @p system: K0, the nodal blocks, and
+     * each stick node's rows replaced by its normal equation and its
+     * stick constraints.
+     */
+    void
+    assemble_direct_matrix(const NodalSystem &system);
+
     /** Solve for dw (direct, assembled): see the class documentation. */
     void
     solve_direct(const NodalSystem        &system,

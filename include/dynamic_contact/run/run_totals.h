@@ -78,6 +78,11 @@ namespace DynamicContact
                   const RunState           &state,
                   const RunParameters      &parameters,
                   const bool                friction) const;
+
+  private:
+    /** The summary's line on the uniqueness of the steps' solutions. */
+    void
+    print_uniqueness(const ConditionalOStream &pcout) const;
   };
 } // namespace DynamicContact
 
