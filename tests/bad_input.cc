@@ -671,6 +671,11 @@ main(int argc, char **argv)
       with({"--set", "Friction/Acceleration depth=2"}),
       1,
       {"--set", "Friction/Acceleration depth", "removed"});
+  add("set_removed_look_ahead",
+      scene,
+      with({"--set", "Mesh refinement/Load following/Look-ahead steps=3"}),
+      1,
+      {"--set", "Mesh refinement/Load following/Look-ahead steps", "removed"});
   add("set_unknown_subsection",
       scene,
       with({"--set", "Foo/Bar=1"}),

@@ -46,7 +46,9 @@ namespace DynamicContact
         const double mu = value(s);
         AssertThrow(std::isfinite(mu) && mu >= 0,
                     ExcMessage("Friction: the friction coefficient must be "
-                               "finite and >= 0, but mu(" +
+                               "finite and >= 0 on the slip rates [0, "
+                               "Friction/Maximum slip rate = " +
+                               std::to_string(s_max) + "] m/s, but mu(" +
                                std::to_string(s) + ") = " + std::to_string(mu) +
                                "."));
       }

@@ -170,12 +170,6 @@ namespace DynamicContact
                           Patterns::Double(0, 1),
                           "The load is large where its magnitude exceeds "
                           "this fraction of its maximum.");
-        prm.declare_entry("Look-ahead steps",
-                          "0",
-                          Patterns::Integer(0),
-                          "How many steps ahead the load is sampled (0: "
-                          "until the next adaptation, 'Refine every' "
-                          "steps).");
       }
 
       void
@@ -183,7 +177,6 @@ namespace DynamicContact
       {
         window    = prm.get_double("Window");
         threshold = prm.get_double("Threshold");
-        lookahead = prm.get_integer("Look-ahead steps");
       }
 
       typename RefinementStrategy<dim>::Levels
@@ -198,16 +191,9 @@ namespace DynamicContact
         };
       }
 
-      unsigned int
-      lookahead_steps() const override
-      {
-        return lookahead;
-      }
-
     private:
-      double       window    = 0.2;
-      double       threshold = 0.05;
-      unsigned int lookahead = 0;
+      double window    = 0.2;
+      double threshold = 0.05;
     };
 
 

@@ -559,8 +559,6 @@ namespace DynamicContact
       {"Mesh refinement/Load window", "Mesh refinement/Load following/Window"},
       {"Mesh refinement/Load threshold",
        "Mesh refinement/Load following/Threshold"},
-      {"Mesh refinement/Look-ahead steps",
-       "Mesh refinement/Load following/Look-ahead steps"},
       {"Mesh refinement/Contact window",
        "Mesh refinement/Contact following/Window"},
       {"Mesh refinement/Refine fraction",
@@ -578,7 +576,15 @@ namespace DynamicContact
       {"Friction/Acceleration depth",
        "Anderson acceleration of the convexification loop, which was "
        "slower than the plain loop in every scene measured; delete the "
-       "line: the loop relaxes by Friction/Relaxation alone"}};
+       "line: the loop relaxes by Friction/Relaxation alone"},
+      {"Mesh refinement/Load following/Look-ahead steps",
+       "the load is sampled until the next adaptation ('Refine every' "
+       "steps), as its default did; delete the line, and widen the refined "
+       "zone with Mesh refinement/Load following/Window"},
+      {"Mesh refinement/Look-ahead steps",
+       "the load is sampled until the next adaptation ('Refine every' "
+       "steps), as its default did; delete the line, and widen the refined "
+       "zone with Mesh refinement/Load following/Window"}};
     return removed;
   }
 

@@ -1,0 +1,310 @@
+// What the options no scene sets are for, each shown on the small paper
+// scene (prm/barboteu_danan_2016_small.prm, its first 0.25 s, or its
+// adaptive variant):
+// - a function's constants and variable names are substituted: the same
+//   series as the literal expression;
+// - Friction/Complementarity constant and Friction/Relaxation change the
+//   path of the solvers, not the solution (each frozen-coefficient problem
+//   has one; the loop's fixed point does not depend on the relaxation: the
+//   same to the loop's tolerance), and
+//   the relaxation below 1 takes more convexification passes;
+// - Solver/Provisional passes = false gives the same solution, with more
+//   solves with K0; Solver/Condensed limit = 0 makes the plan assemble;
+//   the iterative linear solver to Solver/Linear tolerance agrees with the
+//   direct one;
+// - Friction/Uniqueness monitor = always measures the bound with the
+//   assembled solver, never measures nothing (and has no column);
+// - Friction/Maximum slip rate is the range the law is checked on;
+// - Foundation/Normal damping/Only in contact = true: damping acts only at
+//   penetrating nodes, and the energy balance still closes;
+// - Time/Maximum time step bounds the adaptive steps;
+// - Mesh refinement/Cell budget caps the adaptive mesh; the error indicator
+//   with both fractions 0 leaves the mesh as it is, with a refine fraction
+//   it refines.
+
+#include <deal.II/base/mpi.h>
+
+#include <dynamic_contact/parameters/parameters.h>
+
+#include "test_tools.h"
+
+using namespace DynamicContact;
+
+namespace
+{
+  const std::string scene = test_tools::scene("barboteu_danan_2016_small.prm");
+  const std::string adaptive_scene =
+    test_tools::scene("barboteu_danan_2016_adaptive_small.prm");
+
+  std::vector<StepRecord<2>>
+  series(const std::string              &name,
+         const std::vector<std::string> &overrides,
+         const std::string              &file = scene)
+  {
+    auto o = overrides;
+    o.push_back("Output/Directory=output-" + name);
+    o.insert(o.begin(), "Time/End time=0.25");
+    return test_tools::run<2>(file, o)->time_series();
+  }
+
+  /** The largest difference of the columns, relative to each one's peak. */
+  double
+  difference(const std::vector<StepRecord<2>> &a,
+             const std::vector<StepRecord<2>> &b)
+  {
+    if (a.size() != b.size())
+      return 1;
+    double worst = 0;
+    for (const char *column : {"normal_force",
+                               "tangential_force",
+                               "kinetic_energy",
+                               "elastic_energy",
+                               "foundation_energy",
+                               "dissipation"})
+      {
+        const auto q    = test_tools::quantity<2>(column);
+        double     peak = 1e-300, d = 0;
+        for (unsigned int n = 0; n < a.size(); ++n)
+          {
+            peak = std::max(peak, std::abs(q.of(b[n])));
+            d    = std::max(d, std::abs(q.of(a[n]) - q.of(b[n])));
+          }
+        worst = std::max(worst, d / peak);
+      }
+    return worst;
+  }
+
+  template <typename F>
+  unsigned int
+  sum(const std::vector<StepRecord<2>> &s, const F &f)
+  {
+    unsigned int total = 0;
+    for (const auto &row : s)
+      total += f(row);
+    return total;
+  }
+
+  unsigned int
+  passes(const std::vector<StepRecord<2>> &s)
+  {
+    return sum(s, [](const StepRecord<2> &r) {
+      return r.statistics.convexification_iterations;
+    });
+  }
+
+  unsigned int
+  solves(const std::vector<StepRecord<2>> &s)
+  {
+    return sum(s,
+               [](const StepRecord<2> &r) { return r.statistics.bulk_solves; });
+  }
+
+  /** The message of the error a run stops with ("" if none). */
+  std::string
+  error_of(const std::string &name, const std::vector<std::string> &overrides)
+  {
+    try
+      {
+        series(name, overrides);
+      }
+    catch (const std::exception &e)
+      {
+        return e.what();
+      }
+    return "";
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  using test_tools::check;
+  const auto reference = series("reference", {});
+
+  // Function constants and variable names.
+  {
+    const auto literal =
+      series("literal",
+             {"Initial conditions/Velocity/Function expression=0.01*x; 0"});
+    const auto with_constant =
+      series("constant",
+             {"Initial conditions/Velocity/Function constants=v0=0.01",
+              "Initial conditions/Velocity/Function expression=v0*x; 0"});
+    const auto renamed =
+      series("renamed",
+             {"Initial conditions/Velocity/Variable names=X,Y,T",
+              "Initial conditions/Velocity/Function expression=0.01*X; 0"});
+    const auto kinetic = test_tools::quantity<2>("kinetic_energy");
+    check(kinetic.of(literal.front()) > 0 &&
+            kinetic.of(reference.front()) == 0,
+          "the initial velocity is set (kinetic energy at t = 0)");
+    check(difference(with_constant, literal) == 0,
+          "Function constants: the same series as the literal expression");
+    check(difference(renamed, literal) == 0,
+          "Variable names: the same series as with x, y, t");
+  }
+
+  // Solver path options: the same solution.
+  {
+    const auto c_t =
+      series("complementarity", {"Friction/Complementarity constant=1e14"});
+    check(difference(c_t, reference) < 1e-8,
+          "Friction/Complementarity constant: the same solution to 1e-8");
+    const auto relaxed = series("relaxed", {"Friction/Relaxation=0.7"});
+    // Both loops stop within Friction/Convexification tolerance and
+    // Coefficient tolerance (1e-6) of the same fixed point.
+    check(difference(relaxed, reference) < 1e-6,
+          "Friction/Relaxation = 0.7: the same solution to the loop's "
+          "tolerance, 1e-6");
+    check(passes(relaxed) > passes(reference),
+          "Friction/Relaxation = 0.7: more convexification passes");
+    const auto whole = series("whole", {"Solver/Provisional passes=false"});
+    check(difference(whole, reference) < 1e-8,
+          "Solver/Provisional passes = false: the same solution to 1e-8");
+    check(solves(whole) > solves(reference),
+          "Solver/Provisional passes = false: more solves with K0");
+    const auto assembled = series("limit", {"Solver/Condensed limit=0"});
+    check(difference(assembled, reference) < 1e-8,
+          "Solver/Condensed limit = 0: the same solution to 1e-8");
+    check(test_tools::read_text("output-limit/log.txt")
+              .find("solver plan: assembled") != std::string::npos,
+          "Solver/Condensed limit = 0: the plan assembles");
+    const auto iterative = series("iterative",
+                                  {"Solver/Contact solver=assembled",
+                                   "Solver/Linear solver=iterative",
+                                   "Solver/Linear tolerance=1e-12"});
+    check(difference(iterative, reference) < 1e-8,
+          "Solver/Linear solver = iterative: the same solution to 1e-8");
+    check(sum(iterative,
+              [](const StepRecord<2> &r) {
+                return r.statistics.linear_iterations;
+              }) > 0,
+          "Solver/Linear solver = iterative: Krylov iterations counted");
+  }
+
+  // The uniqueness monitor.
+  {
+    const auto always = series("monitor-always",
+                               {"Solver/Contact solver=assembled",
+                                "Friction/Uniqueness monitor=always"});
+    const auto never =
+      series("monitor-never", {"Friction/Uniqueness monitor=never"});
+    check(sum(always,
+              [](const StepRecord<2> &r) {
+                return r.statistics.uniqueness_bound >= 0 ? 1u : 0u;
+              }) > 0,
+          "Uniqueness monitor = always: measured with the assembled solver");
+    check(sum(never,
+              [](const StepRecord<2> &r) {
+                return r.statistics.uniqueness_bound >= 0 ? 1u : 0u;
+              }) == 0 &&
+            test_tools::read_text("output-monitor-never/time_series.csv")
+                .find("uniqueness_bound") == std::string::npos,
+          "Uniqueness monitor = never: nothing measured, no column");
+  }
+
+  // The slip-rate range of the law's start-up check.
+  {
+    const std::vector<std::string> law = {
+      "Friction/Law=expression",
+      "Friction/Expression/Function expression=0.5-0.01*s"};
+    const std::string error = error_of("range-default", law);
+    check(error.find("Friction/Maximum slip rate") != std::string::npos,
+          "Friction/Maximum slip rate = 100: mu < 0 beyond 50 m/s refused");
+    auto narrow = law;
+    narrow.push_back("Friction/Maximum slip rate=10");
+    check(error_of("range-narrow", narrow).empty(),
+          "Friction/Maximum slip rate = 10: the same law runs");
+  }
+
+  // Damping only in contact: with true, damping acts only at penetrating
+  // nodes; with false (eq. (17) as written) also at nodes that approach
+  // the foundation without touching it.
+  for (const bool only : {true, false})
+    {
+      const std::string flag = only ? "true" : "false";
+      auto              loop = test_tools::make<2>(
+        scene,
+        {"Time/End time=0.25",
+         "Foundation/Normal damping/Only in contact=" + flag,
+         "Output/Directory=output-only-in-contact-" + flag});
+      loop->initialize();
+      unsigned int damping_alone = 0;
+      do
+        for (const auto &state : loop->simulator().node_states())
+          if (state.normal.damping_active && !state.normal.compliance_active)
+            ++damping_alone;
+      while (loop->advance());
+      loop->finish();
+      damping_alone = Utilities::MPI::sum(damping_alone, MPI_COMM_WORLD);
+      double worst_defect = 0;
+      for (const auto &row : loop->time_series())
+        worst_defect = std::max(worst_defect, row.relative_energy_defect());
+      check(only ? damping_alone == 0 : damping_alone > 0,
+            "Only in contact = " + flag + ": damping " +
+              (only ? "never" : "also") + " acts without penetration");
+      check(worst_defect < 1e-8,
+            "Only in contact = " + flag +
+              ": the energy balance closes to 1e-8");
+    }
+
+  // Adaptive time steps bounded by Maximum time step.
+  {
+    const auto bounded = series("maximum-step",
+                                {"Time/Scheme=bathe",
+                                 "Time/Adaptive=true",
+                                 "Time/Adaptive tolerance=0.1",
+                                 "Time/Time step=0.00390625",
+                                 "Time/Maximum time step=0.0078125"});
+    const auto free = series("free-step",
+                             {"Time/Scheme=bathe",
+                              "Time/Adaptive=true",
+                              "Time/Adaptive tolerance=0.1",
+                              "Time/Time step=0.00390625"});
+    const auto largest = [](const std::vector<StepRecord<2>> &s) {
+      double k = 0;
+      for (const auto &row : s)
+        k = std::max(k, row.time_step);
+      return k;
+    };
+    check(largest(free) > 0.0078125 * (1 + 1e-12),
+          "Time/Adaptive without a bound: steps longer than 0.0078125 s");
+    check(largest(bounded) > 0 && largest(bounded) <= 0.0078125 * (1 + 1e-12),
+          "Time/Maximum time step = 0.0078125: no longer step");
+  }
+
+  // Mesh refinement: the cell budget and the error indicator.
+  {
+    const auto budget =
+      series("budget", {"Mesh refinement/Cell budget=256"}, adaptive_scene);
+    check(sum(budget,
+              [](const StepRecord<2> &r) { return r.cells == 256 ? 0u : 1u; }) ==
+            0,
+          "Cell budget = 256: the uniform mesh of the minimum level");
+    const auto frozen = series("indicator-frozen",
+                               {"Mesh refinement/Strategy=error indicator",
+                                "Mesh refinement/Error indicator/"
+                                "Refine fraction=0",
+                                "Mesh refinement/Error indicator/"
+                                "Coarsen fraction=0"},
+                               adaptive_scene);
+    const auto refining = series("indicator-refining",
+                                 {"Mesh refinement/Strategy=error indicator",
+                                  "Mesh refinement/Error indicator/"
+                                  "Refine fraction=0.3",
+                                  "Mesh refinement/Error indicator/"
+                                  "Coarsen fraction=0"},
+                                 adaptive_scene);
+    bool   unchanged = true;
+    double most      = 0;
+    for (const auto &row : frozen)
+      unchanged = unchanged && row.cells == frozen.front().cells;
+    for (const auto &row : refining)
+      most = std::max(most, static_cast<double>(row.cells));
+    check(unchanged, "Error indicator with both fractions 0: mesh unchanged");
+    check(most > frozen.front().cells,
+          "Error indicator, Refine fraction = 0.3: the mesh is refined");
+  }
+}
