@@ -27,18 +27,7 @@ import sys
 
 import numpy as np
 
-failures = []
-
-
-def check(condition, text):
-    print("%s: %s" % ("ok" if condition else "FAILED", text), flush=True)
-    if not condition:
-        failures.append(text)
-
-
-def write(path, text):
-    with open(path, "w") as f:
-        f.write(text)
+from script_checks import check, failures, write
 
 
 def main():

@@ -44,20 +44,15 @@ namespace
     return a;
   }
 
-  const std::vector<std::string> block_3d = {
-    test_tools::scene("pressed_block_3d.prm"),
-    "--set",
-    "Output/Directory=block_3d",
-    "--set",
-    "Time/End time=2",
-    "--set",
-    "Output/Write VTU=true",
-    "--set",
-    "Output/Progress every=0",
-    "--set",
-    "Output/Print timings=false",
-    "--set",
-    "Output/Print iteration counts=false"};
+  const std::vector<std::string> block_3d =
+    with({test_tools::scene("pressed_block_3d.prm"),
+          "--set",
+          "Output/Directory=block_3d",
+          "--set",
+          "Time/End time=2",
+          "--set",
+          "Output/Write VTU=true"},
+         quiet);
 
   /** The files of @p directory (not the manifest and the lock). */
   std::set<std::string>

@@ -24,7 +24,6 @@ Prints the file names and the verdicts (no numbers, no paths); exit code 1
 if a check fails.
 """
 
-import argparse
 import os
 import shlex
 import subprocess
@@ -46,13 +45,7 @@ QUIET = ["Output/Write VTU=false", "Output/Progress every=0",
          "Output/Print timings=false",
          "Output/Print iteration counts=false"]
 
-failures = []
-
-
-def check(condition, text):
-    print("%s: %s" % ("ok" if condition else "FAILED", text), flush=True)
-    if not condition:
-        failures.append(text)
+from script_checks import check, finish, program_arguments
 
 
 def environment():
@@ -101,11 +94,7 @@ def plot_run(root, arguments):
 
 
 def main():
-    here = os.path.dirname(os.path.realpath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
-    parser.add_argument("--program", required=True)
-    parser.add_argument("--work-dir", required=True)
-    parser.add_argument("--source-dir", default=os.path.dirname(here))
+    parser = program_arguments(__doc__)
     parser.add_argument("--mpiexec", default="")
     args = parser.parse_args()
     root = os.path.realpath(args.source_dir)
@@ -157,9 +146,7 @@ def main():
         check(snapshot(directory, skip="") == before,
               "plot-run --out OUTDIR wrote nothing")
 
-    print("plot_run: %s" % ("every check passed" if not failures else
-                            "%d checks failed" % len(failures)))
-    sys.exit(1 if failures else 0)
+    finish("plot_run")
 
 
 if __name__ == "__main__":

@@ -13,25 +13,13 @@ line per check; exit code 1 if one fails.
 
 import argparse
 import os
-import sys
 
 from dynamic_contact import (Run, is_completed, read_contact, read_prm,
                              read_run_status, read_table, read_time_series,
                              test_overrides)
 from dynamic_contact.plotting import pick_steps
 
-failures = []
-
-
-def check(condition, text):
-    print("%s: %s" % ("ok" if condition else "FAILED", text), flush=True)
-    if not condition:
-        failures.append(text)
-
-
-def write(path, text):
-    with open(path, "w") as f:
-        f.write(text)
+from script_checks import check, finish, write
 
 
 def contact_text(with_comment, with_time, time):
@@ -163,9 +151,7 @@ def main():
           pick_steps([0], 8) == [0] and
           pick_steps(list(range(0, 101)), 5) == [1, 26, 51, 75, 100],
           "the profile steps: step 0 left out, evenly spread, the last")
-    print("python_readers: %s" % ("every check passed" if not failures else
-                                  "%d checks failed" % len(failures)))
-    sys.exit(1 if failures else 0)
+    finish("python_readers")
 
 
 if __name__ == "__main__":

@@ -25,7 +25,6 @@ the failed run's screen output goes to stderr), then a summary; exit code 1
 if any file failed.
 """
 
-import argparse
 import concurrent.futures
 import os
 import subprocess
@@ -33,6 +32,8 @@ import sys
 
 from dynamic_contact import read_prm, read_run_status, test_overrides
 from dynamic_contact.output import is_completed
+
+from script_checks import program_arguments
 
 # Files of prm/ that are too large to run as they are: smaller meshes, the
 # same physics. (A new file can say this itself: '# test-overrides:'.)
@@ -143,11 +144,7 @@ def run_one(program, root, relative, work_dir, quick, steps):
 
 
 def main():
-    here = os.path.dirname(os.path.realpath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
-    parser.add_argument("--program", required=True)
-    parser.add_argument("--work-dir", required=True)
-    parser.add_argument("--source-dir", default=os.path.dirname(here))
+    parser = program_arguments(__doc__)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--steps", type=int, default=3)
     args = parser.parse_args()

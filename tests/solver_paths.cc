@@ -23,22 +23,7 @@ compare(const std::string &name, const std::vector<std::string> &overrides)
     }
   test_tools::check(series[0].size() == series[1].size(),
                     name + ": same number of steps");
-  double worst = 0;
-  for (unsigned int n = 1; n < series[0].size(); ++n)
-    for (const char *column : {"normal_force",
-                               "tangential_force",
-                               "kinetic_energy",
-                               "elastic_energy",
-                               "foundation_energy",
-                               "dissipation"})
-      {
-        const auto   q = test_tools::quantity<2>(column);
-        const double a = q.of(series[0][n]), b = q.of(series[1][n]);
-        const double s = std::max(series[0][n].terms.energy.total(), 1.);
-        worst          = std::max(worst,
-                         q.force ? std::abs(a - b) / std::max(std::abs(a), 1.) :
-                                            std::abs(a - b) / s);
-      }
+  const double worst = test_tools::largest_difference(series[0], series[1]);
   test_tools::check(worst < 1e-8,
                     name + ": condensed and assembled agree to 1e-8");
   unsigned int stick = 0, slip = 0;

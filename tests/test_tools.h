@@ -17,6 +17,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -200,6 +201,41 @@ namespace test_tools
       if (q.name == name)
         return q;
     throw std::runtime_error("test_tools::quantity: unknown '" + name + "'");
+  }
+
+  /**
+   * The largest difference between two runs' time series over the steps
+   * after the first, in the columns the solver comparisons use: forces
+   * relative to themselves (at least 1 N), energies relative to the total
+   * energy (at least 1 J). Infinite if the series differ in length.
+   */
+  template <int dim>
+  double
+  largest_difference(const std::vector<DynamicContact::StepRecord<dim>> &a,
+                     const std::vector<DynamicContact::StepRecord<dim>> &b)
+  {
+    if (a.size() != b.size())
+      return std::numeric_limits<double>::infinity();
+    double worst = 0;
+    for (unsigned int n = 1; n < a.size(); ++n)
+      {
+        const double scale = std::max(a[n].terms.energy.total(), 1.);
+        for (const char *column : {"normal_force",
+                                   "tangential_force",
+                                   "kinetic_energy",
+                                   "elastic_energy",
+                                   "foundation_energy",
+                                   "dissipation"})
+          {
+            const auto   q = quantity<dim>(column);
+            const double x = q.of(a[n]), y = q.of(b[n]);
+            worst =
+              std::max(worst,
+                       q.force ? std::abs(x - y) / std::max(std::abs(x), 1.) :
+                                 std::abs(x - y) / scale);
+          }
+      }
+    return worst;
   }
 
   /**

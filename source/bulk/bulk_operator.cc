@@ -137,36 +137,11 @@ namespace DynamicContact
 
   template <int dim>
   double
-  BulkOperator<dim>::mass_product(const Vector_t &x, const Vector_t &y) const
+  BulkOperator<dim>::product(const Matrix_t &A,
+                             const Vector_t &x,
+                             const Vector_t &y) const
   {
-    mass_matrix.vmult(tmp, y);
-    return x * tmp;
-  }
-
-  template <int dim>
-  double
-  BulkOperator<dim>::elastic_product(const Vector_t &x, const Vector_t &y) const
-  {
-    elasticity_matrix.vmult(tmp, y);
-    return x * tmp;
-  }
-
-  template <int dim>
-  double
-  BulkOperator<dim>::viscous_product(const Vector_t &x, const Vector_t &y) const
-  {
-    if (!material.has_viscosity())
-      return 0;
-    viscosity_matrix.vmult(tmp, y);
-    return x * tmp;
-  }
-
-
-  template <int dim>
-  double
-  BulkOperator<dim>::strain_product(const Vector_t &x, const Vector_t &y) const
-  {
-    strain_matrix.vmult(tmp, y);
+    A.vmult(tmp, y);
     return x * tmp;
   }
 

@@ -694,30 +694,21 @@ namespace DynamicContact
   }
 
 
-  template void
-  write_checkpoint<2>(OutputDirectory &,
-                      Discretization<2> &,
-                      const std::vector<Vector_t *> &,
-                      const RunState &,
-                      const std::string &,
-                      const unsigned int,
-                      const std::function<void()> &);
-  template void
-  write_checkpoint<3>(OutputDirectory &,
-                      Discretization<3> &,
-                      const std::vector<Vector_t *> &,
-                      const RunState &,
-                      const std::string &,
-                      const unsigned int,
-                      const std::function<void()> &);
-  template void
-  load_checkpoint<2>(const std::string &,
-                     Discretization<2> &,
-                     const std::vector<Vector_t *> &,
-                     const std::function<void()> &);
-  template void
-  load_checkpoint<3>(const std::string &,
-                     Discretization<3> &,
-                     const std::vector<Vector_t *> &,
-                     const std::function<void()> &);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                      \
+  template void write_checkpoint<dim>(OutputDirectory &,                      \
+                                      Discretization<dim> &,                  \
+                                      const std::vector<Vector_t *> &,        \
+                                      const RunState &,                       \
+                                      const std::string &,                    \
+                                      const unsigned int,                     \
+                                      const std::function<void()> &);         \
+  template void load_checkpoint<dim>(const std::string &,                     \
+                                     Discretization<dim> &,                   \
+                                     const std::vector<Vector_t *> &,         \
+                                     const std::function<void()> &);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

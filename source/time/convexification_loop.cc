@@ -299,7 +299,40 @@ namespace DynamicContact
                         const std::vector<Tensor<1, dim>> &u_old_nodes,
                         const std::vector<Tensor<1, dim>> &w_old_nodes,
                         Vector_t                          &w,
-                        Statistics                        &statistics);
+                        Statistics                        &statistics)
+      : solver(solver)
+      , newton(newton)
+      , rhs(rhs)
+      , u_old(u_old)
+      , u_old_nodes(u_old_nodes)
+      , w_old_nodes(w_old_nodes)
+      , w(w)
+      , statistics(statistics)
+      , k(solver.bulk.scheme().time_step())
+      , mu(solver.contact_state.mu)
+      , lambda(solver.contact_state.lambda)
+      , loop(solver.friction && !solver.friction_law->is_constant())
+      , measures(solver.discretization,
+                 solver.contact_boundary,
+                 solver.foundation,
+                 solver.friction_law,
+                 solver.bulk,
+                 u_old_nodes,
+                 w_old_nodes,
+                 solver.friction_parameters.convexification_tolerance,
+                 solver.friction_parameters.coefficient_tolerance,
+                 solver.discretization.comm)
+      , max_passes(
+          loop ? solver.friction_parameters.max_convexification_iterations : 1)
+      , coupling(loop && solver.friction_parameters.coupled_linearization)
+    {
+      if (coupling)
+        {
+          w_start      = w;
+          lambda_start = lambda;
+        }
+      start();
+    }
 
     /** The passes, until the loop converges or reaches its cap. */
     void
@@ -372,51 +405,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  StepSolver<dim>::ConvexificationLoop::ConvexificationLoop(
-    StepSolver<dim>                   &solver,
-    ContactNewton<dim>                &newton,
-    const Vector_t                    &rhs,
-    const Vector_t                    &u_old,
-    const std::vector<Tensor<1, dim>> &u_old_nodes,
-    const std::vector<Tensor<1, dim>> &w_old_nodes,
-    Vector_t                          &w,
-    Statistics                        &statistics)
-    : solver(solver)
-    , newton(newton)
-    , rhs(rhs)
-    , u_old(u_old)
-    , u_old_nodes(u_old_nodes)
-    , w_old_nodes(w_old_nodes)
-    , w(w)
-    , statistics(statistics)
-    , k(solver.bulk.scheme().time_step())
-    , mu(solver.contact_state.mu)
-    , lambda(solver.contact_state.lambda)
-    , loop(solver.friction && !solver.friction_law->is_constant())
-    , measures(solver.discretization,
-               solver.contact_boundary,
-               solver.foundation,
-               solver.friction_law,
-               solver.bulk,
-               u_old_nodes,
-               w_old_nodes,
-               solver.friction_parameters.convexification_tolerance,
-               solver.friction_parameters.coefficient_tolerance,
-               solver.discretization.comm)
-    , max_passes(
-        loop ? solver.friction_parameters.max_convexification_iterations : 1)
-    , coupling(loop && solver.friction_parameters.coupled_linearization)
-  {
-    if (coupling)
-      {
-        w_start      = w;
-        lambda_start = lambda;
-      }
-    start();
-  }
-
-
-  template <int dim>
   void
   StepSolver<dim>::ConvexificationLoop::start()
   {
@@ -436,24 +424,20 @@ namespace DynamicContact
   StepSolver<dim>::ConvexificationLoop::measure(const unsigned int pass)
   {
     TimerSection t(solver.timer, "Friction: convexification update");
-    return provisional ? measures.measure(u_old,
-                                          k,
-                                          nullptr,
-                                          newton.provisional_velocities(),
-                                          lambda,
-                                          mu,
-                                          xi_previous,
-                                          pass,
-                                          solver.details) :
-                         measures.measure(u_old,
-                                          k,
-                                          &w,
-                                          {},
-                                          lambda,
-                                          mu,
-                                          xi_previous,
-                                          pass,
-                                          solver.details);
+    // A provisional pass is measured by its velocities at the nodes, a
+    // whole one by w.
+    const std::vector<Tensor<1, dim>> nodal =
+      provisional ? newton.provisional_velocities() :
+                    std::vector<Tensor<1, dim>>();
+    return measures.measure(u_old,
+                            k,
+                            provisional ? nullptr : &w,
+                            nodal,
+                            lambda,
+                            mu,
+                            xi_previous,
+                            pass,
+                            solver.details);
   }
 
 
@@ -633,16 +617,12 @@ namespace DynamicContact
   }
 
 
-  template typename StepSolver<2>::Statistics
-  StepSolver<2>::solve(const Vector_t &,
-                       const Vector_t &,
-                       const Vector_t &,
-                       Vector_t &,
-                       const bool);
-  template typename StepSolver<3>::Statistics
-  StepSolver<3>::solve(const Vector_t &,
-                       const Vector_t &,
-                       const Vector_t &,
-                       Vector_t &,
-                       const bool);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                      \
+  template typename StepSolver<dim>::Statistics StepSolver<dim>::solve(       \
+    const Vector_t &, const Vector_t &, const Vector_t &, Vector_t &, const bool);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

@@ -77,14 +77,26 @@ namespace DynamicContact
 
     /** x^T M y etc. for vectors in master form. */
     double
-    mass_product(const Vector_t &x, const Vector_t &y) const;
+    mass_product(const Vector_t &x, const Vector_t &y) const
+    {
+      return product(mass_matrix, x, y);
+    }
     double
-    elastic_product(const Vector_t &x, const Vector_t &y) const;
+    elastic_product(const Vector_t &x, const Vector_t &y) const
+    {
+      return product(elasticity_matrix, x, y);
+    }
     double
-    viscous_product(const Vector_t &x, const Vector_t &y) const;
+    viscous_product(const Vector_t &x, const Vector_t &y) const
+    {
+      return material.has_viscosity() ? product(viscosity_matrix, x, y) : 0;
+    }
     /** (eps(x), eps(y))_{L^2}: the inner product of V, eq. (22). */
     double
-    strain_product(const Vector_t &x, const Vector_t &y) const;
+    strain_product(const Vector_t &x, const Vector_t &y) const
+    {
+      return product(strain_matrix, x, y);
+    }
 
     /**
      * The load vector f_n = (f_0(t), v) + (f_2(t), v)_Gamma_2, condensed,
@@ -145,6 +157,10 @@ namespace DynamicContact
     FaceLoadQuadrature<dim>             face_quadrature;
     TimeScheme                current;
     mutable Vector_t          tmp;
+
+    /** x^T A y. */
+    double
+    product(const Matrix_t &A, const Vector_t &x, const Vector_t &y) const;
   };
 } // namespace DynamicContact
 
