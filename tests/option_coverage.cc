@@ -11,7 +11,8 @@
 // - Solver/Provisional passes = false gives the same solution, with more
 //   solves with K0; Solver/Condensed limit = 0 makes the plan assemble;
 //   the iterative linear solver to Solver/Linear tolerance agrees with the
-//   direct one;
+//   direct one, and one capped by Solver/Maximum linear iterations stops
+//   the run with an error that names the cap;
 // - Friction/Uniqueness monitor = always measures the bound with the
 //   assembled solver, never measures nothing (and has no column);
 // - Friction/Maximum slip rate is the range the law is checked on;
@@ -20,9 +21,11 @@
 // - Time/Maximum time step bounds the adaptive steps;
 // - Mesh refinement/Cell budget caps the adaptive mesh; the error indicator
 //   with both fractions 0 leaves the mesh as it is, with a refine fraction
-//   it refines.
+//   it refines; contact following refines within its Window of the
+//   penetrating nodes.
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -70,6 +73,24 @@ namespace
   {
     return sum(s,
                [](const StepRecord<2> &r) { return r.statistics.bulk_solves; });
+  }
+
+  /** The level of the active cell around p (collective). */
+  int
+  level_at(const Simulator<2> &simulator, const Point<2> &p)
+  {
+    const auto &d     = simulator.get_discretization();
+    int         level = -1;
+    try
+      {
+        const auto cell = GridTools::find_active_cell_around_point(
+          d.mapping, d.triangulation, p);
+        if (cell.first->is_locally_owned())
+          level = cell.first->level();
+      }
+    catch (...)
+      {}
+    return Utilities::MPI::max(level, MPI_COMM_WORLD);
   }
 
   /** The message of the error a run stops with ("" if none). */
@@ -155,6 +176,22 @@ main(int argc, char *argv[])
                 return r.statistics.linear_iterations;
               }) > 0,
           "Solver/Linear solver = iterative: Krylov iterations counted");
+  }
+
+  // The linear solver's cap: CG on K0 (the condensed solver with the
+  // iterative linear solver) that cannot converge in 2 iterations fails
+  // the step, and at the smallest time step the run stops naming the cap.
+  {
+    const std::string error =
+      error_of("linear-cap",
+               {"Geometry/Global refinements=2", // AMG not a direct solve
+                "Solver/Contact solver=condensed",
+                "Solver/Linear solver=iterative",
+                "Solver/Maximum linear iterations=2",
+                "Time/Minimum time step=0.00390625"});
+    check(error.find("Solver/Maximum linear iterations = 2") !=
+            std::string::npos,
+          "Solver/Maximum linear iterations = 2: the run stops naming it");
   }
 
   // The uniqueness monitor.
@@ -278,6 +315,30 @@ main(int argc, char *argv[])
     for (const auto &row : refining)
       most = std::max(most, static_cast<double>(row.cells));
     check(unchanged, "Error indicator with both fractions 0: mesh unchanged");
+
+    // Contact following: the finest level (2) within Window of the
+    // penetrating nodes, under the load at x = c t; the top of the body
+    // (0.1 m above the contact boundary) only with a window that reaches
+    // it.
+    for (const double window : {0.01, 0.2})
+      {
+        const std::string w    = test_tools::digits(window, 1);
+        auto              loop = test_tools::make<2>(
+          adaptive_scene,
+          {"Time/End time=0.25",
+           "Mesh refinement/Strategy=contact following",
+           "Mesh refinement/Contact following/Window=" + w,
+           "Output/Directory=output-contact-following-" + w});
+        loop->run();
+        const double x = 2. * loop->time();
+        check(level_at(loop->simulator(), Point<2>(x, 0.001)) == 2,
+              "Contact following, Window = " + w +
+                ": the finest level at the contact under the load");
+        check(level_at(loop->simulator(), Point<2>(x, 0.099)) ==
+                (window > 0.1 ? 2 : 1),
+              "Contact following, Window = " + w + ": the top " +
+                (window > 0.1 ? "refined too" : "at the minimum level"));
+      }
     check(most > frozen.front().cells,
           "Error indicator, Refine fraction = 0.3: the mesh is refined");
   }

@@ -1,9 +1,10 @@
 // A new law or refinement strategy takes one class and one registration
-// (doc/extending.md): this file adds a friction law, a normal compliance
-// and a refinement strategy of its own, chooses them in the parameter file,
-// and checks that the runs use them: each gives the same time series as
-// the built-in it mimics (constant friction, the capped ramp with a cap
-// that is never reached, uniform refinement), and the new names are in the
+// (doc/extending.md): this file adds a friction law, a law of the
+// foundation (as normal compliance and as normal damping) and a refinement
+// strategy of its own, chooses them in the parameter file, and checks that
+// the runs use them: each gives the same time series as the built-in it
+// mimics (constant friction, the capped ramp with a cap that is never
+// reached, uniform refinement), and the new names are in the
 // patterns of the entries that choose them.
 
 #include <dynamic_contact/laws/foundation.h>
@@ -61,19 +62,23 @@ namespace
                            "a test law: mu = Value.");
 
 
-  /** p(r) = c r_+, without a cap; everything else from ResponseLaw. */
-  class LinearCompliance : public NormalLaw
+  /**
+   * p(r) = c r_+ (or q(r) = c r_+), without a cap; everything else from
+   * ResponseLaw. One class for both laws of the foundation.
+   */
+  template <class Interface>
+  class LinearLaw : public Interface
   {
   public:
     static void
     declare_parameters(ParameterHandler &prm)
     {
-      prm.declare_entry("Stiffness", "5e9", Patterns::Double(0), "c (Pa/m).");
+      prm.declare_entry("Coefficient", "5e9", Patterns::Double(0), "c.");
     }
     void
     parse_parameters(ParameterHandler &prm) override
     {
-      c = prm.get_double("Stiffness");
+      c = prm.get_double("Coefficient");
     }
     double
     value(const double r) const override
@@ -100,9 +105,13 @@ namespace
     double c = 5e9;
   };
   DYNAMIC_CONTACT_REGISTER(NormalLaw,
-                           LinearCompliance,
+                           LinearLaw<NormalLaw>,
                            "linear",
-                           "a test law: p(r) = Stiffness r_+.");
+                           "a test law: p(r) = Coefficient r_+.");
+  DYNAMIC_CONTACT_REGISTER(DampingLaw,
+                           LinearLaw<DampingLaw>,
+                           "linear",
+                           "a test law: q(r) = Coefficient r_+.");
 
 
   /** Every cell asks for the finest level. */
@@ -180,6 +189,7 @@ main(int argc, char *argv[])
          std::vector<std::pair<std::string, std::string>>{
            {"Friction/Law", "fixed"},
            {"Foundation/Normal compliance/Law", "linear"},
+           {"Foundation/Normal damping/Law", "linear"},
            {"Mesh refinement/Strategy", "everywhere"}})
       {
         const auto sections = test_tools::split(path, '/');
@@ -217,12 +227,34 @@ main(int argc, char *argv[])
   compare("normal law 'linear' = capped ramp with an unreached cap",
           series("linear",
                  {"Foundation/Normal compliance/Law=linear",
-                  "Foundation/Normal compliance/Linear/Stiffness=5e9"}),
+                  "Foundation/Normal compliance/Linear/Coefficient=5e9"}),
           series("ramp",
                  {"Foundation/Normal compliance/Capped ramp/Stiffness=5e9",
                   "Foundation/Normal compliance/Capped ramp/Cap=1e17"}),
           columns,
           1e-10);
+
+  compare("damping law 'linear' = capped ramp with an unreached cap",
+          series("linear-damping",
+                 {"Foundation/Normal damping/Law=linear",
+                  "Foundation/Normal damping/Linear/Coefficient=1e8"}),
+          series("damping-ramp",
+                 {"Foundation/Normal damping/Capped ramp/Coefficient=1e8",
+                  "Foundation/Normal damping/Capped ramp/Cap=1e17"}),
+          columns,
+          1e-10);
+
+  {
+    // The run takes its damping from the law: ten times its coefficient
+    // changes the series.
+    const auto a = series("linear-damping-1e9",
+                          {"Foundation/Normal damping/Law=linear",
+                           "Foundation/Normal damping/Linear/Coefficient=1e9"});
+    const auto b = series("damping-ramp-again",
+                          {"Foundation/Normal damping/Capped ramp/Cap=1e17"});
+    check(test_tools::largest_difference(a, b) > 1e-6,
+          "damping law 'linear': its coefficient acts");
+  }
 
   compare("strategy 'everywhere' (levels 0 to 1) = Global refinements = 1",
           series("everywhere",

@@ -5,6 +5,8 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_index_access.h>
 
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/bulk/cholesky.h>
 #include <dynamic_contact/bulk/cholmod_views.h>
@@ -231,6 +233,19 @@ namespace DynamicContact
 
 
 
+  void
+  throw_cg_failure(const SolverControl::NoConvergence &e,
+                   const unsigned int                   max_iterations,
+                   const Vector_t                      &b)
+  {
+    throw StepFailure(
+      "CG on the bulk matrix did not converge in Solver/Maximum linear "
+      "iterations = " +
+      std::to_string(max_iterations) + " iterations (relative residual " +
+      scientific(e.last_residual / std::max(b.l2_norm(), 1e-300)) + ")");
+  }
+
+
   BulkSolver::BulkSolver(const Parameters::Solver &parameters)
     : parameters(parameters)
   {}
@@ -340,7 +355,14 @@ namespace DynamicContact
                               parameters.linear_tolerance * b.l2_norm());
         SolverCG<Vector_t> cg(control);
         x = 0;
-        cg.solve(*matrix, x, b, *amg);
+        try
+          {
+            cg.solve(*matrix, x, b, *amg);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            throw_cg_failure(e, parameters.max_linear_iterations, b);
+          }
       }
   }
 

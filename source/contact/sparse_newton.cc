@@ -341,7 +341,14 @@ namespace DynamicContact
     SolverControl      control(problem.parameters.max_linear_iterations,
                           tolerance * norm);
     SolverCG<Vector_t> cg(control);
-    cg.solve(problem.bulk.newton_matrix(), x, b, *amg);
+    try
+      {
+        cg.solve(problem.bulk.newton_matrix(), x, b, *amg);
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        throw_cg_failure(e, problem.parameters.max_linear_iterations, b);
+      }
     problem.discretization.constraints.set_zero(x);
   }
 

@@ -11,6 +11,25 @@
 namespace DynamicContact
 {
   /**
+   * A step the solver could not solve (Newton did not converge, or the
+   * solution is not finite): the time loop answers with a shorter step.
+   * Thrown on every process alike (the decisions use global quantities).
+   */
+  class StepFailure : public std::runtime_error
+  {
+  public:
+    explicit StepFailure(const std::string &what,
+                         const unsigned int newton_iterations = 0)
+      : std::runtime_error(what)
+      , newton_iterations(newton_iterations)
+    {}
+
+    /** The Newton iterations spent on the failed solve (if known). */
+    unsigned int newton_iterations;
+  };
+
+
+  /**
    * How a run ends when something goes wrong on some of its processes, and
    * how it stops on a signal (README, "What can go wrong").
    *

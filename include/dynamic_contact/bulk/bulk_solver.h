@@ -1,6 +1,7 @@
 #ifndef dynamic_contact_bulk_solver_h
 #define dynamic_contact_bulk_solver_h
 
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -21,6 +22,16 @@ class Epetra_LinearProblem;
 namespace DynamicContact
 {
   class Cholesky;
+
+  /**
+   * CG on K0 stopped at Solver/Maximum linear iterations (@p
+   * max_iterations) before its tolerance for the right-hand side @p b:
+   * throws a StepFailure that says so (the time loop tries a shorter step).
+   */
+  [[noreturn]] void
+  throw_cg_failure(const SolverControl::NoConvergence &e,
+                   const unsigned int                   max_iterations,
+                   const Vector_t                      &b);
 
   /**
    * Algebraic multigrid for the bulk matrix K0 (Trilinos ML, smoothed

@@ -8,6 +8,7 @@
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/laws/contact_law.h>
 #include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -18,24 +19,6 @@
 
 namespace DynamicContact
 {
-  /**
-   * A step the solver could not solve (Newton did not converge, or the
-   * solution is not finite): the time loop answers with a shorter step.
-   * Thrown on every process alike (the decisions use global quantities).
-   */
-  class StepFailure : public std::runtime_error
-  {
-  public:
-    explicit StepFailure(const std::string &what,
-                         const unsigned int newton_iterations = 0)
-      : std::runtime_error(what)
-      , newton_iterations(newton_iterations)
-    {}
-
-    /** The Newton iterations spent on the failed solve (if known). */
-    unsigned int newton_iterations;
-  };
-
   /**
    * The Newton iteration's stopping rule on failure, shared by both
    * implementations: throw StepFailure once @p iterations reach
