@@ -2,6 +2,7 @@
 #include <deal.II/base/revision.h>
 
 #include <dynamic_contact/run/command_line.h>
+#include <dynamic_contact/run/version.h>
 
 namespace DynamicContact
 {
