@@ -5,29 +5,9 @@
 // back to the minimum level, and the number of cells stays below 70 % of
 // that of the uniform mesh of the finest level.
 
-#include <deal.II/grid/grid_tools.h>
-
 #include "test_tools.h"
 
 using namespace DynamicContact;
-
-/** The level of the active cell around p (collective). */
-int
-level_at(const Simulator<2> &simulator, const Point<2> &p)
-{
-  const auto &d     = simulator.get_discretization();
-  int         level = -1;
-  try
-    {
-      const auto cell =
-        GridTools::find_active_cell_around_point(d.mapping, d.triangulation, p);
-      if (cell.first->is_locally_owned())
-        level = cell.first->level();
-    }
-  catch (...)
-    {}
-  return Utilities::MPI::max(level, MPI_COMM_WORLD);
-}
 
 int
 main(int argc, char *argv[])
@@ -52,14 +32,15 @@ main(int argc, char *argv[])
       bool         fine_under_load = true;
       for (const double y : {0.001, 0.05, 0.099})
         fine_under_load =
-          fine_under_load && level_at(simulator->simulator(), Point<2>(x, y)) ==
-                               static_cast<int>(max_level);
+          fine_under_load &&
+          test_tools::level_at(simulator->simulator(), Point<2>(x, y)) ==
+            static_cast<int>(max_level);
       test_tools::check(fine_under_load,
                         "t = " + test_tools::digits(t, 3) +
                           ": the finest level under the load");
       if (x - 0.8 > 0.1)
-        test_tools::check(level_at(simulator->simulator(),
-                                   Point<2>(x - 0.8, 0.05)) ==
+        test_tools::check(test_tools::level_at(simulator->simulator(),
+                                               Point<2>(x - 0.8, 0.05)) ==
                             static_cast<int>(min_level),
                           "t = " + test_tools::digits(t, 3) +
                             ": coarse again 0.8 m behind the load");

@@ -25,7 +25,6 @@
 //   penetrating nodes.
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/grid_tools.h>
 
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -73,24 +72,6 @@ namespace
   {
     return sum(s,
                [](const StepRecord<2> &r) { return r.statistics.bulk_solves; });
-  }
-
-  /** The level of the active cell around p (collective). */
-  int
-  level_at(const Simulator<2> &simulator, const Point<2> &p)
-  {
-    const auto &d     = simulator.get_discretization();
-    int         level = -1;
-    try
-      {
-        const auto cell = GridTools::find_active_cell_around_point(
-          d.mapping, d.triangulation, p);
-        if (cell.first->is_locally_owned())
-          level = cell.first->level();
-      }
-    catch (...)
-      {}
-    return Utilities::MPI::max(level, MPI_COMM_WORLD);
   }
 
   /** The message of the error a run stops with ("" if none). */
@@ -331,10 +312,10 @@ main(int argc, char *argv[])
            "Output/Directory=output-contact-following-" + w});
         loop->run();
         const double x = 2. * loop->time();
-        check(level_at(loop->simulator(), Point<2>(x, 0.001)) == 2,
+        check(test_tools::level_at(loop->simulator(), Point<2>(x, 0.001)) == 2,
               "Contact following, Window = " + w +
                 ": the finest level at the contact under the load");
-        check(level_at(loop->simulator(), Point<2>(x, 0.099)) ==
+        check(test_tools::level_at(loop->simulator(), Point<2>(x, 0.099)) ==
                 (window > 0.1 ? 2 : 1),
               "Contact following, Window = " + w + ": the top " +
                 (window > 0.1 ? "refined too" : "at the minimum level"));

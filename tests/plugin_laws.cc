@@ -234,25 +234,25 @@ main(int argc, char *argv[])
           columns,
           1e-10);
 
-  compare("damping law 'linear' = capped ramp with an unreached cap",
-          series("linear-damping",
-                 {"Foundation/Normal damping/Law=linear",
-                  "Foundation/Normal damping/Linear/Coefficient=1e8"}),
-          series("damping-ramp",
-                 {"Foundation/Normal damping/Capped ramp/Coefficient=1e8",
-                  "Foundation/Normal damping/Capped ramp/Cap=1e17"}),
-          columns,
-          1e-10);
-
   {
+    const auto ramp =
+      series("damping-ramp",
+             {"Foundation/Normal damping/Capped ramp/Coefficient=1e8",
+              "Foundation/Normal damping/Capped ramp/Cap=1e17"});
+    compare("damping law 'linear' = capped ramp with an unreached cap",
+            series("linear-damping",
+                   {"Foundation/Normal damping/Law=linear",
+                    "Foundation/Normal damping/Linear/Coefficient=1e8"}),
+            ramp,
+            columns,
+            1e-10);
     // The run takes its damping from the law: ten times its coefficient
     // changes the series.
-    const auto a = series("linear-damping-1e9",
-                          {"Foundation/Normal damping/Law=linear",
-                           "Foundation/Normal damping/Linear/Coefficient=1e9"});
-    const auto b = series("damping-ramp-again",
-                          {"Foundation/Normal damping/Capped ramp/Cap=1e17"});
-    check(test_tools::largest_difference(a, b) > 1e-6,
+    check(test_tools::largest_difference(
+            series("linear-damping-1e9",
+                   {"Foundation/Normal damping/Law=linear",
+                    "Foundation/Normal damping/Linear/Coefficient=1e9"}),
+            ramp) > 1e-6,
           "damping law 'linear': its coefficient acts");
   }
 

@@ -7,6 +7,7 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <dynamic_contact/parameters/parameters.h>
 #include <dynamic_contact/time/time_loop.h>
@@ -236,6 +237,25 @@ namespace test_tools
           }
       }
     return worst;
+  }
+
+  /** The level of the active cell around @p p (collective). */
+  inline int
+  level_at(const DynamicContact::Simulator<2> &simulator,
+           const dealii::Point<2>             &p)
+  {
+    const auto &d     = simulator.get_discretization();
+    int         level = -1;
+    try
+      {
+        const auto cell = dealii::GridTools::find_active_cell_around_point(
+          d.mapping, d.triangulation, p);
+        if (cell.first->is_locally_owned())
+          level = cell.first->level();
+      }
+    catch (...)
+      {}
+    return dealii::Utilities::MPI::max(level, MPI_COMM_WORLD);
   }
 
   /**
