@@ -34,6 +34,7 @@ namespace DynamicContact
     for (unsigned int i = 0; i < n; ++i)
       {
         const NodeEvaluation<dim> e = evaluate_node(problem,
+                                                    step_scheme,
                                                     nodes[i],
                                                     u_old[i],
                                                     w_old[i],
@@ -147,7 +148,7 @@ namespace DynamicContact
       // does not matter: the next residual is of the order of the square
       // of this one.
       solver.reduced.step(x,
-                          solver.problem.bulk.scheme(),
+                          solver.step_scheme,
                           r,
                           dw,
                           full.lambda,

@@ -46,20 +46,22 @@ namespace DynamicContact
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const Vector_t                    &rhs,
+  CondensedNewton<dim>::solve(const TimeScheme                  &scheme,
+                              const Vector_t                    &rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
                               const std::vector<Tensor<1, dim>> &w_old,
                               const FrictionCoefficients        &mu,
                               std::vector<Tensor<1, dim>>       &lambda,
                               Vector_t                          &w)
   {
-    return solve(rhs, u_old, w_old, mu, lambda, w, false);
+    return solve(scheme, rhs, u_old, w_old, mu, lambda, w, false);
   }
 
 
   template <int dim>
   typename CondensedNewton<dim>::Result
   CondensedNewton<dim>::solve_provisional(
+    const TimeScheme                  &scheme,
     const Vector_t                    &rhs,
     const std::vector<Tensor<1, dim>> &u_old,
     const std::vector<Tensor<1, dim>> &w_old,
@@ -68,7 +70,8 @@ namespace DynamicContact
     Vector_t                          &w,
     const double                       velocity_accuracy)
   {
-    return solve(rhs, u_old, w_old, mu, lambda, w, true, velocity_accuracy);
+    return solve(
+      scheme, rhs, u_old, w_old, mu, lambda, w, true, velocity_accuracy);
   }
 
 
@@ -104,9 +107,10 @@ namespace DynamicContact
       return result;
     const Pending p = std::move(*pending);
     pending.reset();
-    u_old_all = gathered.gather(p.u_old);
-    w_old_all = gathered.gather(p.w_old);
-    mu_all    = gather_coefficients(p.mu);
+    step_scheme = p.scheme;
+    u_old_all   = gathered.gather(p.u_old);
+    w_old_all   = gathered.gather(p.w_old);
+    mu_all      = gather_coefficients(p.mu);
     if (!p.loose)
       polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
     else
@@ -152,7 +156,8 @@ namespace DynamicContact
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const Vector_t                    &rhs,
+  CondensedNewton<dim>::solve(const TimeScheme                  &scheme,
+                              const Vector_t                    &rhs,
                               const std::vector<Tensor<1, dim>> &u_old,
                               const std::vector<Tensor<1, dim>> &w_old,
                               const FrictionCoefficients        &mu,
@@ -161,7 +166,10 @@ namespace DynamicContact
                               const bool                         provisional,
                               const double velocity_accuracy)
   {
+    Assert(scheme == problem.bulk.scheme(),
+           ExcMessage("K0 is not formed for the step's time scheme."));
     Result result;
+    step_scheme = scheme;
     if (compliance.prepare(result))
       {
         free_response_valid = false;
@@ -223,7 +231,8 @@ namespace DynamicContact
       {
         lambda = gathered.owned_part(it.lambda);
         pending.emplace(
-          Pending{u_old,
+          Pending{scheme,
+                  u_old,
                   w_old,
                   owned_mu,
                   std::move(it),
@@ -258,9 +267,10 @@ namespace DynamicContact
     add_nodal_forces(it.g, -1., right_hand_side);
     // The earlier provisional pass's velocity alike (finalize()): a sum of
     // the stored whole columns, or in one block solve with w.
-    if (previous != nullptr && compliance.apply_full_columns(previous_pass->first,
-                                                  previous_pass->second,
-                                                  scratch))
+    if (previous != nullptr &&
+        compliance.apply_full_columns(previous_pass->first,
+                                      previous_pass->second,
+                                      scratch))
       {
         *previous = free_response;
         *previous -= scratch;
@@ -280,7 +290,8 @@ namespace DynamicContact
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
     TimerSection      t(problem.timer, "Contact: refinement");
-    SystemNewton<dim> system(problem, rhs, u_old, w_old, mu, *this, result);
+    SystemNewton<dim> system(
+      problem, step_scheme, rhs, u_old, w_old, mu, *this, result);
     // The stick condition in velocity units too, relative to |w|; where the
     // body is at rest |w| is itself round-off, which is of order eps
     // |w_free| (w = w_free - C g cancels): 1e-6 |w_free| keeps the test
@@ -303,7 +314,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::newton_step(const SystemNewton<dim> & /*system*/,
+  CondensedNewton<dim>::newton_step(const SystemNewton<dim>  &system,
                                     const SystemIterate<dim> &x,
                                     SystemIterate<dim>       &full,
                                     Result                   &result)
@@ -336,8 +347,7 @@ namespace DynamicContact
     for (unsigned int a = 0; a < it.active.size(); ++a)
       r[a] = z[it.active[a]];
     std::vector<Tensor<1, dim>> lambda_full = it.lambda;
-    reduced.step(
-      it, problem.bulk.scheme(), r, dw, lambda_full, new_forces);
+    reduced.step(it, system.scheme, r, dw, lambda_full, new_forces);
     for (const unsigned int j : it.active)
       new_forces[j] -= it.base[j];
     if (!compliance.apply_full_columns(new_forces, it.active, increment))

@@ -94,19 +94,22 @@ namespace DynamicContact
 
   template <int dim>
   typename SparseNewton<dim>::Result
-  SparseNewton<dim>::solve(const Vector_t                    &rhs,
+  SparseNewton<dim>::solve(const TimeScheme                  &scheme,
+                           const Vector_t                    &rhs,
                            const std::vector<Tensor<1, dim>> &u_old,
                            const std::vector<Tensor<1, dim>> &w_old,
                            const FrictionCoefficients        &mu,
                            std::vector<Tensor<1, dim>>       &lambda,
                            Vector_t                          &w)
   {
+    Assert(scheme == problem.bulk.scheme(),
+           ExcMessage("K0 is not formed for the step's time scheme."));
     Result               result;
     FrictionCoefficients coefficients = mu;
     if (mu.coupled())
       coefficients.weakening_limit = coupled_limits();
     SystemNewton<dim> system(
-      problem, rhs, u_old, w_old, coefficients, *this, result);
+      problem, scheme, rhs, u_old, w_old, coefficients, *this, result);
     SystemIterate<dim> x;
     x.w      = w;
     x.lambda = lambda;
@@ -435,7 +438,7 @@ namespace DynamicContact
                                      Result                   &result)
   {
     const auto  &nodes = problem.boundary.nodes();
-    const double theta = problem.bulk.scheme().effective_derivative();
+    const double theta = newton.scheme.effective_derivative();
     prepare_amg();
     TimerSection t(problem.timer, "Newton: iterative solve");
 
@@ -599,7 +602,7 @@ namespace DynamicContact
     // The Newton matrix changes only through the nodal blocks, the stick
     // set and K0's k: reuse the factorization if none of them changed.
     bool same =
-      (factorized_scheme == problem.bulk.scheme() &&
+      (factorized_scheme == newton.scheme &&
        factorized_blocks == system.blocks && factorized_stick == system.stick);
     same = Utilities::MPI::min(same ? 1 : 0, problem.discretization.comm) == 1;
 
@@ -624,7 +627,7 @@ namespace DynamicContact
             if (c != host)
               scratch2(node.dofs[c]) =
                 -(node.tangents[s++] * w_e) /
-                problem.bulk.scheme().effective_derivative();
+                newton.scheme.effective_derivative();
         }
     scratch2.compress(VectorOperation::insert);
 
@@ -639,7 +642,7 @@ namespace DynamicContact
         ++result.factorizations;
         factorized_blocks = system.blocks;
         factorized_stick  = system.stick;
-        factorized_scheme = problem.bulk.scheme();
+        factorized_scheme = newton.scheme;
       }
     TimerSection t(problem.timer, "Newton: triangular solves");
     direct->solve(dw, scratch2);

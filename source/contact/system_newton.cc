@@ -9,6 +9,7 @@ namespace DynamicContact
 {
   template <int dim>
   SystemNewton<dim>::SystemNewton(const ContactProblem<dim>         &problem,
+                                  const TimeScheme                  &scheme,
                                   const Vector_t                    &rhs,
                                   const std::vector<Tensor<1, dim>> &u_old,
                                   const std::vector<Tensor<1, dim>> &w_old,
@@ -16,6 +17,7 @@ namespace DynamicContact
                                   LinearBackend<dim>                &backend,
                                   ContactNewtonResult               &result)
     : problem(problem)
+    , scheme(scheme)
     , rhs(rhs)
     , u_old(u_old)
     , w_old(w_old)
@@ -55,6 +57,7 @@ namespace DynamicContact
     for (unsigned int i = 0; i < n; ++i)
       {
         const NodeEvaluation<dim> e = evaluate_node(problem,
+                                                    scheme,
                                                     nodes[i],
                                                     u_old[i],
                                                     w_old[i],

@@ -80,8 +80,8 @@ namespace DynamicContact
     w = w_start; // initial guess
     // At the smallest time step a convexification loop that reaches its
     // cap is kept (reported) rather than failing the run.
-    statistics =
-      step_solver.solve(rhs, u_start, w_start, w, accept_unconverged_loop);
+    statistics = step_solver.solve(
+      scheme, rhs, u_start, w_start, w, accept_unconverged_loop);
     last_newton_residual = statistics.residual;
     // Time/Cut back where not unique (doc/theory.md section 5.2); at the
     // smallest time step the step is kept, and the summary lists it.

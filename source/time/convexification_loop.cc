@@ -59,6 +59,7 @@ namespace DynamicContact
                    const Foundation                  &foundation,
                    const FrictionLaw                 *friction_law,
                    const BulkOperator<dim>           &bulk,
+                   const TimeScheme                  &scheme,
                    const std::vector<Tensor<1, dim>> &u_old_nodes,
                    const std::vector<Tensor<1, dim>> &w_old_nodes,
                    const double                       tolerance,
@@ -69,7 +70,7 @@ namespace DynamicContact
         , foundation(foundation)
         , friction_law(friction_law)
         , bulk(bulk)
-        , scheme(bulk.scheme())
+        , scheme(scheme)
         , u_old_nodes(u_old_nodes)
         , w_old_nodes(w_old_nodes)
         , eps(tolerance)
@@ -294,6 +295,7 @@ namespace DynamicContact
   public:
     ConvexificationLoop(StepSolver<dim>                   &solver,
                         ContactNewton<dim>                &newton,
+                        const TimeScheme                  &scheme,
                         const Vector_t                    &rhs,
                         const Vector_t                    &u_old,
                         const std::vector<Tensor<1, dim>> &u_old_nodes,
@@ -302,13 +304,14 @@ namespace DynamicContact
                         Statistics                        &statistics)
       : solver(solver)
       , newton(newton)
+      , scheme(scheme)
       , rhs(rhs)
       , u_old(u_old)
       , u_old_nodes(u_old_nodes)
       , w_old_nodes(w_old_nodes)
       , w(w)
       , statistics(statistics)
-      , k(solver.bulk.scheme().time_step())
+      , k(scheme.time_step())
       , mu(solver.contact_state.mu)
       , lambda(solver.contact_state.lambda)
       , loop(solver.friction && !solver.friction_law->is_constant())
@@ -317,6 +320,7 @@ namespace DynamicContact
                  solver.foundation,
                  solver.friction_law,
                  solver.bulk,
+                 scheme,
                  u_old_nodes,
                  w_old_nodes,
                  solver.friction_parameters.convexification_tolerance,
@@ -350,6 +354,7 @@ namespace DynamicContact
 
     StepSolver<dim>                   &solver;
     ContactNewton<dim>                &newton;
+    const TimeScheme                  &scheme;
     const Vector_t                    &rhs, &u_old;
     const std::vector<Tensor<1, dim>> &u_old_nodes, &w_old_nodes;
     Vector_t                          &w;
@@ -461,7 +466,8 @@ namespace DynamicContact
       {
         const auto result =
           allow_provisional ?
-            newton.solve_provisional(rhs,
+            newton.solve_provisional(scheme,
+                                     rhs,
                                      u_old_nodes,
                                      w_old_nodes,
                                      coefficients,
@@ -469,7 +475,7 @@ namespace DynamicContact
                                      w,
                                      provisional_accuracy) :
             newton.solve(
-              rhs, u_old_nodes, w_old_nodes, coefficients, lambda, w);
+              scheme, rhs, u_old_nodes, w_old_nodes, coefficients, lambda, w);
         statistics.add_newton(result);
         provisional = result.provisional;
         return true;
@@ -592,27 +598,37 @@ namespace DynamicContact
 
   template <int dim>
   typename StepSolver<dim>::Statistics
-  StepSolver<dim>::solve(const Vector_t &rhs,
-                         const Vector_t &u_old,
-                         const Vector_t &w_old,
-                         Vector_t       &w,
-                         const bool      accept_unconverged_loop)
+  StepSolver<dim>::solve(const TimeScheme &scheme,
+                         const Vector_t   &rhs,
+                         const Vector_t   &u_old,
+                         const Vector_t   &w_old,
+                         Vector_t         &w,
+                         const bool        accept_unconverged_loop)
   {
+    Assert(scheme == bulk.scheme(),
+           ExcMessage("K0 is not formed for the step's time scheme."));
     Statistics          statistics;
-    ContactNewton<dim> &newton      = newton_for_scheme();
+    ContactNewton<dim> &newton      = newton_for(scheme);
     const auto          u_old_nodes = contact_boundary.values(u_old);
     const auto          w_old_nodes = contact_boundary.values(w_old);
-    ConvexificationLoop loop(
-      *this, newton, rhs, u_old, u_old_nodes, w_old_nodes, w, statistics);
+    ConvexificationLoop loop(*this,
+                             newton,
+                             scheme,
+                             rhs,
+                             u_old,
+                             u_old_nodes,
+                             w_old_nodes,
+                             w,
+                             statistics);
     loop.run(accept_unconverged_loop);
 
-    update_states(u_old_nodes, w_old_nodes, w, statistics);
+    update_states(scheme, u_old_nodes, w_old_nodes, w, statistics);
     if (loop.active() && (friction_parameters.uniqueness_monitor ==
                             Parameters::Friction::Monitor::always ||
                           (friction_parameters.uniqueness_monitor ==
                              Parameters::Friction::Monitor::automatic &&
                            plan.condensed)))
-      measure_uniqueness(newton, statistics);
+      measure_uniqueness(scheme, newton, statistics);
     return statistics;
   }
 
@@ -620,7 +636,12 @@ namespace DynamicContact
   // For 2D and 3D.
 #define DYNAMIC_CONTACT_INSTANTIATE(dim)                                      \
   template typename StepSolver<dim>::Statistics StepSolver<dim>::solve(       \
-    const Vector_t &, const Vector_t &, const Vector_t &, Vector_t &, const bool);
+    const TimeScheme &,                                                       \
+    const Vector_t &,                                                         \
+    const Vector_t &,                                                         \
+    const Vector_t &,                                                         \
+    Vector_t &,                                                               \
+    const bool);
 
   DYNAMIC_CONTACT_INSTANTIATE(2)
   DYNAMIC_CONTACT_INSTANTIATE(3)

@@ -82,9 +82,9 @@ namespace DynamicContact
 
   template <int dim>
   ContactNewton<dim> &
-  StepSolver<dim>::newton_for_scheme()
+  StepSolver<dim>::newton_for(const TimeScheme &scheme)
   {
-    auto &newton = newtons[bulk.scheme().theta() == 0.5 ? 1 : 0];
+    auto &newton = newtons[scheme.theta() == 0.5 ? 1 : 0];
     if (!newton)
       {
         const ContactProblem<dim> problem{discretization,
@@ -108,7 +108,8 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
+  StepSolver<dim>::update_states(const TimeScheme                  &scheme,
+                                 const std::vector<Tensor<1, dim>> &u_old_nodes,
                                  const std::vector<Tensor<1, dim>> &w_old_nodes,
                                  const Vector_t                    &w,
                                  Statistics                        &statistics)
@@ -117,9 +118,8 @@ namespace DynamicContact
     const auto       &mu        = contact_state.mu;
     const auto       &lambda    = contact_state.lambda;
     auto             &states    = contact_state.nodes;
-    const TimeScheme &scheme    = bulk.scheme();
-    const double      k         = scheme.time_step();
-    unsigned int      n_contact = 0, n_stick = 0, n_slip = 0;
+    const double k         = scheme.time_step();
+    unsigned int n_contact = 0, n_stick = 0, n_slip = 0;
     for (unsigned int i = 0; i < nodes.size(); ++i)
       {
         const unsigned int   g   = i;
@@ -156,7 +156,8 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::measure_uniqueness(ContactNewton<dim> &newton,
+  StepSolver<dim>::measure_uniqueness(const TimeScheme   &scheme,
+                                      ContactNewton<dim> &newton,
                                       Statistics         &statistics)
   {
     // doc/theory.md section 5.2: with L the law's one-sided Lipschitz
@@ -168,7 +169,7 @@ namespace DynamicContact
     TimerSection        t(timer, "Friction: uniqueness measures");
     const auto         &nodes = contact_boundary.nodes();
     const unsigned int  n     = nodes.size();
-    const double        theta = bulk.scheme().effective_derivative();
+    const double        theta = scheme.effective_derivative();
     std::vector<Tensor<2, dim>> bound(n), contraction(n);
     bool                        any_bound = false, any_contraction = false;
     for (unsigned int i = 0; i < n; ++i)

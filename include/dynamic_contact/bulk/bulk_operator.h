@@ -115,8 +115,9 @@ namespace DynamicContact
     }
 
     /**
-     * The scheme (k, theta) K0 was formed for: the step the Newton solvers
-     * and the nodal laws are solving.
+     * The scheme (k, theta) K0 was formed for. The solvers get a step's
+     * scheme as an argument and check it against this one; what they derive
+     * from K0 alone (its factorization, its AMG) is kept for this scheme.
      */
     const TimeScheme &
     scheme() const

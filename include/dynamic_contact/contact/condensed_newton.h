@@ -53,7 +53,8 @@ namespace DynamicContact
     reinit() override;
 
     Result
-    solve(const Vector_t                    &rhs,
+    solve(const TimeScheme                  &scheme,
+          const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
           const FrictionCoefficients        &mu,
@@ -67,7 +68,8 @@ namespace DynamicContact
      * as it was).
      */
     Result
-    solve_provisional(const Vector_t                    &rhs,
+    solve_provisional(const TimeScheme                  &scheme,
+                      const Vector_t                    &rhs,
                       const std::vector<Tensor<1, dim>> &u_old,
                       const std::vector<Tensor<1, dim>> &w_old,
                       const FrictionCoefficients        &mu,
@@ -108,9 +110,10 @@ namespace DynamicContact
     /** The dense system of a Newton step on the active nodes. */
     ReducedSystem<dim> reduced;
 
-    /** The data of the current solve at every node. */
+    /** The data of the current solve at every node, and its scheme. */
     std::vector<Tensor<1, dim>> u_old_all, w_old_all;
     FrictionCoefficients        mu_all;
+    TimeScheme                  step_scheme;
 
     Vector_t solution, right_hand_side, residual, increment, scratch;
 
@@ -135,6 +138,7 @@ namespace DynamicContact
      */
     struct Pending
     {
+      TimeScheme                  scheme;
       std::vector<Tensor<1, dim>> u_old, w_old;
       FrictionCoefficients        mu;
       Iterate                     it;
@@ -162,7 +166,8 @@ namespace DynamicContact
 
     /** solve() and solve_provisional(). */
     Result
-    solve(const Vector_t                    &rhs,
+    solve(const TimeScheme                  &scheme,
+          const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
           const FrictionCoefficients        &mu,

@@ -59,8 +59,9 @@ namespace DynamicContact
      * nodal laws use c = c_t k.
      */
     double c_t;
-    // The time scheme of the step (k, theta) is bulk.scheme(): the laws act
-    // on u_n and w_e = theta w_n + (1 - theta) w_{n-1} (TimeScheme).
+    // The time scheme of a step (k, theta) reaches the solvers as an
+    // argument of ContactNewton::solve(): the laws act on u_n and
+    // w_e = theta w_n + (1 - theta) w_{n-1} (TimeScheme).
   };
 
 
@@ -113,16 +114,18 @@ namespace DynamicContact
     reinit() = 0;
 
     /**
-     * Solve one pass of the step. Every per-node vector is aligned with
-     * ContactBoundary::nodes() (the nodes this process owns): @p u_old and
-     * @p w_old hold u_{n-1} and w_{n-1}, @p mu the friction coefficients
-     * (frozen, or coupled: mu(|w_e,tau|) of the iterate, linearized too),
-     * @p lambda the friction forces (in: initial guess, out: result); @p w
-     * the initial guess and the result (master form). Throws StepFailure
-     * if the iteration does not converge.
+     * Solve one pass of the step of @p scheme (k, theta; bulk's K0 must be
+     * formed for it: BulkOperator::set_time_step()). Every per-node vector
+     * is aligned with ContactBoundary::nodes() (the nodes this process
+     * owns): @p u_old and @p w_old hold u_{n-1} and w_{n-1}, @p mu the
+     * friction coefficients (frozen, or coupled: mu(|w_e,tau|) of the
+     * iterate, linearized too), @p lambda the friction forces (in: initial
+     * guess, out: result); @p w the initial guess and the result (master
+     * form). Throws StepFailure if the iteration does not converge.
      */
     virtual Result
-    solve(const Vector_t                    &rhs,
+    solve(const TimeScheme                  &scheme,
+          const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
           const FrictionCoefficients        &mu,
@@ -140,7 +143,8 @@ namespace DynamicContact
      * default solves.
      */
     virtual Result
-    solve_provisional(const Vector_t                    &rhs,
+    solve_provisional(const TimeScheme                  &scheme,
+                      const Vector_t                    &rhs,
                       const std::vector<Tensor<1, dim>> &u_old,
                       const std::vector<Tensor<1, dim>> &w_old,
                       const FrictionCoefficients        &mu,
@@ -148,7 +152,7 @@ namespace DynamicContact
                       Vector_t                          &w,
                       const double /*velocity_accuracy*/ = 0)
     {
-      return solve(rhs, u_old, w_old, mu, lambda, w);
+      return solve(scheme, rhs, u_old, w_old, mu, lambda, w);
     }
 
     /**

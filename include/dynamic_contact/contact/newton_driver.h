@@ -235,7 +235,8 @@ namespace DynamicContact
 
   /**
    * The one per-node evaluation of the Newton back-ends (condensed and
-   * whole-system): the laws of @p problem at node @p node with the old
+   * whole-system): the laws of @p problem in the step of @p scheme at node
+   * @p node with the old
    * values @p u_old, @p w_old, the iterate @p w, @p lambda and node @p i's
    * coefficient of @p mu (frozen, or mu(|w_e,tau|) of the iterate with its
    * derivative in the linearization: FrictionCoefficients).
@@ -243,6 +244,7 @@ namespace DynamicContact
   template <int dim>
   NodeEvaluation<dim>
   evaluate_node(const ContactProblem<dim>  &problem,
+                const TimeScheme           &scheme,
                 const ContactNode<dim>     &node,
                 const Tensor<1, dim>       &u_old,
                 const Tensor<1, dim>       &w_old,
@@ -251,9 +253,8 @@ namespace DynamicContact
                 const FrictionCoefficients &mu,
                 const unsigned int          i)
   {
-    const TimeScheme   &scheme = problem.bulk.scheme();
-    const double        c      = problem.c_t * scheme.time_step();
-    double              mu_i = 0, dmu_ds = 0;
+    const double c    = problem.c_t * scheme.time_step();
+    double       mu_i = 0, dmu_ds = 0;
     if (problem.friction && mu.coupled())
       {
         const double s = node.tangential(scheme.weighted(w, w_old)).norm();

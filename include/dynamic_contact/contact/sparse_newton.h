@@ -48,7 +48,8 @@ namespace DynamicContact
     reinit() override;
 
     Result
-    solve(const Vector_t                    &rhs,
+    solve(const TimeScheme                  &scheme,
+          const Vector_t                    &rhs,
           const std::vector<Tensor<1, dim>> &u_old,
           const std::vector<Tensor<1, dim>> &w_old,
           const FrictionCoefficients        &mu,

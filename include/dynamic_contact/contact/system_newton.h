@@ -96,6 +96,7 @@ namespace DynamicContact
     using Iterate = SystemIterate<dim>;
 
     SystemNewton(const ContactProblem<dim>         &problem,
+                 const TimeScheme                  &scheme,
                  const Vector_t                    &rhs,
                  const std::vector<Tensor<1, dim>> &u_old,
                  const std::vector<Tensor<1, dim>> &w_old,
@@ -152,10 +153,12 @@ namespace DynamicContact
     Tensor<1, dim>
     effective_velocity(const unsigned int i, const Tensor<1, dim> &w_i) const
     {
-      return problem.bulk.scheme().weighted(w_i, w_old[i]);
+      return scheme.weighted(w_i, w_old[i]);
     }
 
     const ContactProblem<dim>         &problem;
+    /** The step's (k, theta); K0 is formed for it. */
+    const TimeScheme                  &scheme;
     const Vector_t                    &rhs;
     const std::vector<Tensor<1, dim>> &u_old;
     const std::vector<Tensor<1, dim>> &w_old;

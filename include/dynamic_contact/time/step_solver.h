@@ -132,20 +132,23 @@ namespace DynamicContact
     reinit(const double complementarity_constant);
 
     /**
-     * Solve one step. @p w holds the initial guess (w_{n-1}) and returns w_n,
-     * in master form; the ContactState holds the friction forces of the
-     * last step (the warm start) and returns those of w_n, with the frozen
-     * coefficients and the node states. Throws StepFailure if Newton does not
-     * converge, and if the convexification loop reaches its cap unless
-     * @p accept_unconverged_loop (the smallest time step: the step is then
-     * kept, with Statistics::convexification_converged = false).
+     * Solve one step of @p scheme (k, theta; bulk's K0 must be formed for it:
+     * BulkOperator::set_time_step()). @p w holds the initial guess
+     * (w_{n-1}) and returns w_n, in master form; the ContactState holds
+     * the friction forces of the last step (the warm start) and returns
+     * those of w_n, with the frozen coefficients and the node states. Throws
+     * StepFailure if Newton does not converge, and if the convexification
+     * loop reaches its cap unless @p accept_unconverged_loop (the smallest
+     * time step: the step is then kept, with
+     * Statistics::convexification_converged = false).
      */
     Statistics
-    solve(const Vector_t &rhs,
-          const Vector_t &u_old,
-          const Vector_t &w_old,
-          Vector_t       &w,
-          const bool      accept_unconverged_loop = false);
+    solve(const TimeScheme &scheme,
+          const Vector_t   &rhs,
+          const Vector_t   &u_old,
+          const Vector_t   &w_old,
+          Vector_t         &w,
+          const bool        accept_unconverged_loop = false);
 
     /** The contact solver in use (Solver/Contact solver, auto resolved). */
     std::string
@@ -200,9 +203,9 @@ namespace DynamicContact
      * compliance columns) from step to step.
      */
     std::array<std::unique_ptr<ContactNewton<dim>>, 2> newtons;
-    /** The solver for the scheme of bulk.scheme(). */
+    /** The solver for steps of @p scheme's kind. */
     ContactNewton<dim> &
-    newton_for_scheme();
+    newton_for(const TimeScheme &scheme);
     /** How the steps are solved (made by reinit()). */
     SolverPlan plan;
     /** The parameters with the plan's choices, which the solvers keep. */
@@ -216,11 +219,14 @@ namespace DynamicContact
      * (Statistics::uniqueness_bound, contraction_factor; collective).
      */
     void
-    measure_uniqueness(ContactNewton<dim> &newton, Statistics &statistics);
+    measure_uniqueness(const TimeScheme   &scheme,
+                       ContactNewton<dim> &newton,
+                       Statistics         &statistics);
 
     /** Evaluate the owned nodes' states at the converged (w, lambda). */
     void
-    update_states(const std::vector<Tensor<1, dim>> &u_old_nodes,
+    update_states(const TimeScheme                  &scheme,
+                  const std::vector<Tensor<1, dim>> &u_old_nodes,
                   const std::vector<Tensor<1, dim>> &w_old_nodes,
                   const Vector_t                    &w,
                   Statistics                        &statistics);
