@@ -4,6 +4,7 @@
 #include <dynamic_contact/run/command_line.h>
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
+#include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/run/mpi_startup.h>
 #include <dynamic_contact/parameters/parameters.h>
 #include <dynamic_contact/parameters/provenance.h>
@@ -71,6 +72,7 @@ main(int argc, char *argv[])
   // step with a checkpoint (README, "What can go wrong").
   initialize_error_handling(comm);
   install_stop_signal_handlers();
+  note_resident_at_start();
 
   const CommandLine command_line = CommandLine::parse(argc, argv);
   if (!command_line.error.empty())

@@ -260,28 +260,49 @@ main(int argc, char **argv)
         << std::endl;
     checks.add(has_overrides, "parameters.prm holds the --set values");
 
-    // log.txt: the screen output, one provenance line and the solver plan
-    // (which contact solver, which factorization, why).
+    // log.txt: the screen output, one provenance line, the solver plan
+    // (which contact solver, which factorization, why) and, at the end, the
+    // memory table (what the run holds, part by part).
     const std::regex plan_line(R"(  solver plan: (condensed|assembled).*)");
-    std::string      rest;
-    unsigned int     provenance_lines = 0, plan_lines = 0;
+    const std::regex memory_header(
+      R"(  memory \([0-9]+ DoFs on 1 processes\): MB in all, .*)");
+    const std::regex memory_row(
+      R"(    [a-zA-Z].* +[0-9.]+ +[0-9.]+ +[0-9]+(  \(measured\))?)");
+    std::string  rest;
+    unsigned int provenance_lines = 0, plan_lines = 0, memory_tables = 0,
+                 memory_rows = 0;
+    bool         in_memory_table = false;
     for (const auto &line : lines_of(read_text("original/log.txt")))
       if (std::regex_match(line, provenance_line))
         ++provenance_lines;
       else if (std::regex_match(line, plan_line))
         ++plan_lines;
+      else if (std::regex_match(line, memory_header))
+        {
+          ++memory_tables;
+          in_memory_table = true;
+        }
+      else if (in_memory_table && std::regex_match(line, memory_row))
+        ++memory_rows;
       else
-        rest += line + "\n";
+        {
+          in_memory_table = false;
+          rest += line + "\n";
+        }
     std::string screen;
     for (const auto &line : lines_of(original.out))
       screen += line + "\n";
     out << "  log.txt: " << provenance_lines << " provenance line(s), "
-        << plan_lines
-        << " solver plan line(s); the rest is the screen output: "
+        << plan_lines << " solver plan line(s), " << memory_tables
+        << " memory table(s); the rest is the screen output: "
         << yes_no(rest == screen) << std::endl;
     checks.add(original.succeeded(), "original: exit code 0");
     checks.add(provenance_lines == 1, "log.txt has one provenance line");
     checks.add(plan_lines == 1, "log.txt has the solver plan");
+    // The mesh, the pattern, M, the two other bulk matrices, K0 and the
+    // totals at least.
+    checks.add(memory_tables == 1 && memory_rows >= 10,
+               "log.txt ends with the memory table");
     checks.add(rest == screen && !screen.empty(),
                "log.txt is a copy of the screen output");
     checks.add(!std::regex_search(original.out, std::regex("started [0-9]")),

@@ -136,6 +136,34 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  BulkOperator<dim>::memory_consumption(MemoryItems &items) const
+  {
+    // Epetra keeps one graph (the column indices) per pattern, shared by
+    // the matrices made from it; each matrix adds its values.
+    const auto  &graph = pattern.trilinos_sparsity_pattern();
+    const double rows  = graph.NumMyRows();
+    items.push_back({"sparsity pattern (shared)",
+                     double(graph.NumMyNonzeros()) * sizeof(int) +
+                       rows * 2 * sizeof(int),
+                     false});
+    const auto values = [&](const std::string &name, const Matrix_t &A) {
+      items.push_back({name,
+                       double(A.trilinos_matrix().NumMyNonzeros()) *
+                           sizeof(double) +
+                         rows * sizeof(double *),
+                       false});
+    };
+    values("mass matrix M", mass_matrix);
+    values("elasticity matrix", elasticity_matrix);
+    if (material.has_viscosity())
+      values("viscosity matrix", viscosity_matrix);
+    values("strain matrix (norm of V)", strain_matrix);
+    values("bulk matrix K0", bulk_matrix);
+  }
+
+
+  template <int dim>
   double
   BulkOperator<dim>::product(const Matrix_t &A,
                              const Vector_t &x,

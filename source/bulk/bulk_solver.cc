@@ -217,7 +217,9 @@ namespace DynamicContact
     list.set("null space: type", "pre-computed");
     list.set("null space: dimension", static_cast<int>(n_modes));
     list.set("null space: vectors", modes.data());
+    const ResidentGrowth growth;
     amg.initialize(matrix, list);
+    hierarchy_bytes = growth.measured();
   }
 
 
@@ -282,9 +284,12 @@ namespace DynamicContact
         // Keep the analysis of the last factorization (same pattern).
         if (!cholesky)
           cholesky = std::make_unique<Cholesky>(A.get_mpi_communicator());
+        const ResidentGrowth growth;
         cholesky->factorize(A.trilinos_matrix(),
                             std::vector<SuiteSparse_long>(trailing_rows.begin(),
                                                           trailing_rows.end()));
+        factorization_bytes =
+          std::max(factorization_bytes, growth.measured());
       }
     else if (parameters.linear_solver ==
              Parameters::Solver::LinearSolver::direct)
@@ -300,9 +305,12 @@ namespace DynamicContact
                     ExcMessage("Solver/Direct solver package: '" +
                                parameters.direct_solver_package +
                                "' is not available in this Trilinos."));
+        const ResidentGrowth growth;
         AssertThrow(direct->SymbolicFactorization() == 0 &&
                       direct->NumericFactorization() == 0,
                     ExcMessage("The factorization of the bulk matrix failed."));
+        factorization_bytes =
+          std::max(factorization_bytes, growth.measured());
         // The Schur complement from MUMPS in 3D only: on the thin 2D
         // domains of the paper's scenes it differs from the solves by
         // 1e-11 to 1e-9 relative (the check in inverse_block()), and where
@@ -319,6 +327,19 @@ namespace DynamicContact
         amg = std::make_unique<BulkAMG>();
         amg->initialize(A, discretization);
       }
+  }
+
+
+  void
+  BulkSolver::memory_consumption(const std::string &name,
+                                 MemoryItems       &items) const
+  {
+    if (amg)
+      items.push_back({name + " (AMG)", amg->memory_consumption(), true});
+    else if (cholesky || direct)
+      items.push_back({name + (cholesky ? " (CHOLMOD)" : " (Amesos)"),
+                       factorization_bytes,
+                       true});
   }
 
 

@@ -28,6 +28,27 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Discretization<dim>::memory_consumption(MemoryItems &items) const
+  {
+    items.push_back(
+      {"mesh (with p4est)", double(triangulation.memory_consumption()), false});
+    items.push_back({"DoF handlers and index sets",
+                     double(dof_handler.memory_consumption() +
+                            scalar_dof_handler.memory_consumption() +
+                            locally_owned.memory_consumption() +
+                            locally_relevant.memory_consumption() +
+                            scalar_locally_owned.memory_consumption() +
+                            scalar_locally_relevant.memory_consumption()),
+                     false});
+    items.push_back({"constraints",
+                     double(constraints.memory_consumption() +
+                            hanging_node_constraints.memory_consumption()),
+                     false});
+  }
+
+
+  template <int dim>
+  void
   Discretization<dim>::setup_dofs(
     const Parameters::BoundaryConditions &boundary_conditions)
   {

@@ -129,6 +129,27 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  BoundaryCompliance<dim>::memory_consumption(MemoryItems &items) const
+  {
+    if (regularized.m() > 0)
+      items.push_back({"K0' = K0 + springs (values)",
+                       double(regularized.trilinos_matrix().NumMyNonzeros()) *
+                         sizeof(double),
+                       false});
+    bulk_solver.memory_consumption("factorization of K0'", items);
+    double c = 0, full = 0;
+    for (const auto &column : columns)
+      c += column.size() * sizeof(Tensor<2, dim>);
+    for (const auto &column : full_columns)
+      full += column.size() * sizeof(double);
+    // The same items on every process (a process may own none of them).
+    items.push_back({"compliance C of Gamma_3", c, false});
+    items.push_back({"whole responses to Gamma_3", full, false});
+  }
+
+
+  template <int dim>
   bool
   BoundaryCompliance<dim>::prepare(Result &result)
   {

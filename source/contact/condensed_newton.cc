@@ -363,6 +363,16 @@ namespace DynamicContact
   }
 
 
+  template <int dim>
+  void
+  CondensedNewton<dim>::memory_consumption(MemoryItems &items) const
+  {
+    compliance.memory_consumption(items);
+    items.push_back(
+      {"reduced dense system on Gamma_3", reduced.memory_consumption(), false});
+  }
+
+
   template class CondensedNewton<2>;
   template class CondensedNewton<3>;
 } // namespace DynamicContact

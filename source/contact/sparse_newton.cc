@@ -638,7 +638,10 @@ namespace DynamicContact
           direct_control,
           TrilinosWrappers::SolverDirect::AdditionalData(
             false, amesos_package(problem.parameters)));
+        const ResidentGrowth growth;
         direct->initialize(system_matrix);
+        factorization_bytes =
+          std::max(factorization_bytes, growth.measured());
         ++result.factorizations;
         factorized_blocks = system.blocks;
         factorized_stick  = system.stick;
@@ -646,6 +649,25 @@ namespace DynamicContact
       }
     TimerSection t(problem.timer, "Newton: triangular solves");
     direct->solve(dw, scratch2);
+  }
+
+
+  template <int dim>
+  void
+  SparseNewton<dim>::memory_consumption(MemoryItems &items) const
+  {
+    if (amg)
+      items.push_back({"AMG of K0", amg->memory_consumption(), true});
+    if (system_matrix.m() > 0)
+      {
+        items.push_back({"Newton matrix (values)",
+                         double(system_matrix.trilinos_matrix()
+                                  .NumMyNonzeros()) *
+                           sizeof(double),
+                         false});
+        items.push_back(
+          {"factorization of the Newton matrix", factorization_bytes, true});
+      }
   }
 
 

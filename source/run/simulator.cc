@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/vector_memory.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/base/error_messages.h>
@@ -314,6 +315,39 @@ namespace DynamicContact
     record.adaptive_time = parameters.time.adaptive; // the columns, 0
     record.uniqueness_monitor = uniqueness_columns();  // -1: not evaluated
     return record;
+  }
+
+
+  template <int dim>
+  std::string
+  Simulator<dim>::memory_table() const
+  {
+    MemoryItems items;
+    discretization.memory_consumption(items);
+    bulk.memory_consumption(items);
+    step_solver.memory_consumption(items);
+    double fields = 0;
+    for (const auto *v : {&u,
+                          &w,
+                          &u_old,
+                          &w_old,
+                          &u_bar,
+                          &w_bar,
+                          &u_stage,
+                          &w_stage,
+                          &load,
+                          &rhs,
+                          &scratch})
+      fields += v->locally_owned_size() * sizeof(double);
+    items.push_back({"the step's fields and work vectors", fields, false});
+    // Krylov bases and other temporaries come from deal.II's pool, which
+    // keeps them for reuse.
+    items.push_back({"Krylov vectors (deal.II's pool)",
+                     double(GrowingVectorMemory<Vector_t>().memory_consumption()),
+                     false});
+    return DynamicContact::memory_table(items,
+                                        discretization.dof_handler.n_dofs(),
+                                        comm);
   }
 
 

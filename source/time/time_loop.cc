@@ -669,6 +669,13 @@ namespace DynamicContact
               << wall << " s" << std::defaultfloat << std::endl;
         pcout << timing_table(timer, wall);
       }
+    // What the run holds, by part: on the screen with the timings, in
+    // log.txt always (resident memory differs from run to run).
+    const std::string memory = model.memory_table();
+    if (parameters.output.print_timings)
+      pcout << memory;
+    else if (Utilities::MPI::this_mpi_process(comm) == 0)
+      screen_log.log_only(memory);
     write_log(true);
     write_status(status);
   }

@@ -5,6 +5,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/face_load_quadrature.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
@@ -124,6 +125,13 @@ namespace DynamicContact
     {
       return current;
     }
+
+    /**
+     * What the operator holds on this process: the sparsity pattern (one
+     * graph, which every matrix shares) and each matrix's values.
+     */
+    void
+    memory_consumption(MemoryItems &items) const;
 
     /** A sparsity pattern for matrices that share K0's structure. */
     const TrilinosWrappers::SparsityPattern &

@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/parameters/parameters.h>
@@ -67,10 +68,21 @@ namespace DynamicContact
       amg.vmult(dst, src);
     }
 
+    /**
+     * What the hierarchy holds on this process: the growth of the resident
+     * memory while ML built it, and the near null space.
+     */
+    double
+    memory_consumption() const
+    {
+      return hierarchy_bytes + modes.size() * sizeof(double);
+    }
+
   private:
     /** The near null space, column-major over the owned rows. */
     std::vector<double>                       modes;
     dealii::TrilinosWrappers::PreconditionAMG amg;
+    double                                    hierarchy_bytes = 0;
   };
 
   /**
@@ -192,6 +204,13 @@ namespace DynamicContact
     double
     solve_cost() const;
 
+    /**
+     * What the factorization (or the AMG) of the last initialize() holds
+     * on this process, as an item named @p name plus the method.
+     */
+    void
+    memory_consumption(const std::string &name, MemoryItems &items) const;
+
   private:
     const Parameters::Solver parameters;
     const Matrix_t          *matrix = nullptr;
@@ -208,6 +227,12 @@ namespace DynamicContact
     std::unique_ptr<BulkAMG>              amg;
     /** The CHOLMOD factorization (of the whole matrix on every process). */
     std::unique_ptr<Cholesky> cholesky;
+    /**
+     * The largest growth of the resident memory measured while a
+     * factorization was made (the first one on a mesh allocates; later ones
+     * may reuse what the one before them freed).
+     */
+    double factorization_bytes = 0;
   };
 } // namespace DynamicContact
 

@@ -10,6 +10,7 @@
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/lac/affine_constraints.h>
 
+#include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -44,6 +45,14 @@ namespace DynamicContact
     /** Distribute DoFs and build the constraints for the current mesh. */
     void
     setup_dofs(const Parameters::BoundaryConditions &boundary_conditions);
+
+    /**
+     * What the mesh (with p4est's forest), the DoF handlers with their
+     * index sets, and the constraints hold on this process (deal.II's
+     * memory_consumption()).
+     */
+    void
+    memory_consumption(MemoryItems &items) const;
 
     /** The minimal cell diameter over all processes. */
     double

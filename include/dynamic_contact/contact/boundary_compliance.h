@@ -138,6 +138,13 @@ namespace DynamicContact
     double
     radius(const std::vector<Tensor<2, dim>> &roots);
 
+    /**
+     * What it holds on this process: K0' (its values; the pattern is K0's),
+     * its factorization, C and the whole responses.
+     */
+    void
+    memory_consumption(MemoryItems &items) const;
+
   private:
     const ContactProblem<dim>   &problem;
     const GatheredBoundary<dim> &gathered;

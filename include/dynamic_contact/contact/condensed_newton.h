@@ -94,6 +94,9 @@ namespace DynamicContact
     double
     compliance_radius(const std::vector<Tensor<2, dim>> &roots) override;
 
+    void
+    memory_consumption(MemoryItems &items) const override;
+
     /** The whole-system Newton step by condensation (phase 2). */
     void
     newton_step(const SystemNewton<dim>  &system,

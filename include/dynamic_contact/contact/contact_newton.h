@@ -4,6 +4,7 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/laws/contact_law.h>
@@ -181,6 +182,13 @@ namespace DynamicContact
      */
     virtual double
     compliance_radius(const std::vector<Tensor<2, dim>> &roots) = 0;
+
+    /**
+     * What the solver holds on this process beyond the bulk operator
+     * (factorizations, preconditioners, dense tables, its own matrices).
+     */
+    virtual void
+    memory_consumption(MemoryItems &items) const = 0;
 
     /**
      * After a provisional solve: its velocities at the nodes this process

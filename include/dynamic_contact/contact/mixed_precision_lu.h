@@ -72,6 +72,14 @@ namespace DynamicContact
       return in_double;
     }
 
+    /** The bytes of the factor and its scalings. */
+    double
+    memory_consumption() const
+    {
+      return lu.size() * sizeof(float) +
+             (row_scale.size() + column_scale.size()) * sizeof(double);
+    }
+
   private:
     const LAPACKFullMatrix<double> *A;
     const types::blas_int           n;

@@ -107,6 +107,14 @@ namespace DynamicContact
      */
     static constexpr unsigned int large_system = 512;
 
+    /** The bytes of the dense system and its factor. */
+    double
+    memory_consumption() const
+    {
+      return double(matrix.m()) * matrix.n() * sizeof(double) +
+             (lu ? lu->memory_consumption() : 0.);
+    }
+
   private:
     const GatheredBoundary<dim>   &gathered;
     const BoundaryCompliance<dim> &compliance;

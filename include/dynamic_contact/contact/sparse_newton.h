@@ -61,6 +61,9 @@ namespace DynamicContact
     compliance_radius(const std::vector<Tensor<2, dim>> &roots) override;
 
     void
+    memory_consumption(MemoryItems &items) const override;
+
+    void
     newton_step(const SystemNewton<dim>  &system,
                 const SystemIterate<dim> &x,
                 SystemIterate<dim>       &full,
@@ -138,6 +141,8 @@ namespace DynamicContact
     std::vector<Tensor<2, dim>>                     factorized_blocks;
     std::vector<bool>                               factorized_stick;
     TimeScheme                                      factorized_scheme;
+    /** The largest growth of resident memory a factorization measured. */
+    double factorization_bytes = 0;
 
     /** The residual with the linearized forces' constant part. */
     Vector_t base_residual;

@@ -223,6 +223,14 @@ namespace DynamicContact
     {
       return step_solver.solver_plan().description();
     }
+
+    /**
+     * What the run holds, by part (memory_table(); collective): the mesh
+     * and DoFs, the bulk operator's pattern and matrices, the contact
+     * solvers' factorizations, preconditioners and tables, the vectors.
+     */
+    std::string
+    memory_table() const;
     bool
     has_friction() const
     {

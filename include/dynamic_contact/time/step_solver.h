@@ -164,6 +164,15 @@ namespace DynamicContact
       return plan;
     }
 
+    /** What the contact solvers made so far hold on this process. */
+    void
+    memory_consumption(MemoryItems &items) const
+    {
+      for (const auto &newton : newtons)
+        if (newton)
+          newton->memory_consumption(items);
+    }
+
     /** True if the scene has friction (a law with a nonzero coefficient). */
     bool
     has_friction() const

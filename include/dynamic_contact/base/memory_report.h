@@ -1,0 +1,72 @@
+#ifndef dynamic_contact_memory_report_h
+#define dynamic_contact_memory_report_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/types.h>
+
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  using namespace dealii;
+
+  /**
+   * What one part of the program holds on this process: counted from its
+   * sizes (a matrix's values, a vector's entries), or measured as the growth
+   * of the resident memory while it was built (a factorization or an AMG
+   * hierarchy, whose libraries do not say).
+   */
+  struct MemoryItem
+  {
+    std::string name;
+    double      bytes    = 0;
+    bool        measured = false;
+  };
+
+  using MemoryItems = std::vector<MemoryItem>;
+
+  /** The resident memory (VmRSS) of this process now, in bytes. */
+  double
+  resident_bytes();
+
+  /**
+   * Note the resident memory now as that of the program, its libraries and
+   * MPI (the program calls this after MPI_Init, before it reads its
+   * input); memory_table() lists it.
+   */
+  void
+  note_resident_at_start();
+
+  /**
+   * Measures the growth of this process's resident memory from its
+   * construction to measured(): what a library allocated in between (a
+   * lower bound where it reused memory freed before).
+   */
+  class ResidentGrowth
+  {
+  public:
+    ResidentGrowth();
+
+    double
+    measured() const;
+
+  private:
+    const double start;
+  };
+
+  /**
+   * The memory table of a run (collective): each item summed over the
+   * processes and the largest share of one process, in MB and in bytes per
+   * DoF of @p n_dofs; then their total, the resident memory now and the
+   * peak (VmHWM), both summed over the processes, and what the items do
+   * not account for (libraries, the mesh's and the output's temporaries,
+   * the heap's free space).
+   */
+  std::string
+  memory_table(const MemoryItems            &items,
+               const types::global_dof_index n_dofs,
+               const MPI_Comm                comm);
+} // namespace DynamicContact
+
+#endif
