@@ -11,9 +11,11 @@ namespace DynamicContact
 {
   template <int dim>
   BulkOperator<dim>::BulkOperator(const Discretization<dim>      &d,
-                                  const KelvinVoigtMaterial<dim> &material)
+                                  const KelvinVoigtMaterial<dim> &material,
+                                  const bool                      strain_norm)
     : discretization(d)
     , material(material)
+    , strain_norm(strain_norm)
     , face_quadrature(d)
   {}
 
@@ -26,21 +28,39 @@ namespace DynamicContact
     const auto &fe          = discretization.fe;
     loaded_cells_scene      = nullptr; // the mesh changed
 
-    pattern.reinit(discretization.locally_owned,
-                   discretization.locally_owned,
-                   discretization.locally_relevant,
-                   discretization.comm);
-    DoFTools::make_sparsity_pattern(dof_handler,
-                                    pattern,
-                                    discretization.constraints,
-                                    /*keep_constrained_dofs=*/false,
-                                    Utilities::MPI::this_mpi_process(
-                                      discretization.comm));
-    pattern.compress();
+    // Every component with every other (K0 and the stiffness matrices),
+    // and each component with itself alone (M: phi_i . phi_j vanishes
+    // between components).
+    Table<2, DoFTools::Coupling> all(dim, dim), same(dim, dim);
+    for (unsigned int c = 0; c < dim; ++c)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          all(c, d)  = DoFTools::always;
+          same(c, d) = (c == d ? DoFTools::always : DoFTools::none);
+        }
+    for (auto [p, couplings] : {std::make_pair(&pattern, &all),
+                                std::make_pair(&mass_pattern, &same)})
+      {
+        p->reinit(discretization.locally_owned,
+                  discretization.locally_owned,
+                  discretization.locally_relevant,
+                  discretization.comm);
+        DoFTools::make_sparsity_pattern(dof_handler,
+                                        *couplings,
+                                        *p,
+                                        discretization.constraints,
+                                        /*keep_constrained_dofs=*/false,
+                                        Utilities::MPI::this_mpi_process(
+                                          discretization.comm));
+        p->compress();
+      }
 
-    mass_matrix.reinit(pattern);
+    mass_matrix.reinit(mass_pattern);
     elasticity_matrix.reinit(pattern);
-    strain_matrix.reinit(pattern);
+    if (strain_norm)
+      strain_matrix.reinit(pattern);
+    else
+      strain_matrix.clear();
     if (material.has_viscosity())
       viscosity_matrix.reinit(pattern);
 
@@ -141,12 +161,17 @@ namespace DynamicContact
   {
     // Epetra keeps one graph (the column indices) per pattern, shared by
     // the matrices made from it; each matrix adds its values.
-    const auto  &graph = pattern.trilinos_sparsity_pattern();
-    const double rows  = graph.NumMyRows();
-    items.push_back({"sparsity pattern (shared)",
-                     double(graph.NumMyNonzeros()) * sizeof(int) +
-                       rows * 2 * sizeof(int),
-                     false});
+    const double rows  = discretization.locally_owned.n_elements();
+    const auto   graph = [&](const std::string                       &name,
+                           const TrilinosWrappers::SparsityPattern &p) {
+      items.push_back({name,
+                       double(p.trilinos_sparsity_pattern().NumMyNonzeros()) *
+                           sizeof(int) +
+                         rows * 2 * sizeof(int),
+                       false});
+    };
+    graph("sparsity pattern (shared)", pattern);
+    graph("sparsity pattern of M", mass_pattern);
     const auto values = [&](const std::string &name, const Matrix_t &A) {
       items.push_back({name,
                        double(A.trilinos_matrix().NumMyNonzeros()) *
@@ -158,7 +183,8 @@ namespace DynamicContact
     values("elasticity matrix", elasticity_matrix);
     if (material.has_viscosity())
       values("viscosity matrix", viscosity_matrix);
-    values("strain matrix (norm of V)", strain_matrix);
+    if (strain_norm)
+      values("strain matrix (norm of V)", strain_matrix);
     values("bulk matrix K0", bulk_matrix);
   }
 

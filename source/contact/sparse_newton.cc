@@ -17,6 +17,9 @@ namespace DynamicContact
 {
   namespace
   {
+    /** The GMRES restart length of the whole-system Newton step. */
+    constexpr unsigned int gmres_restart = 100;
+
     /** The raw (DoF) values of a node, without its constraint map. */
     template <int dim>
     Tensor<1, dim>
@@ -510,7 +513,8 @@ namespace DynamicContact
     SolverControl         control(problem.parameters.max_linear_iterations,
                           forcing * f.l2_norm());
     SolverGMRES<Vector_t> gmres(
-      control, typename SolverGMRES<Vector_t>::AdditionalData(100, true));
+      control,
+      typename SolverGMRES<Vector_t>::AdditionalData(gmres_restart, true));
     Vector_t delta;
     problem.discretization.reinit_owned(delta);
     try
@@ -526,6 +530,8 @@ namespace DynamicContact
           scientific(e.last_residual / std::max(f.l2_norm(), 1e-300)) + ")");
       }
     result.linear_iterations += control.last_step();
+    largest_basis =
+      std::max(largest_basis, std::min(control.last_step(), gmres_restart) + 2);
     dw = dw0;
     dw += delta;
   }
@@ -658,6 +664,13 @@ namespace DynamicContact
   {
     if (amg)
       items.push_back({"AMG of K0", amg->memory_consumption(), true});
+    if (problem.parameters.linear_solver ==
+        Parameters::Solver::LinearSolver::iterative)
+      items.push_back({"GMRES basis (the most a solve used)",
+                       double(largest_basis) *
+                         problem.discretization.locally_owned.n_elements() *
+                         sizeof(double),
+                       false});
     if (system_matrix.m() > 0)
       {
         items.push_back({"Newton matrix (values)",

@@ -1,7 +1,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_tools.h>
-#include <deal.II/lac/vector_memory.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/base/error_messages.h>
@@ -35,7 +34,9 @@ namespace DynamicContact
     , foundation(*parameters.foundation.law)
     , friction_law(parameters.friction.law)
     , discretization(comm, parameters.finite_element.degree)
-    , bulk(discretization, material)
+    , bulk(discretization,
+           material,
+           StepSolver<dim>::runs_convexification_loop(friction_law.get()))
     , step_solver(discretization,
                   bulk,
                   contact_boundary,
@@ -340,11 +341,6 @@ namespace DynamicContact
                           &scratch})
       fields += v->locally_owned_size() * sizeof(double);
     items.push_back({"the step's fields and work vectors", fields, false});
-    // Krylov bases and other temporaries come from deal.II's pool, which
-    // keeps them for reuse.
-    items.push_back({"Krylov vectors (deal.II's pool)",
-                     double(GrowingVectorMemory<Vector_t>().memory_consumption()),
-                     false});
     return DynamicContact::memory_table(items,
                                         discretization.dof_handler.n_dofs(),
                                         comm);

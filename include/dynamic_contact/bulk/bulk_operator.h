@@ -21,22 +21,35 @@ namespace DynamicContact
    * The linear part of the scheme (doc/theory.md section 2; the theta-scheme
    * generalizes it, theta = 1 being backward Euler): the mass matrix M
    * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
-   * of a_C (and the Gram matrix of (eps(u), eps(v)), for the norm of V that
-   * the convexification loop and the error norms use), assembled once per
-   * mesh and condensed with the mesh's
-   * constraints, and the bulk Newton matrix
+   * of a_C (and, if asked for, the Gram matrix of (eps(u), eps(v)): the
+   * norm of V of the convexification loop's stopping rule), assembled once
+   * per mesh and condensed with the mesh's constraints, and the bulk Newton
+   * matrix
    *   K0 = (rho/k) M + A + k B,
    * formed from them (no reassembly) whenever k changes. Nothing of Gamma_3
    * is in here: the contact terms are added by the step solver.
+   *
+   * The matrices share one sparsity pattern, but for M: it couples each
+   * displacement component with itself only, so it has a pattern of its
+   * own with 1/dim of the entries.
    */
   template <int dim>
   class BulkOperator
   {
   public:
+    /**
+     * With @p strain_norm, also the Gram matrix of the norm of V
+     * (strain_product()); a scene without a convexification loop does not
+     * need it.
+     */
     BulkOperator(const Discretization<dim>      &discretization,
-                 const KelvinVoigtMaterial<dim> &material);
+                 const KelvinVoigtMaterial<dim> &material,
+                 const bool                      strain_norm = true);
 
-    /** Assemble M, B (and A if the material is viscous) on the current mesh. */
+    /**
+     * Assemble M, B (A if the material is viscous, the Gram matrix of V if
+     * asked for) on the current mesh.
+     */
     void
     reinit();
 
@@ -92,10 +105,14 @@ namespace DynamicContact
     {
       return material.has_viscosity() ? product(viscosity_matrix, x, y) : 0;
     }
-    /** (eps(x), eps(y))_{L^2}: the inner product of V, eq. (22). */
+    /**
+     * (eps(x), eps(y))_{L^2}: the inner product of V, eq. (22) (only if
+     * the operator was made with strain_norm).
+     */
     double
     strain_product(const Vector_t &x, const Vector_t &y) const
     {
+      Assert(strain_norm, ExcMessage("The Gram matrix of V was not made."));
       return product(strain_matrix, x, y);
     }
 
@@ -143,8 +160,11 @@ namespace DynamicContact
   private:
     const Discretization<dim>      &discretization;
     const KelvinVoigtMaterial<dim> &material;
+    const bool                      strain_norm;
 
     TrilinosWrappers::SparsityPattern pattern;
+    /** M's: each component coupled with itself. */
+    TrilinosWrappers::SparsityPattern mass_pattern;
     Matrix_t                          mass_matrix;
     Matrix_t                          elasticity_matrix;
     Matrix_t                          viscosity_matrix;

@@ -143,6 +143,8 @@ namespace DynamicContact
     TimeScheme                                      factorized_scheme;
     /** The largest growth of resident memory a factorization measured. */
     double factorization_bytes = 0;
+    /** The most GMRES basis vectors a solve used. */
+    unsigned int largest_basis = 0;
 
     /** The residual with the linearized forces' constant part. */
     Vector_t base_residual;

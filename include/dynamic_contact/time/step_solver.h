@@ -180,6 +180,18 @@ namespace DynamicContact
       return friction;
     }
 
+    /**
+     * Whether the steps of a scene with the friction law @p law (null:
+     * none) run the convexification loop: a law that depends on the slip
+     * rate. Only then is the norm of V (BulkOperator::strain_product())
+     * needed.
+     */
+    static bool
+    runs_convexification_loop(const FrictionLaw *law)
+    {
+      return law != nullptr && !law->is_constant();
+    }
+
   private:
     const Discretization<dim>  &discretization;
     const BulkOperator<dim>    &bulk;
