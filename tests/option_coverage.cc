@@ -12,7 +12,9 @@
 //   solves with K0; Solver/Condensed limit = 0 makes the plan assemble;
 //   the iterative linear solver to Solver/Linear tolerance agrees with the
 //   direct one, and one capped by Solver/Maximum linear iterations stops
-//   the run with an error that names the cap;
+//   the run with an error that names the cap; Solver/AMG aggregation =
+//   plain gives the same solution with more Krylov iterations (on a mesh
+//   refined twice: the multigrid has coarse levels there);
 // - Friction/Uniqueness monitor = always measures the bound with the
 //   assembled solver, never measures nothing (and has no column);
 // - Friction/Maximum slip rate is the range the law is checked on;
@@ -157,6 +159,29 @@ main(int argc, char *argv[])
                 return r.statistics.linear_iterations;
               }) > 0,
           "Solver/Linear solver = iterative: Krylov iterations counted");
+
+    const auto krylov = [](const std::vector<StepRecord<2>> &s) {
+      return sum(s, [](const StepRecord<2> &r) {
+        return r.statistics.linear_iterations;
+      });
+    };
+    std::vector<std::vector<StepRecord<2>>> aggregations;
+    for (const std::string aggregation : {"smoothed", "plain"})
+      aggregations.push_back(
+        series("aggregation-" + aggregation,
+               {"Geometry/Global refinements=2",
+                "Solver/Contact solver=assembled",
+                "Solver/Linear solver=iterative",
+                "Solver/Linear tolerance=1e-12",
+                "Solver/AMG aggregation=" + aggregation}));
+    check(test_tools::largest_difference(aggregations[1], aggregations[0]) <
+            1e-8,
+          "Solver/AMG aggregation = plain: the same solution to 1e-8");
+    check(krylov(aggregations[1]) > krylov(aggregations[0]),
+          "Solver/AMG aggregation = plain: more Krylov iterations");
+    check(test_tools::read_text("output-aggregation-plain/log.txt")
+              .find("plain aggregation") != std::string::npos,
+          "Solver/AMG aggregation = plain: the solver plan says so");
   }
 
   // The linear solver's cap: CG on K0 (the condensed solver with the

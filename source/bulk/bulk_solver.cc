@@ -199,7 +199,8 @@ namespace DynamicContact
   void
   BulkAMG::initialize(const Matrix_t            &matrix,
                       const Discretization<dim> &discretization,
-                      const bool                 with_rotations)
+                      const bool                 with_rotations,
+                      const bool                 smoothed)
   {
     modes = rigid_body_modes(discretization);
     // The translations are the first dim columns.
@@ -217,6 +218,11 @@ namespace DynamicContact
     list.set("null space: type", "pre-computed");
     list.set("null space: dimension", static_cast<int>(n_modes));
     list.set("null space: vectors", modes.data());
+    // Plain aggregation: the tentative prolongator of the aggregates, not
+    // smoothed by a Jacobi step with the matrix (whose products with the
+    // matrix make smoothed aggregation's hierarchy large).
+    if (!smoothed)
+      list.set("aggregation: damping factor", 0.);
     const ResidentGrowth growth;
     amg.initialize(matrix, list);
     hierarchy_bytes = growth.measured();
@@ -228,9 +234,15 @@ namespace DynamicContact
   template std::vector<double>
   rigid_body_modes(const Discretization<3> &, std::vector<double> *);
   template void
-  BulkAMG::initialize(const Matrix_t &, const Discretization<2> &, bool);
+  BulkAMG::initialize(const Matrix_t &,
+                      const Discretization<2> &,
+                      bool,
+                      bool);
   template void
-  BulkAMG::initialize(const Matrix_t &, const Discretization<3> &, bool);
+  BulkAMG::initialize(const Matrix_t &,
+                      const Discretization<3> &,
+                      bool,
+                      bool);
 
 
 
@@ -325,7 +337,10 @@ namespace DynamicContact
       {
         cholesky.reset();
         amg = std::make_unique<BulkAMG>();
-        amg->initialize(A, discretization);
+        amg->initialize(A,
+                        discretization,
+                        /*with_rotations=*/true,
+                        parameters.smoothed_aggregation);
       }
   }
 

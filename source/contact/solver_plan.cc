@@ -105,6 +105,7 @@ namespace DynamicContact
       plan.factorization = plan.linear_solver == LS::iterative ?
                              SolverPlan::Factorization::none :
                              SolverPlan::Factorization::amesos;
+    plan.smoothed_aggregation = parameters.smoothed_aggregation;
     reason << "; " << n_dofs << " DoFs on " << n_processes << " process"
            << (n_processes == 1 ? "" : "es");
     plan.reason = reason.str();
@@ -148,7 +149,8 @@ namespace DynamicContact
           factor = "Amesos, distributed";
           break;
         case Factorization::none:
-          factor = "none (Krylov with algebraic multigrid)";
+          factor = std::string("none (Krylov with algebraic multigrid") +
+                   (smoothed_aggregation ? ")" : ", plain aggregation)");
           break;
       }
     return contact_solver_name() + ", factorization: " + factor + " (" +

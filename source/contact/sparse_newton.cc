@@ -326,7 +326,10 @@ namespace DynamicContact
       return;
     TimerSection t(problem.timer, "Newton: AMG setup");
     amg = std::make_unique<BulkAMG>();
-    amg->initialize(problem.bulk.newton_matrix(), problem.discretization);
+    amg->initialize(problem.bulk.newton_matrix(),
+                    problem.discretization,
+                    /*with_rotations=*/true,
+                    problem.parameters.smoothed_aggregation);
     amg_scheme = problem.bulk.scheme();
   }
 

@@ -119,6 +119,18 @@ namespace DynamicContact
                           "1000",
                           Patterns::Integer(1),
                           "Cap on the iterations of the iterative solver.");
+        prm.declare_entry(
+          "AMG aggregation",
+          "smoothed",
+          Patterns::Selection("smoothed|plain"),
+          "How the algebraic multigrid of K0 (the iterative solver's "
+          "preconditioner) builds its coarse levels from aggregates of "
+          "nodes. 'smoothed': smoothed aggregation, the fewest Krylov "
+          "iterations. 'plain': the aggregates' rigid-body modes without "
+          "smoothing, a hierarchy about a third as large and quicker to "
+          "build, for more Krylov iterations: for a mesh whose memory is "
+          "short (the memory table at the end of log.txt shows the "
+          "hierarchy's share).");
       }
     } // namespace
 
@@ -369,6 +381,7 @@ namespace DynamicContact
       direct_solver_package = prm.get("Direct solver package");
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");
+      smoothed_aggregation  = prm.get("AMG aggregation") == "smoothed";
       prm.leave_subsection();
       require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
                 newton_tolerance < 1,

@@ -54,13 +54,15 @@ namespace DynamicContact
      * Build the preconditioner for @p matrix on the mesh of @p discretization
      * with the rigid-body modes as near null space, or with the dim
      * translations only if @p with_rotations is false (for the comparison
-     * in benchmarks/amg-comparison).
+     * in benchmarks/amg-comparison); by smoothed aggregation, or plain
+     * aggregation if @p smoothed is false (Solver/AMG aggregation).
      */
     template <int dim>
     void
     initialize(const Matrix_t            &matrix,
                const Discretization<dim> &discretization,
-               const bool                 with_rotations = true);
+               const bool                 with_rotations = true,
+               const bool                 smoothed       = true);
 
     void
     vmult(Vector_t &dst, const Vector_t &src) const

@@ -39,6 +39,8 @@ namespace DynamicContact
     Parameters::Solver::LinearSolver linear_solver =
       Parameters::Solver::LinearSolver::direct;
     Factorization factorization = Factorization::cholmod;
+    /** Without one: the AMG's aggregation (Solver/AMG aggregation). */
+    bool smoothed_aggregation = true;
     /** Why the contact solver and the factorization were chosen. */
     std::string reason;
 

@@ -309,6 +309,11 @@ namespace DynamicContact
       std::string  direct_solver_package;
       double       linear_tolerance;
       unsigned int max_linear_iterations;
+      /**
+       * The AMG of K0 smooths its prolongators (smoothed aggregation);
+       * false: plain aggregation (a smaller hierarchy, more iterations).
+       */
+      bool smoothed_aggregation;
 
       static void
       declare_parameters(ParameterHandler &prm);
