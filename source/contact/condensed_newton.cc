@@ -46,32 +46,22 @@ namespace DynamicContact
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const TimeScheme                  &scheme,
-                              const Vector_t                    &rhs,
-                              const std::vector<Tensor<1, dim>> &u_old,
-                              const std::vector<Tensor<1, dim>> &w_old,
-                              const FrictionCoefficients        &mu,
-                              std::vector<Tensor<1, dim>>       &lambda,
-                              Vector_t                          &w)
+  CondensedNewton<dim>::solve(const ContactStep<dim>      &step,
+                              std::vector<Tensor<1, dim>> &lambda,
+                              Vector_t                    &w)
   {
-    return solve(scheme, rhs, u_old, w_old, mu, lambda, w, false);
+    return solve(step, lambda, w, false);
   }
 
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve_provisional(
-    const TimeScheme                  &scheme,
-    const Vector_t                    &rhs,
-    const std::vector<Tensor<1, dim>> &u_old,
-    const std::vector<Tensor<1, dim>> &w_old,
-    const FrictionCoefficients        &mu,
-    std::vector<Tensor<1, dim>>       &lambda,
-    Vector_t                          &w,
-    const double                       velocity_accuracy)
+  CondensedNewton<dim>::solve_provisional(const ContactStep<dim>      &step,
+                                          std::vector<Tensor<1, dim>> &lambda,
+                                          Vector_t                    &w,
+                                          const double velocity_accuracy)
   {
-    return solve(
-      scheme, rhs, u_old, w_old, mu, lambda, w, true, velocity_accuracy);
+    return solve(step, lambda, w, true, velocity_accuracy);
   }
 
 
@@ -111,15 +101,16 @@ namespace DynamicContact
     u_old_all   = gathered.gather(p.u_old);
     w_old_all   = gathered.gather(p.w_old);
     mu_all      = gather_coefficients(p.mu);
+    const ContactStep<dim> step{p.scheme, cached_rhs, p.u_old, p.w_old, p.mu};
     if (!p.loose)
-      polish(p.it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
+      polish(p.it, step, lambda, w, result, previous);
     else
       {
         // The pass stopped early: phase 1 on to the Newton tolerance first
         // (on Gamma_3, cheap), so that phase 2 starts where it would have.
         Iterate it = p.it;
         boundary_newton(it, p.w_scale, 0., result);
-        polish(it, p.u_old, p.w_old, p.mu, lambda, w, result, previous);
+        polish(it, step, lambda, w, result, previous);
       }
     return result;
   }
@@ -156,19 +147,16 @@ namespace DynamicContact
 
   template <int dim>
   typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const TimeScheme                  &scheme,
-                              const Vector_t                    &rhs,
-                              const std::vector<Tensor<1, dim>> &u_old,
-                              const std::vector<Tensor<1, dim>> &w_old,
-                              const FrictionCoefficients        &mu,
-                              std::vector<Tensor<1, dim>>       &lambda,
-                              Vector_t                          &w,
-                              const bool                         provisional,
-                              const double velocity_accuracy)
+  CondensedNewton<dim>::solve(const ContactStep<dim>      &step,
+                              std::vector<Tensor<1, dim>> &lambda,
+                              Vector_t                    &w,
+                              const bool                   provisional,
+                              const double                 velocity_accuracy)
   {
-    Assert(scheme == problem.bulk.scheme(),
+    Assert(step.scheme == problem.bulk.scheme(),
            ExcMessage("K0 is not formed for the step's time scheme."));
-    Result result;
+    const auto &[scheme, rhs, u_old, w_old, mu] = step;
+    Result      result;
     step_scheme = scheme;
     if (compliance.prepare(result))
       {
@@ -241,23 +229,22 @@ namespace DynamicContact
         result.provisional = true;
         return result;
       }
-    polish(it, u_old, w_old, owned_mu, lambda, w, result);
+    polish(
+      it, {scheme, cached_rhs, u_old, w_old, owned_mu}, lambda, w, result);
     return result;
   }
 
 
   template <int dim>
   void
-  CondensedNewton<dim>::polish(const Iterate                     &it,
-                               const std::vector<Tensor<1, dim>> &u_old,
-                               const std::vector<Tensor<1, dim>> &w_old,
-                               const FrictionCoefficients        &mu,
-                               std::vector<Tensor<1, dim>>       &lambda,
-                               Vector_t                          &w,
-                               Result                            &result,
-                               Vector_t                          *previous)
+  CondensedNewton<dim>::polish(const Iterate                &it,
+                               const ContactStep<dim>       &step,
+                               std::vector<Tensor<1, dim>> &lambda,
+                               Vector_t                     &w,
+                               Result                       &result,
+                               Vector_t                     *previous)
   {
-    const Vector_t &rhs = cached_rhs;
+    const Vector_t &rhs = step.rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
     // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1. (A
     // solve: w_free - sum_j X_j g_j from the stored columns costs as much
@@ -290,8 +277,7 @@ namespace DynamicContact
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
     TimerSection      t(problem.timer, "Contact: refinement");
-    SystemNewton<dim> system(
-      problem, step_scheme, rhs, u_old, w_old, mu, *this, result);
+    SystemNewton<dim> system(problem, step, *this, result);
     // The stick condition in velocity units too, relative to |w|; where the
     // body is at rest |w| is itself round-off, which is of order eps
     // |w_free| (w = w_free - C g cancels): 1e-6 |w_free| keeps the test

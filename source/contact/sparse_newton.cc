@@ -97,22 +97,21 @@ namespace DynamicContact
 
   template <int dim>
   typename SparseNewton<dim>::Result
-  SparseNewton<dim>::solve(const TimeScheme                  &scheme,
-                           const Vector_t                    &rhs,
-                           const std::vector<Tensor<1, dim>> &u_old,
-                           const std::vector<Tensor<1, dim>> &w_old,
-                           const FrictionCoefficients        &mu,
-                           std::vector<Tensor<1, dim>>       &lambda,
-                           Vector_t                          &w)
+  SparseNewton<dim>::solve(const ContactStep<dim>      &step,
+                           std::vector<Tensor<1, dim>> &lambda,
+                           Vector_t                    &w)
   {
-    Assert(scheme == problem.bulk.scheme(),
+    Assert(step.scheme == problem.bulk.scheme(),
            ExcMessage("K0 is not formed for the step's time scheme."));
     Result               result;
-    FrictionCoefficients coefficients = mu;
-    if (mu.coupled())
+    FrictionCoefficients coefficients = step.mu;
+    if (step.mu.coupled())
       coefficients.weakening_limit = coupled_limits();
     SystemNewton<dim> system(
-      problem, scheme, rhs, u_old, w_old, coefficients, *this, result);
+      problem,
+      {step.scheme, step.rhs, step.u_old, step.w_old, coefficients},
+      *this,
+      result);
     SystemIterate<dim> x;
     x.w      = w;
     x.lambda = lambda;

@@ -8,20 +8,16 @@
 namespace DynamicContact
 {
   template <int dim>
-  SystemNewton<dim>::SystemNewton(const ContactProblem<dim>         &problem,
-                                  const TimeScheme                  &scheme,
-                                  const Vector_t                    &rhs,
-                                  const std::vector<Tensor<1, dim>> &u_old,
-                                  const std::vector<Tensor<1, dim>> &w_old,
-                                  const FrictionCoefficients        &mu,
-                                  LinearBackend<dim>                &backend,
-                                  ContactNewtonResult               &result)
+  SystemNewton<dim>::SystemNewton(const ContactProblem<dim> &problem,
+                                  const ContactStep<dim>    &step,
+                                  LinearBackend<dim>        &backend,
+                                  ContactNewtonResult       &result)
     : problem(problem)
-    , scheme(scheme)
-    , rhs(rhs)
-    , u_old(u_old)
-    , w_old(w_old)
-    , mu(mu)
+    , scheme(step.scheme)
+    , rhs(step.rhs)
+    , u_old(step.u_old)
+    , w_old(step.w_old)
+    , mu(step.mu)
     , backend(backend)
     , result(result)
   {}

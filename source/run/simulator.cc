@@ -66,17 +66,7 @@ namespace DynamicContact
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
-    for (auto *v : {&u,
-                    &w,
-                    &u_old,
-                    &w_old,
-                    &u_bar,
-                    &w_bar,
-                    &u_stage,
-                    &w_stage,
-                    &load,
-                    &rhs,
-                    &scratch})
+    for (auto *v : step_vectors(*this))
       discretization.reinit_owned(*v);
     energy_of_state.reset();
   }
@@ -328,17 +318,7 @@ namespace DynamicContact
     bulk.memory_consumption(items);
     step_solver.memory_consumption(items);
     double fields = 0;
-    for (const auto *v : {&u,
-                          &w,
-                          &u_old,
-                          &w_old,
-                          &u_bar,
-                          &w_bar,
-                          &u_stage,
-                          &w_stage,
-                          &load,
-                          &rhs,
-                          &scratch})
+    for (const auto *v : step_vectors(*this))
       fields += v->locally_owned_size() * sizeof(double);
     items.push_back({"the step's fields and work vectors", fields, false});
     return DynamicContact::memory_table(items,

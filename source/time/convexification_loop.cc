@@ -462,20 +462,14 @@ namespace DynamicContact
         0.;
     coefficients.frozen = mu;
     coefficients.law    = coupled ? solver.friction_law : nullptr;
+    const ContactStep<dim> step{
+      scheme, rhs, u_old_nodes, w_old_nodes, coefficients};
     try
       {
         const auto result =
           allow_provisional ?
-            newton.solve_provisional(scheme,
-                                     rhs,
-                                     u_old_nodes,
-                                     w_old_nodes,
-                                     coefficients,
-                                     lambda,
-                                     w,
-                                     provisional_accuracy) :
-            newton.solve(
-              scheme, rhs, u_old_nodes, w_old_nodes, coefficients, lambda, w);
+            newton.solve_provisional(step, lambda, w, provisional_accuracy) :
+            newton.solve(step, lambda, w);
         statistics.add_newton(result);
         provisional = result.provisional;
         return true;

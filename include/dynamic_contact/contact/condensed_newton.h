@@ -53,13 +53,9 @@ namespace DynamicContact
     reinit() override;
 
     Result
-    solve(const TimeScheme                  &scheme,
-          const Vector_t                    &rhs,
-          const std::vector<Tensor<1, dim>> &u_old,
-          const std::vector<Tensor<1, dim>> &w_old,
-          const FrictionCoefficients        &mu,
-          std::vector<Tensor<1, dim>>       &lambda,
-          Vector_t                          &w) override;
+    solve(const ContactStep<dim>      &step,
+          std::vector<Tensor<1, dim>> &lambda,
+          Vector_t                    &w) override;
 
     /**
      * Phase 1 only, stopped at the relative residual @p velocity_accuracy
@@ -68,13 +64,9 @@ namespace DynamicContact
      * as it was).
      */
     Result
-    solve_provisional(const TimeScheme                  &scheme,
-                      const Vector_t                    &rhs,
-                      const std::vector<Tensor<1, dim>> &u_old,
-                      const std::vector<Tensor<1, dim>> &w_old,
-                      const FrictionCoefficients        &mu,
-                      std::vector<Tensor<1, dim>>       &lambda,
-                      Vector_t                          &w,
+    solve_provisional(const ContactStep<dim>      &step,
+                      std::vector<Tensor<1, dim>> &lambda,
+                      Vector_t                    &w,
                       const double velocity_accuracy = 0) override;
 
     /**
@@ -169,15 +161,11 @@ namespace DynamicContact
 
     /** solve() and solve_provisional(). */
     Result
-    solve(const TimeScheme                  &scheme,
-          const Vector_t                    &rhs,
-          const std::vector<Tensor<1, dim>> &u_old,
-          const std::vector<Tensor<1, dim>> &w_old,
-          const FrictionCoefficients        &mu,
-          std::vector<Tensor<1, dim>>       &lambda,
-          Vector_t                          &w,
-          const bool                         provisional,
-          const double                       velocity_accuracy = 0);
+    solve(const ContactStep<dim>      &step,
+          std::vector<Tensor<1, dim>> &lambda,
+          Vector_t                    &w,
+          const bool                   provisional,
+          const double                 velocity_accuracy = 0);
 
     /**
      * Phase 1 on the current solve's data from @p it, to the relative
@@ -191,18 +179,17 @@ namespace DynamicContact
 
     /**
      * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then
-     * phase 2 (the whole-system Newton iteration) on the data given, to
-     * Solver/Newton tolerance (no step where the start already meets it).
+     * phase 2 (the whole-system Newton iteration) on @p step (its b the
+     * last one, cached_rhs), to Solver/Newton tolerance (no step where the
+     * start already meets it).
      */
     void
-    polish(const Iterate                     &it,
-           const std::vector<Tensor<1, dim>> &u_old,
-           const std::vector<Tensor<1, dim>> &w_old,
-           const FrictionCoefficients        &mu,
-           std::vector<Tensor<1, dim>>       &lambda,
-           Vector_t                          &w,
-           Result                            &result,
-           Vector_t                          *previous = nullptr);
+    polish(const Iterate                &it,
+           const ContactStep<dim>       &step,
+           std::vector<Tensor<1, dim>> &lambda,
+           Vector_t                     &w,
+           Result                       &result,
+           Vector_t                     *previous = nullptr);
 
     /** v += factor sum_i P_i^T f_i over the owned nodes (f at every node). */
     void

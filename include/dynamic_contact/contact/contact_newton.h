@@ -60,9 +60,26 @@ namespace DynamicContact
      * nodal laws use c = c_t k.
      */
     double c_t;
-    // The time scheme of a step (k, theta) reaches the solvers as an
-    // argument of ContactNewton::solve(): the laws act on u_n and
-    // w_e = theta w_n + (1 - theta) w_{n-1} (TimeScheme).
+  };
+
+
+  /**
+   * The data of one pass of a step, as a contact solver is given it: the
+   * step's time scheme (k, theta; bulk's K0 must be formed for it:
+   * BulkOperator::set_time_step()), the right-hand side b, u_{n-1} and
+   * w_{n-1} at the nodes this process owns (aligned with
+   * ContactBoundary::nodes()), and the friction coefficients (frozen, or
+   * coupled: mu(|w_e,tau|) of the iterate, linearized too). The laws act on
+   * u_n and w_e = theta w_n + (1 - theta) w_{n-1} (TimeScheme).
+   */
+  template <int dim>
+  struct ContactStep
+  {
+    const TimeScheme                  &scheme;
+    const Vector_t                    &rhs;
+    const std::vector<Tensor<1, dim>> &u_old;
+    const std::vector<Tensor<1, dim>> &w_old;
+    const FrictionCoefficients        &mu;
   };
 
 
@@ -115,23 +132,15 @@ namespace DynamicContact
     reinit() = 0;
 
     /**
-     * Solve one pass of the step of @p scheme (k, theta; bulk's K0 must be
-     * formed for it: BulkOperator::set_time_step()). Every per-node vector
-     * is aligned with ContactBoundary::nodes() (the nodes this process
-     * owns): @p u_old and @p w_old hold u_{n-1} and w_{n-1}, @p mu the
-     * friction coefficients (frozen, or coupled: mu(|w_e,tau|) of the
-     * iterate, linearized too), @p lambda the friction forces (in: initial
-     * guess, out: result); @p w the initial guess and the result (master
-     * form). Throws StepFailure if the iteration does not converge.
+     * Solve one pass @p step of a step: @p lambda the friction forces of
+     * the owned nodes (in: initial guess, out: result); @p w the initial
+     * guess and the result (master form). Throws StepFailure if the
+     * iteration does not converge.
      */
     virtual Result
-    solve(const TimeScheme                  &scheme,
-          const Vector_t                    &rhs,
-          const std::vector<Tensor<1, dim>> &u_old,
-          const std::vector<Tensor<1, dim>> &w_old,
-          const FrictionCoefficients        &mu,
-          std::vector<Tensor<1, dim>>       &lambda,
-          Vector_t                          &w) = 0;
+    solve(const ContactStep<dim>      &step,
+          std::vector<Tensor<1, dim>> &lambda,
+          Vector_t                    &w) = 0;
 
     /**
      * The same, where the caller may accept a provisional answer (a pass
@@ -144,16 +153,12 @@ namespace DynamicContact
      * default solves.
      */
     virtual Result
-    solve_provisional(const TimeScheme                  &scheme,
-                      const Vector_t                    &rhs,
-                      const std::vector<Tensor<1, dim>> &u_old,
-                      const std::vector<Tensor<1, dim>> &w_old,
-                      const FrictionCoefficients        &mu,
-                      std::vector<Tensor<1, dim>>       &lambda,
-                      Vector_t                          &w,
+    solve_provisional(const ContactStep<dim>      &step,
+                      std::vector<Tensor<1, dim>> &lambda,
+                      Vector_t                    &w,
                       const double /*velocity_accuracy*/ = 0)
     {
-      return solve(scheme, rhs, u_old, w_old, mu, lambda, w);
+      return solve(step, lambda, w);
     }
 
     /**

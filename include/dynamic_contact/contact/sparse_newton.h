@@ -48,13 +48,9 @@ namespace DynamicContact
     reinit() override;
 
     Result
-    solve(const TimeScheme                  &scheme,
-          const Vector_t                    &rhs,
-          const std::vector<Tensor<1, dim>> &u_old,
-          const std::vector<Tensor<1, dim>> &w_old,
-          const FrictionCoefficients        &mu,
-          std::vector<Tensor<1, dim>>       &lambda,
-          Vector_t                          &w) override;
+    solve(const ContactStep<dim>      &step,
+          std::vector<Tensor<1, dim>> &lambda,
+          Vector_t                    &w) override;
 
     /** By solves with K0 (CG, preconditioned with the AMG of K0). */
     double

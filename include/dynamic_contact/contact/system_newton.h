@@ -95,14 +95,11 @@ namespace DynamicContact
   public:
     using Iterate = SystemIterate<dim>;
 
-    SystemNewton(const ContactProblem<dim>         &problem,
-                 const TimeScheme                  &scheme,
-                 const Vector_t                    &rhs,
-                 const std::vector<Tensor<1, dim>> &u_old,
-                 const std::vector<Tensor<1, dim>> &w_old,
-                 const FrictionCoefficients        &mu,
-                 LinearBackend<dim>                &backend,
-                 ContactNewtonResult               &result);
+    /** The iteration on @p step (which must outlive it). */
+    SystemNewton(const ContactProblem<dim> &problem,
+                 const ContactStep<dim>    &step,
+                 LinearBackend<dim>        &backend,
+                 ContactNewtonResult       &result);
 
     NewtonMeasure
     evaluate(Iterate &x) const;

@@ -24,6 +24,7 @@
 #include <dynamic_contact/time/step_solver.h>
 
 #include <functional>
+#include <array>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -307,6 +308,23 @@ namespace DynamicContact
     // u_stage, w_stage: the SDIRK scheme's first stage.
     Vector_t u, w, u_old, w_old, u_bar, w_bar, u_stage, w_stage, load, rhs,
       scratch;
+    /** Pointers to all of them (of a const Simulator: const pointers). */
+    template <typename Self>
+    static auto
+    step_vectors(Self &self)
+    {
+      return std::array{&self.u,
+                        &self.w,
+                        &self.u_old,
+                        &self.w_old,
+                        &self.u_bar,
+                        &self.w_bar,
+                        &self.u_stage,
+                        &self.w_stage,
+                        &self.load,
+                        &self.rhs,
+                        &self.scratch};
+    }
 
     /**
      * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
