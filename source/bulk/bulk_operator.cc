@@ -22,12 +22,8 @@ namespace DynamicContact
 
   template <int dim>
   void
-  BulkOperator<dim>::reinit()
+  BulkOperator<dim>::reinit_matrices()
   {
-    const auto &dof_handler = discretization.dof_handler;
-    const auto &fe          = discretization.fe;
-    loaded_cells_scene      = nullptr; // the mesh changed
-
     // Every component with every other (K0 and the stiffness matrices),
     // and each component with itself alone (M: phi_i . phi_j vanishes
     // between components).
@@ -45,7 +41,7 @@ namespace DynamicContact
                   discretization.locally_owned,
                   discretization.locally_relevant,
                   discretization.comm);
-        DoFTools::make_sparsity_pattern(dof_handler,
+        DoFTools::make_sparsity_pattern(discretization.dof_handler,
                                         *couplings,
                                         *p,
                                         discretization.constraints,
@@ -63,6 +59,18 @@ namespace DynamicContact
       strain_matrix.clear();
     if (material.has_viscosity())
       viscosity_matrix.reinit(pattern);
+    bulk_matrix.reinit(pattern);
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::reinit()
+  {
+    const auto &dof_handler = discretization.dof_handler;
+    const auto &fe          = discretization.fe;
+    loaded_cells_scene      = nullptr; // the mesh changed
+    reinit_matrices();
 
     const QGauss<dim>  quadrature(fe.degree + 1);
     FEValues<dim>      fe_values(discretization.mapping,
@@ -105,7 +113,8 @@ namespace DynamicContact
                     {
                       local_mass(i, j) += phi[i] * phi[j] * JxW;
                       local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
-                      local_strain(i, j) += (eps[i] * eps[j]) * JxW;
+                      if (strain_norm)
+                        local_strain(i, j) += (eps[i] * eps[j]) * JxW;
                       if (material.has_viscosity())
                         local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
                     }
@@ -117,9 +126,10 @@ namespace DynamicContact
           constraints.distribute_local_to_global(local_elasticity,
                                                  dofs,
                                                  elasticity_matrix);
-          constraints.distribute_local_to_global(local_strain,
-                                                 dofs,
-                                                 strain_matrix);
+          if (strain_norm)
+            constraints.distribute_local_to_global(local_strain,
+                                                   dofs,
+                                                   strain_matrix);
           if (material.has_viscosity())
             constraints.distribute_local_to_global(local_viscosity,
                                                    dofs,
@@ -127,11 +137,11 @@ namespace DynamicContact
         }
     mass_matrix.compress(VectorOperation::add);
     elasticity_matrix.compress(VectorOperation::add);
-    strain_matrix.compress(VectorOperation::add);
+    if (strain_norm)
+      strain_matrix.compress(VectorOperation::add);
     if (material.has_viscosity())
       viscosity_matrix.compress(VectorOperation::add);
 
-    bulk_matrix.reinit(pattern);
     current = TimeScheme();
     discretization.reinit_owned(tmp);
   }

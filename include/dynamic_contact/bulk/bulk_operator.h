@@ -190,6 +190,10 @@ namespace DynamicContact
     /** x^T A y. */
     double
     product(const Matrix_t &A, const Vector_t &x, const Vector_t &y) const;
+
+    /** The patterns of the mesh, and the matrices on them (zero). */
+    void
+    reinit_matrices();
   };
 } // namespace DynamicContact
 
