@@ -95,7 +95,7 @@ namespace DynamicContact
   public:
     using Iterate = SystemIterate<dim>;
 
-    /** The iteration on @p step (which must outlive it). */
+    /** The iteration on @p step (what it refers to must outlive this). */
     SystemNewton(const ContactProblem<dim> &problem,
                  const ContactStep<dim>    &step,
                  LinearBackend<dim>        &backend,
