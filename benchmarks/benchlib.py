@@ -8,6 +8,7 @@ import csv
 import json
 import os
 import platform
+import re
 import resource
 import shutil
 import statistics
@@ -272,3 +273,27 @@ def cpu_model():
 def machine_line():
     return "%s, %s, %d cores, %s" % (time.strftime("%Y-%m-%d"), cpu_model(), os.cpu_count(),
                                      " ".join(platform.uname()[0:3]))
+
+
+# A row of the program's memory table (the end of log.txt, and of the screen
+# with Output/Print timings): "    NAME  MB_ALL  MB_LARGEST  BYTES_PER_DOF".
+_MEMORY_ROW = re.compile(r"^    (.+?)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9]+)(  \(measured\))?$")
+
+
+def memory_table(text):
+    """The last memory table in a run's output or log.txt: (DoFs, rows),
+    each row (name, MB in all, MB on the largest process, bytes per DoF,
+    measured); (None, []) if there is none."""
+    start = text.rfind("  memory (")
+    if start < 0:
+        return None, []
+    lines = text[start:].splitlines()
+    dofs = int(re.search(r"\((\d+) DoFs", lines[0]).group(1))
+    rows = []
+    for line in lines[1:]:
+        m = _MEMORY_ROW.match(line)
+        if not m:
+            break
+        rows.append((m.group(1).strip(), float(m.group(2)), float(m.group(3)),
+                     int(m.group(4)), bool(m.group(5))))
+    return dofs, rows

@@ -183,11 +183,8 @@ namespace DynamicContact
     graph("sparsity pattern (shared)", pattern);
     graph("sparsity pattern of M", mass_pattern);
     const auto values = [&](const std::string &name, const Matrix_t &A) {
-      items.push_back({name,
-                       double(A.trilinos_matrix().NumMyNonzeros()) *
-                           sizeof(double) +
-                         rows * sizeof(double *),
-                       false});
+      items.push_back(
+        {name, stored_values_bytes(A) + rows * sizeof(double *), false});
     };
     values("mass matrix M", mass_matrix);
     values("elasticity matrix", elasticity_matrix);

@@ -300,8 +300,7 @@ namespace DynamicContact
         cholesky->factorize(A.trilinos_matrix(),
                             std::vector<SuiteSparse_long>(trailing_rows.begin(),
                                                           trailing_rows.end()));
-        factorization_bytes =
-          std::max(factorization_bytes, growth.measured());
+        growth.keep_largest(factorization_bytes);
       }
     else if (parameters.linear_solver ==
              Parameters::Solver::LinearSolver::direct)
@@ -321,8 +320,7 @@ namespace DynamicContact
         AssertThrow(direct->SymbolicFactorization() == 0 &&
                       direct->NumericFactorization() == 0,
                     ExcMessage("The factorization of the bulk matrix failed."));
-        factorization_bytes =
-          std::max(factorization_bytes, growth.measured());
+        growth.keep_largest(factorization_bytes);
         // The Schur complement from MUMPS in 3D only: on the thin 2D
         // domains of the paper's scenes it differs from the solves by
         // 1e-11 to 1e-9 relative (the check in inverse_block()), and where

@@ -134,8 +134,7 @@ namespace DynamicContact
   {
     if (regularized.m() > 0)
       items.push_back({"K0' = K0 + springs (values)",
-                       double(regularized.trilinos_matrix().NumMyNonzeros()) *
-                         sizeof(double),
+                       stored_values_bytes(regularized),
                        false});
     bulk_solver.memory_consumption("factorization of K0'", items);
     double c = 0, full = 0;

@@ -648,8 +648,7 @@ namespace DynamicContact
             false, amesos_package(problem.parameters)));
         const ResidentGrowth growth;
         direct->initialize(system_matrix);
-        factorization_bytes =
-          std::max(factorization_bytes, growth.measured());
+        growth.keep_largest(factorization_bytes);
         ++result.factorizations;
         factorized_blocks = system.blocks;
         factorized_stick  = system.stick;
@@ -676,9 +675,7 @@ namespace DynamicContact
     if (system_matrix.m() > 0)
       {
         items.push_back({"Newton matrix (values)",
-                         double(system_matrix.trilinos_matrix()
-                                  .NumMyNonzeros()) *
-                           sizeof(double),
+                         stored_values_bytes(system_matrix),
                          false});
         items.push_back(
           {"factorization of the Newton matrix", factorization_bytes, true});

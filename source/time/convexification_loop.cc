@@ -314,7 +314,7 @@ namespace DynamicContact
       , k(scheme.time_step())
       , mu(solver.contact_state.mu)
       , lambda(solver.contact_state.lambda)
-      , loop(solver.friction && runs_convexification_loop(solver.friction_law))
+      , loop(runs_convexification_loop(solver.friction_law))
       , measures(solver.discretization,
                  solver.contact_boundary,
                  solver.foundation,

@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/types.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,17 @@ namespace DynamicContact
 
     double
     measured() const;
+
+    /**
+     * @p largest = max(@p largest, measured()): what a library's first
+     * build of an object allocated (a later build may reuse what the one
+     * before it freed, and measure less).
+     */
+    void
+    keep_largest(double &largest) const
+    {
+      largest = std::max(largest, measured());
+    }
 
   private:
     const double start;

@@ -13,6 +13,16 @@ namespace DynamicContact
    */
   using Vector_t = dealii::TrilinosWrappers::MPI::Vector;
   using Matrix_t = dealii::TrilinosWrappers::SparseMatrix;
+
+  /**
+   * The bytes of a matrix's values on this process (its column indices are
+   * its pattern's graph, which the matrices of one pattern share).
+   */
+  inline double
+  stored_values_bytes(const Matrix_t &A)
+  {
+    return double(A.trilinos_matrix().NumMyNonzeros()) * sizeof(double);
+  }
 } // namespace DynamicContact
 
 #endif

@@ -189,6 +189,7 @@ namespace DynamicContact
     static bool
     runs_convexification_loop(const FrictionLaw *law)
     {
+      // A law that is not constant has friction (mu = 0 is constant).
       return law != nullptr && !law->is_constant();
     }
 
