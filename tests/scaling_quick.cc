@@ -1,8 +1,9 @@
 // benchmarks/scaling in its quick mode (two tiny meshes of the 3D rail and
 // of the paper's domain, both contact solvers, 2 steps): the script runs,
 // every run completes, and scaling_quick.csv has the documented columns and
-// a row per run with sensible values. No timings are printed (they are in
-// the CSV).
+// a row per run with sensible values; scaling_quick_sections.csv has each
+// run's timer sections (those of its solver), and benchmarks/cost-model
+// fits its terms to them. No timings are printed (they are in the CSV).
 
 #include "program_tools.h"
 
@@ -57,5 +58,46 @@ main()
              "every row: DoFs, contact nodes, 2 steps, time, Newton "
              "iterations, passes, memory, and Krylov iterations for the "
              "sparse solver");
+
+  // The timer sections, and the cost model fitted to them.
+  const auto sections = test_tools::read_csv("scaling_quick_sections.csv");
+  checks.add(!sections.empty() &&
+               sections.front() == std::vector<std::string>{"scene",
+                                                            "dofs",
+                                                            "contact_nodes",
+                                                            "ranks",
+                                                            "steps",
+                                                            "solver",
+                                                            "section",
+                                                            "calls",
+                                                            "time"},
+             "scaling_quick_sections.csv has the documented columns");
+  std::set<std::string> runs_with_their_section;
+  for (std::size_t r = 1; r < sections.size(); ++r)
+    {
+      const auto &row = sections[r];
+      if (row.size() == 9 && std::stod(row[8]) >= 0 &&
+          row[6] == (row[5] == "condensed" ? "Bulk: factorization of K0" :
+                                             "Newton: iterative solve"))
+        runs_with_their_section.insert(row[0] + row[1] + row[5]);
+    }
+  checks.add(runs_with_their_section.size() == 8,
+             "every run's timer sections, with its solver's own (the "
+             "factorization of K0, the iterative solves)");
+  Launch fit;
+  fit.name           = "cost-model";
+  fit.program        = "python3";
+  const Outcome model =
+    execute({std::string(SOURCE_DIR) + "/../benchmarks/cost-model",
+             "--scaling",
+             "scaling_quick.csv",
+             "--text",
+             "cost_model_quick.txt"},
+            fit);
+  checks.add(model.succeeded() &&
+               test_tools::read_text("cost_model_quick.txt")
+                   .find("mispredicted choices: ") != std::string::npos,
+             "benchmarks/cost-model fits these runs and compares its "
+             "choices with theirs");
   checks.assert_all();
 }

@@ -2,6 +2,7 @@
 
 #include <dynamic_contact/contact/solver_plan.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace DynamicContact
@@ -29,6 +30,56 @@ namespace DynamicContact
       const double limit = dim == 2 ? 1e5 : 3e4;
       return Utilities::MPI::n_mpi_processes(comm) == 1 || n_dofs <= limit;
     }
+
+
+    /**
+     * Contact solver = auto within the condensed solver's limit: the
+     * solver of the lower cost predicted for plan.steps_per_matrix steps;
+     * the condensed one on meshes smaller than the model's, or where it
+     * has no terms. @p one_factor: K0 factorized by CHOLMOD.
+     */
+    void
+    choose_by_cost(SolverPlan                   &plan,
+                   std::ostringstream           &reason,
+                   const unsigned int            dim,
+                   const types::global_dof_index n_dofs,
+                   const unsigned int            size,
+                   const unsigned int            limit,
+                   const bool                    one_factor,
+                   const MPI_Comm                comm)
+    {
+      const unsigned int processes = Utilities::MPI::n_mpi_processes(comm);
+      const CostedSolver condensed =
+        processes == 1 ? CostedSolver::condensed :
+        one_factor     ? CostedSolver::condensed_on_every_process :
+                         CostedSolver::condensed_distributed;
+      plan.condensed_cost =
+        predicted_cost(condensed, dim, n_dofs, size, processes);
+      plan.assembled_cost =
+        predicted_cost(CostedSolver::assembled, dim, n_dofs, size, processes);
+      const unsigned int steps = plan.steps_per_matrix;
+      const double       below = smallest_costed_mesh(dim);
+      if (size > 0 && n_dofs >= below && plan.condensed_cost.calibrated &&
+          plan.assembled_cost.calibrated)
+        {
+          const double c = plan.condensed_cost.total(steps),
+                       a = plan.assembled_cost.total(steps);
+          plan.condensed = c <= a;
+          reason << "predicted for " << steps << " step"
+                 << (steps == 1 ? "" : "s")
+                 << " per bulk matrix: condensed " << cost_string(c)
+                 << ", assembled " << cost_string(a)
+                 << "; dim x contact nodes = " << size << " <= " << limit;
+          return;
+        }
+      plan.condensed = true;
+      reason << "dim x contact nodes = " << size << " <= " << limit;
+      if (size > 0 && n_dofs < below)
+        reason << ", smaller than the meshes of the cost model (" << below
+               << " DoFs)";
+      else if (size > 0)
+        reason << ", no cost model for it";
+    }
   } // namespace
 
 
@@ -54,6 +105,7 @@ namespace DynamicContact
               const unsigned int            dim,
               const types::global_dof_index n_dofs,
               const unsigned int            n_contact_nodes,
+              const unsigned int            steps_per_matrix,
               const MPI_Comm                comm)
   {
     using CS = Parameters::Solver::ContactSolver;
@@ -61,35 +113,38 @@ namespace DynamicContact
     SolverPlan         plan;
     std::ostringstream reason;
     const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
+    const bool         one_factor = by_cholmod(parameters, dim, n_dofs, comm);
 
-    // The contact solver: the condensed one while dim n_Gamma is below the
-    // measured crossover (doc/algorithms.md, "Choosing"): Condensed limit
-    // on one process. With a CHOLMOD factor several processes are one as
-    // the condensed solver sees it
-    // (the compliance from the factor's trailing block); with MUMPS, in 3D
-    // the compliance comes from its Schur complement (the same limit), in
-    // 2D from dim solves per node (1000).
+    // The condensed solver's dense tables are bounded by its limit
+    // (doc/algorithms.md, "Choosing"): Condensed limit on one process. With
+    // a CHOLMOD factor several processes are one as the condensed solver
+    // sees it (the compliance from the factor's trailing block); with
+    // MUMPS, in 3D the compliance comes from its Schur complement (the same
+    // limit), in 2D from dim solves per node (1000).
     const unsigned int limit =
-      n_processes == 1 || by_cholmod(parameters, dim, n_dofs, comm) ?
+      n_processes == 1 || one_factor ?
         parameters.condensed_limit :
         parameters.condensed_limit_on_several_processes.value_or(
           dim == 3 ? parameters.condensed_limit : 1000);
     const unsigned int size = dim * n_contact_nodes;
-    if (parameters.contact_solver == CS::automatic)
-      {
-        plan.condensed = size <= limit;
-        reason << "dim x contact nodes = " << size
-               << (plan.condensed ? " <= " : " > ") << limit;
-      }
-    else
+    plan.steps_per_matrix   = std::max(steps_per_matrix, 1u);
+    if (parameters.contact_solver != CS::automatic)
       {
         plan.condensed = parameters.contact_solver == CS::condensed;
         reason << "as set";
       }
+    else if (size > limit)
+      {
+        plan.condensed = false;
+        reason << "dim x contact nodes = " << size << " > " << limit;
+      }
+    else
+      choose_by_cost(
+        plan, reason, dim, n_dofs, size, limit, one_factor, comm);
 
     // The linear solver: auto is direct, except for the assembled solver
-    // chosen by Contact solver = auto (a large contact boundary, so a
-    // large problem), which solves by GMRES with algebraic multigrid.
+    // chosen by Contact solver = auto (a large contact boundary or a
+    // large mesh), which solves by GMRES with algebraic multigrid.
     plan.linear_solver = parameters.linear_solver;
     if (parameters.linear_solver == LS::automatic)
       plan.linear_solver =

@@ -282,24 +282,31 @@ namespace DynamicContact
           "iterative: GMRES preconditioned by algebraic multigrid of K0, "
           "built once per mesh and time step; with direct: the Newton matrix "
           "factorized when it changes, as in deal.II's step-42). 'auto': "
-          "condensed while dim times the number of contact nodes is at most "
-          "Condensed limit (one process) or Condensed limit on several "
-          "processes, else assembled with the iterative linear solver "
-          "(decided per mesh).");
+          "the one of the lower predicted cost for the steps one bulk "
+          "matrix serves (the steps left, or to the next mesh adaptation; "
+          "one with an adaptive time step), from a cost model of the DoFs, "
+          "the contact nodes and the processes fitted to "
+          "benchmarks/scaling; the condensed one only while dim times the "
+          "number of contact nodes is at most Condensed limit (one process) "
+          "or Condensed limit on several processes, and on meshes smaller "
+          "than the model's always; the assembled one with the iterative "
+          "linear solver. Decided per mesh; the log gives the predicted "
+          "costs (the solver plan).");
         prm.declare_entry(
           "Condensed limit",
           "8200",
           Patterns::Integer(0),
           "Contact solver = auto on one process: the largest dim times the "
-          "number of contact nodes for which the condensed solver is chosen "
-          "(the measured crossover, README 'Choosing the contact solver').");
+          "number of contact nodes for which the condensed solver may be "
+          "chosen (its dense tables hold 8 bytes x (dim n_Gamma)^2 twice; "
+          "within it the cost model chooses).");
         prm.declare_entry(
           "Condensed limit on several processes",
           "auto",
           Patterns::Anything(),
           "Contact solver = auto on more than one process where K0 is "
           "factorized by MUMPS over the processes (Direct solver package): "
-          "the same limit, an integer >= 0 or 'auto'. In 2D the compliance "
+          "the same cap, an integer >= 0 or 'auto'. In 2D the compliance "
           "then costs dim solves per contact node, so the condensed solver "
           "is the faster one only on small contact boundaries: 'auto' is "
           "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -84,7 +85,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::setup_operators()
+  Simulator<dim>::setup_operators(const double start_time)
   {
     TimerSection t(timer, "Setup: bulk matrices");
     bulk.reinit();
@@ -94,7 +95,23 @@ namespace DynamicContact
                          parameters.friction.complementarity_constant :
                          parameters.material.young_modulus /
                            discretization.minimal_cell_diameter();
-    step_solver.reinit(c_t);
+    step_solver.reinit(c_t, steps_per_matrix(start_time));
+  }
+
+
+  template <int dim>
+  unsigned int
+  Simulator<dim>::steps_per_matrix(const double start_time) const
+  {
+    const auto &time = parameters.time;
+    if (time.adaptive)
+      return 1;
+    const double left  = std::max(time.end_time - start_time, 0.);
+    unsigned int steps = static_cast<unsigned int>(
+      std::max(1., std::ceil(left / time.time_step - 1e-9)));
+    if (mesh_adaptation.enabled())
+      steps = std::min(steps, parameters.mesh_refinement.refine_every);
+    return steps;
   }
 
 
@@ -160,14 +177,14 @@ namespace DynamicContact
 
   template <int dim>
   void
-  Simulator<dim>::load_checkpoint(const std::string &path)
+  Simulator<dim>::load_checkpoint(const std::string &path, const double t)
   {
     Vector_t friction;
     DynamicContact::load_checkpoint<dim>(path,
                                          discretization,
                                          {&u, &w, &friction},
                                          [this]() { setup_dofs(); });
-    setup_operators();
+    setup_operators(t);
     contact_state.set_friction_from_field(contact_boundary, friction, false);
   }
 
@@ -231,7 +248,7 @@ namespace DynamicContact
       {
         // setup_operators() resets the step solver; the nodes stay.
         const auto lambda = contact_state.lambda;
-        setup_operators();
+        setup_operators(t0);
         contact_state.lambda = lambda;
       }
     return energy_now() - energy_before;
@@ -273,7 +290,7 @@ namespace DynamicContact
     setup_dofs();
     if (mesh_adaptation.enabled())
       refine_initial_mesh();
-    setup_operators();
+    setup_operators(0.);
     set_initial_conditions();
     const double norm = u.l2_norm() + w.l2_norm();
     if (!std::isfinite(norm))

@@ -62,13 +62,15 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::reinit(const double complementarity_constant)
+  StepSolver<dim>::reinit(const double       complementarity_constant,
+                          const unsigned int steps_per_matrix)
   {
     c_t  = complementarity_constant;
     plan = plan_solver(parameters,
                        dim,
                        discretization.dof_handler.n_dofs(),
                        contact_boundary.n_global_nodes(),
+                       steps_per_matrix,
                        discretization.comm);
     planned_parameters = plan.solver_parameters(parameters);
     details << "  solver plan: " << plan.description() << std::endl;

@@ -333,7 +333,7 @@ namespace DynamicContact
         "changed.");
 
     // The mesh, the fields and the loop state of the checkpoint.
-    model.load_checkpoint(latest);
+    model.load_checkpoint(latest, saved.time);
     state                = saved;
     last_checkpoint_step = state.step;
 

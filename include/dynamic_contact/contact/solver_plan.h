@@ -3,6 +3,7 @@
 
 #include <deal.II/base/types.h>
 
+#include <dynamic_contact/contact/cost_model.h>
 #include <dynamic_contact/parameters/parameters.h>
 
 #include <mpi.h>
@@ -43,6 +44,13 @@ namespace DynamicContact
     bool smoothed_aggregation = true;
     /** Why the contact solver and the factorization were chosen. */
     std::string reason;
+    /**
+     * Contact solver = auto: the predicted costs of both solvers (not
+     * calibrated where the model has no terms, or the boundary exceeds the
+     * condensed limit) and the steps one K0 is expected to serve.
+     */
+    SolverCost   condensed_cost, assembled_cost;
+    unsigned int steps_per_matrix = 1;
 
     /** The solver parameters the chosen solver works with. */
     Parameters::Solver
@@ -60,14 +68,19 @@ namespace DynamicContact
   /**
    * The plan for a problem of @p n_dofs bulk DoFs and @p n_contact_nodes
    * nodes on Gamma_3 on the processes of @p comm (every process decides
-   * alike).
+   * alike), whose bulk matrix K0 is expected to serve @p steps_per_matrix
+   * steps (the steps left, or fewer where the mesh or the time step
+   * changes): Contact solver = auto takes the solver of the lower cost
+   * predicted for them (cost_model.h), the condensed one only while
+   * dim x contact nodes is within its limit.
    */
   SolverPlan
-  plan_solver(const Parameters::Solver          &parameters,
-              const unsigned int                 dim,
+  plan_solver(const Parameters::Solver              &parameters,
+              const unsigned int                     dim,
               const dealii::types::global_dof_index n_dofs,
-              const unsigned int                 n_contact_nodes,
-              const MPI_Comm                     comm);
+              const unsigned int                     n_contact_nodes,
+              const unsigned int                     steps_per_matrix,
+              const MPI_Comm                         comm);
 
   /**
    * How a bulk matrix of @p n_dofs rows is factorized with these

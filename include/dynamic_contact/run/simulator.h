@@ -98,10 +98,11 @@ namespace DynamicContact
 
     /**
      * A resumed run: the mesh and the fields (u, w, the friction forces)
-     * of the checkpoint @p path; DoFs and operators set up for them.
+     * of the checkpoint @p path, saved at time @p t; DoFs and operators set
+     * up for them.
      */
     void
-    load_checkpoint(const std::string &path);
+    load_checkpoint(const std::string &path, const double t);
 
     /**
      * Write a checkpoint of the mesh and the fields with the loop's
@@ -346,9 +347,19 @@ namespace DynamicContact
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
     setup_dofs();
-    /** The operators that depend on the mesh: bulk matrices, solvers. */
+    /**
+     * The operators that depend on the mesh: bulk matrices, solvers, the
+     * solvers planned for the steps from @p start_time on.
+     */
     void
-    setup_operators();
+    setup_operators(const double start_time);
+    /**
+     * The steps from @p start_time on that one bulk matrix K0 is expected to
+     * serve: those left, at most Mesh refinement/Refine every where the
+     * mesh adapts, one where the time step adapts (K0 changes with it).
+     */
+    unsigned int
+    steps_per_matrix(const double start_time) const;
     void
     set_initial_conditions();
     /** Before the first step: refine for the initial load (adaptive runs). */

@@ -125,11 +125,13 @@ namespace DynamicContact
 
     /**
      * After a change of the mesh (or of Gamma_3): size the Gamma_3 solution
-     * (ContactState::reinit); @p c_t is the complementarity constant of
-     * friction.
+     * (ContactState::reinit) and plan the solver (plan_solver) for
+     * @p steps_per_matrix steps with one bulk matrix; @p c_t is the
+     * complementarity constant of friction.
      */
     void
-    reinit(const double complementarity_constant);
+    reinit(const double       complementarity_constant,
+           const unsigned int steps_per_matrix);
 
     /**
      * Solve one step of @p scheme (k, theta; bulk's K0 must be formed for it:

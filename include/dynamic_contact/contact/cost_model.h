@@ -1,0 +1,110 @@
+#ifndef dynamic_contact_cost_model_h
+#define dynamic_contact_cost_model_h
+
+#include <deal.II/base/types.h>
+
+#include <string>
+#include <vector>
+
+namespace DynamicContact
+{
+  /**
+   * The ways of solving a step the cost model knows (the solver plan's
+   * choices for Solver/Contact solver = auto).
+   */
+  enum class CostedSolver
+  {
+    /** The condensed solver with K0 factorized by CHOLMOD, one process. */
+    condensed,
+    /** The condensed solver, the whole CHOLMOD factor on every process. */
+    condensed_on_every_process,
+    /** The condensed solver, K0 factorized by MUMPS over the processes. */
+    condensed_distributed,
+    /** The assembled solver, GMRES with algebraic multigrid. */
+    assembled
+  };
+
+  /**
+   * One timer section a solver spends its time in, as a power law fitted to
+   * the benchmarks (benchmarks/cost-model): time = coefficient *
+   * x^exponent, x the bulk DoFs or dim x the contact nodes, paid once per
+   * bulk matrix K0 or per step, on 1 or 2 processes.
+   */
+  struct CostTerm
+  {
+    unsigned int dim;
+    CostedSolver solver;
+    unsigned int processes;
+    const char  *section;
+    bool         once_per_matrix;
+    bool         of_contact_boundary;
+    double       coefficient;
+    double       exponent;
+
+    double
+    time(const double n_dofs, const double contact_size) const;
+  };
+
+  /** The meshes measured in @p dim dimensions: bulk DoFs, least and most. */
+  struct CostRange
+  {
+    unsigned int dim;
+    double       smallest;
+    double       largest;
+  };
+
+  /** The fitted terms (source/contact/cost_model_table.cc, generated). */
+  extern const std::vector<CostTerm> cost_model_terms;
+  /** The range of the fit in each dimension (generated with the terms). */
+  extern const std::vector<CostRange> cost_model_ranges;
+
+  /**
+   * The predicted cost of a way of solving: seconds paid once per bulk
+   * matrix K0 (factorizations, the compliance of Gamma_3, the AMG) and per
+   * step, on the machine the model was calibrated on. Not calibrated: no
+   * term for this dimension and way.
+   */
+  struct SolverCost
+  {
+    bool   calibrated = false;
+    double once       = 0;
+    double per_step   = 0;
+
+    /** The cost of @p steps steps with one K0. */
+    double
+    total(const double steps) const
+    {
+      return once + steps * per_step;
+    }
+  };
+
+  /**
+   * The cost of solving with @p solver a problem of @p n_dofs bulk DoFs and
+   * @p contact_size = dim x contact nodes on @p n_processes processes. The
+   * model is calibrated on 1 and 2 processes; beyond, every term's ratio
+   * from 1 to 2 processes, clamped to [1/2, 1], is taken again at every
+   * doubling (work replicated on every process keeps its time, work shared
+   * at best halves it).
+   */
+  SolverCost
+  predicted_cost(const CostedSolver                    solver,
+                 const unsigned int                    dim,
+                 const dealii::types::global_dof_index n_dofs,
+                 const unsigned int                    contact_size,
+                 const unsigned int                    n_processes);
+
+  /**
+   * The fewest bulk DoFs of a mesh the model was fitted on in @p dim
+   * dimensions (0 without a fit). Below it the model is not used: fixed
+   * costs rule there, and the condensed solver was the faster on the
+   * smallest meshes measured.
+   */
+  double
+  smallest_costed_mesh(const unsigned int dim);
+
+  /** "1.23 s" or "45 ms": a predicted time for the log. */
+  std::string
+  cost_string(const double seconds);
+} // namespace DynamicContact
+
+#endif

@@ -1,0 +1,217 @@
+// The solver plan's cost model (cost_model.h) and the choice it makes for
+// Solver/Contact solver = auto (plan_solver):
+//  - the table is what benchmarks/cost-model fits to the committed
+//    benchmark results (the script's --check), and every term is finite;
+//  - the predicted costs grow with the mesh (the rail's family of meshes,
+//    n = 8 ... 32 cells across, in 3D; the paper's domain in 2D), and
+//    beyond 2 processes a term shrinks by at most half per doubling and
+//    never grows;
+//  - the plan takes the solver of the lower predicted cost for the steps
+//    one bulk matrix serves, says both costs, and takes the condensed
+//    solver only within Solver/Condensed limit; 'as set' is kept.
+// Plans on 1 and 2 processes are made for MPI_COMM_SELF and for a
+// communicator of 2 (the test runs on 2 processes); nothing printed
+// depends on the calibration's numbers.
+
+#include <deal.II/base/mpi.h>
+
+#include <dynamic_contact/contact/cost_model.h>
+#include <dynamic_contact/contact/solver_plan.h>
+
+#include "program_tools.h"
+
+#include <cmath>
+
+using namespace DynamicContact;
+using namespace program_tools;
+
+namespace
+{
+  Parameters::Solver
+  automatic()
+  {
+    Parameters::Solver p;
+    p.contact_solver        = Parameters::Solver::ContactSolver::automatic;
+    p.linear_solver         = Parameters::Solver::LinearSolver::automatic;
+    p.direct_solver_package = "auto";
+    p.condensed_limit       = 8200;
+    p.condensed_limit_on_several_processes.reset();
+    p.smoothed_aggregation = true;
+    return p;
+  }
+
+  /** The rail n*10 x n x n: (DoFs, contact nodes). */
+  std::pair<unsigned int, unsigned int>
+  rail(const unsigned int n)
+  {
+    return {3 * (10 * n + 1) * (n + 1) * (n + 1), (10 * n - 1) * (n + 1)};
+  }
+
+  /** The paper's domain m x 16: (DoFs, contact nodes). */
+  std::pair<unsigned int, unsigned int>
+  paper(const unsigned int m)
+  {
+    return {2 * (m + 1) * 17, m - 1};
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  Checks       checks;
+  const auto   world = MPI_COMM_WORLD;
+  const auto   self  = MPI_COMM_SELF;
+  using CSolver      = CostedSolver;
+
+  // The table is the fit of the committed results.
+  if (root)
+    {
+      Launch launch;
+      launch.name    = "cost-model";
+      launch.program = "python3";
+      const Outcome o =
+        execute({std::string(SOURCE_DIR) + "/../benchmarks/cost-model",
+                 "--check"},
+                launch);
+      checks.add(o.succeeded(),
+                 "cost_model_table.cc is benchmarks/cost-model's fit of "
+                 "benchmarks/results/scaling*.csv");
+    }
+  bool finite = !cost_model_terms.empty();
+  for (const auto &t : cost_model_terms)
+    finite = finite && std::isfinite(t.coefficient) &&
+             t.coefficient > 0 && std::isfinite(t.exponent) &&
+             (t.processes == 1 || t.processes == 2);
+  checks.add(finite, "every term: a finite positive coefficient, 1 or 2 "
+                     "processes");
+
+  // Growth with the mesh.
+  bool grows = true, calibrated = true;
+  for (const CSolver s : {CSolver::condensed, CSolver::assembled})
+    for (const unsigned int processes : {1u, 2u, 16u})
+      {
+        SolverCost last3, last2;
+        for (const unsigned int n : {8u, 11u, 16u, 22u, 32u})
+          {
+            const auto [dofs, nodes] = rail(n);
+            const CSolver way =
+              s == CSolver::condensed && processes > 1 ?
+                CSolver::condensed_distributed :
+                s;
+            const auto c = predicted_cost(way, 3, dofs, 3 * nodes, processes);
+            calibrated   = calibrated && c.calibrated;
+            grows = grows && c.total(10) > last3.total(10);
+            last3 = c;
+          }
+        for (const unsigned int m : {128u, 256u, 512u, 1024u, 2048u})
+          {
+            const auto [dofs, nodes] = paper(m);
+            const CSolver way =
+              s == CSolver::condensed && processes > 1 ?
+                CSolver::condensed_on_every_process :
+                s;
+            const auto c = predicted_cost(way, 2, dofs, 2 * nodes, processes);
+            calibrated   = calibrated && c.calibrated;
+            grows        = grows && c.total(10) > last2.total(10);
+            last2        = c;
+          }
+      }
+  checks.add(calibrated,
+             "both solvers calibrated in 2D and 3D on 1, 2 and 16 processes "
+             "(on several, the condensed one with the whole factor on every "
+             "process in 2D, with MUMPS in 3D)");
+  checks.add(grows, "a larger mesh costs more (rail and paper domain, both "
+                    "solvers, 1, 2 and 16 processes)");
+
+  // Beyond two processes.
+  bool bounded = true;
+  for (const CSolver s : {CSolver::assembled,
+                          CSolver::condensed_on_every_process,
+                          CSolver::condensed_distributed})
+    {
+      const auto [dofs, nodes] = rail(16);
+      auto last                = predicted_cost(s, 3, dofs, 3 * nodes, 2);
+      for (const unsigned int p : {4u, 8u, 16u})
+        {
+          const auto c = predicted_cost(s, 3, dofs, 3 * nodes, p);
+          bounded      = bounded && c.per_step <= last.per_step * (1 + 1e-12) &&
+                    c.per_step >= last.per_step / 2 * (1 - 1e-12) &&
+                    c.once <= last.once * (1 + 1e-12) &&
+                    c.once >= last.once / 2 * (1 - 1e-12);
+          last = c;
+        }
+    }
+  checks.add(bounded, "each doubling beyond 2 processes keeps a cost or "
+                      "divides it by at most 2");
+
+  // The plan takes the lower predicted cost, and says both.
+  bool lower = true, said = true, some_condensed = false,
+       some_assembled = false;
+  for (const MPI_Comm comm : {self, world})
+    for (const unsigned int dim : {2u, 3u})
+      for (const unsigned int size : {8u, 16u, 22u, 32u, 128u, 512u, 2048u})
+        for (const unsigned int steps : {1u, 8u, 128u})
+          {
+            if ((dim == 3) != (size < 100))
+              continue;
+            const auto [dofs, nodes] = dim == 3 ? rail(size) : paper(size);
+            const SolverPlan plan =
+              plan_solver(automatic(), dim, dofs, nodes, steps, comm);
+            if (dim * nodes > 8200)
+              {
+                lower = lower && !plan.condensed;
+                continue;
+              }
+            const bool cheaper = plan.condensed_cost.total(steps) <=
+                                 plan.assembled_cost.total(steps);
+            lower = lower && plan.condensed == cheaper &&
+                    plan.steps_per_matrix == steps;
+            said  = said &&
+                   plan.reason.find(
+                     "condensed " +
+                     cost_string(plan.condensed_cost.total(steps))) !=
+                     std::string::npos &&
+                   plan.reason.find(
+                     "assembled " +
+                     cost_string(plan.assembled_cost.total(steps))) !=
+                     std::string::npos;
+            some_condensed = some_condensed || plan.condensed;
+            some_assembled = some_assembled || !plan.condensed;
+          }
+  checks.add(lower, "auto takes the solver of the lower predicted cost "
+                    "within the condensed limit, the assembled one beyond");
+  checks.add(said, "the plan's reason gives both predicted costs");
+  checks.add(some_condensed && some_assembled,
+             "both solvers are chosen somewhere on these meshes");
+
+  // Few steps per bulk matrix favour the solver with the cheaper set-up.
+  {
+    const auto [dofs, nodes] = rail(8);
+    const auto one  = plan_solver(automatic(), 3, dofs, nodes, 1, self);
+    const auto many = plan_solver(automatic(), 3, dofs, nodes, 1000, self);
+    checks.add(one.condensed_cost.once > one.assembled_cost.once &&
+                 (many.condensed || !one.condensed),
+               "the condensed solver's set-up (factorization, compliance) "
+               "costs more than the AMG's; if it is chosen for 1 step, it "
+               "is for 1000");
+  }
+
+  // The limit and 'as set'.
+  {
+    auto p            = automatic();
+    p.condensed_limit = 0;
+    const auto [dofs, nodes] = rail(8);
+    const auto capped = plan_solver(p, 3, dofs, nodes, 1000, self);
+    checks.add(!capped.condensed && !capped.condensed_cost.calibrated &&
+                 capped.reason.find("> 0") != std::string::npos,
+               "Condensed limit = 0: assembled, no costs predicted");
+    p.contact_solver = Parameters::Solver::ContactSolver::condensed;
+    const auto set   = plan_solver(p, 3, dofs, nodes, 1, self);
+    checks.add(set.condensed && set.reason.rfind("as set", 0) == 0,
+               "Contact solver = condensed: kept as set");
+  }
+  checks.assert_all();
+}
