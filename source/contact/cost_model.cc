@@ -81,9 +81,21 @@ namespace DynamicContact
   double
   smallest_costed_mesh(const unsigned int dim)
   {
+    double smallest = 0;
     for (const auto &range : cost_model_ranges)
       if (range.dim == dim)
-        return range.smallest;
+        smallest = smallest > 0 ? std::min(smallest, range.smallest) :
+                                  range.smallest;
+    return smallest;
+  }
+
+
+  double
+  largest_costed_mesh(const unsigned int dim, const CostedSolver solver)
+  {
+    for (const auto &range : cost_model_ranges)
+      if (range.dim == dim && range.solver == solver)
+        return range.largest;
     return 0.;
   }
 

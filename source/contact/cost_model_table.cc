@@ -82,7 +82,12 @@ namespace DynamicContact
   };
 
   const std::vector<CostRange> cost_model_ranges = {
-    {2, 4386, 69666},
-    {3, 19683, 1048707},
+    {2, CostedSolver::assembled, 4386, 69666},
+    {2, CostedSolver::condensed, 4386, 69666},
+    {2, CostedSolver::condensed_on_every_process, 4386, 69666},
+    {3, CostedSolver::assembled, 19683, 1048707},
+    {3, CostedSolver::condensed, 19683, 139587},
+    {3, CostedSolver::condensed_distributed, 47952, 47952},
+    {3, CostedSolver::condensed_on_every_process, 19683, 19683},
   };
 } // namespace DynamicContact

@@ -59,6 +59,20 @@ namespace DynamicContact
         predicted_cost(CostedSolver::assembled, dim, n_dofs, size, processes);
       const unsigned int steps = plan.steps_per_matrix;
       const double       below = smallest_costed_mesh(dim);
+      const double measured = largest_costed_mesh(dim, condensed);
+      if (condensed == CostedSolver::condensed_distributed &&
+          plan.condensed_cost.calibrated && n_dofs > measured)
+        {
+          // MUMPS's Schur complement must agree with its solves, and on
+          // larger meshes it may not: C then costs dim solves per node,
+          // a cost the model does not know.
+          plan.condensed = false;
+          reason << "larger than the meshes the condensed solver with MUMPS "
+                 << "was measured on (" << measured
+                 << " DoFs); dim x contact nodes = " << size << " <= "
+                 << limit;
+          return;
+        }
       if (size > 0 && n_dofs >= below && plan.condensed_cost.calibrated &&
           plan.assembled_cost.calibrated)
         {

@@ -45,17 +45,18 @@ namespace DynamicContact
     time(const double n_dofs, const double contact_size) const;
   };
 
-  /** The meshes measured in @p dim dimensions: bulk DoFs, least and most. */
+  /** The meshes measured for a way of solving: bulk DoFs, least and most. */
   struct CostRange
   {
     unsigned int dim;
+    CostedSolver solver;
     double       smallest;
     double       largest;
   };
 
   /** The fitted terms (source/contact/cost_model_table.cc, generated). */
   extern const std::vector<CostTerm> cost_model_terms;
-  /** The range of the fit in each dimension (generated with the terms). */
+  /** The meshes of the fit per way of solving (generated with the terms). */
   extern const std::vector<CostRange> cost_model_ranges;
 
   /**
@@ -101,6 +102,13 @@ namespace DynamicContact
    */
   double
   smallest_costed_mesh(const unsigned int dim);
+
+  /**
+   * The most bulk DoFs of a mesh @p solver was measured on in @p dim
+   * dimensions (0 if none).
+   */
+  double
+  largest_costed_mesh(const unsigned int dim, const CostedSolver solver);
 
   /** "1.23 s" or "45 ms": a predicted time for the log. */
   std::string

@@ -314,17 +314,17 @@ namespace DynamicContact
     static auto
     step_vectors(Self &self)
     {
-      return std::array{&self.u,
-                        &self.w,
-                        &self.u_old,
-                        &self.w_old,
-                        &self.u_bar,
-                        &self.w_bar,
-                        &self.u_stage,
-                        &self.w_stage,
-                        &self.load,
-                        &self.rhs,
-                        &self.scratch};
+      return std::array<decltype(&self.u), 11>{{&self.u,
+                                                 &self.w,
+                                                 &self.u_old,
+                                                 &self.w_old,
+                                                 &self.u_bar,
+                                                 &self.w_bar,
+                                                 &self.u_stage,
+                                                 &self.w_stage,
+                                                 &self.load,
+                                                 &self.rhs,
+                                                 &self.scratch}};
     }
 
     /**
