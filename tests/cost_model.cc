@@ -22,6 +22,7 @@
 #include "program_tools.h"
 
 #include <cmath>
+#include <vector>
 
 using namespace DynamicContact;
 using namespace program_tools;
@@ -93,33 +94,25 @@ main(int argc, char *argv[])
   bool grows = true, calibrated = true;
   for (const CSolver s : {CSolver::condensed, CSolver::assembled})
     for (const unsigned int processes : {1u, 2u, 16u})
-      {
-        SolverCost last3, last2;
-        for (const unsigned int n : {8u, 11u, 16u, 22u, 32u})
-          {
-            const auto [dofs, nodes] = rail(n);
-            const CSolver way =
-              s == CSolver::condensed && processes > 1 ?
-                CSolver::condensed_distributed :
-                s;
-            const auto c = predicted_cost(way, 3, dofs, 3 * nodes, processes);
-            calibrated   = calibrated && c.calibrated;
-            grows = grows && c.total(10) > last3.total(10);
-            last3 = c;
-          }
-        for (const unsigned int m : {128u, 256u, 512u, 1024u, 2048u})
-          {
-            const auto [dofs, nodes] = paper(m);
-            const CSolver way =
-              s == CSolver::condensed && processes > 1 ?
-                CSolver::condensed_on_every_process :
-                s;
-            const auto c = predicted_cost(way, 2, dofs, 2 * nodes, processes);
-            calibrated   = calibrated && c.calibrated;
-            grows        = grows && c.total(10) > last2.total(10);
-            last2        = c;
-          }
-      }
+      for (const unsigned int dim : {2u, 3u})
+        {
+          SolverCost last;
+          for (const unsigned int size : {0u, 1u, 2u, 3u, 4u})
+            {
+              const auto [dofs, nodes] =
+                dim == 3 ? rail(std::vector{8u, 11u, 16u, 22u, 32u}[size]) :
+                           paper(128u << size);
+              const CSolver way =
+                s != CSolver::condensed || processes == 1 ? s :
+                dim == 3 ? CSolver::condensed_distributed :
+                           CSolver::condensed_on_every_process;
+              const auto c =
+                predicted_cost(way, dim, dofs, dim * nodes, processes);
+              calibrated = calibrated && c.calibrated;
+              grows      = grows && c.total(10) > last.total(10);
+              last       = c;
+            }
+        }
   checks.add(calibrated,
              "both solvers calibrated in 2D and 3D on 1, 2 and 16 processes "
              "(on several, the condensed one with the whole factor on every "
