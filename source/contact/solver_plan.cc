@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <string>
 
 namespace DynamicContact
 {
@@ -57,9 +58,12 @@ namespace DynamicContact
         predicted_cost(condensed, dim, n_dofs, size, processes);
       plan.assembled_cost =
         predicted_cost(CostedSolver::assembled, dim, n_dofs, size, processes);
-      const unsigned int steps = plan.steps_per_matrix;
-      const double       below = smallest_costed_mesh(dim);
-      const double measured = largest_costed_mesh(dim, condensed);
+      const unsigned int steps    = plan.steps_per_matrix;
+      const double       below    = smallest_costed_mesh(dim);
+      const double       measured = largest_costed_mesh(dim, condensed);
+      const std::string  within   = "dim x contact nodes = " +
+                                 std::to_string(size) +
+                                 " <= " + std::to_string(limit);
       if (condensed == CostedSolver::condensed_distributed &&
           plan.condensed_cost.calibrated && n_dofs > measured)
         {
@@ -68,9 +72,7 @@ namespace DynamicContact
           // a cost the model does not know.
           plan.condensed = false;
           reason << "larger than the meshes the condensed solver with MUMPS "
-                 << "was measured on (" << measured
-                 << " DoFs); dim x contact nodes = " << size << " <= "
-                 << limit;
+                 << "was measured on (" << measured << " DoFs); " << within;
           return;
         }
       if (size > 0 && n_dofs >= below && plan.condensed_cost.calibrated &&
@@ -82,12 +84,11 @@ namespace DynamicContact
           reason << "predicted for " << steps << " step"
                  << (steps == 1 ? "" : "s")
                  << " per bulk matrix: condensed " << cost_string(c)
-                 << ", assembled " << cost_string(a)
-                 << "; dim x contact nodes = " << size << " <= " << limit;
+                 << ", assembled " << cost_string(a) << "; " << within;
           return;
         }
       plan.condensed = true;
-      reason << "dim x contact nodes = " << size << " <= " << limit;
+      reason << within;
       if (size > 0 && n_dofs < below)
         reason << ", smaller than the meshes of the cost model (" << below
                << " DoFs)";
