@@ -102,13 +102,13 @@ def comparison_overrides(times):
             "Output/Output times=" + output_times_entry(times)] + QUIET
 
 
-def program_command(exe, prm, overrides, ranks=1, extra=()):
+def program_command(exe, prm, overrides, ranks=1, extra=(), mpirun=None):
     """The command line of one run: `exe prm --set o ...` (under mpirun with
-    `ranks` > 1 processes)."""
+    `ranks` > 1 processes, or with any number if `mpirun` is True)."""
     command = [exe, prm] + list(extra)
     for o in overrides:
         command += ["--set", o]
-    if ranks > 1:
+    if ranks > 1 if mpirun is None else mpirun:
         command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + command
     return command
 
@@ -139,14 +139,15 @@ def _program_environment():
                 OMP_NUM_THREADS="1")
 
 
-def run_scene(exe, prm, overrides, directory, log=None, ranks=1):
+def run_scene(exe, prm, overrides, directory, log=None, ranks=1, mpirun=None):
     """One run of the program (on `ranks` MPI processes, the whole command
     timed) into `directory` (emptied first). Returns (wall time in s, return
     code, tail of the output, command); the CPU time (user + system) of the
     processes is in run_scene.last_cpu_time."""
     if os.path.exists(directory):
         shutil.rmtree(directory)
-    command = program_command(exe, prm, ["Output/Directory=" + directory] + list(overrides), ranks)
+    command = program_command(exe, prm, ["Output/Directory=" + directory] + list(overrides),
+                              ranks, mpirun=mpirun)
     env = _program_environment()
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
@@ -166,15 +167,49 @@ def run_scene(exe, prm, overrides, directory, log=None, ranks=1):
 run_scene.last_cpu_time = None
 
 
-def run_measured(exe, prm, overrides, directory, ranks=1, who="benchmark"):
+def run_measured(exe, prm, overrides, directory, ranks=1, who="benchmark", mpirun=None):
     """One quiet run of `prm` (a path) without output files but
     time_series.csv; exits naming `who` if it fails. Returns (wall time in
     s, the rows of time_series.csv after the initial state)."""
     wall, code, tail, command = run_scene(exe, prm, NO_OUTPUT_FILES + QUIET + list(overrides),
-                                          directory, ranks=ranks)
+                                          directory, ranks=ranks, mpirun=mpirun)
     if code != 0:
         sys.exit("%s: run failed:\n  %s\n%s" % (who, " ".join(command), tail))
     return wall, read_time_series(directory)[1:]
+
+
+# Columns whose agreement says two runs gave the same answers.
+ANSWER_COLUMNS = ["normal_force", "tangential_force", "total_energy", "dissipation",
+                  "friction_dissipation"]
+
+
+def answer_difference(rows, reference):
+    """Largest difference over ANSWER_COLUMNS and steps, relative to the
+    column's largest value in `reference`; None if the steps differ."""
+    if len(rows) != len(reference):
+        return None
+    worst = 0.0
+    for column in ANSWER_COLUMNS:
+        if column not in rows[0] or column not in reference[0]:
+            continue
+        a = [float(r[column]) for r in rows]
+        b = [float(r[column]) for r in reference]
+        scale = max(abs(x) for x in b) or 1.0
+        worst = max(worst, max(abs(x - y) for x, y in zip(a, b)) / scale)
+    return worst
+
+
+def stress_quick_overrides():
+    """prm/stress/quick.txt: scene -> list of overrides (the quick mode of
+    the stress suite: smaller meshes, the same physics)."""
+    result = {}
+    with open(os.path.join(ROOT, "prm", "stress", "quick.txt")) as f:
+        for line in f:
+            line = line.split("#", 1)[0].strip()
+            if line:
+                fields = [x.strip() for x in line.split("|")]
+                result[fields[0]] = [x for x in fields[1:] if x]
+    return result
 
 
 def run_status(directory):

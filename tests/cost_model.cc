@@ -9,7 +9,8 @@
 //  - the plan takes the solver of the lower predicted cost for the steps
 //    one bulk matrix serves, says both costs, and takes the condensed
 //    solver only within Solver/Condensed limit and, with MUMPS, on the
-//    meshes measured; 'as set' is kept.
+//    meshes measured; 'as set' is kept;
+//  - K0 is factorized by CHOLMOD on every process only on up to 4.
 // Plans on 1 and 2 processes are made for MPI_COMM_SELF and for a
 // communicator of 2 (the test runs on 2 processes); nothing printed
 // depends on the calibration's numbers.
@@ -219,6 +220,25 @@ main(int argc, char *argv[])
     const auto set   = plan_solver(p, 3, dofs, nodes, 1, self);
     checks.add(set.condensed && set.reason.rfind("as set", 0) == 0,
                "Contact solver = condensed: kept as set");
+  }
+  // The whole CHOLMOD factor on every process: small K0, at most 4
+  // processes; else MUMPS over the processes.
+  {
+    using F                  = SolverPlan::Factorization;
+    const auto [dofs, nodes] = paper(1024);
+    bool as_measured         = true;
+    for (const unsigned int n : {1u, 2u, 4u, 5u, 16u})
+      as_measured =
+        as_measured &&
+        bulk_factorization(automatic(), 2, dofs, n) ==
+          (n == 1 ? F::cholmod :
+           n <= 4 ? F::cholmod_on_every_process :
+                    F::amesos) &&
+        bulk_factorization(automatic(), 2, 2e5, n) ==
+          (n == 1 ? F::cholmod : F::amesos);
+    checks.add(as_measured,
+               "K0 factorized by CHOLMOD on one process, on every process of "
+               "up to 4 while small, else by MUMPS");
   }
   checks.assert_all();
 }

@@ -11,6 +11,8 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -80,6 +82,10 @@ namespace program_tools
     std::vector<std::string> environment = {};
     /** 0: the program itself; N > 0: under mpiexec with N processes. */
     unsigned int processes = 0;
+    /** With processes > 1 and this build's program: every process takes
+     *  part (Solver/Minimum DoFs per process = 0; the tests' scenes are
+     *  small, and they test the parallel code). */
+    bool every_process = true;
     /** What to run: this build's dynamic-contact unless told otherwise (a
      *  script that runs it in turn). */
     std::string program = DYNAMIC_CONTACT_EXECUTABLE;
@@ -126,6 +132,9 @@ namespace program_tools
     command += " " + quote(launch.program);
     for (const auto &a : arguments)
       command += " " + quote(a);
+    if (launch.processes > 1 && launch.every_process &&
+        launch.program == DYNAMIC_CONTACT_EXECUTABLE)
+      command += " --set 'Solver/Minimum DoFs per process=0'";
     command += " </dev/null >" + quote(launch.name + ".stdout") + " 2>" +
                quote(launch.name + ".stderr");
 
@@ -232,6 +241,50 @@ namespace program_tools
       if (l.rfind("dynamic-contact: error:", 0) == 0)
         lines.push_back(l);
     return lines;
+  }
+
+  /**
+   * The columns of time_series.csv in which @p b differs from @p a in the
+   * rows of steps up to @p last_step ("shape" if the steps differ); with
+   * @p tolerance > 0 numbers may differ by that fraction of their column's
+   * largest magnitude; work counters are never compared.
+   */
+  inline std::set<std::string>
+  differing_columns(const fs::path    &a_dir,
+                    const fs::path    &b_dir,
+                    const unsigned int last_step,
+                    const double       tolerance)
+  {
+    const std::set<std::string> work     = {"newton_iterations",
+                                            "convexification_iterations",
+                                            "factorizations",
+                                            "active_set_cycles",
+                                            "line_search_steps"};
+    const std::set<std::string> roundoff = {"coefficient_residual",
+                                            "energy_balance_defect",
+                                            "relative_energy_defect",
+                                            "relative_min_dissipation"};
+    const auto                  a        = read_csv(a_dir / "time_series.csv");
+    const auto                  b        = read_csv(b_dir / "time_series.csv");
+    if (a.size() < last_step + 2 || b.size() < last_step + 2 || a[0] != b[0])
+      return {"shape"};
+    std::set<std::string> differ;
+    for (unsigned int c = 0; c < a[0].size(); ++c)
+      {
+        const std::string &name = a[0][c];
+        if (work.count(name) || (tolerance > 0 && roundoff.count(name)))
+          continue;
+        double scale = 0;
+        for (unsigned int r = 1; r <= last_step + 1; ++r)
+          scale = std::max(scale, std::abs(std::stod(a[r][c])));
+        for (unsigned int r = 1; r <= last_step + 1; ++r)
+          if (a[r][c] != b[r][c] &&
+              !(tolerance > 0 &&
+                std::abs(std::stod(a[r][c]) - std::stod(b[r][c])) <=
+                  tolerance * scale))
+            differ.insert(name);
+      }
+    return differ;
   }
 
   /** "a, b, c", or "none". */

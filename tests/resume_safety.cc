@@ -67,50 +67,6 @@ namespace
     return trim(read_text(directory / "run_status"));
   }
 
-  /**
-   * The columns of time_series.csv in which @p b differs from @p a in the
-   * rows of steps up to @p last_step ("shape" if the steps differ); with
-   * @p tolerance > 0 numbers may differ by that fraction of their column's
-   * largest magnitude; work counters are never compared.
-   */
-  std::set<std::string>
-  differing_columns(const fs::path    &a_dir,
-                    const fs::path    &b_dir,
-                    const unsigned int last_step,
-                    const double       tolerance)
-  {
-    const std::set<std::string> work     = {"newton_iterations",
-                                            "convexification_iterations",
-                                            "factorizations",
-                                            "active_set_cycles",
-                                            "line_search_steps"};
-    const std::set<std::string> roundoff = {"coefficient_residual",
-                                            "energy_balance_defect",
-                                            "relative_energy_defect",
-                                            "relative_min_dissipation"};
-    const auto                  a        = read_csv(a_dir / "time_series.csv");
-    const auto                  b        = read_csv(b_dir / "time_series.csv");
-    if (a.size() < last_step + 2 || b.size() < last_step + 2 || a[0] != b[0])
-      return {"shape"};
-    std::set<std::string> differ;
-    for (unsigned int c = 0; c < a[0].size(); ++c)
-      {
-        const std::string &name = a[0][c];
-        if (work.count(name) || (tolerance > 0 && roundoff.count(name)))
-          continue;
-        double scale = 0;
-        for (unsigned int r = 1; r <= last_step + 1; ++r)
-          scale = std::max(scale, std::abs(std::stod(a[r][c])));
-        for (unsigned int r = 1; r <= last_step + 1; ++r)
-          if (a[r][c] != b[r][c] &&
-              !(tolerance > 0 &&
-                std::abs(std::stod(a[r][c]) - std::stod(b[r][c])) <=
-                  tolerance * scale))
-            differ.insert(name);
-      }
-    return differ;
-  }
-
   void
   copy_of(const std::string &from, const std::string &to)
   {

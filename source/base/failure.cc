@@ -86,6 +86,35 @@ namespace DynamicContact
 
 
   void
+  restrict_error_handling(const MPI_Comm group)
+  {
+    // The duplicate of every process is left as it is: the processes that
+    // do not take part never meet on it again.
+    MPI_Comm restricted = MPI_COMM_NULL;
+    MPI_Comm_dup(group, &restricted);
+    error_communicator = restricted;
+  }
+
+
+  std::pair<int, std::string>
+  wait_for_ending(const MPI_Comm     comm,
+                  const int          exit_code,
+                  const std::string &error)
+  {
+    MPI_Request request;
+    MPI_Ibarrier(comm, &request);
+    for (int done = 0; !done;)
+      {
+        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+        if (!done)
+          std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    return {Utilities::MPI::broadcast(comm, exit_code, 0),
+            Utilities::MPI::broadcast(comm, error, 0)};
+  }
+
+
+  void
   abort_run(const std::string &message, const int exit_code)
   {
     int rank = 0, size = 1;

@@ -24,12 +24,16 @@ namespace DynamicContact
     by_cholmod(const Parameters::Solver     &parameters,
                const unsigned int            dim,
                const types::global_dof_index n_dofs,
-               const MPI_Comm                comm)
+               const unsigned int            n)
     {
       if (parameters.direct_solver_package != "auto")
         return false;
+      // The whole factor on every process: while K0 is small, and on at
+      // most 4 processes (on 8 and 16 processes of a 16-core machine every
+      // process's factorization took many times as long as on one:
+      // benchmarks/results/replicated_factorization_16cores.txt).
       const double limit = dim == 2 ? 1e5 : 3e4;
-      return Utilities::MPI::n_mpi_processes(comm) == 1 || n_dofs <= limit;
+      return n == 1 || (n_dofs <= limit && n <= 4);
     }
 
 
@@ -102,16 +106,27 @@ namespace DynamicContact
   bulk_factorization(const Parameters::Solver     &parameters,
                      const unsigned int            dim,
                      const types::global_dof_index n_dofs,
-                     const MPI_Comm                comm)
+                     const unsigned int            n_processes)
   {
     using F = SolverPlan::Factorization;
     if (parameters.linear_solver == Parameters::Solver::LinearSolver::iterative)
       return F::none;
-    if (!by_cholmod(parameters, dim, n_dofs, comm))
+    if (!by_cholmod(parameters, dim, n_dofs, n_processes))
       return F::amesos;
-    return Utilities::MPI::n_mpi_processes(comm) == 1 ?
-             F::cholmod :
-             F::cholmod_on_every_process;
+    return n_processes == 1 ? F::cholmod : F::cholmod_on_every_process;
+  }
+
+
+  SolverPlan::Factorization
+  bulk_factorization(const Parameters::Solver     &parameters,
+                     const unsigned int            dim,
+                     const types::global_dof_index n_dofs,
+                     const MPI_Comm                comm)
+  {
+    return bulk_factorization(parameters,
+                              dim,
+                              n_dofs,
+                              Utilities::MPI::n_mpi_processes(comm));
   }
 
 
@@ -128,7 +143,8 @@ namespace DynamicContact
     SolverPlan         plan;
     std::ostringstream reason;
     const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
-    const bool         one_factor = by_cholmod(parameters, dim, n_dofs, comm);
+    const bool         one_factor =
+      by_cholmod(parameters, dim, n_dofs, n_processes);
 
     // The condensed solver's dense tables are bounded by its limit
     // (doc/algorithms.md, "Choosing"): Condensed limit on one process. With

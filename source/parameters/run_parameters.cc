@@ -106,7 +106,7 @@ namespace DynamicContact
           Patterns::Selection("auto|Amesos_Mumps|Amesos_Klu"),
           "The sparse direct solver. 'auto': SuiteSparse CHOLMOD (sparse "
           "Cholesky) for the condensed solver on one process, and on "
-          "several while K0 is small (up to 1e5 DoFs in 2D, 3e4 in 3D: "
+          "up to 4 while K0 is small (up to 1e5 DoFs in 2D, 3e4 in 3D: "
           "every process factorizes the whole matrix), MUMPS everywhere "
           "else; 'Amesos_Mumps', 'Amesos_Klu': that Trilinos Amesos "
           "package everywhere.");
@@ -315,6 +315,18 @@ namespace DynamicContact
           "applies as on one process. Every process holds the dense "
           "tables (8 bytes x (dim n_Gamma)^2 twice).");
         prm.declare_entry(
+          "Minimum DoFs per process",
+          "15000",
+          Patterns::Integer(0),
+          "A run started on more processes than the DoFs of its initial "
+          "mesh (the uniform mesh after Geometry/Global refinements) "
+          "divided by this number takes part on that many processes only, "
+          "the first ones (at least one); the others wait for it and end "
+          "with it. Below about this many DoFs per process the work a "
+          "process adds costs more than it saves (benchmarks/processes). "
+          "The log names the processes that take part. 0: every process "
+          "takes part.");
+        prm.declare_entry(
           "Provisional passes",
           "true",
           Patterns::Bool(),
@@ -377,6 +389,7 @@ namespace DynamicContact
             condensed_limit_on_several_processes = value;
           }
       }
+      min_dofs_per_process  = prm.get_integer("Minimum DoFs per process");
       provisional_passes    = prm.get_bool("Provisional passes");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");

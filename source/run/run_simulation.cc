@@ -5,6 +5,8 @@
 #include <dynamic_contact/time/time_loop.h>
 
 #include <iostream>
+#include <memory>
+#include <tuple>
 
 namespace DynamicContact
 {
@@ -16,18 +18,22 @@ namespace DynamicContact
                 const bool           resume,
                 const bool           validate)
   {
+    const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank        = Utilities::MPI::this_mpi_process(comm);
     // Catch inside the simulator's lifetime, so that it is destroyed with no
     // exception in flight (its timer would otherwise warn about it).
-    std::string error;
-    int         exit_code = 0;
+    std::string  error;
+    int          exit_code   = 0;
+    unsigned int taking_part = n_processes;
+    MPI_Comm     group       = MPI_COMM_NULL;
     {
-      TimeLoop<dim> simulator(parameters, prm, comm);
+      auto simulator = std::make_unique<TimeLoop<dim>>(parameters, prm, comm);
       try
         {
           if (validate)
             {
-              const std::string summary = simulator.validate();
-              if (Utilities::MPI::this_mpi_process(comm) == 0)
+              const std::string summary = simulator->validate();
+              if (rank == 0)
                 std::cout << "dynamic-contact: the scene '"
                           << parameters.parameter_file << "' is valid ("
                           << summary << "); Output/Directory '"
@@ -35,7 +41,29 @@ namespace DynamicContact
                           << "' is not looked at." << std::endl;
             }
           else
-            exit_code = simulator.run(resume);
+            {
+              // A small scene runs on the first processes only
+              // (Solver/Minimum DoFs per process); the others wait.
+              std::string note;
+              taking_part = simulator->processes_taking_part(note);
+              if (taking_part < n_processes)
+                {
+                  simulator.reset();
+                  MPI_Comm_split(comm,
+                                 rank < taking_part ? 0 : MPI_UNDEFINED,
+                                 rank,
+                                 &group);
+                  if (rank < taking_part)
+                    {
+                      restrict_error_handling(group);
+                      simulator =
+                        std::make_unique<TimeLoop<dim>>(parameters, prm, group);
+                      simulator->set_process_note(note);
+                    }
+                }
+              if (simulator)
+                exit_code = simulator->run(resume);
+            }
         }
       catch (const std::exception &e)
         {
@@ -48,12 +76,21 @@ namespace DynamicContact
           // collective operation; end them all from here.
           if (!every_process_failed())
             {
-              simulator.abandon(error, true);
+              if (simulator)
+                simulator->abandon(error, true);
               abort_run(error);
             }
-          simulator.abandon(error);
+          if (simulator)
+            simulator->abandon(error);
         }
     }
+    if (taking_part < n_processes)
+      {
+        // Every process ends as the processes that took part did.
+        std::tie(exit_code, error) = wait_for_ending(comm, exit_code, error);
+        if (group != MPI_COMM_NULL)
+          MPI_Comm_free(&group);
+      }
     if (!error.empty())
       throw AgreedError(error);
     return exit_code;

@@ -281,6 +281,24 @@ namespace DynamicContact
 
 
   template <int dim>
+  double
+  Simulator<dim>::initial_dofs_estimate() const
+  {
+    const unsigned int p = discretization.fe.degree;
+    const double       g = std::pow(2., parameters.geometry.global_refinements);
+    if (parameters.geometry.type == Parameters::Geometry::Type::rectangle)
+      {
+        double vertices = 1;
+        for (const unsigned int r : parameters.geometry.repetitions)
+          vertices *= r * g * p + 1;
+        return dim * vertices;
+      }
+    return dim * std::pow(g * p, dim) *
+           discretization.triangulation.n_global_active_cells();
+  }
+
+
+  template <int dim>
   void
   Simulator<dim>::set_up_initial_state()
   {

@@ -113,6 +113,8 @@ namespace DynamicContact
     if (model.adaptive_mesh())
       pcout << " (adaptive)";
     pcout << '\n';
+    if (!process_note.empty())
+      pcout << "  " << process_note << ".\n";
     // Which program ran, where and when: on the screen with the timings
     // (output that differs from run to run), in log.txt always.
     const std::string provenance =
@@ -258,7 +260,9 @@ namespace DynamicContact
     // Everything that can be wrong with the input is checked before any
     // result is written (the scene's functions and boundary ids when the
     // mesh is made), and the size of the scene before it is allocated.
-    model.create_mesh();
+    if (!mesh_created)
+      model.create_mesh();
+    mesh_created = true;
     if (resume)
       {
         resume_from_checkpoint();
@@ -300,6 +304,37 @@ namespace DynamicContact
     initialize(false);
     timer.disable_output(); // set-up times of a run that does not run
     return model.summary();
+  }
+
+
+  template <int dim>
+  unsigned int
+  TimeLoop<dim>::processes_taking_part(std::string &note)
+  {
+    const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
+    if (!mesh_created)
+      model.create_mesh();
+    mesh_created = true;
+    const unsigned int minimum = parameters.solver.min_dofs_per_process;
+    const double       dofs    = model.initial_dofs_estimate();
+    if (n == 1 || minimum == 0 || dofs >= double(n) * minimum)
+      return n;
+    const unsigned int m =
+      std::max(1u, static_cast<unsigned int>(dofs / minimum));
+    note = std::to_string(m) + " of " + std::to_string(n) +
+           " processes take part (about " +
+           std::to_string(static_cast<long long>(std::llround(dofs))) +
+           " DoFs in the initial mesh, Solver/Minimum DoFs per process = " +
+           std::to_string(minimum) + "); the others wait for them";
+    return m;
+  }
+
+
+  template <int dim>
+  void
+  TimeLoop<dim>::set_process_note(const std::string &note)
+  {
+    process_note = note;
   }
 
 

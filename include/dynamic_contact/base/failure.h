@@ -6,6 +6,7 @@
 #include <dynamic_contact/base/error_messages.h>
 
 #include <stdexcept>
+#include <utility>
 #include <string>
 
 namespace DynamicContact
@@ -122,6 +123,25 @@ namespace DynamicContact
    */
   bool
   every_process_failed(const double timeout = 5);
+
+  /**
+   * Collective on @p group: from now on every_process_failed() meets on
+   * (a duplicate of) @p group, the processes that take part in the run,
+   * not on every process (the others wait in wait_for_ending()).
+   */
+  void
+  restrict_error_handling(const MPI_Comm group);
+
+  /**
+   * Collective on @p comm, for a run that only some of its processes take
+   * part in (rank 0 among them): every process waits, sleeping between
+   * polls, until all have arrived, then gets rank 0's @p exit_code and
+   * @p error.
+   */
+  std::pair<int, std::string>
+  wait_for_ending(const MPI_Comm     comm,
+                  const int          exit_code,
+                  const std::string &error);
 
   /**
    * End the whole job from this process: print "dynamic-contact: error:

@@ -85,7 +85,7 @@ namespace DynamicContact
   /**
    * How a bulk matrix of @p n_dofs rows is factorized with these
    * parameters on the processes of @p comm (Solver/Direct solver package
-   * = auto: CHOLMOD on one process; on several, CHOLMOD on every process
+   * = auto: CHOLMOD on one process; on up to 4, CHOLMOD on every process
    * while the matrix is small, see the definition for the measured
    * limits, else MUMPS over the processes). Linear solver = iterative:
    * none.
@@ -95,6 +95,13 @@ namespace DynamicContact
                      const unsigned int                    dim,
                      const dealii::types::global_dof_index n_dofs,
                      const MPI_Comm                        comm);
+
+  /** The same on @p n_processes processes. */
+  SolverPlan::Factorization
+  bulk_factorization(const Parameters::Solver             &parameters,
+                     const unsigned int                    dim,
+                     const dealii::types::global_dof_index n_dofs,
+                     const unsigned int                    n_processes);
 } // namespace DynamicContact
 
 #endif

@@ -301,6 +301,12 @@ namespace DynamicContact
        * 1000; 3D: condensed_limit).
        */
       std::optional<unsigned int> condensed_limit_on_several_processes;
+      /**
+       * The fewest DoFs of the initial mesh per process: a run started on
+       * more processes than DoFs / this takes part on that many only (the
+       * first ones; at least one). 0: every process takes part.
+       */
+      unsigned int min_dofs_per_process;
       bool         provisional_passes;
       bool         line_search;
       double       newton_tolerance;

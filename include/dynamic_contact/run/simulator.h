@@ -80,6 +80,14 @@ namespace DynamicContact
     create_mesh();
 
     /**
+     * After create_mesh(): the DoFs of the uniform mesh after Geometry/Global
+     * refinements (exact for a rectangle; dim degree^dim per cell of a mesh
+     * file), before any adaptive refinement.
+     */
+    double
+    initial_dofs_estimate() const;
+
+    /**
      * A new run: refine the coarse mesh (Geometry/Global refinements, then
      * for the initial load if adaptive), check the input, set up DoFs and
      * operators, interpolate the initial state (throws if not finite).

@@ -84,6 +84,22 @@ namespace DynamicContact
     validate();
 
     /**
+     * Collective: how many processes of this run should take part
+     * (Solver/Minimum DoFs per process): the first M of them, at least one.
+     * Builds the mesh (initialize() keeps it) to count the DoFs; where M is
+     * less than all, @p note is what the run prints about it.
+     */
+    unsigned int
+    processes_taking_part(std::string &note);
+
+    /**
+     * A line printed with the header (and into log.txt): which processes
+     * take part, for a run on part of them.
+     */
+    void
+    set_process_note(const std::string &note);
+
+    /**
      * One time step; false (and nothing done) once the end time is reached
      * or a process received a stop signal.
      */
@@ -168,6 +184,10 @@ namespace DynamicContact
     bool took_over = false;
     /** validate(): initialize() stops before the output directory. */
     bool validate_only = false;
+    /** processes_taking_part() built the mesh already. */
+    bool mesh_created = false;
+    /** set_process_note(). */
+    std::string process_note;
     /** The parameters of the run as text (checkpoints, --resume). */
     std::string parameters_of_run;
     /** parameters.prm and parameters.json of the run. */
