@@ -72,13 +72,8 @@ main(int argc, char *argv[])
   // The table is the fit of the committed results.
   if (root)
     {
-      Launch launch;
-      launch.name    = "cost-model";
-      launch.program = "python3";
       const Outcome o =
-        execute({std::string(SOURCE_DIR) + "/../benchmarks/cost-model",
-                 "--check"},
-                launch);
+        run_benchmark_script("cost-model", {"--check"}, "cost-model");
       checks.add(o.succeeded(),
                  "cost_model_table.cc is benchmarks/cost-model's fit of "
                  "benchmarks/results/scaling*.csv");

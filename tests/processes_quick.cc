@@ -15,17 +15,8 @@ using test_tools::out;
 int
 main()
 {
-  Launch launch;
-  launch.name        = "processes";
-  launch.program     = "python3";
-  launch.environment = {std::string("DYNAMIC_CONTACT=") +
-                        DYNAMIC_CONTACT_EXECUTABLE};
-  const Outcome o =
-    execute({std::string(SOURCE_DIR) + "/../benchmarks/processes",
-             "--quick",
-             "--csv",
-             "processes_quick.csv"},
-            launch);
+  const Outcome o = run_benchmark_script(
+    "processes", {"--quick", "--csv", "processes_quick.csv"}, "processes");
   Checks checks;
   checks.add(o.succeeded(), "benchmarks/processes --quick succeeded");
   // The rows after the machine line.

@@ -184,6 +184,27 @@ namespace program_tools
       t.join();
   }
 
+  /**
+   * Run the script benchmarks/@p script with @p arguments (python3, with
+   * $DYNAMIC_CONTACT this build's program); its output goes to
+   * @p name.stdout and @p name.stderr.
+   */
+  inline Outcome
+  run_benchmark_script(const std::string              &script,
+                       const std::vector<std::string> &arguments,
+                       const std::string              &name)
+  {
+    Launch launch;
+    launch.name        = name;
+    launch.program     = "python3";
+    launch.environment = {std::string("DYNAMIC_CONTACT=") +
+                          DYNAMIC_CONTACT_EXECUTABLE};
+    std::vector<std::string> command = {std::string(SOURCE_DIR) +
+                                        "/../benchmarks/" + script};
+    command.insert(command.end(), arguments.begin(), arguments.end());
+    return execute(command, launch);
+  }
+
   /** The names the output manifest of @p directory lists. */
   inline std::set<std::string>
   manifest(const fs::path &directory)

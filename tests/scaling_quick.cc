@@ -12,18 +12,13 @@ using namespace program_tools;
 int
 main()
 {
-  Launch launch;
-  launch.name        = "scaling";
-  launch.program     = "python3";
-  launch.environment = {std::string("DYNAMIC_CONTACT=") +
-                        DYNAMIC_CONTACT_EXECUTABLE};
-  const Outcome o = execute({std::string(SOURCE_DIR) + "/../benchmarks/scaling",
-                             "--quick",
-                             "--work-dir",
-                             "scaling-runs",
-                             "--csv",
-                             "scaling_quick.csv"},
-                            launch);
+  const Outcome o = run_benchmark_script("scaling",
+                                         {"--quick",
+                                          "--work-dir",
+                                          "scaling-runs",
+                                          "--csv",
+                                          "scaling_quick.csv"},
+                                         "scaling");
   Checks        checks;
   checks.add(o.succeeded(), "benchmarks/scaling --quick succeeded");
   const auto rows = test_tools::read_csv("scaling_quick.csv");

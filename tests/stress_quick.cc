@@ -17,19 +17,14 @@ using namespace program_tools;
 int
 main()
 {
-  Launch launch;
-  launch.name        = "stress";
-  launch.program     = "python3";
-  launch.environment = {std::string("DYNAMIC_CONTACT=") +
-                        DYNAMIC_CONTACT_EXECUTABLE};
-  const Outcome o = execute({std::string(SOURCE_DIR) + "/../benchmarks/stress",
-                             "--quick",
-                             "--verdicts",
-                             "--work-dir",
-                             "stress-runs",
-                             "--csv",
-                             "stress_quick.csv"},
-                            launch);
+  const Outcome o = run_benchmark_script("stress",
+                                         {"--quick",
+                                          "--verdicts",
+                                          "--work-dir",
+                                          "stress-runs",
+                                          "--csv",
+                                          "stress_quick.csv"},
+                                         "stress");
   test_tools::out() << o.out;
   if (!o.err.empty())
     test_tools::out() << "stderr:\n" << o.err;

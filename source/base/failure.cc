@@ -58,6 +58,36 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * Wait, sleeping between polls, until every process of @p comm has
+     * arrived here (true) or @p timeout seconds have passed (false; the
+     * barrier is left pending). A negative timeout waits for ever.
+     */
+    bool
+    meet(const MPI_Comm comm, const double timeout)
+    {
+      MPI_Request request;
+      MPI_Ibarrier(comm, &request);
+      const auto start = std::chrono::steady_clock::now();
+      for (;;)
+        {
+          int done = 0;
+          MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+          if (done)
+            return true;
+          if (timeout >= 0 &&
+              std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            start)
+                  .count() > timeout)
+            return false;
+          std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+    }
+  } // namespace
+
+
   bool
   every_process_failed(const double timeout)
   {
@@ -67,21 +97,7 @@ namespace DynamicContact
     MPI_Comm_size(error_communicator, &size);
     if (size == 1)
       return true;
-    MPI_Request request;
-    MPI_Ibarrier(error_communicator, &request);
-    const auto start = std::chrono::steady_clock::now();
-    for (;;)
-      {
-        int done = 0;
-        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-        if (done)
-          return true;
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                          start)
-              .count() > timeout)
-          return false;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      }
+    return meet(error_communicator, timeout);
   }
 
 
@@ -101,14 +117,7 @@ namespace DynamicContact
                   const int          exit_code,
                   const std::string &error)
   {
-    MPI_Request request;
-    MPI_Ibarrier(comm, &request);
-    for (int done = 0; !done;)
-      {
-        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-        if (!done)
-          std::this_thread::sleep_for(std::chrono::milliseconds(5));
-      }
+    meet(comm, -1);
     return {Utilities::MPI::broadcast(comm, exit_code, 0),
             Utilities::MPI::broadcast(comm, error, 0)};
   }

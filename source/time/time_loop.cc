@@ -260,9 +260,7 @@ namespace DynamicContact
     // Everything that can be wrong with the input is checked before any
     // result is written (the scene's functions and boundary ids when the
     // mesh is made), and the size of the scene before it is allocated.
-    if (!mesh_created)
-      model.create_mesh();
-    mesh_created = true;
+    create_mesh_once();
     if (resume)
       {
         resume_from_checkpoint();
@@ -312,9 +310,7 @@ namespace DynamicContact
   TimeLoop<dim>::processes_taking_part(std::string &note)
   {
     const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
-    if (!mesh_created)
-      model.create_mesh();
-    mesh_created = true;
+    create_mesh_once();
     const unsigned int minimum = parameters.solver.min_dofs_per_process;
     const double       dofs    = model.initial_dofs_estimate();
     if (n == 1 || minimum == 0 || dofs >= double(n) * minimum)
@@ -327,6 +323,16 @@ namespace DynamicContact
            " DoFs in the initial mesh, Solver/Minimum DoFs per process = " +
            std::to_string(minimum) + "); the others wait for them";
     return m;
+  }
+
+
+  template <int dim>
+  void
+  TimeLoop<dim>::create_mesh_once()
+  {
+    if (!mesh_created)
+      model.create_mesh();
+    mesh_created = true;
   }
 
 

@@ -184,8 +184,11 @@ namespace DynamicContact
     bool took_over = false;
     /** validate(): initialize() stops before the output directory. */
     bool validate_only = false;
-    /** processes_taking_part() built the mesh already. */
+    /** The mesh is built (processes_taking_part() or initialize()). */
     bool mesh_created = false;
+    /** Build the coarse mesh unless it is built already. */
+    void
+    create_mesh_once();
     /** set_process_note(). */
     std::string process_note;
     /** The parameters of the run as text (checkpoints, --resume). */
