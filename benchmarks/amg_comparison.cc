@@ -9,9 +9,13 @@
 // the translations only and with the rigid-body modes as near null space),
 // PETSc GAMG (plain and with the rigid-body modes) and hypre BoomerAMG
 // through PETSc (default and nodal/systems settings). MueLu is not in
-// Debian's deal.II build. Prints setup time, CG iterations and solve time.
+// Debian's deal.II build. Prints setup time, CG iterations, solve time and
+// how much the process's resident memory grew while the preconditioner was
+// set up.
 //
 //   benchmarks/amg-comparison   (builds this as the target amg-comparison)
+//   build/amg-comparison 3d 320 32 ml-rbm,gamg-rbm   (only the ones named:
+//     ml, ml-rbm, gamg, gamg-rbm, gamg-rbm-light, hypre, hypre-nodal)
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -31,6 +35,7 @@
 #include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/bulk/discretization.h>
+#include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -40,12 +45,16 @@
 
 #include <iomanip>
 #include <iostream>
+#include <set>
+#include <sstream>
 
 using namespace dealii;
 
 template <int dim>
 void
-compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
+compare(const std::vector<unsigned int> &repetitions,
+        const Point<dim>                &corner,
+        const std::set<std::string>     &only)
 {
   using namespace DynamicContact;
   const MPI_Comm     comm = MPI_COMM_WORLD;
@@ -80,25 +89,34 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   b.compress(VectorOperation::insert);
   constraints.set_zero(b);
 
+  const auto wanted = [&](const std::string &key) {
+    return only.empty() || only.count(key) > 0;
+  };
   Timer timer;
-  auto  report = [&](const std::string &name,
-                    const double       setup,
-                    const unsigned int iterations,
-                    const double       solve) {
+  // The growth of the resident memory while a preconditioner was set up,
+  // summed over the processes, in MB.
+  auto report = [&](const std::string    &name,
+                    const double          setup,
+                    const ResidentGrowth &growth,
+                    const unsigned int    iterations,
+                    const double          solve) {
+    const double mb = Utilities::MPI::sum(growth.measured(), comm) / 1048576.;
     out << "  " << std::left << std::setw(32) << name << std::right << " setup "
         << std::fixed << std::setprecision(3) << setup << " s, CG iterations "
-        << std::setw(4) << iterations << ", solve " << solve << " s"
-        << std::defaultfloat << std::endl;
+        << std::setw(4) << iterations << ", solve " << solve << " s, setup memory "
+        << std::setprecision(0) << mb << " MB" << std::defaultfloat
+        << std::endl;
   };
-  auto cg = [&](const auto        &preconditioner,
-                const std::string &name,
-                const double       setup) {
+  auto cg = [&](const auto           &preconditioner,
+                const std::string    &name,
+                const double          setup,
+                const ResidentGrowth &growth) {
     SolverControl                           control(3000, 1e-10 * b.l2_norm());
     SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
     x = 0;
     timer.restart();
     solver.solve(K0, x, b, preconditioner);
-    report(name, setup, control.last_step(), timer.wall_time());
+    report(name, setup, growth, control.last_step(), timer.wall_time());
   };
 
   // The coordinate of each owned DoF's node in the DoF's direction, for
@@ -108,18 +126,21 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   const unsigned int n = owned.n_elements();
 
   // Trilinos ML with the settings of dynamic-contact (BulkAMG).
-  {
-    BulkAMG amg;
-    timer.restart();
-    amg.initialize(K0, discretization, false);
-    cg(amg, "ML, translations", timer.wall_time());
-  }
-  {
-    BulkAMG amg;
-    timer.restart();
-    amg.initialize(K0, discretization);
-    cg(amg, "ML, rigid-body modes (used)", timer.wall_time());
-  }
+  for (const bool rigid : {false, true})
+    if (wanted(rigid ? "ml-rbm" : "ml"))
+      {
+        const ResidentGrowth growth;
+        BulkAMG              amg;
+        timer.restart();
+        amg.initialize(K0, discretization, rigid);
+        cg(amg,
+           rigid ? "ML, rigid-body modes (used)" : "ML, translations",
+           timer.wall_time(),
+           growth);
+      }
+  if (!(wanted("gamg") || wanted("gamg-rbm") || wanted("gamg-rbm-light") ||
+        wanted("hypre") || wanted("hypre-nodal")))
+    return;
 
   // PETSc: the same matrix, CG on the true residual.
   const IndexSet        &relevant = discretization.locally_relevant;
@@ -150,10 +171,13 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
   MatNullSpace rigid;
   MatNullSpaceCreateRigidBody(coordinates, &rigid);
   auto petsc =
-    [&](const std::string                                      &name,
+    [&](const std::string                                      &key,
+        const std::string                                      &name,
         const std::string                                      &type,
         const std::vector<std::pair<std::string, std::string>> &options,
         const bool near_null_space) {
+      if (!wanted(key))
+        return;
       PetscOptionsClear(nullptr);
       for (const auto &[key, value] : options)
         PetscOptionsSetValue(nullptr, key.c_str(), value.c_str());
@@ -171,6 +195,7 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
       KSPSetTolerances(ksp, 1e-10, 1e-300, 1e10, 3000);
       KSPSetFromOptions(ksp);
       PCSetFromOptions(pc);
+      const ResidentGrowth growth;
       timer.restart();
       KSPSetUp(ksp);
       PCSetUp(pc);
@@ -180,14 +205,22 @@ compare(const std::vector<unsigned int> &repetitions, const Point<dim> &corner)
       KSPSolve(ksp, pb, px);
       PetscInt iterations;
       KSPGetIterationNumber(ksp, &iterations);
-      report(name, setup, iterations, timer.wall_time());
+      report(name, setup, growth, iterations, timer.wall_time());
       KSPDestroy(&ksp);
     };
   const std::string threshold = (dim == 2 ? "0.25" : "0.5");
-  petsc("PETSc GAMG", "gamg", {}, false);
-  petsc("PETSc GAMG, rigid-body modes", "gamg", {}, true);
-  petsc("hypre BoomerAMG", "hypre", {}, false);
-  petsc("hypre BoomerAMG, nodal",
+  petsc("gamg", "PETSc GAMG", "gamg", {}, false);
+  petsc("gamg-rbm", "PETSc GAMG, rigid-body modes", "gamg", {}, true);
+  // Lighter set-up: no squared graph on the first level (fewer, smaller
+  // aggregates' couplings) and weak couplings dropped.
+  petsc("gamg-rbm-light",
+        "PETSc GAMG, rigid-body modes, light",
+        "gamg",
+        {{"-pc_gamg_square_graph", "0"}, {"-pc_gamg_threshold", "0.01"}},
+        true);
+  petsc("hypre", "hypre BoomerAMG", "hypre", {}, false);
+  petsc("hypre-nodal",
+        "hypre BoomerAMG, nodal",
         "hypre",
         {{"-pc_hypre_boomeramg_nodal_coarsen", "6"},
          {"-pc_hypre_boomeramg_vec_interp_variant", "3"},
@@ -202,15 +235,22 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  if (argc != 4)
+  if (argc != 4 && argc != 5)
     {
-      std::cerr << "usage: amg-comparison 2d NX NY | 3d NX N\n";
+      std::cerr << "usage: amg-comparison 2d NX NY | 3d NX N [NAME,NAME...]\n";
       return 2;
     }
   const std::string  which = argv[1];
   const unsigned int a = std::stoi(argv[2]), b = std::stoi(argv[3]);
+  std::set<std::string> only;
+  if (argc == 5)
+    {
+      std::istringstream names(argv[4]);
+      for (std::string name; std::getline(names, name, ',');)
+        only.insert(name);
+    }
   if (which == "2d")
-    compare<2>({a, b}, Point<2>(2, 0.1));
+    compare<2>({a, b}, Point<2>(2, 0.1), only);
   else
-    compare<3>({a, b, b}, Point<3>(2, 0.1, 0.1));
+    compare<3>({a, b, b}, Point<3>(2, 0.1, 0.1), only);
 }

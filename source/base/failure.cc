@@ -134,6 +134,11 @@ namespace DynamicContact
       std::cerr << " (on process " << rank << " of " << size
                 << " only: ending all of them)";
     std::cerr << std::endl;
+    // mpirun forwards this process's output through a pipe that it reads
+    // in the same loop in which it handles the abort: without a pause, the
+    // message can be lost when mpirun ends the processes first.
+    if (size > 1)
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
     MPI_Abort(MPI_COMM_WORLD, exit_code);
     std::_Exit(exit_code); // not reached
   }
