@@ -81,6 +81,10 @@ main()
                read_text("one/time_series.csv"),
              "its time series is the one of a run on one process, byte for "
              "byte");
+  checks.add(read_text("fewest/log.txt").find(
+                 ", 1 MPI process (of 3 started), started ") !=
+               std::string::npos,
+             "its log's provenance line names the 1 process of the 3 started");
 
   for (const std::string minimum : {"250", "0"})
     {
@@ -101,6 +105,13 @@ main()
                       "the others wait for them."),
                  "Minimum DoFs per process = " + minimum +
                    ": the processes that take part (2 of 3, or all)");
+      checks.add(read_text(directory + "/log.txt")
+                     .find(minimum == "0" ? ", 3 MPI processes, started " :
+                                            ", 2 MPI processes (of 3 "
+                                            "started), started ") !=
+                   std::string::npos,
+                 "Minimum DoFs per process = " + minimum +
+                   ": the provenance line names the processes");
       checks.add(differing_columns("one", directory, 16, 1e-8).empty(),
                  "Minimum DoFs per process = " + minimum +
                    ": the answers of one process to 1e-8");

@@ -3,6 +3,8 @@
 
 #include <dynamic_contact/base/memory_report.h>
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
@@ -31,15 +33,30 @@ namespace DynamicContact
   }
 
 
-  ResidentGrowth::ResidentGrowth()
-    : start(resident_bytes())
+  double
+  heap_in_use()
+  {
+    const struct mallinfo2 heap = mallinfo2();
+    return double(heap.uordblks) + double(heap.hblkhd);
+  }
+
+
+  void
+  return_free_memory()
+  {
+    malloc_trim(0);
+  }
+
+
+  HeapGrowth::HeapGrowth()
+    : start(heap_in_use())
   {}
 
 
   double
-  ResidentGrowth::measured() const
+  HeapGrowth::measured() const
   {
-    return std::max(0., resident_bytes() - start);
+    return std::max(0., heap_in_use() - start);
   }
 
 

@@ -16,6 +16,7 @@ namespace DynamicContact
     : discretization(d)
     , material(material)
     , strain_norm(strain_norm)
+    , strain_gram(d)
     , face_quadrature(d)
   {}
 
@@ -53,10 +54,6 @@ namespace DynamicContact
 
     mass_matrix.reinit(mass_pattern);
     elasticity_matrix.reinit(pattern);
-    if (strain_norm)
-      strain_matrix.reinit(pattern);
-    else
-      strain_matrix.clear();
     if (material.has_viscosity())
       viscosity_matrix.reinit(pattern);
     bulk_matrix.reinit(pattern);
@@ -80,7 +77,7 @@ namespace DynamicContact
                               update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> local_mass(n, n), local_elasticity(n, n),
-      local_viscosity(n, n), local_strain(n, n);
+      local_viscosity(n, n);
     std::vector<types::global_dof_index> dofs(n);
     std::vector<SymmetricTensor<2, dim>> eps(n);
     std::vector<Tensor<1, dim>>          phi(n);
@@ -95,7 +92,6 @@ namespace DynamicContact
           local_mass       = 0;
           local_elasticity = 0;
           local_viscosity  = 0;
-          local_strain     = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               for (unsigned int i = 0; i < n; ++i)
@@ -113,8 +109,6 @@ namespace DynamicContact
                     {
                       local_mass(i, j) += phi[i] * phi[j] * JxW;
                       local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
-                      if (strain_norm)
-                        local_strain(i, j) += (eps[i] * eps[j]) * JxW;
                       if (material.has_viscosity())
                         local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
                     }
@@ -126,10 +120,6 @@ namespace DynamicContact
           constraints.distribute_local_to_global(local_elasticity,
                                                  dofs,
                                                  elasticity_matrix);
-          if (strain_norm)
-            constraints.distribute_local_to_global(local_strain,
-                                                   dofs,
-                                                   strain_matrix);
           if (material.has_viscosity())
             constraints.distribute_local_to_global(local_viscosity,
                                                    dofs,
@@ -137,10 +127,11 @@ namespace DynamicContact
         }
     mass_matrix.compress(VectorOperation::add);
     elasticity_matrix.compress(VectorOperation::add);
-    if (strain_norm)
-      strain_matrix.compress(VectorOperation::add);
     if (material.has_viscosity())
       viscosity_matrix.compress(VectorOperation::add);
+
+    if (strain_norm)
+      strain_gram.reinit();
 
     current = TimeScheme();
     discretization.reinit_owned(tmp);
@@ -191,7 +182,9 @@ namespace DynamicContact
     if (material.has_viscosity())
       values("viscosity matrix", viscosity_matrix);
     if (strain_norm)
-      values("strain matrix (norm of V)", strain_matrix);
+      items.push_back({"norm of V (matrix-free cell data)",
+                       strain_gram.memory_consumption(),
+                       false});
     values("bulk matrix K0", bulk_matrix);
   }
 

@@ -223,9 +223,10 @@ namespace DynamicContact
     // matrix make smoothed aggregation's hierarchy large).
     if (!smoothed)
       list.set("aggregation: damping factor", 0.);
-    const ResidentGrowth growth;
+    const HeapGrowth growth;
     amg.initialize(matrix, list);
     hierarchy_bytes = growth.measured();
+    return_free_memory();
   }
 
 
@@ -296,11 +297,12 @@ namespace DynamicContact
         // Keep the analysis of the last factorization (same pattern).
         if (!cholesky)
           cholesky = std::make_unique<Cholesky>(A.get_mpi_communicator());
-        const ResidentGrowth growth;
+        const HeapGrowth growth;
         cholesky->factorize(A.trilinos_matrix(),
                             std::vector<SuiteSparse_long>(trailing_rows.begin(),
                                                           trailing_rows.end()));
         growth.keep_largest(factorization_bytes);
+        return_free_memory();
       }
     else if (parameters.linear_solver ==
              Parameters::Solver::LinearSolver::direct)
@@ -316,11 +318,12 @@ namespace DynamicContact
                     ExcMessage("Solver/Direct solver package: '" +
                                parameters.direct_solver_package +
                                "' is not available in this Trilinos."));
-        const ResidentGrowth growth;
+        const HeapGrowth growth;
         AssertThrow(direct->SymbolicFactorization() == 0 &&
                       direct->NumericFactorization() == 0,
                     ExcMessage("The factorization of the bulk matrix failed."));
         growth.keep_largest(factorization_bytes);
+        return_free_memory();
         // The Schur complement from MUMPS in 3D only: on the thin 2D
         // domains of the paper's scenes it differs from the solves by
         // 1e-11 to 1e-9 relative (the check in inverse_block()), and where

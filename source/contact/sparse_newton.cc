@@ -646,9 +646,10 @@ namespace DynamicContact
           direct_control,
           TrilinosWrappers::SolverDirect::AdditionalData(
             false, amesos_package(problem.parameters)));
-        const ResidentGrowth growth;
+        const HeapGrowth growth;
         direct->initialize(system_matrix);
         growth.keep_largest(factorization_bytes);
+        return_free_memory();
         ++result.factorizations;
         factorized_blocks = system.blocks;
         factorized_stick  = system.stick;

@@ -26,11 +26,16 @@ namespace DynamicContact
 
 
   std::string
-  provenance_line(const unsigned int n_processes, const std::string &start)
+  provenance_line(const unsigned int n_processes,
+                  const unsigned int n_started,
+                  const std::string &start)
   {
     return CommandLine::version_text() + ", " + std::to_string(n_processes) +
-           " MPI process" + (n_processes == 1 ? "" : "es") + ", started " +
-           start;
+           " MPI process" + (n_processes == 1 ? "" : "es") +
+           (n_started > n_processes ?
+              " (of " + std::to_string(n_started) + " started)" :
+              std::string()) +
+           ", started " + start;
   }
 
 

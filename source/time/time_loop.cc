@@ -119,7 +119,10 @@ namespace DynamicContact
     // (output that differs from run to run), in log.txt always.
     const std::string provenance =
       "  " +
-      provenance_line(Utilities::MPI::n_mpi_processes(comm), start_time) + "\n";
+      provenance_line(Utilities::MPI::n_mpi_processes(comm),
+                      Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+                      start_time) +
+      "\n";
     // With the solver plan (it names the number of processes).
     const std::string plan = "  solver plan: " + model.solver_plan() + "\n";
     if (parameters.output.print_timings)

@@ -15,7 +15,7 @@ namespace DynamicContact
   /**
    * What one part of the program holds on this process: counted from its
    * sizes (a matrix's values, a vector's entries), or measured as the growth
-   * of the resident memory while it was built (a factorization or an AMG
+   * of the heap in use while it was built (a factorization or an AMG
    * hierarchy, whose libraries do not say).
    */
   struct MemoryItem
@@ -40,22 +40,38 @@ namespace DynamicContact
   note_resident_at_start();
 
   /**
-   * Measures the growth of this process's resident memory from its
-   * construction to measured(): what a library allocated in between (a
-   * lower bound where it reused memory freed before).
+   * The bytes this process has allocated and not freed (glibc's count of
+   * the heap in use, memory mapped blocks included).
    */
-  class ResidentGrowth
+  double
+  heap_in_use();
+
+  /**
+   * Give the heap's free pages back to the system (malloc_trim). A library
+   * that builds a large object (an AMG hierarchy, a factorization) frees
+   * several times what it keeps; without this, the process's resident
+   * memory stays at that peak.
+   */
+  void
+  return_free_memory();
+
+  /**
+   * Measures the growth of this process's heap in use from its
+   * construction to measured(): what a library allocated in between and
+   * still holds (its temporaries, freed again, are not counted).
+   */
+  class HeapGrowth
   {
   public:
-    ResidentGrowth();
+    HeapGrowth();
 
     double
     measured() const;
 
     /**
      * @p largest = max(@p largest, measured()): what a library's first
-     * build of an object allocated (a later build may reuse what the one
-     * before it freed, and measure less).
+     * build of an object holds (a rebuild that frees the object it
+     * replaces measures only the difference).
      */
     void
     keep_largest(double &largest) const

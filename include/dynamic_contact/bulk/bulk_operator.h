@@ -9,6 +9,7 @@
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/face_load_quadrature.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
+#include <dynamic_contact/bulk/strain_gram.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/bulk/scene.h>
 #include <dynamic_contact/time/time_scheme.h>
@@ -21,13 +22,14 @@ namespace DynamicContact
    * The linear part of the scheme (doc/theory.md section 2; the theta-scheme
    * generalizes it, theta = 1 being backward Euler): the mass matrix M
    * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
-   * of a_C (and, if asked for, the Gram matrix of (eps(u), eps(v)): the
-   * norm of V of the convexification loop's stopping rule), assembled once
-   * per mesh and condensed with the mesh's constraints, and the bulk Newton
-   * matrix
+   * of a_C, assembled once per mesh and condensed with the mesh's
+   * constraints, and the bulk Newton matrix
    *   K0 = (rho/k) M + A + k B,
-   * formed from them (no reassembly) whenever k changes. Nothing of Gamma_3
-   * is in here: the contact terms are added by the step solver.
+   * formed from them (no reassembly) whenever k changes; and, if asked for,
+   * the inner product (eps(u), eps(v)) of V (the norm of the
+   * convexification loop's stopping rule), evaluated from the mesh's cells
+   * (StrainGram), not stored. Nothing of Gamma_3 is in here: the contact
+   * terms are added by the step solver.
    *
    * The matrices share one sparsity pattern, but for M: it couples each
    * displacement component with itself only, so it has a pattern of its
@@ -38,17 +40,16 @@ namespace DynamicContact
   {
   public:
     /**
-     * With @p strain_norm, also the Gram matrix of the norm of V
-     * (strain_product()); a scene without a convexification loop does not
-     * need it.
+     * With @p strain_norm, also the inner product of V (strain_product());
+     * a scene without a convexification loop does not need it.
      */
     BulkOperator(const Discretization<dim>      &discretization,
                  const KelvinVoigtMaterial<dim> &material,
                  const bool                      strain_norm = true);
 
     /**
-     * Assemble M, B (A if the material is viscous, the Gram matrix of V if
-     * asked for) on the current mesh.
+     * Assemble M, B (A if the material is viscous) on the current mesh, and
+     * set up the strain product's cell data if asked for.
      */
     void
     reinit();
@@ -112,8 +113,8 @@ namespace DynamicContact
     double
     strain_product(const Vector_t &x, const Vector_t &y) const
     {
-      Assert(strain_norm, ExcMessage("The Gram matrix of V was not made."));
-      return product(strain_matrix, x, y);
+      Assert(strain_norm, ExcMessage("The inner product of V was not set up."));
+      return strain_gram.product(x, y);
     }
 
     /**
@@ -168,8 +169,8 @@ namespace DynamicContact
     Matrix_t                          mass_matrix;
     Matrix_t                          elasticity_matrix;
     Matrix_t                          viscosity_matrix;
-    Matrix_t                          strain_matrix;
     Matrix_t                          bulk_matrix;
+    StrainGram<dim>                   strain_gram;
 
     /**
      * The locally owned cells with a load (Scene::carries_load), found by

@@ -28,10 +28,13 @@ namespace DynamicContact
 
   /**
    * "dynamic-contact X (git H), deal.II A.B.C, N MPI processes, started T"
-   * (T: @p start, utc_timestamp()).
+   * (T: @p start, utc_timestamp()); "N MPI processes (of S started)" when
+   * only N of the @p n_started processes take part.
    */
   std::string
-  provenance_line(const unsigned int n_processes, const std::string &start);
+  provenance_line(const unsigned int n_processes,
+                  const unsigned int n_started,
+                  const std::string &start);
 
   /** The formats of --print-parameters[=FORMAT]. */
   enum class PrintFormat
