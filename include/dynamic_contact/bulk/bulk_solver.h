@@ -71,8 +71,8 @@ namespace DynamicContact
     }
 
     /**
-     * What the hierarchy holds on this process: the growth of the resident
-     * memory while ML built it, and the near null space.
+     * What the hierarchy holds on this process: the growth of the heap in
+     * use while ML built it, and the near null space.
      */
     double
     memory_consumption() const
@@ -230,9 +230,9 @@ namespace DynamicContact
     /** The CHOLMOD factorization (of the whole matrix on every process). */
     std::unique_ptr<Cholesky> cholesky;
     /**
-     * The largest growth of the resident memory measured while a
-     * factorization was made (the first one on a mesh allocates; later ones
-     * may reuse what the one before them freed).
+     * The largest growth of the heap in use measured while a
+     * factorization was made (a refactorization that frees the factor it
+     * replaces measures only the difference).
      */
     double factorization_bytes = 0;
   };
