@@ -79,7 +79,7 @@ compare(const std::vector<unsigned int> &repetitions,
   // k = 1/128 s (backward Euler).
   const KelvinVoigtMaterial<dim> material(benchmark_material());
   BulkOperator<dim>              bulk(discretization, material);
-  bulk.reinit();
+  bulk.reinit(true);
   bulk.set_time_step(1. / 128);
   const TrilinosWrappers::SparseMatrix &K0 = bulk.newton_matrix();
   out << dim << "D, " << dof_handler.n_dofs() << " DoFs, "

@@ -105,7 +105,7 @@ compare(const std::vector<unsigned int> &repetitions,
 
   const KelvinVoigtMaterial<dim> material(benchmark_material());
   BulkOperator<dim>              bulk(discretization, material);
-  bulk.reinit();
+  bulk.reinit(true);
   bulk.set_time_step(k);
   const TrilinosWrappers::SparseMatrix &K0 = bulk.newton_matrix();
   const Epetra_CrsMatrix               &A  = K0.trilinos_matrix();

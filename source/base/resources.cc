@@ -22,8 +22,8 @@ namespace DynamicContact
   {
     // Estimates for the mesh after Geometry/Global refinements (an
     // adaptive mesh may grow beyond it; Mesh refinement/Cell budget bounds
-    // it). DoFs as on a box; memory: the four sparse matrices (M, B, A, K0)
-    // and at least as much for the factorization of K0, 12 bytes per entry
+    // it). DoFs as on a box; memory: the one stored bulk matrix K0 and at
+    // least as much for its factorization or its AMG, 12 bytes per entry
     // (value and column index): a lower bound, so that no scene that fits
     // is refused.
     const double refinements = parameters.geometry.global_refinements;
@@ -31,7 +31,7 @@ namespace DynamicContact
     const double p           = parameters.finite_element.degree;
     const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
     const double entries_per_row = dim * std::pow(2 * p + 1, dim);
-    const double bytes           = 5 * 12 * entries_per_row * dofs;
+    const double bytes           = 2 * 12 * entries_per_row * dofs;
 
     // The memory available: MemAvailable of every host of the run, once.
     double available = 0;

@@ -16,15 +16,17 @@ namespace DynamicContact
     : discretization(d)
     , material(material)
     , strain_norm(strain_norm)
-    , strain_gram(d)
+    , forms(d, material)
     , face_quadrature(d)
   {}
 
 
   template <int dim>
   void
-  BulkOperator<dim>::reinit_matrices()
+  BulkOperator<dim>::reinit(const bool store)
   {
+    loaded_cells_scene = nullptr; // the mesh changed
+    stored             = store;
     // Every component with every other (K0 and the stiffness matrices),
     // and each component with itself alone (M: phi_i . phi_j vanishes
     // between components).
@@ -35,8 +37,14 @@ namespace DynamicContact
           all(c, d)  = DoFTools::always;
           same(c, d) = (c == d ? DoFTools::always : DoFTools::none);
         }
-    for (auto [p, couplings] : {std::make_pair(&pattern, &all),
-                                std::make_pair(&mass_pattern, &same)})
+    std::vector<std::pair<TrilinosWrappers::SparsityPattern *,
+                          Table<2, DoFTools::Coupling> *>>
+      patterns = {{&pattern, &all}};
+    if (stored)
+      patterns.emplace_back(&mass_pattern, &same);
+    else
+      mass_pattern.clear();
+    for (auto [p, couplings] : patterns)
       {
         p->reinit(discretization.locally_owned,
                   discretization.locally_owned,
@@ -51,23 +59,33 @@ namespace DynamicContact
                                           discretization.comm));
         p->compress();
       }
-
-    mass_matrix.reinit(mass_pattern);
-    elasticity_matrix.reinit(pattern);
-    if (material.has_viscosity())
-      viscosity_matrix.reinit(pattern);
     bulk_matrix.reinit(pattern);
+    for (Matrix_t *m : {&mass_matrix,
+                        &elasticity_matrix,
+                        &viscosity_matrix,
+                        &strain_matrix})
+      m->clear();
+    if (stored)
+      assemble_forms();
+    else
+      forms.reinit();
+    current = TimeScheme();
+    discretization.reinit_owned(tmp);
   }
 
 
   template <int dim>
   void
-  BulkOperator<dim>::reinit()
+  BulkOperator<dim>::assemble_forms()
   {
     const auto &dof_handler = discretization.dof_handler;
     const auto &fe          = discretization.fe;
-    loaded_cells_scene      = nullptr; // the mesh changed
-    reinit_matrices();
+    mass_matrix.reinit(mass_pattern);
+    elasticity_matrix.reinit(pattern);
+    if (strain_norm)
+      strain_matrix.reinit(pattern);
+    if (material.has_viscosity())
+      viscosity_matrix.reinit(pattern);
 
     const QGauss<dim>  quadrature(fe.degree + 1);
     FEValues<dim>      fe_values(discretization.mapping,
@@ -77,7 +95,7 @@ namespace DynamicContact
                               update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> local_mass(n, n), local_elasticity(n, n),
-      local_viscosity(n, n);
+      local_viscosity(n, n), local_strain(n, n);
     std::vector<types::global_dof_index> dofs(n);
     std::vector<SymmetricTensor<2, dim>> eps(n);
     std::vector<Tensor<1, dim>>          phi(n);
@@ -92,6 +110,7 @@ namespace DynamicContact
           local_mass       = 0;
           local_elasticity = 0;
           local_viscosity  = 0;
+          local_strain     = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               for (unsigned int i = 0; i < n; ++i)
@@ -109,6 +128,8 @@ namespace DynamicContact
                     {
                       local_mass(i, j) += phi[i] * phi[j] * JxW;
                       local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
+                      if (strain_norm)
+                        local_strain(i, j) += (eps[i] * eps[j]) * JxW;
                       if (material.has_viscosity())
                         local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
                     }
@@ -120,6 +141,10 @@ namespace DynamicContact
           constraints.distribute_local_to_global(local_elasticity,
                                                  dofs,
                                                  elasticity_matrix);
+          if (strain_norm)
+            constraints.distribute_local_to_global(local_strain,
+                                                   dofs,
+                                                   strain_matrix);
           if (material.has_viscosity())
             constraints.distribute_local_to_global(local_viscosity,
                                                    dofs,
@@ -127,14 +152,10 @@ namespace DynamicContact
         }
     mass_matrix.compress(VectorOperation::add);
     elasticity_matrix.compress(VectorOperation::add);
+    if (strain_norm)
+      strain_matrix.compress(VectorOperation::add);
     if (material.has_viscosity())
       viscosity_matrix.compress(VectorOperation::add);
-
-    if (strain_norm)
-      strain_gram.reinit();
-
-    current = TimeScheme();
-    discretization.reinit_owned(tmp);
   }
 
 
@@ -146,13 +167,121 @@ namespace DynamicContact
            ExcMessage("The time step must be positive."));
     if (scheme == current)
       return;
-    // K0 = (rho/k) M + theta A + theta^2 k B.
-    bulk_matrix.copy_from(elasticity_matrix);
-    bulk_matrix *= scheme.elasticity_coefficient();
-    bulk_matrix.add(scheme.mass_coefficient(material.density()), mass_matrix);
-    if (material.has_viscosity())
-      bulk_matrix.add(scheme.viscosity_coefficient(), viscosity_matrix);
+    if (stored)
+      {
+        // K0 = (rho/k) M + theta A + theta^2 k B.
+        bulk_matrix.copy_from(elasticity_matrix);
+        bulk_matrix *= scheme.elasticity_coefficient();
+        bulk_matrix.add(scheme.mass_coefficient(material.density()),
+                        mass_matrix);
+        if (material.has_viscosity())
+          bulk_matrix.add(scheme.viscosity_coefficient(), viscosity_matrix);
+      }
+    else
+      assemble_bulk_matrix(scheme);
     current = scheme;
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::assemble_bulk_matrix(const TimeScheme &scheme)
+  {
+    // K0 = (rho/k) M + theta A + theta^2 k B, cell by cell.
+    const double mass_coefficient =
+      scheme.mass_coefficient(material.density());
+    const double elasticity_coefficient = scheme.elasticity_coefficient();
+    const double viscosity_coefficient =
+      material.has_viscosity() ? scheme.viscosity_coefficient() : 0.;
+    SymmetricTensor<4, dim> stiffness =
+      elasticity_coefficient * material.elasticity();
+    if (material.has_viscosity())
+      stiffness += viscosity_coefficient * material.viscosity();
+
+    const auto        &fe = discretization.fe;
+    const QGauss<dim>  quadrature(fe.degree + 1);
+    FEValues<dim>      fe_values(discretization.mapping,
+                            fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    FullMatrix<double> local(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<SymmetricTensor<2, dim>> eps(n), stress(n);
+    std::vector<Tensor<1, dim>>          value(n), inertia(n);
+    const FEValuesExtractors::Vector     displacement(0);
+
+    bulk_matrix = 0;
+    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          local = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double JxW = fe_values.JxW(q);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  eps[i]     = fe_values[displacement].symmetric_gradient(i, q);
+                  stress[i]  = (stiffness * eps[i]) * JxW;
+                  value[i]   = fe_values[displacement].value(i, q);
+                  inertia[i] = value[i] * (mass_coefficient * JxW);
+                }
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  local(i, j) += inertia[i] * value[j] + stress[i] * eps[j];
+            }
+          cell->get_dof_indices(dofs);
+          discretization.constraints.distribute_local_to_global(local,
+                                                                dofs,
+                                                                bulk_matrix);
+        }
+    bulk_matrix.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
+  const Matrix_t &
+  BulkOperator<dim>::matrix(const Form form) const
+  {
+    switch (form)
+      {
+        case Form::mass:
+          return mass_matrix;
+        case Form::elasticity:
+          return elasticity_matrix;
+        case Form::viscosity:
+          return viscosity_matrix;
+        default:
+          return strain_matrix;
+      }
+  }
+
+
+  template <int dim>
+  double
+  BulkOperator<dim>::product(const Form      form,
+                             const Vector_t &x,
+                             const Vector_t &y) const
+  {
+    if (!stored)
+      return forms.product(form, x, y);
+    matrix(form).vmult(tmp, y);
+    return x * tmp;
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::vmult(const Form      form,
+                           Vector_t       &dst,
+                           const Vector_t &src) const
+  {
+    if (stored)
+      matrix(form).vmult(dst, src);
+    else
+      forms.vmult(form, dst, src);
   }
 
 
@@ -171,32 +300,26 @@ namespace DynamicContact
                          rows * 2 * sizeof(int),
                        false});
     };
-    graph("sparsity pattern (shared)", pattern);
-    graph("sparsity pattern of M", mass_pattern);
     const auto values = [&](const std::string &name, const Matrix_t &A) {
       items.push_back(
         {name, stored_values_bytes(A) + rows * sizeof(double *), false});
     };
-    values("mass matrix M", mass_matrix);
-    values("elasticity matrix", elasticity_matrix);
-    if (material.has_viscosity())
-      values("viscosity matrix", viscosity_matrix);
-    if (strain_norm)
-      items.push_back({"norm of V (matrix-free cell data)",
-                       strain_gram.memory_consumption(),
+    graph("sparsity pattern (shared)", pattern);
+    if (stored)
+      {
+        graph("sparsity pattern of M", mass_pattern);
+        values("mass matrix M", mass_matrix);
+        values("elasticity matrix", elasticity_matrix);
+        if (material.has_viscosity())
+          values("viscosity matrix", viscosity_matrix);
+        if (strain_norm)
+          values("strain matrix (norm of V)", strain_matrix);
+      }
+    else
+      items.push_back({"bulk forms (matrix-free cell data)",
+                       forms.memory_consumption(),
                        false});
     values("bulk matrix K0", bulk_matrix);
-  }
-
-
-  template <int dim>
-  double
-  BulkOperator<dim>::product(const Matrix_t &A,
-                             const Vector_t &x,
-                             const Vector_t &y) const
-  {
-    A.vmult(tmp, y);
-    return x * tmp;
   }
 
 

@@ -88,14 +88,16 @@ namespace DynamicContact
   Simulator<dim>::setup_operators(const double start_time)
   {
     TimerSection t(timer, "Setup: bulk matrices");
-    bulk.reinit();
-    force_balance.reinit();
     // c_t of the friction complementarity function, like E/h.
     const double c_t = parameters.friction.complementarity_constant > 0 ?
                          parameters.friction.complementarity_constant :
                          parameters.material.young_modulus /
                            discretization.minimal_cell_diameter();
     step_solver.reinit(c_t, steps_per_matrix(start_time));
+    // The bulk forms stored for the condensed solver, applied from the
+    // cells for the assembled solver (BulkOperator).
+    bulk.reinit(step_solver.solver_plan().condensed);
+    force_balance.reinit();
   }
 
 

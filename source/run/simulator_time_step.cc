@@ -20,8 +20,12 @@ namespace DynamicContact
                                const Vector_t   &w_start)
   {
     const double k = scheme.time_step();
+    {
+      // K0 for a new mesh or time scheme.
+      TimerSection assembly(timer, "Setup: bulk matrices");
+      bulk.set_time_step(scheme);
+    }
     TimerSection scope(timer, "Step: load and right-hand side");
-    bulk.set_time_step(scheme);
     // f_theta = theta f_n + (1 - theta) f_{n-1}.
     bulk.assemble_load_vector(scene, t, load);
     if (!scheme.is_backward_euler())
@@ -31,15 +35,15 @@ namespace DynamicContact
       }
     // b = (rho/k) M w_{n-1} - (1 - theta) A w_{n-1}
     //     - B (u_{n-1} + theta (1 - theta) k w_{n-1}) + f_theta
-    bulk.mass().vmult(rhs, w_start);
+    bulk.mass_vmult(rhs, w_start);
     rhs *= scheme.mass_coefficient(material.density());
     scratch = u_start;
     scratch.add(scheme.elastic_old_velocity_factor(), w_start);
-    bulk.elasticity().vmult(u, scratch); // u as scratch
+    bulk.elasticity_vmult(u, scratch); // u as scratch
     rhs -= u;
     if (!scheme.is_backward_euler() && bulk.has_viscosity())
       {
-        bulk.viscosity().vmult(u, w_start);
+        bulk.viscosity_vmult(u, w_start);
         rhs.add(-scheme.viscosity_old_factor(), u);
       }
     rhs += load;

@@ -9,7 +9,7 @@
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/face_load_quadrature.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
-#include <dynamic_contact/bulk/strain_gram.h>
+#include <dynamic_contact/bulk/cell_operators.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/bulk/scene.h>
 #include <dynamic_contact/time/time_scheme.h>
@@ -20,43 +20,58 @@ namespace DynamicContact
 
   /**
    * The linear part of the scheme (doc/theory.md section 2; the theta-scheme
-   * generalizes it, theta = 1 being backward Euler): the mass matrix M
-   * (without rho), the elasticity matrix B of a_E and the viscosity matrix A
-   * of a_C, assembled once per mesh and condensed with the mesh's
-   * constraints, and the bulk Newton matrix
-   *   K0 = (rho/k) M + A + k B,
-   * formed from them (no reassembly) whenever k changes; and, if asked for,
+   * generalizes it, theta = 1 being backward Euler): the mass form M
+   * (without rho), the elasticity form B of a_E, the viscosity form A of a_C,
    * the inner product (eps(u), eps(v)) of V (the norm of the
-   * convexification loop's stopping rule), evaluated from the mesh's cells
-   * (StrainGram), not stored. Nothing of Gamma_3 is in here: the contact
-   * terms are added by the step solver.
+   * convexification loop's stopping rule), and the bulk Newton matrix
+   *   K0 = (rho/k) M + A + k B,
+   * all condensed with the mesh's constraints. Nothing of Gamma_3 is in
+   * here: the contact terms are added by the step solver.
    *
-   * The matrices share one sparsity pattern, but for M: it couples each
-   * displacement component with itself only, so it has a pattern of its
-   * own with 1/dim of the entries.
+   * Two ways to hold the forms, chosen per mesh (reinit()):
+   * - stored: M, B, A (and the Gram matrix of V) are assembled once per
+   *   mesh and K0 is summed from them when the time scheme changes. Their
+   *   products are sparse matrix-vector products, the fastest for the
+   *   small meshes of the condensed solver, which takes many of them per
+   *   step for its cheap solves.
+   * - matrix-free: the forms are applied cell by cell (CellOperators) and
+   *   K0, the one stored matrix, is assembled directly when the mesh or
+   *   the time scheme changes: 8 bytes per entry of K0's pattern less for
+   *   each form (and M's pattern), for the large meshes of the assembled
+   *   solver, whose Krylov solves cost far more than the forms' products.
+   * The two give the same forms to round-off.
    */
   template <int dim>
   class BulkOperator
   {
   public:
     /**
-     * With @p strain_norm, also the inner product of V (strain_product());
-     * a scene without a convexification loop does not need it.
+     * @p strain_norm: whether strain_product() is used (a scene without a
+     * convexification loop does not).
      */
     BulkOperator(const Discretization<dim>      &discretization,
                  const KelvinVoigtMaterial<dim> &material,
                  const bool                      strain_norm = true);
 
     /**
-     * Assemble M, B (A if the material is viscous) on the current mesh, and
-     * set up the strain product's cell data if asked for.
+     * Set up K0's pattern and the forms on the current mesh: with
+     * @p stored, assemble M, B (A if the material is viscous, the Gram
+     * matrix of V if asked for); else set up the forms' cell data.
      */
     void
-    reinit();
+    reinit(const bool stored);
+
+    /** Whether the forms are stored matrices (the last reinit()). */
+    bool
+    stores_forms() const
+    {
+      return stored;
+    }
 
     /**
      * Form K0 = (rho/k) M + theta A + theta^2 k B for the scheme's time step
-     * k and theta (a no-op if both are unchanged).
+     * k and theta (a no-op if both are unchanged): summed from the stored
+     * matrices, or assembled.
      */
     void
     set_time_step(const TimeScheme &scheme);
@@ -68,21 +83,23 @@ namespace DynamicContact
       return bulk_matrix;
     }
 
-    const Matrix_t &
-    mass() const
+    /** @p dst = M @p src, for vectors in master form (collective). */
+    void
+    mass_vmult(Vector_t &dst, const Vector_t &src) const
     {
-      return mass_matrix;
+      vmult(Form::mass, dst, src);
     }
-    const Matrix_t &
-    elasticity() const
+    /** @p dst = B @p src. */
+    void
+    elasticity_vmult(Vector_t &dst, const Vector_t &src) const
     {
-      return elasticity_matrix;
+      vmult(Form::elasticity, dst, src);
     }
-    /** Only valid if has_viscosity(). */
-    const Matrix_t &
-    viscosity() const
+    /** @p dst = A @p src (only with viscosity). */
+    void
+    viscosity_vmult(Vector_t &dst, const Vector_t &src) const
     {
-      return viscosity_matrix;
+      vmult(Form::viscosity, dst, src);
     }
     bool
     has_viscosity() const
@@ -90,21 +107,21 @@ namespace DynamicContact
       return material.has_viscosity();
     }
 
-    /** x^T M y etc. for vectors in master form. */
+    /** x^T M y etc. for vectors in master form (collective). */
     double
     mass_product(const Vector_t &x, const Vector_t &y) const
     {
-      return product(mass_matrix, x, y);
+      return product(Form::mass, x, y);
     }
     double
     elastic_product(const Vector_t &x, const Vector_t &y) const
     {
-      return product(elasticity_matrix, x, y);
+      return product(Form::elasticity, x, y);
     }
     double
     viscous_product(const Vector_t &x, const Vector_t &y) const
     {
-      return material.has_viscosity() ? product(viscosity_matrix, x, y) : 0;
+      return material.has_viscosity() ? product(Form::viscosity, x, y) : 0;
     }
     /**
      * (eps(x), eps(y))_{L^2}: the inner product of V, eq. (22) (only if
@@ -113,8 +130,8 @@ namespace DynamicContact
     double
     strain_product(const Vector_t &x, const Vector_t &y) const
     {
-      Assert(strain_norm, ExcMessage("The inner product of V was not set up."));
-      return strain_gram.product(x, y);
+      Assert(strain_norm, ExcMessage("The inner product of V was not made."));
+      return product(Form::strain, x, y);
     }
 
     /**
@@ -146,7 +163,8 @@ namespace DynamicContact
 
     /**
      * What the operator holds on this process: the sparsity pattern (one
-     * graph, which every matrix shares) and each matrix's values.
+     * graph, which the matrices share; M has its own), each stored matrix's
+     * values, or the forms' cell data.
      */
     void
     memory_consumption(MemoryItems &items) const;
@@ -159,18 +177,22 @@ namespace DynamicContact
     }
 
   private:
+    using Form = typename CellOperators<dim>::Form;
+
     const Discretization<dim>      &discretization;
     const KelvinVoigtMaterial<dim> &material;
     const bool                      strain_norm;
 
+    bool                              stored = true;
     TrilinosWrappers::SparsityPattern pattern;
-    /** M's: each component coupled with itself. */
+    /** M's: each component coupled with itself (stored forms only). */
     TrilinosWrappers::SparsityPattern mass_pattern;
     Matrix_t                          mass_matrix;
     Matrix_t                          elasticity_matrix;
     Matrix_t                          viscosity_matrix;
+    Matrix_t                          strain_matrix;
     Matrix_t                          bulk_matrix;
-    StrainGram<dim>                   strain_gram;
+    CellOperators<dim>                forms;
 
     /**
      * The locally owned cells with a load (Scene::carries_load), found by
@@ -188,13 +210,25 @@ namespace DynamicContact
     TimeScheme                current;
     mutable Vector_t          tmp;
 
-    /** x^T A y. */
-    double
-    product(const Matrix_t &A, const Vector_t &x, const Vector_t &y) const;
+    /** The stored matrix of @p form. */
+    const Matrix_t &
+    matrix(const Form form) const;
 
-    /** The patterns of the mesh, and the matrices on them (zero). */
+    /** x^T F y, from the stored matrix or the cells. */
+    double
+    product(const Form form, const Vector_t &x, const Vector_t &y) const;
+
+    /** @p dst = F @p src, from the stored matrix or the cells. */
     void
-    reinit_matrices();
+    vmult(const Form form, Vector_t &dst, const Vector_t &src) const;
+
+    /** The stored forms: M, B, A, the Gram matrix of V on their patterns. */
+    void
+    assemble_forms();
+
+    /** K0 assembled cell by cell (matrix-free forms). */
+    void
+    assemble_bulk_matrix(const TimeScheme &scheme);
   };
 } // namespace DynamicContact
 
