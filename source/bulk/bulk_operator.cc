@@ -74,12 +74,56 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * The bulk assembly's loop: on each locally owned cell, @p point(value,
+     * eps, JxW) at each point of the quadrature QGauss(p + 1) with the shape
+     * functions' values and symmetric gradients, then @p cell(dofs).
+     */
+    template <int dim, typename Point, typename Cell>
+    void
+    for_each_point(const Discretization<dim> &discretization,
+                   const Point               &point,
+                   const Cell                &cell_done)
+    {
+      const auto        &fe = discretization.fe;
+      const QGauss<dim>  quadrature(fe.degree + 1);
+      FEValues<dim>      fe_values(discretization.mapping,
+                              fe,
+                              quadrature,
+                              update_values | update_gradients |
+                                update_JxW_values);
+      const unsigned int n = fe.n_dofs_per_cell();
+      std::vector<types::global_dof_index> dofs(n);
+      std::vector<SymmetricTensor<2, dim>> eps(n);
+      std::vector<Tensor<1, dim>>          value(n);
+      const FEValuesExtractors::Vector     displacement(0);
+      for (const auto &cell :
+           discretization.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    eps[i] = fe_values[displacement].symmetric_gradient(i, q);
+                    value[i] = fe_values[displacement].value(i, q);
+                  }
+                point(value, eps, fe_values.JxW(q));
+              }
+            cell->get_dof_indices(dofs);
+            cell_done(dofs);
+          }
+    }
+  } // namespace
+
+
   template <int dim>
   void
   BulkOperator<dim>::assemble_forms()
   {
-    const auto &dof_handler = discretization.dof_handler;
-    const auto &fe          = discretization.fe;
     mass_matrix.reinit(mass_pattern);
     elasticity_matrix.reinit(pattern);
     if (strain_norm)
@@ -87,69 +131,50 @@ namespace DynamicContact
     if (material.has_viscosity())
       viscosity_matrix.reinit(pattern);
 
-    const QGauss<dim>  quadrature(fe.degree + 1);
-    FEValues<dim>      fe_values(discretization.mapping,
-                            fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
+    const unsigned int n = discretization.fe.n_dofs_per_cell();
     FullMatrix<double> local_mass(n, n), local_elasticity(n, n),
       local_viscosity(n, n), local_strain(n, n);
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<SymmetricTensor<2, dim>> eps(n);
-    std::vector<Tensor<1, dim>>          phi(n);
-    const FEValuesExtractors::Vector     displacement(0);
-    const auto                          &E = material.elasticity();
-    const auto                          &C = material.viscosity();
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          local_mass       = 0;
-          local_elasticity = 0;
-          local_viscosity  = 0;
-          local_strain     = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  eps[i] = fe_values[displacement].symmetric_gradient(i, q);
-                  phi[i] = fe_values[displacement].value(i, q);
-                }
-              const double JxW = fe_values.JxW(q);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const auto E_eps_i = E * eps[i];
-                  const auto C_eps_i =
-                    material.has_viscosity() ? C * eps[i] : E_eps_i;
-                  for (unsigned int j = 0; j < n; ++j)
-                    {
-                      local_mass(i, j) += phi[i] * phi[j] * JxW;
-                      local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
-                      if (strain_norm)
-                        local_strain(i, j) += (eps[i] * eps[j]) * JxW;
-                      if (material.has_viscosity())
-                        local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
-                    }
-                }
-            }
-          cell->get_dof_indices(dofs);
-          const auto &constraints = discretization.constraints;
-          constraints.distribute_local_to_global(local_mass, dofs, mass_matrix);
-          constraints.distribute_local_to_global(local_elasticity,
+    const auto &E = material.elasticity();
+    const auto &C = material.viscosity();
+    for_each_point(
+      discretization,
+      [&](const std::vector<Tensor<1, dim>>          &phi,
+          const std::vector<SymmetricTensor<2, dim>> &eps,
+          const double                                JxW) {
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto E_eps_i = E * eps[i];
+            const auto C_eps_i =
+              material.has_viscosity() ? C * eps[i] : E_eps_i;
+            for (unsigned int j = 0; j < n; ++j)
+              {
+                local_mass(i, j) += phi[i] * phi[j] * JxW;
+                local_elasticity(i, j) += (E_eps_i * eps[j]) * JxW;
+                if (strain_norm)
+                  local_strain(i, j) += (eps[i] * eps[j]) * JxW;
+                if (material.has_viscosity())
+                  local_viscosity(i, j) += (C_eps_i * eps[j]) * JxW;
+              }
+          }
+      },
+      [&](const std::vector<types::global_dof_index> &dofs) {
+        const auto &constraints = discretization.constraints;
+        constraints.distribute_local_to_global(local_mass, dofs, mass_matrix);
+        constraints.distribute_local_to_global(local_elasticity,
+                                               dofs,
+                                               elasticity_matrix);
+        if (strain_norm)
+          constraints.distribute_local_to_global(local_strain,
                                                  dofs,
-                                                 elasticity_matrix);
-          if (strain_norm)
-            constraints.distribute_local_to_global(local_strain,
-                                                   dofs,
-                                                   strain_matrix);
-          if (material.has_viscosity())
-            constraints.distribute_local_to_global(local_viscosity,
-                                                   dofs,
-                                                   viscosity_matrix);
-        }
+                                                 strain_matrix);
+        if (material.has_viscosity())
+          constraints.distribute_local_to_global(local_viscosity,
+                                                 dofs,
+                                                 viscosity_matrix);
+        for (auto *local :
+             {&local_mass, &local_elasticity, &local_viscosity, &local_strain})
+          *local = 0;
+      });
     mass_matrix.compress(VectorOperation::add);
     elasticity_matrix.compress(VectorOperation::add);
     if (strain_norm)
@@ -190,53 +215,36 @@ namespace DynamicContact
     // K0 = (rho/k) M + theta A + theta^2 k B, cell by cell.
     const double mass_coefficient =
       scheme.mass_coefficient(material.density());
-    const double elasticity_coefficient = scheme.elasticity_coefficient();
-    const double viscosity_coefficient =
-      material.has_viscosity() ? scheme.viscosity_coefficient() : 0.;
     SymmetricTensor<4, dim> stiffness =
-      elasticity_coefficient * material.elasticity();
+      scheme.elasticity_coefficient() * material.elasticity();
     if (material.has_viscosity())
-      stiffness += viscosity_coefficient * material.viscosity();
+      stiffness += scheme.viscosity_coefficient() * material.viscosity();
 
-    const auto        &fe = discretization.fe;
-    const QGauss<dim>  quadrature(fe.degree + 1);
-    FEValues<dim>      fe_values(discretization.mapping,
-                            fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
+    const unsigned int n = discretization.fe.n_dofs_per_cell();
     FullMatrix<double> local(n, n);
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<SymmetricTensor<2, dim>> eps(n), stress(n);
-    std::vector<Tensor<1, dim>>          value(n), inertia(n);
-    const FEValuesExtractors::Vector     displacement(0);
-
+    std::vector<SymmetricTensor<2, dim>> stress(n);
+    std::vector<Tensor<1, dim>>          inertia(n);
     bulk_matrix = 0;
-    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          local = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const double JxW = fe_values.JxW(q);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  eps[i]     = fe_values[displacement].symmetric_gradient(i, q);
-                  stress[i]  = (stiffness * eps[i]) * JxW;
-                  value[i]   = fe_values[displacement].value(i, q);
-                  inertia[i] = value[i] * (mass_coefficient * JxW);
-                }
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  local(i, j) += inertia[i] * value[j] + stress[i] * eps[j];
-            }
-          cell->get_dof_indices(dofs);
-          discretization.constraints.distribute_local_to_global(local,
-                                                                dofs,
-                                                                bulk_matrix);
-        }
+    for_each_point(
+      discretization,
+      [&](const std::vector<Tensor<1, dim>>          &value,
+          const std::vector<SymmetricTensor<2, dim>> &eps,
+          const double                                JxW) {
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            stress[i]  = (stiffness * eps[i]) * JxW;
+            inertia[i] = value[i] * (mass_coefficient * JxW);
+          }
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            local(i, j) += inertia[i] * value[j] + stress[i] * eps[j];
+      },
+      [&](const std::vector<types::global_dof_index> &dofs) {
+        discretization.constraints.distribute_local_to_global(local,
+                                                              dofs,
+                                                              bulk_matrix);
+        local = 0;
+      });
     bulk_matrix.compress(VectorOperation::add);
   }
 
