@@ -66,7 +66,10 @@ namespace DynamicContact
                         &strain_matrix})
       m->clear();
     if (stored)
-      assemble_forms();
+      {
+        forms.clear();
+        assemble_forms();
+      }
     else
       forms.reinit();
     current = TimeScheme();

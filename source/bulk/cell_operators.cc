@@ -53,6 +53,16 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  CellOperators<dim>::clear()
+  {
+    matrix_free.clear();
+    x_work.reinit(0);
+    y_work.reinit(0);
+  }
+
+
+  template <int dim>
   const typename CellOperators<dim>::Tensor4_t &
   CellOperators<dim>::tensor(const Form form) const
   {

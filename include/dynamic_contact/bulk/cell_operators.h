@@ -50,6 +50,10 @@ namespace DynamicContact
     void
     reinit();
 
+    /** Free the cell data (a mesh on which the forms are stored). */
+    void
+    clear();
+
     /**
      * x^T F y (collective); with @p x and @p y the same object, one
      * evaluation serves both.
