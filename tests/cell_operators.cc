@@ -26,16 +26,15 @@ using namespace DynamicContact;
 
 namespace
 {
-  using Form = CellOperators<2>::Form;
-
   /** The matrix of @p form, assembled as BulkOperator assembled M, B, A. */
   template <int dim>
   void
-  assemble(const Discretization<dim>      &d,
-           const KelvinVoigtMaterial<dim> &material,
-           const Form                      form,
-           Matrix_t                       &F)
+  assemble(const Discretization<dim>            &d,
+           const KelvinVoigtMaterial<dim>       &material,
+           const typename CellOperators<dim>::Form form,
+           Matrix_t                             &F)
   {
+    using Form = typename CellOperators<dim>::Form;
     TrilinosWrappers::SparsityPattern pattern(d.locally_owned,
                                               d.locally_owned,
                                               d.locally_relevant,
@@ -155,14 +154,13 @@ check(const unsigned int degree)
                              y);
     for (Vector_t *v : {&x, &y})
       d.constraints.set_zero(*v);
+    using Form = typename CellOperators<dim>::Form;
     for (const auto &[form, form_name] :
          {std::make_pair(Form::mass, "mass"),
           std::make_pair(Form::elasticity, "elasticity"),
           std::make_pair(Form::viscosity, "viscosity"),
           std::make_pair(Form::strain, "strain")})
       {
-        const auto cell_form = static_cast<typename CellOperators<dim>::Form>(
-          static_cast<int>(form));
         Matrix_t F;
         assemble(d, m, form, F);
         double worst_product = 0, worst_vmult = 0;
@@ -174,9 +172,9 @@ check(const unsigned int degree)
             const double assembled = *a * Fy;
             worst_product =
               std::max(worst_product,
-                       std::abs(forms.product(cell_form, *a, *b) - assembled) /
+                       std::abs(forms.product(form, *a, *b) - assembled) /
                          std::abs(assembled));
-            forms.vmult(cell_form, cells_Fy, *b);
+            forms.vmult(form, cells_Fy, *b);
             cells_Fy -= Fy;
             worst_vmult = std::max(worst_vmult,
                                    cells_Fy.linfty_norm() / Fy.linfty_norm());

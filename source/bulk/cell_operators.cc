@@ -74,19 +74,14 @@ namespace DynamicContact
   void
   CellOperators<dim>::import(const Vector_t &source, Work_t &target) const
   {
-    const IndexSet &owned = discretization.locally_owned;
-    const auto     &local = source.trilinos_vector();
-    // Both vectors keep the owned entries in the order of the owned index
-    // set.
+    // Both vectors keep the owned entries (one contiguous range, as the
+    // work vector's partitioner requires) in the same order.
+    const auto &local = source.trilinos_vector();
     AssertDimension(static_cast<unsigned int>(local.MyLength()),
-                    owned.n_elements());
+                    target.locally_owned_size());
     target.zero_out_ghost_values();
-    if (owned.is_contiguous())
-      for (unsigned int k = 0; k < owned.n_elements(); ++k)
-        target.local_element(k) = local[0][k];
-    else
-      for (unsigned int k = 0; k < owned.n_elements(); ++k)
-        target(owned.nth_index_in_set(k)) = local[0][k];
+    for (int k = 0; k < local.MyLength(); ++k)
+      target.local_element(k) = local[0][k];
     target.update_ghost_values();
   }
 
@@ -232,16 +227,12 @@ namespace DynamicContact
       }
     y_work.compress(VectorOperation::add);
 
-    const IndexSet &owned = discretization.locally_owned;
-    auto           &local = dst.trilinos_vector();
+    // The owned entries back, in the same order (import()).
+    auto &local = dst.trilinos_vector();
     AssertDimension(static_cast<unsigned int>(local.MyLength()),
-                    owned.n_elements());
-    if (owned.is_contiguous())
-      for (unsigned int k = 0; k < owned.n_elements(); ++k)
-        local[0][k] = y_work.local_element(k);
-    else
-      for (unsigned int k = 0; k < owned.n_elements(); ++k)
-        local[0][k] = y_work(owned.nth_index_in_set(k));
+                    y_work.locally_owned_size());
+    for (int k = 0; k < local.MyLength(); ++k)
+      local[0][k] = y_work.local_element(k);
   }
 
 
