@@ -231,6 +231,20 @@ def mean_dofs(steps):
     return statistics.mean(int(r["dofs"]) for r in steps), len(steps)
 
 
+def rail_mesh(n):
+    """Geometry entries of the rail on 10n x n x n cells, made as large
+    deal.II meshes are: the coarsest box that refines globally to it. Every
+    process of a distributed mesh holds the whole coarse mesh; 320 x 32 x
+    32 coarse cells cost each of 16 processes 250 MB (doc/running.md,
+    "Large runs")."""
+    refinements = 0
+    while n % 2 == 0:
+        n //= 2
+        refinements += 1
+    return ["Geometry/Repetitions=%d, %d, %d" % (10 * n, n, n),
+            "Geometry/Global refinements=%d" % refinements]
+
+
 def uniform_overrides(n, k, degree=1, scheme="backward Euler"):
     """The paper's scene on a uniform n x n mesh with time step k: how every
     run compared with the reference (and the reference itself) is set up."""

@@ -5,7 +5,10 @@
 //  - the predicted costs grow with the mesh (the rail's family of meshes,
 //    n = 8 ... 32 cells across, in 3D; the paper's domain in 2D), and
 //    beyond 2 processes a term shrinks by at most half per doubling and
-//    never grows;
+//    never grows, but for the condensed solver's dense work on Gamma_3,
+//    which every process repeats: it grows by 1.3 per doubling, so that
+//    on 16 processes the condensed rail 80 x 8 x 8 costs more per step
+//    than on 2 (measured on a 16-core machine);
 //  - the plan takes the solver of the lower predicted cost for the steps
 //    one bulk matrix serves, says both costs, and takes the condensed
 //    solver only within Solver/Condensed limit and, with MUMPS, on the
@@ -122,20 +125,34 @@ main(int argc, char *argv[])
                           CSolver::condensed_on_every_process,
                           CSolver::condensed_distributed})
     {
+      const double most = s == CSolver::assembled ? 1 : 1.3;
       const auto [dofs, nodes] = rail(16);
       auto last                = predicted_cost(s, 3, dofs, 3 * nodes, 2);
       for (const unsigned int p : {4u, 8u, 16u})
         {
           const auto c = predicted_cost(s, 3, dofs, 3 * nodes, p);
-          bounded      = bounded && c.per_step <= last.per_step * (1 + 1e-12) &&
+          bounded      = bounded &&
+                    c.per_step <= last.per_step * most * (1 + 1e-12) &&
                     c.per_step >= last.per_step / 2 * (1 - 1e-12) &&
-                    c.once <= last.once * (1 + 1e-12) &&
+                    c.once <= last.once * most * (1 + 1e-12) &&
                     c.once >= last.once / 2 * (1 - 1e-12);
           last = c;
         }
     }
-  checks.add(bounded, "each doubling beyond 2 processes keeps a cost or "
-                      "divides it by at most 2");
+  checks.add(bounded, "each doubling beyond 2 processes divides a cost by "
+                      "at most 2 and keeps it (assembled) or multiplies it "
+                      "by at most 1.3 (condensed)");
+  {
+    const auto [dofs, nodes] = rail(8);
+    const auto two =
+      predicted_cost(CSolver::condensed_distributed, 3, dofs, 3 * nodes, 2);
+    const auto sixteen =
+      predicted_cost(CSolver::condensed_distributed, 3, dofs, 3 * nodes, 16);
+    checks.add(sixteen.per_step > two.per_step,
+               "the condensed rail 80 x 8 x 8 costs more per step on 16 "
+               "processes than on 2 (its dense work on Gamma_3 is repeated "
+               "by every process)");
+  }
 
   // The plan takes the lower predicted cost, and says both.
   bool lower = true, said = true, said_beyond = true, some_condensed = false,

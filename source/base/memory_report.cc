@@ -23,7 +23,29 @@ namespace DynamicContact
   namespace
   {
     double resident_at_start = 0;
-  }
+
+
+    /**
+     * The proportional set size of this process (Linux: Pss of
+     * /proc/self/smaps_rollup), in bytes: its resident memory with every
+     * page it shares with other processes (the libraries' code, above all)
+     * divided among them. 0 where the system does not say.
+     */
+    double
+    proportional_bytes()
+    {
+      std::FILE *file = std::fopen("/proc/self/smaps_rollup", "r");
+      if (file == nullptr)
+        return 0;
+      char   line[256];
+      double kilobytes = 0;
+      while (std::fgets(line, sizeof(line), file) != nullptr)
+        if (std::sscanf(line, "Pss: %lf kB", &kilobytes) == 1)
+          break;
+      std::fclose(file);
+      return 1024. * kilobytes;
+    }
+  } // namespace
 
 
   void
@@ -108,7 +130,8 @@ namespace DynamicContact
     for (const double b : {accounted,
                            std::max(0., resident - accounted),
                            resident,
-                           1024. * stats.VmHWM})
+                           1024. * stats.VmHWM,
+                           proportional_bytes()})
       bytes.push_back(b);
     std::vector<double> total(bytes.size()), largest(bytes.size());
     Utilities::MPI::sum(bytes, comm, total);
@@ -124,10 +147,17 @@ namespace DynamicContact
     for (unsigned int i = 0; i < n; ++i)
       out << table_row(
         items[i].name, total[i], largest[i], N, items[i].measured);
-    const char *totals[] = {
-      "the items above", "not itemized", "resident now", "peak resident"};
-    for (unsigned int i = 0; i < 4; ++i)
-      out << table_row(totals[i], total[n + i], largest[n + i], N, i >= 2);
+    const char *totals[] = {"the items above",
+                            "not itemized",
+                            "resident now",
+                            "peak resident",
+                            "resident now, shared pages split"};
+    // The last one only where every process could measure it.
+    const double least_proportional =
+      Utilities::MPI::min(bytes.back(), comm);
+    for (unsigned int i = 0; i < 5; ++i)
+      if (i < 4 || least_proportional > 0)
+        out << table_row(totals[i], total[n + i], largest[n + i], N, i >= 2);
     return out.str();
   }
 } // namespace DynamicContact

@@ -7,6 +7,7 @@
 #include <dynamic_contact/bulk/scene.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <set>
@@ -223,6 +224,46 @@ namespace DynamicContact
     traction_function->set_time(t);
     body_force_function->set_time(t);
     contact_source_function->set_time(t);
+  }
+
+
+  std::string
+  coarse_mesh_note(const std::vector<unsigned int> &repetitions,
+                   const unsigned int               global_refinements,
+                   const unsigned int               n_processes)
+  {
+    double coarse = 1;
+    for (const unsigned int r : repetitions)
+      coarse *= r;
+    if (n_processes < 2 || coarse < 1e5)
+      return "";
+    std::vector<unsigned int> fewer = repetitions;
+    unsigned int              more  = 0;
+    const auto                even  = [&fewer]() {
+      for (const unsigned int r : fewer)
+        if (r % 2 != 0)
+          return false;
+      return true;
+    };
+    for (; even(); ++more)
+      for (unsigned int &r : fewer)
+        r /= 2;
+    std::ostringstream note;
+    note << "every process holds the whole coarse mesh ("
+         << static_cast<std::uint64_t>(coarse)
+         << " cells of Geometry/Repetitions); ";
+    if (more == 0)
+      note << "fewer Repetitions with more Global refinements give a mesh "
+              "of which a process holds only its part";
+    else
+      {
+        note << "Repetitions = ";
+        for (unsigned int d = 0; d < fewer.size(); ++d)
+          note << (d > 0 ? ", " : "") << fewer[d];
+        note << " with Global refinements = " << global_refinements + more
+             << " give the same mesh, of which a process holds only its part";
+      }
+    return note.str();
   }
 
 

@@ -18,6 +18,18 @@ namespace DynamicContact
 
   namespace
   {
+    /**
+     * How much longer the work that every process repeats (the condensed
+     * solver's dense work on Gamma_3) takes per doubling of the processes
+     * beyond the two of the calibration: the processes share the memory
+     * bandwidth. Measured on a 16-core machine, the rail 80 x 8 x 8 with
+     * every process taking part: the boundary Newton took 14.1, 19.5 and
+     * 24.7 s on 4, 8 and 16 processes, 1.32 per doubling
+     * (benchmarks/results/every_process_16cores.txt).
+     */
+    constexpr double replicated_contention = 1.3;
+
+
     /** The one-process way of solving that @p solver shares its work with. */
     CostedSolver
     on_one_process(const CostedSolver solver)
@@ -71,6 +83,9 @@ namespace DynamicContact
             const double t1    = one ? one->time(n, contact_size) : 0.;
             const double ratio = t1 > 0 ? std::clamp(time / t1, 0.5, 1.) : 1.;
             time *= std::pow(ratio, doublings);
+            // The dense work on Gamma_3 that every process repeats.
+            if (solver != CostedSolver::assembled && term.of_contact_boundary)
+              time *= std::pow(replicated_contention, doublings);
           }
         (term.once_per_matrix ? cost.once : cost.per_step) += time;
       }

@@ -3,6 +3,7 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
+#include <dynamic_contact/bulk/scene.h>
 #include <dynamic_contact/time/time_loop.h>
 #include <dynamic_contact/base/timing.h>
 
@@ -115,6 +116,15 @@ namespace DynamicContact
     pcout << '\n';
     if (!process_note.empty())
       pcout << "  " << process_note << ".\n";
+    if (parameters.geometry.type == Parameters::Geometry::Type::rectangle)
+      {
+        const std::string note =
+          coarse_mesh_note(parameters.geometry.repetitions,
+                           parameters.geometry.global_refinements,
+                           Utilities::MPI::n_mpi_processes(comm));
+        if (!note.empty())
+          pcout << "  note: " << note << ".\n";
+      }
     // Which program ran, where and when: on the screen with the timings
     // (output that differs from run to run), in log.txt always.
     const std::string provenance =

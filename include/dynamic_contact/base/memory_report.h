@@ -89,7 +89,11 @@ namespace DynamicContact
    * DoF of @p n_dofs; then their total, the resident memory now and the
    * peak (VmHWM), both summed over the processes, and what the items do
    * not account for (libraries, the mesh's and the output's temporaries,
-   * the heap's free space).
+   * the heap's free space); last, where the system says it (Linux), the
+   * resident memory now with each page that processes share (the
+   * libraries' code) divided among them: summed over the processes of a
+   * node, what the node holds, where the sum of the resident memory counts
+   * the shared pages once per process.
    */
   std::string
   memory_table(const MemoryItems            &items,

@@ -12,10 +12,26 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace DynamicContact
 {
   using namespace dealii;
+
+  /**
+   * Advice for a rectangle whose coarse mesh (@p repetitions cells) is
+   * large, on @p n_processes > 1: every process of a
+   * parallel::distributed::Triangulation holds the whole coarse mesh, so
+   * the same mesh made of fewer repetitions and more global refinements
+   * (each repetition halved as long as all are even) holds only each
+   * process's part. Empty where there is nothing to gain (one process,
+   * fewer than 10^5 coarse cells).
+   */
+  std::string
+  coarse_mesh_note(const std::vector<unsigned int> &repetitions,
+                   const unsigned int               global_refinements,
+                   const unsigned int               n_processes);
+
 
   /**
    * What a parameter file says about the world: the body's geometry, which

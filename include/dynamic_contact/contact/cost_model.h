@@ -84,8 +84,10 @@ namespace DynamicContact
    * @p contact_size = dim x contact nodes on @p n_processes processes. The
    * model is calibrated on 1 and 2 processes; beyond, every term's ratio
    * from 1 to 2 processes, clamped to [1/2, 1], is taken again at every
-   * doubling (work replicated on every process keeps its time, work shared
-   * at best halves it).
+   * doubling (work shared at best halves it), and the condensed solver's
+   * dense work on Gamma_3, which every process repeats, grows by 1.3 per
+   * doubling (the processes share the memory bandwidth: measured on 16
+   * cores).
    */
   SolverCost
   predicted_cost(const CostedSolver                    solver,
