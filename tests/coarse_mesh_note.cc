@@ -5,8 +5,9 @@
 // Global refinements.
 //  - no advice on one process or below 10^5 coarse cells; the advised
 //    repetitions are the given ones halved while all are even, the
-//    refinements grow by as many halvings; none possible (an odd
-//    repetition): the general advice;
+//    refinements grow by as many halvings, up to 20 in all; with an
+//    adaptive mesh the advice raises the refinement levels by as much;
+//    none possible (an odd repetition): the general advice;
 //  - the advised mesh is the same mesh: the same active cells, the same
 //    vertices and the same boundary faces with the same ids (colorized
 //    box, as Geometry/Type = rectangle makes it), checked on small boxes
@@ -34,15 +35,16 @@ namespace
   void
   advise(const std::vector<unsigned int> &repetitions,
          const unsigned int               refinements,
-         const unsigned int               processes)
+         const unsigned int               processes,
+         const bool                       adaptive = false)
   {
     out() << "repetitions";
     for (const unsigned int r : repetitions)
       out() << ' ' << r;
     out() << ", " << refinements << " refinements, " << processes
-          << " processes: ";
+          << " processes" << (adaptive ? ", adaptive" : "") << ": ";
     const std::string note =
-      coarse_mesh_note(repetitions, refinements, processes);
+      coarse_mesh_note(repetitions, refinements, processes, adaptive);
     out() << (note.empty() ? "(none)" : note) << '\n';
   }
 
@@ -131,6 +133,8 @@ main()
   advise({400, 250}, 1, 2);
   advise({1024, 128}, 0, 3);
   advise({128, 128}, 0, 2);
+  advise({320, 32, 32}, 1, 4, true);
+  advise({1024, 1024}, 12, 2);
 
   same_mesh<2>({12, 8}, 0, 2);
   same_mesh<2>({20, 6}, 1, 1);

@@ -230,7 +230,8 @@ namespace DynamicContact
   std::string
   coarse_mesh_note(const std::vector<unsigned int> &repetitions,
                    const unsigned int               global_refinements,
-                   const unsigned int               n_processes)
+                   const unsigned int               n_processes,
+                   const bool                       adaptive)
   {
     double coarse = 1;
     for (const unsigned int r : repetitions)
@@ -245,7 +246,8 @@ namespace DynamicContact
           return false;
       return true;
     };
-    for (; even(); ++more)
+    // Geometry/Global refinements is at most 20.
+    for (; even() && global_refinements + more < 20; ++more)
       for (unsigned int &r : fewer)
         r /= 2;
     std::ostringstream note;
@@ -262,6 +264,10 @@ namespace DynamicContact
           note << (d > 0 ? ", " : "") << fewer[d];
         note << " with Global refinements = " << global_refinements + more
              << " give the same mesh, of which a process holds only its part";
+        if (adaptive)
+          note << " (with Mesh refinement/Minimum level and Maximum level "
+                  "raised by "
+               << more << ")";
       }
     return note.str();
   }

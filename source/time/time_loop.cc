@@ -121,7 +121,8 @@ namespace DynamicContact
         const std::string note =
           coarse_mesh_note(parameters.geometry.repetitions,
                            parameters.geometry.global_refinements,
-                           Utilities::MPI::n_mpi_processes(comm));
+                           Utilities::MPI::n_mpi_processes(comm),
+                           model.adaptive_mesh());
         if (!note.empty())
           pcout << "  note: " << note << ".\n";
       }

@@ -24,13 +24,16 @@ namespace DynamicContact
    * parallel::distributed::Triangulation holds the whole coarse mesh, so
    * the same mesh made of fewer repetitions and more global refinements
    * (each repetition halved as long as all are even) holds only each
-   * process's part. Empty where there is nothing to gain (one process,
-   * fewer than 10^5 coarse cells).
+   * process's part (the refinements at most 20; with an @p adaptive mesh
+   * the refinement levels, counted from the coarse mesh, rise by as
+   * much). Empty where there is nothing to gain (one process, fewer than
+   * 10^5 coarse cells).
    */
   std::string
   coarse_mesh_note(const std::vector<unsigned int> &repetitions,
                    const unsigned int               global_refinements,
-                   const unsigned int               n_processes);
+                   const unsigned int               n_processes,
+                   const bool                       adaptive);
 
 
   /**
