@@ -1,3 +1,4 @@
+#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/condensed_newton.h>
 #include <dynamic_contact/contact/newton_driver.h>
@@ -75,19 +76,24 @@ namespace DynamicContact
   public:
     using Iterate = typename CondensedNewton<dim>::Iterate;
 
+    /**
+     * @p lead: the process that iterates (boundary_newton()); new columns
+     * of C are asked of every process through it.
+     */
     BoundaryProblem(CondensedNewton<dim> &solver,
                     const double          w_scale,
-                    Result               &result)
+                    LeadingProcess       &lead)
       : solver(solver)
       , w_scale(w_scale)
-      , result(result)
+      , lead(lead)
     {}
 
     NewtonMeasure
     evaluate(Iterate &x)
     {
       solver.linearize(x);
-      solver.compliance.compute_columns(x.active, result);
+      if (!solver.compliance.has_columns(x.active))
+        lead.request(x.active);
       solver.compliance.response(solver.w_free_nodes,
                                  x.g,
                                  x.active,
@@ -192,7 +198,7 @@ namespace DynamicContact
     static constexpr double     far_above = 1e-3;
     CondensedNewton<dim>       &solver;
     const double                w_scale;
-    Result                     &result;
+    LeadingProcess             &lead;
     std::vector<Tensor<1, dim>> response, r, dw, new_forces, difference;
     std::vector<unsigned int>   differing;
   };
@@ -205,18 +211,38 @@ namespace DynamicContact
                                         const double tolerance,
                                         Result      &result)
   {
-    TimerSection    t(problem.timer, "Contact: boundary Newton");
-    BoundaryProblem boundary_problem(*this, w_scale, result);
+    TimerSection t(problem.timer, "Contact: boundary Newton");
+    // Every process holds the same tables and would compute the same
+    // iterates: rank 0 iterates, the others compute the new columns of C
+    // with it (the distributed factorization needs them all) and are told
+    // the answer.
+    LeadingProcess  lead(problem.boundary.get_mpi_communicator(),
+                        [&](const std::vector<unsigned int> &nodes) {
+                          compliance.compute_columns(nodes, result);
+                        });
+    BoundaryProblem boundary_problem(*this, w_scale, lead);
     NewtonPolicy    policy; // non-monotone, stagnation factor 0.1
     policy.name      = "on Gamma_3";
     policy.tolerance = tolerance;
     // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
-    globalized_newton(boundary_problem,
-                      it,
-                      policy,
-                      problem.parameters,
-                      problem.details,
-                      result);
+    lead.run([&]() {
+      globalized_newton(boundary_problem,
+                        it,
+                        policy,
+                        problem.parameters,
+                        problem.details,
+                        result);
+    });
+    if (lead.shared())
+      {
+        // What solve(), finalize() and polish() use of the iterate.
+        lead.share(it.w);
+        lead.share(it.lambda);
+        lead.share(it.g);
+        lead.share(it.response);
+        lead.share(it.active);
+        lead.share(result);
+      }
   }
 
 

@@ -1,3 +1,4 @@
+#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/condensed_newton.h>
 #include <dynamic_contact/contact/newton_driver.h>
@@ -333,7 +334,14 @@ namespace DynamicContact
     for (unsigned int a = 0; a < it.active.size(); ++a)
       r[a] = z[it.active[a]];
     std::vector<Tensor<1, dim>> lambda_full = it.lambda;
-    reduced.step(it, system.scheme, r, dw, lambda_full, new_forces);
+    // The dense step on rank 0 alone (it holds the reduced system), as in
+    // phase 1 (boundary_newton()).
+    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
+    lead.run([&]() {
+      reduced.step(it, system.scheme, r, dw, lambda_full, new_forces);
+    });
+    lead.share(lambda_full);
+    lead.share(new_forces);
     for (const unsigned int j : it.active)
       new_forces[j] -= it.base[j];
     if (!compliance.apply_full_columns(new_forces, it.active, increment))

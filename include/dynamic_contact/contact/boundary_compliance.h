@@ -73,6 +73,16 @@ namespace DynamicContact
     void
     compute_columns(const std::vector<unsigned int> &nodes, Result &result);
 
+    /** Whether C_:j exists for every j of @p nodes. */
+    bool
+    has_columns(const std::vector<unsigned int> &nodes) const
+    {
+      for (const unsigned int j : nodes)
+        if (columns[j].empty())
+          return false;
+      return true;
+    }
+
     /** C_:j, every node (compute_columns() first). */
     const std::vector<Tensor<2, dim>> &
     column(const unsigned int j) const
