@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <dynamic_contact/base/failure.h>
+#include <dynamic_contact/base/mpi_wait.h>
 
 #include <chrono>
 #include <csignal>
@@ -70,20 +71,9 @@ namespace DynamicContact
     {
       MPI_Request request;
       MPI_Ibarrier(comm, &request);
-      const auto start = std::chrono::steady_clock::now();
-      for (;;)
-        {
-          int done = 0;
-          MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-          if (done)
-            return true;
-          if (timeout >= 0 &&
-              std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                            start)
-                  .count() > timeout)
-            return false;
-          std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        }
+      // Up to 20 ms between polls: processes that wait for a whole run
+      // (wait_for_ending()) wake 50 times a second.
+      return wait_sleeping(request, 0.02, timeout);
     }
   } // namespace
 

@@ -4,6 +4,7 @@
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/leading_process.h>
+#include <dynamic_contact/base/mpi_wait.h>
 
 #include <climits>
 #include <exception>
@@ -29,6 +30,28 @@ namespace DynamicContact
       unsigned long long size  = 0;
       unsigned long long extra = 0;
     };
+
+    /**
+     * The header from rank 0 on every process (collective). The others
+     * may wait through the whole work: they sleep between polls (at most
+     * a millisecond, what each message may then take longer), so that they
+     * leave the leading process the machine's memory bandwidth and, where
+     * cores are hyperthreads of one another, its core.
+     */
+    void
+    broadcast_header(Header &header, const MPI_Comm comm, const bool leads)
+    {
+      MPI_Request request;
+      int ierr = MPI_Ibcast(&header, sizeof(Header), MPI_BYTE, 0, comm, &request);
+      AssertThrowMPI(ierr);
+      if (leads)
+        {
+          ierr = MPI_Wait(&request, MPI_STATUS_IGNORE);
+          AssertThrowMPI(ierr);
+        }
+      else
+        wait_sleeping(request, 1e-3);
+    }
   } // namespace
 
 
@@ -66,7 +89,7 @@ namespace DynamicContact
       {
         Assert(rank == 0, dealii::ExcInternalError());
         Header header{serve_request, list.size(), 0};
-        share(header);
+        broadcast_header(header, comm, true);
         std::vector<unsigned int> copy = list;
         broadcast_bytes(copy.data(), copy.size() * sizeof(unsigned int));
       }
@@ -114,7 +137,7 @@ namespace DynamicContact
             failure = std::current_exception();
           }
         end.size = message.size();
-        share(end);
+        broadcast_header(end, comm, true);
         broadcast_bytes(message.data(), message.size());
         if (failure)
           std::rethrow_exception(failure);
@@ -124,7 +147,7 @@ namespace DynamicContact
     for (;;)
       {
         Header header;
-        share(header);
+        broadcast_header(header, comm, false);
         if (header.kind == serve_request)
           {
             std::vector<unsigned int> list(header.size);

@@ -19,13 +19,16 @@ namespace DynamicContact
   namespace
   {
     /**
-     * How much longer the work that every process repeats (the condensed
-     * solver's dense work on Gamma_3) takes per doubling of the processes
-     * beyond the two of the calibration: the processes share the memory
-     * bandwidth. Measured on a 16-core machine, the rail 80 x 8 x 8 with
-     * every process taking part: the boundary Newton took 14.1, 19.5 and
-     * 24.7 s on 4, 8 and 16 processes, 1.32 per doubling
-     * (benchmarks/results/every_process_16cores.txt).
+     * How much longer the condensed solver's work on Gamma_3 takes per
+     * doubling of the processes beyond the two of the calibration: the
+     * processes share the memory bandwidth. Measured on a 16-core machine,
+     * the rail 80 x 8 x 8 with every process taking part: the boundary
+     * Newton took 14.1, 19.5 and 24.7 s on 4, 8 and 16 processes while
+     * every process repeated it (1.32 per doubling), and 12.1 and 15.3 s on
+     * 4 and 8 with rank 0 alone iterating while the others polled without
+     * pause (1.26; benchmarks/results/every_process_16cores.txt). The
+     * waiting processes now sleep between polls (LeadingProcess), not yet
+     * measured there.
      */
     constexpr double replicated_contention = 1.3;
 
