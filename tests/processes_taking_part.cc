@@ -4,7 +4,7 @@
 //
 // prm/barboteu_danan_2016_small.prm (594 DoFs) for 16 steps, started on 3
 // processes:
-// - with the default (15000 DoFs per process) 1 of the 3 takes part: the
+// - with the default (20000 DoFs per process) 1 of the 3 takes part: the
 //   run says so, completes, and its time_series.csv is the one of a run on
 //   one process, byte for byte;
 // - with 250 DoFs per process 2 of the 3 take part, with 0 all 3 (no such

@@ -316,7 +316,7 @@ namespace DynamicContact
           "tables (8 bytes x (dim n_Gamma)^2 twice).");
         prm.declare_entry(
           "Minimum DoFs per process",
-          "15000",
+          "20000",
           Patterns::Integer(0),
           "A run started on more processes than the DoFs of its initial "
           "mesh (the uniform mesh after Geometry/Global refinements) "
