@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/vector.h>
 
+#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/boundary_compliance.h>
 #include <dynamic_contact/contact/largest_eigenvalue.h>
@@ -409,7 +410,22 @@ namespace DynamicContact
     std::vector<double> start(dim * n);
     for (unsigned int a = 0; a < n; ++a)
       set_nodal_entries<dim>(S[a] * lanczos_start(all[nodes[a]]), a, start);
-    return largest_eigenvalue(apply, start, [](const double v) { return v; });
+    // Every process holds the same tables: rank 0 iterates alone, once
+    // every process has the columns the products need (a product makes
+    // them, collectively).
+    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
+    if (lead.shared())
+      {
+        std::vector<double> first(dim * n);
+        apply(start, first);
+      }
+    double largest = 0;
+    lead.run([&]() {
+      largest =
+        largest_eigenvalue(apply, start, [](const double v) { return v; });
+    });
+    lead.share(largest);
+    return largest;
   }
 
   template class BoundaryCompliance<2>;
