@@ -42,7 +42,8 @@ namespace DynamicContact
     broadcast_header(Header &header, const MPI_Comm comm, const bool leads)
     {
       MPI_Request request;
-      int ierr = MPI_Ibcast(&header, sizeof(Header), MPI_BYTE, 0, comm, &request);
+      int         ierr =
+        MPI_Ibcast(&header, sizeof(Header), MPI_BYTE, 0, comm, &request);
       AssertThrowMPI(ierr);
       if (leads)
         {

@@ -426,12 +426,13 @@ namespace DynamicContact
 
 
   bool
-  BulkSolver::inverse_block(std::vector<double> &inverse)
+  BulkSolver::inverse_block(std::vector<double> &inverse,
+                            const bool           on_every_process)
   {
     Assert(matrix != nullptr, ExcNotInitialized());
     if (cholesky && cholesky->has_trailing_rows())
       {
-        cholesky->inverse_block(inverse);
+        cholesky->inverse_block(inverse, on_every_process);
         return true;
       }
     // Several processes, MUMPS: the Schur complement from a factorization

@@ -200,7 +200,8 @@ namespace DynamicContact
 
 
   void
-  Cholesky::inverse_block(std::vector<double> &inverse) const
+  Cholesky::inverse_block(std::vector<double> &inverse,
+                          const bool           on_every_process) const
   {
     Assert(factor != nullptr && factor->is_super && trailing_used,
            ExcInternalError());
@@ -210,8 +211,12 @@ namespace DynamicContact
     // dense Newton iteration sees the same numbers.
     if (rank != 0)
       {
-        inverse.resize(m * m);
-        MPI_Bcast(inverse.data(), m * m, MPI_DOUBLE, 0, comm);
+        inverse.clear();
+        if (on_every_process)
+          {
+            inverse.resize(m * m);
+            MPI_Bcast(inverse.data(), m * m, MPI_DOUBLE, 0, comm);
+          }
         return;
       }
     const SuiteSparse_long first = n - m;
@@ -253,7 +258,7 @@ namespace DynamicContact
     AssertThrow(info == 0,
                 ExcMessage("The inversion of the Schur complement of the "
                            "bulk matrix on Gamma_3 failed (LAPACK potrs)."));
-    if (replicated())
+    if (replicated() && on_every_process)
       MPI_Bcast(inverse.data(), m * m, MPI_DOUBLE, 0, comm);
   }
 

@@ -27,6 +27,7 @@ namespace DynamicContact
   {
     const auto &all = gathered.all_nodes();
     columns.assign(all.size(), {});
+    made.assign(all.size(), false);
     full_columns.assign(dim * all.size(), {});
     full_column_stored.assign(all.size(), false);
     stored_full_columns = 0;
@@ -43,6 +44,39 @@ namespace DynamicContact
     limits.clear();
     regularized.reinit(problem.bulk.sparsity_pattern());
     choose_spring_nodes();
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryCompliance<dim>::holds_tables() const
+  {
+    return Utilities::MPI::this_mpi_process(
+             problem.boundary.get_mpi_communicator()) == 0;
+  }
+
+
+  template <int dim>
+  void
+  BoundaryCompliance<dim>::on_leader(Result                      &result,
+                                     const std::function<void()> &work)
+  {
+    Assert(leading == nullptr, ExcInternalError());
+    LeadingProcess lead(problem.boundary.get_mpi_communicator(),
+                        [&](const std::vector<unsigned int> &nodes) {
+                          make_columns(nodes, result);
+                        });
+    // compute_columns() asks through lead while the work runs (rank 0).
+    struct Reset
+    {
+      LeadingProcess *&pointer;
+      ~Reset()
+      {
+        pointer = nullptr;
+      }
+    } reset{leading};
+    leading = &lead;
+    lead.run(work);
   }
 
 
@@ -171,6 +205,7 @@ namespace DynamicContact
     // C depends on K0: forget it.
     for (auto &c : columns)
       c.clear();
+    made.assign(made.size(), false);
     for (auto &c : full_columns)
       std::vector<double>().swap(c);
     full_column_stored.assign(full_column_stored.size(), false);
@@ -340,9 +375,10 @@ namespace DynamicContact
         local[i] = WeakeningLimit::tangential_stiffness(
           all[i], problem.bulk.newton_matrix());
     Utilities::MPI::max(local, problem.discretization.comm, stiffness);
-    // Every process holds every node: the same sample everywhere.
-    // The sample's compliance under K0, as the assembled solver sees it.
-    limits = WeakeningLimit::limits(
+    // The sample's compliance under K0, as the assembled solver sees it,
+    // from C: on rank 0, which holds it; the limits then to every process.
+    on_leader(result, [&]() {
+      limits = WeakeningLimit::limits(
       all,
       stiffness,
       [&](const int j) {
@@ -360,6 +396,9 @@ namespace DynamicContact
         return WeakeningLimit::tangential_compliance(all[j], C);
       },
       MPI_COMM_SELF);
+    });
+    LeadingProcess(problem.boundary.get_mpi_communicator(), nullptr)
+      .share(limits);
     limits_scheme = prepared_scheme;
     return limits;
   }
@@ -410,21 +449,14 @@ namespace DynamicContact
     std::vector<double> start(dim * n);
     for (unsigned int a = 0; a < n; ++a)
       set_nodal_entries<dim>(S[a] * lanczos_start(all[nodes[a]]), a, start);
-    // Every process holds the same tables: rank 0 iterates alone, once
-    // every process has the columns the products need (a product makes
-    // them, collectively).
-    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
-    if (lead.shared())
-      {
-        std::vector<double> first(dim * n);
-        apply(start, first);
-      }
+    // On rank 0, which holds C; the value then to every process.
     double largest = 0;
-    lead.run([&]() {
+    on_leader(result, [&]() {
       largest =
         largest_eigenvalue(apply, start, [](const double v) { return v; });
     });
-    lead.share(largest);
+    LeadingProcess(problem.boundary.get_mpi_communicator(), nullptr)
+      .share(largest);
     return largest;
   }
 

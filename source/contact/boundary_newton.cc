@@ -76,24 +76,19 @@ namespace DynamicContact
   public:
     using Iterate = typename CondensedNewton<dim>::Iterate;
 
-    /**
-     * @p lead: the process that iterates (boundary_newton()); new columns
-     * of C are asked of every process through it.
-     */
     BoundaryProblem(CondensedNewton<dim> &solver,
                     const double          w_scale,
-                    LeadingProcess       &lead)
+                    Result               &result)
       : solver(solver)
       , w_scale(w_scale)
-      , lead(lead)
+      , result(result)
     {}
 
     NewtonMeasure
     evaluate(Iterate &x)
     {
       solver.linearize(x);
-      if (!solver.compliance.has_columns(x.active))
-        lead.request(x.active);
+      solver.compliance.compute_columns(x.active, result);
       solver.compliance.response(solver.w_free_nodes,
                                  x.g,
                                  x.active,
@@ -198,7 +193,7 @@ namespace DynamicContact
     static constexpr double     far_above = 1e-3;
     CondensedNewton<dim>       &solver;
     const double                w_scale;
-    LeadingProcess             &lead;
+    Result                     &result;
     std::vector<Tensor<1, dim>> response, r, dw, new_forces, difference;
     std::vector<unsigned int>   differing;
   };
@@ -212,20 +207,15 @@ namespace DynamicContact
                                         Result      &result)
   {
     TimerSection t(problem.timer, "Contact: boundary Newton");
-    // Every process holds the same tables and would compute the same
-    // iterates: rank 0 iterates, the others compute the new columns of C
-    // with it (the distributed factorization needs them all) and are told
-    // the answer.
-    LeadingProcess  lead(problem.boundary.get_mpi_communicator(),
-                        [&](const std::vector<unsigned int> &nodes) {
-                          compliance.compute_columns(nodes, result);
-                        });
-    BoundaryProblem boundary_problem(*this, w_scale, lead);
+    // On rank 0, which holds C; the others compute the new columns of C
+    // with it (the distributed factorization needs them all) and are sent
+    // the iterate.
+    BoundaryProblem boundary_problem(*this, w_scale, result);
     NewtonPolicy    policy; // non-monotone, stagnation factor 0.1
     policy.name      = "on Gamma_3";
     policy.tolerance = tolerance;
     // Phase 1 stops early at stagnation (sqrt(tol)): phase 2 polishes.
-    lead.run([&]() {
+    compliance.on_leader(result, [&]() {
       globalized_newton(boundary_problem,
                         it,
                         policy,
@@ -233,6 +223,7 @@ namespace DynamicContact
                         problem.details,
                         result);
     });
+    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
     if (lead.shared())
       {
         // What solve(), finalize() and polish() use of the iterate.

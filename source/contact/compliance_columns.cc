@@ -17,6 +17,23 @@ namespace DynamicContact
     const std::vector<unsigned int> &nodes,
     Result                          &result)
   {
+    if (leading != nullptr && leading->shared())
+      {
+        // Rank 0 inside on_leader(): every process computes them with it.
+        if (!has_columns(nodes))
+          leading->request(nodes);
+        return;
+      }
+    make_columns(nodes, result);
+  }
+
+
+  template <int dim>
+  void
+  BoundaryCompliance<dim>::make_columns(
+    const std::vector<unsigned int> &nodes,
+    Result                          &result)
+  {
     std::vector<unsigned int> missing;
     // Whole blocks of nodes_per_block consecutive nodes, each solved as one
     // block of right-hand sides: a block solve's round-off depends on the
@@ -26,14 +43,14 @@ namespace DynamicContact
     const unsigned int nodes_per_block = 64 / dim;
     std::vector<bool>  wanted(all.size(), false);
     for (const unsigned int j : nodes)
-      if (columns[j].empty())
+      if (!made[j])
         wanted[j / nodes_per_block * nodes_per_block] = true;
     for (unsigned int first = 0; first < all.size(); first += nodes_per_block)
       if (wanted[first])
         for (unsigned int j = first;
              j < std::min<unsigned int>(first + nodes_per_block, all.size());
              ++j)
-          if (columns[j].empty())
+          if (!made[j])
             missing.push_back(j);
     if (missing.empty())
       return;
@@ -52,12 +69,17 @@ namespace DynamicContact
     // the inverse of their Schur complement (BulkSolver::inverse_block()),
     // dense work of order (dim n)^3 instead of dim solves per node. The
     // whole columns are not kept: with a Cholesky factor a solve reads
-    // fewer numbers than their sum.
+    // fewer numbers than their sum. Only rank 0 holds C (and gets the
+    // block where it can).
     std::vector<double> X;
-    if (!bulk_solver.inverse_block(X))
+    const bool          holds = holds_tables();
+    if (!bulk_solver.inverse_block(X, false))
       return false;
     const auto       &all = gathered.all_nodes();
     const std::size_t m   = dim * all.size();
+    made.assign(all.size(), true);
+    if (!holds)
+      return true;
     for (unsigned int j = 0; j < all.size(); ++j)
       {
         columns[j].assign(all.size(), Tensor<2, dim>());
@@ -146,10 +168,15 @@ namespace DynamicContact
             for (unsigned int r = 0; r < dim; ++r)
               packed.push_back(response[r]);
           }
+    // To rank 0, which holds C.
     for (const unsigned int j : missing)
-      columns[j].assign(all.size(), Tensor<2, dim>());
+      {
+        made[j] = true;
+        if (holds_tables())
+          columns[j].assign(all.size(), Tensor<2, dim>());
+      }
     for (const auto &part :
-         all_gather_values(problem.discretization.comm, packed))
+         gather_values(problem.discretization.comm, packed, 0))
       for (std::size_t p = 0; p < part.size(); p += 3 + dim)
         {
           const unsigned int j = missing[static_cast<unsigned int>(part[p])];
@@ -167,4 +194,10 @@ namespace DynamicContact
   template void
   BoundaryCompliance<3>::compute_columns(const std::vector<unsigned int> &,
                                          Result &);
+  template void
+  BoundaryCompliance<2>::make_columns(const std::vector<unsigned int> &,
+                                      Result &);
+  template void
+  BoundaryCompliance<3>::make_columns(const std::vector<unsigned int> &,
+                                      Result &);
 } // namespace DynamicContact

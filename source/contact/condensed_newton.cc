@@ -334,12 +334,12 @@ namespace DynamicContact
     for (unsigned int a = 0; a < it.active.size(); ++a)
       r[a] = z[it.active[a]];
     std::vector<Tensor<1, dim>> lambda_full = it.lambda;
-    // The dense step on rank 0 alone (it holds the reduced system), as in
-    // phase 1 (boundary_newton()).
-    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
-    lead.run([&]() {
+    // The dense step on rank 0, which holds C and the reduced system, as
+    // in phase 1 (boundary_newton()).
+    compliance.on_leader(result, [&]() {
       reduced.step(it, system.scheme, r, dw, lambda_full, new_forces);
     });
+    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
     lead.share(lambda_full);
     lead.share(new_forces);
     for (const unsigned int j : it.active)

@@ -312,8 +312,8 @@ namespace DynamicContact
           "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "
           "Condensed limit. Where every process factorizes the whole K0 "
           "(a small K0, Direct solver package = auto), Condensed limit "
-          "applies as on one process. Every process holds the dense "
-          "tables (8 bytes x (dim n_Gamma)^2 twice).");
+          "applies as on one process. Rank 0 holds the dense tables (8 "
+          "bytes x (dim n_Gamma)^2 twice).");
         prm.declare_entry(
           "Minimum DoFs per process",
           "20000",

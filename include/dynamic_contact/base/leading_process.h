@@ -16,10 +16,10 @@ namespace DynamicContact
   /**
    * Work that one process does for all: rank 0 of a communicator runs it
    * while the others wait, and the answer is then broadcast. The condensed
-   * solver's dense iterations on Gamma_3 are such work: every process holds
-   * the same tables, so each would compute the same answer, and on many
-   * processes sharing a machine's memory bandwidth the copies slow each
-   * other down.
+   * solver's dense iterations on Gamma_3 are such work: every process would
+   * compute the same answer from the same tables, and on many processes
+   * sharing a machine's memory bandwidth the copies slow each other down;
+   * so rank 0 alone holds the tables and iterates.
    *
    * The work may need the others now and then (a collective step, such as
    * new compliance columns from the distributed factorization): it calls

@@ -190,12 +190,15 @@ namespace DynamicContact
      * the factor; with MUMPS (several processes) from a distributed
      * factorization of its own that returns the Schur complement (if its
      * m^2 entries fit in schur_budget bytes, and if it agrees with a solve
-     * to a tenth of the Newton tolerance). Collective. False without
+     * to a tenth of the Newton tolerance). Collective; the block on every
+     * process, or with the Cholesky factor on process 0 alone if not
+     * @p on_every_process (MUMPS gives it everywhere). False without
      * trailing rows, with AMG, if MUMPS fails or the check does not pass
      * (and then for this factorization without trying again).
      */
     bool
-    inverse_block(std::vector<double> &inverse);
+    inverse_block(std::vector<double> &inverse,
+                  const bool           on_every_process = true);
 
     /**
      * About how many numbers a solve with one right-hand side reads (the

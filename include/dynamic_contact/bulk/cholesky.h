@@ -93,10 +93,14 @@ namespace DynamicContact
      * triangular solves with L_22 for the identity (LAPACK potrs; an
      * explicit inverse by potri is as fast but was not what a solve with
      * the factor gives: its compliance left stick nodes of the
-     * critical-speed stress scene less accurate).
+     * critical-speed stress scene less accurate). Computed by process 0;
+     * with the factor on every process, collective, and the block then on
+     * every process, or on process 0 alone if not @p on_every_process
+     * (the others get an empty vector).
      */
     void
-    inverse_block(std::vector<double> &inverse) const;
+    inverse_block(std::vector<double> &inverse,
+                  const bool           on_every_process = true) const;
 
   private:
     const MPI_Comm     comm;

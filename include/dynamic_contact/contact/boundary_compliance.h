@@ -3,11 +3,13 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/contact/contact_newton.h>
 
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -36,8 +38,11 @@ namespace DynamicContact
    * columns of C are computed when a node first becomes active (dim solves
    * with the factorized K0 each). C is kept while K0 is unchanged.
    *
-   * Every table is replicated on every process over the nodes of
-   * GatheredBoundary, in its order.
+   * The tables are over the nodes of GatheredBoundary, in its order. C is
+   * held by rank 0 of the contact boundary's processes alone, which does
+   * the dense work with it (on_leader(): the condensed solver's dense
+   * iterations, the uniqueness measure, the weakening limits); the other
+   * processes compute its columns with it and know which exist.
    */
   template <int dim>
   class BoundaryCompliance
@@ -69,7 +74,11 @@ namespace DynamicContact
           const std::vector<Vector_t *>       &x,
           Result                              &result);
 
-    /** Make sure C_:j exists for every j of @p nodes (one block solve). */
+    /**
+     * Make sure C_:j exists for every j of @p nodes (one block solve).
+     * Collective, but inside on_leader() on rank 0 alone (it then asks the
+     * others to compute the columns with it).
+     */
     void
     compute_columns(const std::vector<unsigned int> &nodes, Result &result);
 
@@ -78,12 +87,25 @@ namespace DynamicContact
     has_columns(const std::vector<unsigned int> &nodes) const
     {
       for (const unsigned int j : nodes)
-        if (columns[j].empty())
+        if (!made[j])
           return false;
       return true;
     }
 
-    /** C_:j, every node (compute_columns() first). */
+    /**
+     * Collective: @p work, which uses C, on rank 0 alone (LeadingProcess);
+     * the others compute the columns it asks for with it. A failure of the
+     * work is thrown on every process. What the work found, the caller
+     * sends to the others (LeadingProcess::share()).
+     */
+    void
+    on_leader(Result &result, const std::function<void()> &work);
+
+    /** Whether this process holds C (rank 0). */
+    bool
+    holds_tables() const;
+
+    /** C_:j, every node (compute_columns() first; rank 0 only). */
     const std::vector<Tensor<2, dim>> &
     column(const unsigned int j) const
     {
@@ -97,13 +119,16 @@ namespace DynamicContact
       return springs[i];
     }
 
-    /** w_i -= sum_j C_ij f_j over the nodes @p nodes. */
+    /** w_i -= sum_j C_ij f_j over the nodes @p nodes (rank 0 only). */
     void
     subtract(const std::vector<Tensor<1, dim>> &forces,
              const std::vector<unsigned int>   &nodes,
              std::vector<Tensor<1, dim>>       &w) const;
 
-    /** w_i = w_free,i - sum_j C_ij f_j over the nodes with a force. */
+    /**
+     * w_i = w_free,i - sum_j C_ij f_j over the nodes with a force (rank 0
+     * only).
+     */
     void
     response(const std::vector<Tensor<1, dim>> &w_free,
              const std::vector<Tensor<1, dim>> &forces,
@@ -126,7 +151,8 @@ namespace DynamicContact
      * C' = K0'^{-1} (the table) and the springs removed by the Woodbury
      * identity, K0^{-1} = C' + C' P^T (S^{-1} - P C' P^T)^{-1} P C' (P the
      * springs' DoFs): what the uniqueness measures and the weakening limit
-     * see, as the assembled solver does. Makes the columns it needs.
+     * see, as the assembled solver does. Makes the columns it needs
+     * (rank 0 only, inside on_leader() where there are several processes).
      */
     void
     apply_k0(const std::vector<unsigned int>   &nodes,
@@ -168,8 +194,14 @@ namespace DynamicContact
     std::vector<unsigned int> spring_nodes;
     std::vector<double>       springs; // one per node of all_nodes()
 
-    /** columns[j][i] = C_ij, empty until node j was first active. */
+    /**
+     * columns[j][i] = C_ij, empty until node j was first active (and on
+     * every process but rank 0); made[j]: C_:j exists (every process).
+     */
     std::vector<std::vector<Tensor<2, dim>>> columns;
+    std::vector<bool>                        made;
+    /** Inside on_leader() on rank 0: compute_columns() asks through it. */
+    LeadingProcess *leading = nullptr;
     /** For each node of all_nodes(): its index among the owned nodes, or -1. */
     std::vector<int> owned_index;
 
@@ -211,6 +243,10 @@ namespace DynamicContact
     /** K0' = K0 + S from the current K0 (collective). */
     void
     add_springs();
+
+    /** compute_columns() on every process together. */
+    void
+    make_columns(const std::vector<unsigned int> &nodes, Result &result);
 
     /** Columns from BulkSolver::inverse_block(), if it gives them. */
     bool

@@ -38,8 +38,10 @@ namespace DynamicContact
    * two per Newton step (newton_step()), plus the dense iterations.
    *
    * The dense tables couple every pair of nodes, so Gamma_3 is replicated on
-   * every process (GatheredBoundary): the right choice while the contact
-   * boundary is small (the solver plan decides: solver_plan.h).
+   * every process (GatheredBoundary), and rank 0 holds the tables and does
+   * the dense work (BoundaryCompliance::on_leader()): the right choice
+   * while the contact boundary is small (the solver plan decides:
+   * solver_plan.h).
    */
   template <int dim>
   class CondensedNewton : public ContactNewton<dim>, public LinearBackend<dim>
