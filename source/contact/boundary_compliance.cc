@@ -1,7 +1,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/vector.h>
 
-#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/boundary_compliance.h>
 #include <dynamic_contact/contact/largest_eigenvalue.h>
@@ -377,28 +376,25 @@ namespace DynamicContact
     Utilities::MPI::max(local, problem.discretization.comm, stiffness);
     // The sample's compliance under K0, as the assembled solver sees it,
     // from C: on rank 0, which holds it; the limits then to every process.
+    const auto compliance_at = [&](const int j) {
+      const std::vector<unsigned int> node = {static_cast<unsigned int>(j)};
+      Tensor<2, dim>                  C;
+      std::vector<Tensor<1, dim>>     v;
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          std::vector<Tensor<1, dim>> e(1);
+          e[0][c] = 1;
+          apply_k0(node, e, v, result);
+          for (unsigned int q = 0; q < dim; ++q)
+            C[q][c] = v[0][q];
+        }
+      return WeakeningLimit::tangential_compliance(all[j], C);
+    };
     on_leader(result, [&]() {
-      limits = WeakeningLimit::limits(
-      all,
-      stiffness,
-      [&](const int j) {
-        const std::vector<unsigned int> node = {static_cast<unsigned int>(j)};
-        Tensor<2, dim>                  C;
-        std::vector<Tensor<1, dim>>     v;
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            std::vector<Tensor<1, dim>> e(1);
-            e[0][c] = 1;
-            apply_k0(node, e, v, result);
-            for (unsigned int q = 0; q < dim; ++q)
-              C[q][c] = v[0][q];
-          }
-        return WeakeningLimit::tangential_compliance(all[j], C);
-      },
-      MPI_COMM_SELF);
+      limits =
+        WeakeningLimit::limits(all, stiffness, compliance_at, MPI_COMM_SELF);
     });
-    LeadingProcess(problem.boundary.get_mpi_communicator(), nullptr)
-      .share(limits);
+    share(limits);
     limits_scheme = prepared_scheme;
     return limits;
   }
@@ -455,8 +451,7 @@ namespace DynamicContact
       largest =
         largest_eigenvalue(apply, start, [](const double v) { return v; });
     });
-    LeadingProcess(problem.boundary.get_mpi_communicator(), nullptr)
-      .share(largest);
+    share(largest);
     return largest;
   }
 

@@ -1,4 +1,3 @@
-#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/condensed_newton.h>
 #include <dynamic_contact/contact/newton_driver.h>
@@ -223,17 +222,13 @@ namespace DynamicContact
                         problem.details,
                         result);
     });
-    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
-    if (lead.shared())
-      {
-        // What solve(), finalize() and polish() use of the iterate.
-        lead.share(it.w);
-        lead.share(it.lambda);
-        lead.share(it.g);
-        lead.share(it.response);
-        lead.share(it.active);
-        lead.share(result);
-      }
+    // What solve(), finalize() and polish() use of the iterate.
+    compliance.share(it.w);
+    compliance.share(it.lambda);
+    compliance.share(it.g);
+    compliance.share(it.response);
+    compliance.share(it.active);
+    compliance.share(result);
   }
 
 

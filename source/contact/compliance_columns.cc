@@ -169,10 +169,11 @@ namespace DynamicContact
               packed.push_back(response[r]);
           }
     // To rank 0, which holds C.
+    const bool holds = holds_tables();
     for (const unsigned int j : missing)
       {
         made[j] = true;
-        if (holds_tables())
+        if (holds)
           columns[j].assign(all.size(), Tensor<2, dim>());
       }
     for (const auto &part :

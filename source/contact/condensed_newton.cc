@@ -1,4 +1,3 @@
-#include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/condensed_newton.h>
 #include <dynamic_contact/contact/newton_driver.h>
@@ -339,9 +338,8 @@ namespace DynamicContact
     compliance.on_leader(result, [&]() {
       reduced.step(it, system.scheme, r, dw, lambda_full, new_forces);
     });
-    LeadingProcess lead(problem.boundary.get_mpi_communicator(), nullptr);
-    lead.share(lambda_full);
-    lead.share(new_forces);
+    compliance.share(lambda_full);
+    compliance.share(new_forces);
     for (const unsigned int j : it.active)
       new_forces[j] -= it.base[j];
     if (!compliance.apply_full_columns(new_forces, it.active, increment))

@@ -1,13 +1,10 @@
 #ifndef dynamic_contact_leading_process_h
 #define dynamic_contact_leading_process_h
 
-#include <deal.II/base/tensor.h>
-
 #include <mpi.h>
 
-#include <cstring>
+#include <cstddef>
 #include <functional>
-#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -25,11 +22,12 @@ namespace DynamicContact
    * new compliance columns from the distributed factorization): it calls
    * request() with a list of numbers, and every process then runs the
    * serving function with that list together. A failure of the work ends
-   * run() on every process with the same exception: a StepFailure (the
-   * time loop then retries the step) as a StepFailure with its message and
-   * Newton iterations, any other error as a std::runtime_error with its
-   * message. A failure inside the serving function, which every process
-   * runs, leaves each process by its own exception.
+   * run() on every process: rank 0 rethrows its exception, the others
+   * throw a StepFailure with its message and Newton iterations where it
+   * was one (the time loop then retries the step on all of them), else a
+   * std::runtime_error with its message. A failure inside the serving
+   * function, which every process runs, leaves each process by its own
+   * exception.
    *
    * On one process run() just calls the work and request() the serving
    * function.
@@ -39,7 +37,7 @@ namespace DynamicContact
   public:
     using Serve = std::function<void(const std::vector<unsigned int> &)>;
 
-    /** Collective on @p comm (nothing is communicated). */
+    /** On every process of @p comm (nothing is communicated). */
     LeadingProcess(const MPI_Comm comm, Serve serve);
 
     /** Whether this process does the work (rank 0). */

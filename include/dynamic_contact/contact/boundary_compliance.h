@@ -101,6 +101,18 @@ namespace DynamicContact
     void
     on_leader(Result &result, const std::function<void()> &work);
 
+    /**
+     * Collective: rank 0's @p value (a number, or a vector of numbers or
+     * tensors) on every process, after on_leader().
+     */
+    template <typename T>
+    void
+    share(T &value) const
+    {
+      LeadingProcess(problem.boundary.get_mpi_communicator(), nullptr)
+        .share(value);
+    }
+
     /** Whether this process holds C (rank 0). */
     bool
     holds_tables() const;
