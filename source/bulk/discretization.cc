@@ -49,6 +49,29 @@ namespace DynamicContact
 
   template <int dim>
   void
+  Discretization<dim>::add_boundary_constraints(
+    const DoFHandler<dim>     &dofs,
+    AffineConstraints<double> &target) const
+  {
+    for (const auto id : boundary_conditions.clamped)
+      VectorTools::interpolate_boundary_values(mapping,
+                                               dofs,
+                                               id,
+                                               Functions::ZeroFunction<dim>(
+                                                 dim),
+                                               target);
+    if (!boundary_conditions.roller.empty())
+      {
+        const std::set<types::boundary_id> roller(
+          boundary_conditions.roller.begin(), boundary_conditions.roller.end());
+        VectorTools::compute_no_normal_flux_constraints(
+          dofs, 0, roller, target, mapping);
+      }
+  }
+
+
+  template <int dim>
+  void
   Discretization<dim>::setup_dofs(
     const Parameters::BoundaryConditions &boundary_conditions)
   {
@@ -69,20 +92,8 @@ namespace DynamicContact
     constraints.clear();
     constraints.reinit(locally_relevant);
     constraints.merge(hanging_node_constraints);
-    for (const auto id : boundary_conditions.clamped)
-      VectorTools::interpolate_boundary_values(mapping,
-                                               dof_handler,
-                                               id,
-                                               Functions::ZeroFunction<dim>(
-                                                 dim),
-                                               constraints);
-    if (!boundary_conditions.roller.empty())
-      {
-        const std::set<types::boundary_id> roller(
-          boundary_conditions.roller.begin(), boundary_conditions.roller.end());
-        VectorTools::compute_no_normal_flux_constraints(
-          dof_handler, 0, roller, constraints, mapping);
-      }
+    this->boundary_conditions = boundary_conditions;
+    add_boundary_constraints(dof_handler, constraints);
     constraints.close();
 
     bool plain_zeros = true;

@@ -192,6 +192,7 @@ namespace DynamicContact
                              SolverPlan::Factorization::none :
                              SolverPlan::Factorization::amesos;
     plan.smoothed_aggregation = parameters.smoothed_aggregation;
+    plan.geometric_multigrid  = parameters.geometric_multigrid;
     reason << "; " << n_dofs << " DoFs on " << n_processes << " process"
            << (n_processes == 1 ? "" : "es");
     plan.reason = reason.str();
@@ -235,8 +236,10 @@ namespace DynamicContact
           factor = "Amesos, distributed";
           break;
         case Factorization::none:
-          factor = std::string("none (Krylov with algebraic multigrid") +
-                   (smoothed_aggregation ? ")" : ", plain aggregation)");
+          factor = geometric_multigrid ?
+                     std::string("none (Krylov with geometric multigrid)") :
+                     std::string("none (Krylov with algebraic multigrid") +
+                       (smoothed_aggregation ? ")" : ", plain aggregation)");
           break;
       }
     return contact_solver_name() + ", factorization: " + factor + " (" +

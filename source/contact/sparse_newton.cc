@@ -324,11 +324,24 @@ namespace DynamicContact
     if (amg && amg_scheme == problem.bulk.scheme())
       return;
     TimerSection t(problem.timer, "Newton: AMG setup");
-    amg = std::make_unique<BulkAMG>();
-    amg->initialize(problem.bulk.newton_matrix(),
-                    problem.discretization,
-                    /*with_rotations=*/true,
-                    problem.parameters.smoothed_aggregation);
+    amg.reset();
+    // A mesh without levels to coarsen to (Geometry/Global refinements = 0)
+    // has no geometric hierarchy: the AMG of K0 serves there.
+    if (problem.parameters.geometric_multigrid &&
+        problem.discretization.triangulation.n_global_levels() > 1)
+      amg = create_bulk_multigrid(problem.discretization,
+                                  problem.bulk.material_law(),
+                                  problem.bulk.scheme(),
+                                  &problem.bulk.newton_matrix());
+    else
+      {
+        auto algebraic = std::make_unique<BulkAMG>();
+        algebraic->initialize(problem.bulk.newton_matrix(),
+                              problem.discretization,
+                              /*with_rotations=*/true,
+                              problem.parameters.smoothed_aggregation);
+        amg = std::move(algebraic);
+      }
     amg_scheme = problem.bulk.scheme();
   }
 
@@ -665,7 +678,10 @@ namespace DynamicContact
   SparseNewton<dim>::memory_consumption(MemoryItems &items) const
   {
     if (amg)
-      items.push_back({"AMG of K0", amg->memory_consumption(), true});
+      items.push_back({dynamic_cast<const BulkAMG *>(amg.get()) ? "AMG of K0" :
+                                                                  "GMG of K0",
+                       amg->memory_consumption(),
+                       amg->memory_measured()});
     if (problem.parameters.linear_solver ==
         Parameters::Solver::LinearSolver::iterative)
       items.push_back({"GMRES basis (the most a solve used)",

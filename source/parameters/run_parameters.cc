@@ -131,6 +131,19 @@ namespace DynamicContact
           "build, for more Krylov iterations: for a mesh whose memory is "
           "short (the memory table at the end of log.txt shows the "
           "hierarchy's share).");
+        prm.declare_entry(
+          "Preconditioner",
+          "AMG",
+          Patterns::Selection("AMG|GMG"),
+          "The preconditioner of the iterative solver (the solves with K0 "
+          "and the Newton systems of the assembled solver). 'AMG': "
+          "algebraic multigrid of K0 (Trilinos ML; Solver/AMG "
+          "aggregation). 'GMG': geometric multigrid on the mesh "
+          "coarsened level by level, K0 applied cell by cell on the "
+          "coarser levels, Chebyshev smoothing: no AMG hierarchy to store "
+          "(elements of degree 1 and 2; on a mesh without refinement "
+          "levels, Geometry/Global refinements = 0 and no adaptive "
+          "refinement yet, the AMG serves).");
       }
     } // namespace
 
@@ -402,6 +415,7 @@ namespace DynamicContact
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");
       smoothed_aggregation  = prm.get("AMG aggregation") == "smoothed";
+      geometric_multigrid   = prm.get("Preconditioner") == "GMG";
       prm.leave_subsection();
       require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
                 newton_tolerance < 1,
@@ -625,6 +639,10 @@ namespace DynamicContact
     solver.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
+    require(!solver.geometric_multigrid || finite_element.degree <= 2,
+            "Solver/Preconditioner = GMG is made for elements of degree 1 "
+            "and 2 (Finite element/Polynomial degree = " +
+              std::to_string(finite_element.degree) + ").");
     // The cut-back for uniqueness needs the measures at every step.
     if (time.cut_back_where_not_unique)
       {

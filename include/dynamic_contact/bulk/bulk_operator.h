@@ -106,6 +106,12 @@ namespace DynamicContact
     {
       return material.has_viscosity();
     }
+    /** The material the forms are made of. */
+    const KelvinVoigtMaterial<dim> &
+    material_law() const
+    {
+      return material;
+    }
 
     /** x^T M y etc. for vectors in master form (collective). */
     double

@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <dynamic_contact/base/memory_report.h>
+#include <dynamic_contact/bulk/bulk_multigrid.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/parameters/parameters.h>
@@ -47,7 +48,7 @@ namespace DynamicContact
    * solve with it and, as the preconditioner of the whole Newton system,
    * for every Newton iteration.
    */
-  class BulkAMG
+  class BulkAMG : public BulkPreconditioner
   {
   public:
     /**
@@ -65,7 +66,7 @@ namespace DynamicContact
                const bool                 smoothed       = true);
 
     void
-    vmult(Vector_t &dst, const Vector_t &src) const
+    vmult(Vector_t &dst, const Vector_t &src) const override
     {
       amg.vmult(dst, src);
     }
@@ -75,9 +76,15 @@ namespace DynamicContact
      * use while ML built it, and the near null space.
      */
     double
-    memory_consumption() const
+    memory_consumption() const override
     {
       return hierarchy_bytes + modes.size() * sizeof(double);
+    }
+
+    bool
+    memory_measured() const override
+    {
+      return true;
     }
 
   private:

@@ -47,6 +47,16 @@ namespace DynamicContact
     setup_dofs(const Parameters::BoundaryConditions &boundary_conditions);
 
     /**
+     * Add the clamped and roller conditions of the last setup_dofs() for
+     * a DoF handler of the same element on this mesh or on a coarser one
+     * (the levels of the geometric multigrid) to @p constraints (not
+     * closed).
+     */
+    void
+    add_boundary_constraints(const DoFHandler<dim>     &dof_handler,
+                             AffineConstraints<double> &constraints) const;
+
+    /**
      * What the mesh (with p4est's forest), the DoF handlers with their
      * index sets, and the constraints hold on this process (deal.II's
      * memory_consumption()).
@@ -120,6 +130,8 @@ namespace DynamicContact
     AffineConstraints<double> constraints;
 
   private:
+    /** The clamped and roller boundaries of the last setup_dofs(). */
+    Parameters::BoundaryConditions boundary_conditions;
     /**
      * Whether some constraint on some process is more than "this entry is
      * zero" (set by setup_dofs()).

@@ -42,6 +42,8 @@ namespace DynamicContact
     Factorization factorization = Factorization::cholmod;
     /** Without one: the AMG's aggregation (Solver/AMG aggregation). */
     bool smoothed_aggregation = true;
+    /** Without one: geometric multigrid instead (Solver/Preconditioner). */
+    bool geometric_multigrid = false;
     /** Why the contact solver and the factorization were chosen. */
     std::string reason;
     /**

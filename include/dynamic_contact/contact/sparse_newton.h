@@ -106,8 +106,9 @@ namespace DynamicContact
                    const Vector_t    &x,
                    Vector_t          &y) const;
 
-    // Iterative: the AMG of K0, for the time step it was built for.
-    std::unique_ptr<BulkAMG> amg;
+    // Iterative: the multigrid of K0 (algebraic or geometric), for the time
+    // step it was built for.
+    std::unique_ptr<BulkPreconditioner> amg;
     TimeScheme               amg_scheme;
     /** Build the AMG of the current K0 unless it is built. */
     void

@@ -320,6 +320,11 @@ namespace DynamicContact
        * false: plain aggregation (a smaller hierarchy, more iterations).
        */
       bool smoothed_aggregation;
+      /**
+       * The iterative solver's preconditioner is geometric multigrid
+       * (BulkMultigrid); false: the AMG of K0.
+       */
+      bool geometric_multigrid;
 
       static void
       declare_parameters(ParameterHandler &prm);
