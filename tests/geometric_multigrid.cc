@@ -13,7 +13,8 @@
 //    mesh as 4 x 1 cells refined three times), on its adaptive variant
 //    (hanging nodes, the hierarchy changes with the mesh) and on the
 //    rail's small scene (10 x 1 x 1 cells refined once); the memory table
-//    shows the GMG, not the AMG. The .mpirun=2 variant runs everything on
+//    shows the GMG, not the AMG. The same with the matrix-free GMG, whose
+//    memory table has no K0. The .mpirun=2 variant runs everything on
 //    two processes and must print the same.
 
 #include <deal.II/base/function_lib.h>
@@ -26,6 +27,8 @@
 #include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/laws/material.h>
+
+#include <set>
 
 #include "test_tools.h"
 
@@ -48,7 +51,10 @@ namespace
   }
 
 
-  /** CG iterations of K0 x = K0 x_exact with the GMG; checks the answer. */
+  /**
+   * CG iterations of K0 x = K0 x_exact with the GMG; checks the answer, and
+   * K0 from the cells against the stored one.
+   */
   template <int dim>
   unsigned int
   solve(const unsigned int degree,
@@ -111,6 +117,61 @@ namespace
                       name + ": CG with GMG solves K0 x = b to 1e-8");
     test_tools::check(control.last_step() <= 30,
                       name + ": within 30 iterations");
+
+    // K0 not stored: its product and its nodal blocks from the cells.
+    BulkOperator<dim> cells(d, m, false);
+    cells.reinit(/*stored=*/false, /*store_newton_matrix=*/false);
+    cells.set_time_step(scheme);
+    Vector_t cells_b;
+    d.reinit_owned(cells_b);
+    cells.newton_vmult(cells_b, exact);
+    cells_b -= b;
+    test_tools::check(cells_b.linfty_norm() <= 1e-12 * b.linfty_norm(),
+                      name + ": K0 x from the cells as stored, to 1e-12");
+    std::vector<std::array<types::global_dof_index, dim>> nodes;
+    std::set<types::global_dof_index>                     seen;
+    for (const auto &cell : d.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            std::array<types::global_dof_index, dim> node;
+            bool                                     free = true;
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                node[c] = cell->vertex_dof_index(v, c);
+                free    = free && d.locally_owned.is_element(node[c]) &&
+                       !d.constraints.is_constrained(node[c]);
+              }
+            if (free && seen.insert(node[0]).second)
+              nodes.push_back(node);
+          }
+    const auto   stored_blocks = bulk.newton_blocks(nodes);
+    const auto   cell_blocks   = cells.newton_blocks(nodes);
+    double       worst = 0, scale = 0;
+    for (unsigned int p = 0; p < nodes.size(); ++p)
+      {
+        worst = std::max(worst, (stored_blocks[p] - cell_blocks[p]).norm());
+        scale = std::max(scale, stored_blocks[p].norm());
+      }
+    worst = Utilities::MPI::max(worst, d.comm);
+    scale = Utilities::MPI::max(scale, d.comm);
+    test_tools::check(Utilities::MPI::sum(nodes.size(), d.comm) > 0 &&
+                        worst <= 1e-12 * scale,
+                      name + ": K0's nodal blocks from the cells as stored, "
+                             "to 1e-12 (hanging nodes resolved)");
+
+    const auto matrix_free = create_bulk_multigrid(d, m, scheme, nullptr);
+    const Preconditioner cell_preconditioner{*matrix_free};
+    const BulkMatrixOperator<dim> cells_K0{cells};
+    SolverControl      cell_control(200, 1e-12 * b.l2_norm());
+    SolverCG<Vector_t> cell_cg(cell_control);
+    x = 0;
+    cell_cg.solve(cells_K0, x, b, cell_preconditioner);
+    d.constraints.set_zero(x);
+    x -= exact;
+    test_tools::check(x.linfty_norm() <= 1e-8 * exact.linfty_norm() &&
+                        cell_control.last_step() <= 30,
+                      name + ": CG with the matrix-free GMG, too");
     return control.last_step();
   }
 
@@ -133,7 +194,8 @@ namespace
   void
   check_scene(const std::string              &prm,
               const std::string              &name,
-              const std::vector<std::string> &overrides)
+              const std::vector<std::string> &overrides,
+              const std::string              &preconditioner)
   {
     auto with = [&](const std::vector<std::string> &more,
                     const std::string              &directory) {
@@ -145,21 +207,27 @@ namespace
     const auto reference = with(
       {"Solver/Contact solver=condensed", "Solver/Linear solver=direct"},
       "condensed");
+    const bool matrix_free = preconditioner != "GMG";
     const auto gmg = with({"Solver/Contact solver=assembled",
                            "Solver/Linear solver=iterative",
-                           "Solver/Preconditioner=GMG"},
-                          "gmg");
+                           "Solver/Preconditioner=" + preconditioner},
+                          matrix_free ? "matrix-free" : "gmg");
     const auto &a = reference->time_series();
     const auto &b = gmg->time_series();
-    test_tools::check(a.size() == b.size(), name + ": same number of steps");
+    const std::string what = name + ", " + preconditioner;
+    test_tools::check(a.size() == b.size(), what + ": same number of steps");
     if (a.size() == b.size())
       test_tools::check(test_tools::largest_difference(a, b) < 1e-8,
-                        name + ": GMRES with GMG agrees with condensed/direct "
+                        what + ": GMRES with it agrees with condensed/direct "
                                "to 1e-8");
     const std::string table = gmg->simulator().memory_table();
     test_tools::check(table.find("GMG of K0") != std::string::npos &&
                         table.find("AMG of K0") == std::string::npos,
-                      name + ": the GMG served, not the AMG");
+                      what + ": the GMG served, not the AMG");
+    test_tools::check((table.find("bulk matrix K0") == std::string::npos) ==
+                        matrix_free,
+                      what + (matrix_free ? ": K0 not stored" :
+                                            ": K0 stored"));
   }
 } // namespace
 
@@ -173,15 +241,21 @@ main(int argc, char *argv[])
   check_preconditioner<3>(1);
   check_preconditioner<3>(2);
 
-  check_scene<2>("barboteu_danan_2016_small.prm",
-                 "paper_small",
-                 {"Geometry/Repetitions=4, 1",
-                  "Geometry/Global refinements=3"});
-  check_scene<2>("barboteu_danan_2016_adaptive_small.prm",
-                 "paper_adaptive_small",
-                 {});
-  check_scene<3>("rail_3d_small.prm",
-                 "rail_small",
-                 {"Geometry/Repetitions=10, 1, 1",
-                  "Geometry/Global refinements=1"});
+  for (const std::string preconditioner : {"GMG", "matrix-free GMG"})
+    {
+      check_scene<2>("barboteu_danan_2016_small.prm",
+                     "paper_small",
+                     {"Geometry/Repetitions=4, 1",
+                      "Geometry/Global refinements=3"},
+                     preconditioner);
+      check_scene<2>("barboteu_danan_2016_adaptive_small.prm",
+                     "paper_adaptive_small",
+                     {},
+                     preconditioner);
+      check_scene<3>("rail_3d_small.prm",
+                     "rail_small",
+                     {"Geometry/Repetitions=10, 1, 1",
+                      "Geometry/Global refinements=1"},
+                     preconditioner);
+    }
 }

@@ -19,6 +19,7 @@
 #include <deal.II/multigrid/multigrid.h>
 
 #include <dynamic_contact/base/memory_report.h>
+#include <dynamic_contact/bulk/bulk_kernel.h>
 #include <dynamic_contact/bulk/bulk_multigrid.h>
 
 namespace DynamicContact
@@ -42,28 +43,12 @@ namespace DynamicContact
       LevelOperator(const Discretization<dim>       &discretization,
                     const DoFHandler<dim>           &dof_handler,
                     const AffineConstraints<double> &constraints,
-                    const double                     mass,
-                    const SymmetricTensor<4, dim>   &stiffness,
+                    const BulkKernel<dim>           &kernel,
                     const Matrix_t                  *stored)
         : constraints(constraints)
-        , mass(mass)
+        , kernel(kernel)
         , stored(stored)
       {
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = i; j < dim; ++j)
-            for (unsigned int k = 0; k < dim; ++k)
-              for (unsigned int l = k; l < dim; ++l)
-                this->stiffness[i][j][k][l] = stiffness[i][j][k][l];
-        // An isotropic tensor, lambda I (x) I + 2 mu S, is applied as such
-        // (a fifth of the operations of the general contraction).
-        const double lambda = stiffness[0][0][1][1], mu = stiffness[0][1][0][1];
-        const SymmetricTensor<4, dim> iso =
-          lambda * outer_product(unit_symmetric_tensor<dim>(),
-                                 unit_symmetric_tensor<dim>()) +
-          2 * mu * identity_tensor<dim>();
-        isotropic = (iso - stiffness).norm() <= 1e-12 * stiffness.norm();
-        this->lambda = lambda;
-        this->two_mu = 2 * mu;
         typename MatrixFree<dim, double>::AdditionalData data;
         data.tasks_parallel_scheme =
           MatrixFree<dim, double>::AdditionalData::none;
@@ -168,37 +153,18 @@ namespace DynamicContact
 
     private:
       const AffineConstraints<double>                  &constraints;
-      const double                                      mass;
-      SymmetricTensor<4, dim, VectorizedArray<double>>  stiffness;
-      bool                                              isotropic = false;
-      VectorizedArray<double>                           lambda, two_mu;
+      const BulkKernel<dim>                             kernel;
       const Matrix_t                                   *stored;
       MatrixFree<dim, double>                           matrix_free;
       std::vector<unsigned int>                         constrained;
       std::shared_ptr<DiagonalMatrix<LevelVector>>      inverse =
         std::make_shared<DiagonalMatrix<LevelVector>>();
 
-      /** (mass u, v) + (stiffness eps(u), eps(v)) on one cell batch. */
+      /** K0 on one cell batch (MatrixFreeTools' interface). */
       void
       local_apply(Evaluation &phi) const
       {
-        phi.evaluate(EvaluationFlags::values | EvaluationFlags::gradients);
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          {
-            phi.submit_value(mass * phi.get_value(q), q);
-            const auto eps = phi.get_symmetric_gradient(q);
-            if (isotropic)
-              {
-                auto sigma = two_mu * eps;
-                const VectorizedArray<double> volumetric = lambda * trace(eps);
-                for (unsigned int d = 0; d < dim; ++d)
-                  sigma[d][d] += volumetric;
-                phi.submit_symmetric_gradient(sigma, q);
-              }
-            else
-              phi.submit_symmetric_gradient(stiffness * eps, q);
-          }
-        phi.integrate(EvaluationFlags::values | EvaluationFlags::gradients);
+        kernel.apply(phi);
       }
 
       void
@@ -369,11 +335,7 @@ namespace DynamicContact
         operators.resize(0, top);
         transfers.resize(0, top);
 
-        const double mass = scheme.mass_coefficient(material.density());
-        SymmetricTensor<4, dim> stiffness =
-          scheme.elasticity_coefficient() * material.elasticity();
-        if (material.has_viscosity())
-          stiffness += scheme.viscosity_coefficient() * material.viscosity();
+        const BulkKernel<dim> kernel(scheme, material);
 
         for (unsigned int level = 0; level <= top; ++level)
           {
@@ -396,8 +358,7 @@ namespace DynamicContact
               discretization,
               dofs(level),
               level_constraints(level),
-              mass,
-              stiffness,
+              kernel,
               finest ? finest_matrix : nullptr);
           }
         for (unsigned int level = 0; level < top; ++level)

@@ -3,7 +3,9 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
 
+#include <functional>
 #include <set>
+#include <unordered_map>
 
 #include <dynamic_contact/bulk/bulk_operator.h>
 
@@ -25,8 +27,19 @@ namespace DynamicContact
   void
   BulkOperator<dim>::reinit(const bool store)
   {
+    reinit(store, true);
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::reinit(const bool store, const bool store_newton_matrix)
+  {
+    Assert(store_newton_matrix || !store,
+           ExcMessage("Stored forms come with a stored K0."));
     loaded_cells_scene = nullptr; // the mesh changed
     stored             = store;
+    newton_stored      = store_newton_matrix;
     // Every component with every other (K0 and the stiffness matrices),
     // and each component with itself alone (M: phi_i . phi_j vanishes
     // between components).
@@ -39,7 +52,11 @@ namespace DynamicContact
         }
     std::vector<std::pair<TrilinosWrappers::SparsityPattern *,
                           Table<2, DoFTools::Coupling> *>>
-      patterns = {{&pattern, &all}};
+      patterns;
+    if (newton_stored)
+      patterns.emplace_back(&pattern, &all);
+    else
+      pattern.clear();
     if (stored)
       patterns.emplace_back(&mass_pattern, &same);
     else
@@ -59,7 +76,10 @@ namespace DynamicContact
                                           discretization.comm));
         p->compress();
       }
-    bulk_matrix.reinit(pattern);
+    if (newton_stored)
+      bulk_matrix.reinit(pattern);
+    else
+      bulk_matrix.clear();
     for (Matrix_t *m : {&mass_matrix,
                         &elasticity_matrix,
                         &viscosity_matrix,
@@ -80,15 +100,19 @@ namespace DynamicContact
   namespace
   {
     /**
-     * The bulk assembly's loop: on each locally owned cell, @p point(value,
-     * eps, JxW) at each point of the quadrature QGauss(p + 1) with the shape
+     * The bulk assembly's loop: on each locally owned cell (each owned or
+     * ghost cell that @p take accepts, if given), @p point(value, eps, JxW)
+     * at each point of the quadrature QGauss(p + 1) with the shape
      * functions' values and symmetric gradients, then @p cell(dofs).
      */
     template <int dim, typename Point, typename Cell>
     void
-    for_each_point(const Discretization<dim> &discretization,
-                   const Point               &point,
-                   const Cell                &cell_done)
+    for_each_point(
+      const Discretization<dim> &discretization,
+      const Point               &point,
+      const Cell                &cell_done,
+      const std::function<bool(
+        const typename DoFHandler<dim>::active_cell_iterator &)> &take = {})
     {
       const auto        &fe = discretization.fe;
       const QGauss<dim>  quadrature(fe.degree + 1);
@@ -104,7 +128,8 @@ namespace DynamicContact
       const FEValuesExtractors::Vector     displacement(0);
       for (const auto &cell :
            discretization.dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
+        if (take ? (!cell->is_artificial() && take(cell)) :
+                   cell->is_locally_owned())
           {
             fe_values.reinit(cell);
             for (unsigned int q = 0; q < quadrature.size(); ++q)
@@ -195,6 +220,7 @@ namespace DynamicContact
            ExcMessage("The time step must be positive."));
     if (scheme == current)
       return;
+    kernel = BulkKernel<dim>(scheme, material);
     if (stored)
       {
         // K0 = (rho/k) M + theta A + theta^2 k B.
@@ -205,29 +231,24 @@ namespace DynamicContact
         if (material.has_viscosity())
           bulk_matrix.add(scheme.viscosity_coefficient(), viscosity_matrix);
       }
-    else
+    else if (newton_stored)
       assemble_bulk_matrix(scheme);
     current = scheme;
   }
 
 
   template <int dim>
+  template <typename Take, typename CellDone>
   void
-  BulkOperator<dim>::assemble_bulk_matrix(const TimeScheme &scheme)
+  BulkOperator<dim>::for_each_cell_matrix(const BulkKernel<dim> &K,
+                                          const Take            &take,
+                                          const CellDone        &cell_done) const
   {
     // K0 = (rho/k) M + theta A + theta^2 k B, cell by cell.
-    const double mass_coefficient =
-      scheme.mass_coefficient(material.density());
-    SymmetricTensor<4, dim> stiffness =
-      scheme.elasticity_coefficient() * material.elasticity();
-    if (material.has_viscosity())
-      stiffness += scheme.viscosity_coefficient() * material.viscosity();
-
     const unsigned int n = discretization.fe.n_dofs_per_cell();
     FullMatrix<double> local(n, n);
     std::vector<SymmetricTensor<2, dim>> stress(n);
     std::vector<Tensor<1, dim>>          inertia(n);
-    bulk_matrix = 0;
     for_each_point(
       discretization,
       [&](const std::vector<Tensor<1, dim>>          &value,
@@ -235,20 +256,165 @@ namespace DynamicContact
           const double                                JxW) {
         for (unsigned int i = 0; i < n; ++i)
           {
-            stress[i]  = (stiffness * eps[i]) * JxW;
-            inertia[i] = value[i] * (mass_coefficient * JxW);
+            stress[i]  = (K.stiffness * eps[i]) * JxW;
+            inertia[i] = value[i] * (K.mass * JxW);
           }
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j < n; ++j)
             local(i, j) += inertia[i] * value[j] + stress[i] * eps[j];
       },
       [&](const std::vector<types::global_dof_index> &dofs) {
+        cell_done(local, dofs);
+        local = 0;
+      },
+      take);
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::assemble_bulk_matrix(const TimeScheme &scheme)
+  {
+    bulk_matrix = 0;
+    for_each_cell_matrix(
+      BulkKernel<dim>(scheme, material),
+      std::function<bool(const typename DoFHandler<dim>::active_cell_iterator &)>(),
+      [&](const FullMatrix<double>                   &local,
+          const std::vector<types::global_dof_index> &dofs) {
         discretization.constraints.distribute_local_to_global(local,
                                                               dofs,
                                                               bulk_matrix);
-        local = 0;
       });
     bulk_matrix.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
+  void
+  BulkOperator<dim>::newton_vmult(Vector_t &dst, const Vector_t &src) const
+  {
+    if (newton_stored)
+      bulk_matrix.vmult(dst, src);
+    else
+      forms.vmult(kernel, dst, src);
+  }
+
+
+  template <int dim>
+  std::vector<Tensor<2, dim>>
+  BulkOperator<dim>::newton_blocks(
+    const std::vector<std::array<types::global_dof_index, dim>> &nodes) const
+  {
+    std::vector<Tensor<2, dim>> blocks(nodes.size());
+    if (newton_stored)
+      {
+        for (unsigned int p = 0; p < nodes.size(); ++p)
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = 0; b < dim; ++b)
+              blocks[p][a][b] = bulk_matrix.el(nodes[p][a], nodes[p][b]);
+        return blocks;
+      }
+
+    // Every process's nodes: each process sums what its own cells give to
+    // any of them (a cell whose hanging node hangs on a node need not be
+    // a ghost of the node's owner), then the sums are added up.
+    const MPI_Comm comm = discretization.comm;
+    const auto     per_process = Utilities::MPI::all_gather(comm, nodes);
+    std::vector<std::array<types::global_dof_index, dim>> all;
+    unsigned int first = 0;
+    for (unsigned int r = 0; r < per_process.size(); ++r)
+      {
+        if (r == Utilities::MPI::this_mpi_process(comm))
+          first = all.size();
+        all.insert(all.end(), per_process[r].begin(), per_process[r].end());
+      }
+    // Which node and component each DoF of the nodes is.
+    std::unordered_map<types::global_dof_index,
+                       std::pair<unsigned int, unsigned int>>
+      node_of;
+    for (unsigned int p = 0; p < all.size(); ++p)
+      for (unsigned int a = 0; a < dim; ++a)
+        node_of[all[p][a]] = {p, a};
+    const auto &constraints = discretization.constraints;
+    // A local DoF resolved into the nodes' DoFs: (node, component,
+    // coefficient), as condensation resolves it.
+    struct Part
+    {
+      unsigned int node, component;
+      double       coefficient;
+    };
+    const unsigned int n = discretization.fe.n_dofs_per_cell();
+    std::vector<std::vector<Part>>       parts(n);
+    std::vector<types::global_dof_index> cell_dofs(n);
+    const auto resolve = [&](const std::vector<types::global_dof_index> &dofs) {
+      bool any = false;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          parts[i].clear();
+          const auto add = [&](const types::global_dof_index g,
+                               const double                  c) {
+            const auto found = node_of.find(g);
+            if (found != node_of.end())
+              parts[i].push_back(
+                {found->second.first, found->second.second, c});
+          };
+          if (!constraints.is_constrained(dofs[i]))
+            add(dofs[i], 1.);
+          else if (const auto *entries =
+                     constraints.get_constraint_entries(dofs[i]))
+            for (const auto &[master, c] : *entries)
+              add(master, c);
+          any = any || !parts[i].empty();
+        }
+      return any;
+    };
+    std::vector<double> sums(all.size() * dim * dim, 0.);
+    for_each_cell_matrix(
+      kernel,
+      std::function<bool(
+        const typename DoFHandler<dim>::active_cell_iterator &)>(
+        [&](const typename DoFHandler<dim>::active_cell_iterator &cell) {
+          if (!cell->is_locally_owned())
+            return false;
+          cell->get_dof_indices(cell_dofs);
+          return resolve(cell_dofs);
+        }),
+      [&](const FullMatrix<double> &local,
+          const std::vector<types::global_dof_index> &) {
+        for (unsigned int i = 0; i < n; ++i)
+          for (const Part &r : parts[i])
+            for (unsigned int j = 0; j < n; ++j)
+              for (const Part &c : parts[j])
+                if (c.node == r.node)
+                  sums[(r.node * dim + r.component) * dim + c.component] +=
+                    r.coefficient * local(i, j) * c.coefficient;
+      });
+    Utilities::MPI::sum(sums, comm, sums);
+    for (unsigned int p = 0; p < nodes.size(); ++p)
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          blocks[p][a][b] = sums[((first + p) * dim + a) * dim + b];
+    // A constrained DoF's row and column are the stored K0's stand-in:
+    // only its diagonal, here the mean of the node's other diagonal entries.
+    for (unsigned int p = 0; p < nodes.size(); ++p)
+      {
+        double       sum = 0;
+        unsigned int free = 0;
+        for (unsigned int a = 0; a < dim; ++a)
+          if (!constraints.is_constrained(nodes[p][a]))
+            {
+              sum += blocks[p][a][a];
+              ++free;
+            }
+        for (unsigned int a = 0; a < dim; ++a)
+          if (constraints.is_constrained(nodes[p][a]))
+            {
+              for (unsigned int b = 0; b < dim; ++b)
+                blocks[p][a][b] = blocks[p][b][a] = 0;
+              blocks[p][a][a] = free > 0 ? sum / free : 1.;
+            }
+      }
+    return blocks;
   }
 
 
@@ -315,7 +481,8 @@ namespace DynamicContact
       items.push_back(
         {name, stored_values_bytes(A) + rows * sizeof(double *), false});
     };
-    graph("sparsity pattern (shared)", pattern);
+    if (newton_stored)
+      graph("sparsity pattern (shared)", pattern);
     if (stored)
       {
         graph("sparsity pattern of M", mass_pattern);
@@ -330,7 +497,8 @@ namespace DynamicContact
       items.push_back({"bulk forms (matrix-free cell data)",
                        forms.memory_consumption(),
                        false});
-    values("bulk matrix K0", bulk_matrix);
+    if (newton_stored)
+      values("bulk matrix K0", bulk_matrix);
   }
 
 

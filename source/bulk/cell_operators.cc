@@ -1,6 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/matrix_free/fe_evaluation.h>
 
+#include <dynamic_contact/bulk/bulk_kernel.h>
 #include <dynamic_contact/bulk/cell_operators.h>
 
 namespace DynamicContact
@@ -143,35 +144,54 @@ namespace DynamicContact
     }
 
 
-    /** y += F x on this process's cells (before compress), as above. */
-    template <int dim, int degree, typename Form, typename Tensor4>
+    /**
+     * y += F x on this process's cells (before compress), F given by
+     * @p apply(phi) on each cell batch (evaluate, submit, integrate), with
+     * the FEEvaluation of the polynomial degree @p degree as above.
+     */
+    template <int dim, int degree, typename Apply>
     void
     local_vmult(const MatrixFree<dim, double>                    &mf,
-                const Form                                        form,
-                const Tensor4                                    &T,
+                const Apply                                      &apply,
                 LinearAlgebra::distributed::Vector<double>       &y,
                 const LinearAlgebra::distributed::Vector<double> &x)
     {
-      const auto flags = (form == Form::mass ? EvaluationFlags::values :
-                                               EvaluationFlags::gradients);
       FEEvaluation<dim, degree, degree + 1, dim, double> phi(mf);
       for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
         {
           phi.reinit(batch);
           phi.read_dof_values(x);
-          phi.evaluate(flags);
-          for (unsigned int q = 0; q < phi.n_q_points; ++q)
-            if (form == Form::mass)
-              phi.submit_value(phi.get_value(q), q);
-            else if (form == Form::strain)
-              phi.submit_symmetric_gradient(phi.get_symmetric_gradient(q), q);
-            else
-              phi.submit_symmetric_gradient(T * phi.get_symmetric_gradient(q),
-                                            q);
-          phi.integrate(flags);
+          apply(phi);
           phi.distribute_local_to_global(y);
         }
     }
+
+
+    /** The form @p form of CellOperators on a cell batch. */
+    template <typename Form, typename Tensor4>
+    struct ApplyForm
+    {
+      const Form     form;
+      const Tensor4 &T;
+
+      template <typename Evaluation>
+      void
+      operator()(Evaluation &phi) const
+      {
+        const auto flags = (form == Form::mass ? EvaluationFlags::values :
+                                                 EvaluationFlags::gradients);
+        phi.evaluate(flags);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          if (form == Form::mass)
+            phi.submit_value(phi.get_value(q), q);
+          else if (form == Form::strain)
+            phi.submit_symmetric_gradient(phi.get_symmetric_gradient(q), q);
+          else
+            phi.submit_symmetric_gradient(T * phi.get_symmetric_gradient(q),
+                                          q);
+        phi.integrate(flags);
+      }
+    };
   } // namespace
 
 
@@ -206,24 +226,24 @@ namespace DynamicContact
 
 
   template <int dim>
+  template <typename Apply>
   void
-  CellOperators<dim>::vmult(const Form      form,
-                            Vector_t       &dst,
-                            const Vector_t &src) const
+  CellOperators<dim>::apply_cells(const Apply    &apply,
+                                  Vector_t       &dst,
+                                  const Vector_t &src) const
   {
     import(src, x_work);
     y_work = 0;
-    const Tensor4_t &T = tensor(form);
     switch (discretization.fe.degree)
       {
         case 1:
-          local_vmult<dim, 1>(matrix_free, form, T, y_work, x_work);
+          local_vmult<dim, 1>(matrix_free, apply, y_work, x_work);
           break;
         case 2:
-          local_vmult<dim, 2>(matrix_free, form, T, y_work, x_work);
+          local_vmult<dim, 2>(matrix_free, apply, y_work, x_work);
           break;
         default:
-          local_vmult<dim, -1>(matrix_free, form, T, y_work, x_work);
+          local_vmult<dim, -1>(matrix_free, apply, y_work, x_work);
       }
     y_work.compress(VectorOperation::add);
 
@@ -233,6 +253,26 @@ namespace DynamicContact
                     y_work.locally_owned_size());
     for (int k = 0; k < local.MyLength(); ++k)
       local[0][k] = y_work.local_element(k);
+  }
+
+
+  template <int dim>
+  void
+  CellOperators<dim>::vmult(const Form      form,
+                            Vector_t       &dst,
+                            const Vector_t &src) const
+  {
+    apply_cells(ApplyForm<Form, Tensor4_t>{form, tensor(form)}, dst, src);
+  }
+
+
+  template <int dim>
+  void
+  CellOperators<dim>::vmult(const BulkKernel<dim> &kernel,
+                            Vector_t              &dst,
+                            const Vector_t        &src) const
+  {
+    apply_cells([&kernel](auto &phi) { kernel.apply(phi); }, dst, src);
   }
 
 

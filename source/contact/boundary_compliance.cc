@@ -369,10 +369,18 @@ namespace DynamicContact
       return limits;
     const auto         &all = gathered.all_nodes();
     std::vector<double> local(all.size(), 0.), stiffness(all.size());
+    std::vector<unsigned int>                                  mine;
+    std::vector<std::array<types::global_dof_index, dim>>      dofs;
     for (unsigned int i = 0; i < all.size(); ++i)
       if (owned_index[i] >= 0 && all[i].unconstrained)
-        local[i] = WeakeningLimit::tangential_stiffness(
-          all[i], problem.bulk.newton_matrix());
+        {
+          mine.push_back(i);
+          dofs.push_back(all[i].dofs);
+        }
+    const auto blocks = problem.bulk.newton_blocks(dofs);
+    for (unsigned int k = 0; k < mine.size(); ++k)
+      local[mine[k]] =
+        WeakeningLimit::tangential_stiffness(all[mine[k]], blocks[k]);
     Utilities::MPI::max(local, problem.discretization.comm, stiffness);
     // The sample's compliance under K0, as the assembled solver sees it,
     // from C: on rank 0, which holds it; the limits then to every process.

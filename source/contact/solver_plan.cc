@@ -193,6 +193,7 @@ namespace DynamicContact
                              SolverPlan::Factorization::amesos;
     plan.smoothed_aggregation = parameters.smoothed_aggregation;
     plan.geometric_multigrid  = parameters.geometric_multigrid;
+    plan.matrix_free_bulk     = !parameters.store_bulk_matrix;
     reason << "; " << n_dofs << " DoFs on " << n_processes << " process"
            << (n_processes == 1 ? "" : "es");
     plan.reason = reason.str();
@@ -237,7 +238,8 @@ namespace DynamicContact
           break;
         case Factorization::none:
           factor = geometric_multigrid ?
-                     std::string("none (Krylov with geometric multigrid)") :
+                     std::string("none (Krylov with geometric multigrid") +
+                       (matrix_free_bulk ? ", K0 applied cell by cell)" : ")") :
                      std::string("none (Krylov with algebraic multigrid") +
                        (smoothed_aggregation ? ")" : ", plain aggregation)");
           break;

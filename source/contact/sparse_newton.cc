@@ -81,6 +81,8 @@ namespace DynamicContact
       problem.discretization.reinit_owned(*v);
     amg.reset();
     amg_scheme    = TimeScheme();
+    bulk_blocks.clear();
+    blocks_scheme = TimeScheme();
     limits_scheme = TimeScheme();
     weakening_limits.clear();
     direct.reset();
@@ -141,7 +143,7 @@ namespace DynamicContact
   {
     const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
-    const Matrix_t    &K0    = problem.bulk.newton_matrix();
+    const auto        &K0    = nodal_bulk_blocks();
 
     NodalSystem system;
     system.blocks.resize(n);
@@ -152,10 +154,7 @@ namespace DynamicContact
         const Tensor<2, dim> &P = nodes[i].constraint_map;
         system.blocks[i]        = transpose(P) * x.lin[i].block * P;
         system.stick[i] = (x.lin[i].friction.state == FrictionState::stick);
-        double d        = 0;
-        for (unsigned int c = 0; c < dim; ++c)
-          d += K0.diag_element(nodes[i].dofs[c]);
-        system.diagonal[i] = d / dim;
+        system.diagonal[i] = trace(K0[i]) / dim;
       }
 
     // The residual of the linearization's constant part: the slip force by
@@ -210,7 +209,7 @@ namespace DynamicContact
   {
     const auto     &nodes = problem.boundary.nodes();
     const IndexSet &owned = problem.discretization.locally_owned;
-    problem.bulk.newton_matrix().vmult(y, x);
+    problem.bulk.newton_vmult(y, x);
     double       *yy = y.trilinos_vector()[0];
     const double *xx = x.trilinos_vector()[0];
     for (unsigned int i = 0; i < nodes.size(); ++i)
@@ -318,6 +317,22 @@ namespace DynamicContact
 
 
   template <int dim>
+  const std::vector<Tensor<2, dim>> &
+  SparseNewton<dim>::nodal_bulk_blocks()
+  {
+    if (blocks_scheme == problem.bulk.scheme() &&
+        bulk_blocks.size() == problem.boundary.nodes().size())
+      return bulk_blocks;
+    std::vector<std::array<types::global_dof_index, dim>> dofs;
+    for (const auto &node : problem.boundary.nodes())
+      dofs.push_back(node.dofs);
+    bulk_blocks   = problem.bulk.newton_blocks(dofs);
+    blocks_scheme = problem.bulk.scheme();
+    return bulk_blocks;
+  }
+
+
+  template <int dim>
   void
   SparseNewton<dim>::prepare_amg()
   {
@@ -326,13 +341,17 @@ namespace DynamicContact
     TimerSection t(problem.timer, "Newton: AMG setup");
     amg.reset();
     // A mesh without levels to coarsen to (Geometry/Global refinements = 0)
-    // has no geometric hierarchy: the AMG of K0 serves there.
+    // has no geometric hierarchy: the AMG of the stored K0 serves there
+    // (without a stored K0 the multigrid's coarsest level is the mesh).
+    const bool stored = problem.bulk.stores_newton_matrix();
     if (problem.parameters.geometric_multigrid &&
-        problem.discretization.triangulation.n_global_levels() > 1)
+        (problem.discretization.triangulation.n_global_levels() > 1 ||
+         !stored))
       amg = create_bulk_multigrid(problem.discretization,
                                   problem.bulk.material_law(),
                                   problem.bulk.scheme(),
-                                  &problem.bulk.newton_matrix());
+                                  stored ? &problem.bulk.newton_matrix() :
+                                           nullptr);
     else
       {
         auto algebraic = std::make_unique<BulkAMG>();
@@ -364,7 +383,8 @@ namespace DynamicContact
     SolverCG<Vector_t> cg(control);
     try
       {
-        cg.solve(problem.bulk.newton_matrix(), x, b, *amg);
+        const BulkMatrixOperator<dim> K0{problem.bulk};
+        cg.solve(K0, x, b, *amg);
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -381,11 +401,11 @@ namespace DynamicContact
     if (limits_scheme == problem.bulk.scheme() && !weakening_limits.empty())
       return weakening_limits;
     const auto         &nodes = problem.boundary.nodes();
+    const auto         &K0    = nodal_bulk_blocks();
     std::vector<double> stiffness(nodes.size(), 0.);
     for (unsigned int i = 0; i < nodes.size(); ++i)
       if (nodes[i].unconstrained)
-        stiffness[i] = WeakeningLimit::tangential_stiffness(
-          nodes[i], problem.bulk.newton_matrix());
+        stiffness[i] = WeakeningLimit::tangential_stiffness(nodes[i], K0[i]);
     Vector_t load, response;
     problem.discretization.reinit_owned(load);
     // The compliance of sample node j: K0^{-1} P_j^T t for its tangents t.

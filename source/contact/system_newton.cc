@@ -31,7 +31,7 @@ namespace DynamicContact
   {
     if (residual.size() != w.size())
       problem.discretization.reinit_owned(residual);
-    problem.bulk.newton_matrix().vmult(residual, w);
+    problem.bulk.newton_vmult(residual, w);
     residual -= rhs;
     problem.boundary.add_nodal_forces(
       [&](const unsigned int i) { return forces[i]; }, 1., residual);
@@ -73,7 +73,7 @@ namespace DynamicContact
 
     if (x.residual.size() != x.w.size())
       problem.discretization.reinit_owned(x.residual);
-    problem.bulk.newton_matrix().vmult(x.residual, x.w);
+    problem.bulk.newton_vmult(x.residual, x.w);
     const MPI_Comm comm = problem.discretization.comm;
     x.scale = std::max({rhs.l2_norm(), x.residual.l2_norm(), 1e-300});
     x.residual -= rhs;

@@ -36,12 +36,8 @@ namespace DynamicContact
 
     template <int dim>
     double
-    tangential_stiffness(const ContactNode<dim> &node, const Matrix_t &K0)
+    tangential_stiffness(const ContactNode<dim> &node, const Tensor<2, dim> &K)
     {
-      Tensor<2, dim> K;
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          K[a][b] = K0.el(node.dofs[a], node.dofs[b]);
       const Tensor<2, dim> &P = node.constraint_map;
       return tangential_eigenvalue(node, P * K * transpose(P), false);
     }
@@ -137,9 +133,9 @@ namespace DynamicContact
 
 
     template double
-    tangential_stiffness(const ContactNode<2> &, const Matrix_t &);
+    tangential_stiffness(const ContactNode<2> &, const Tensor<2, 2> &);
     template double
-    tangential_stiffness(const ContactNode<3> &, const Matrix_t &);
+    tangential_stiffness(const ContactNode<3> &, const Tensor<2, 3> &);
     template double
     tangential_compliance(const ContactNode<2> &, const Tensor<2, 2> &);
     template double

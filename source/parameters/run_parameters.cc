@@ -134,7 +134,7 @@ namespace DynamicContact
         prm.declare_entry(
           "Preconditioner",
           "AMG",
-          Patterns::Selection("AMG|GMG"),
+          Patterns::Selection("AMG|GMG|matrix-free GMG"),
           "The preconditioner of the iterative solver (the solves with K0 "
           "and the Newton systems of the assembled solver). 'AMG': "
           "algebraic multigrid of K0 (Trilinos ML; Solver/AMG "
@@ -143,7 +143,11 @@ namespace DynamicContact
           "coarser levels, Chebyshev smoothing: no AMG hierarchy to store "
           "(elements of degree 1 and 2; on a mesh without refinement "
           "levels, Geometry/Global refinements = 0 and no adaptive "
-          "refinement yet, the AMG serves).");
+          "refinement yet, the AMG serves). 'matrix-free GMG': the same, "
+          "and K0 is not stored either but applied cell by cell on every "
+          "level, for the least memory (no matrix at all but the coarsest "
+          "level's) at a slower product with K0: the assembled solver "
+          "with Linear solver = iterative only.");
       }
     } // namespace
 
@@ -415,7 +419,8 @@ namespace DynamicContact
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");
       smoothed_aggregation  = prm.get("AMG aggregation") == "smoothed";
-      geometric_multigrid   = prm.get("Preconditioner") == "GMG";
+      geometric_multigrid   = prm.get("Preconditioner") != "AMG";
+      store_bulk_matrix     = prm.get("Preconditioner") != "matrix-free GMG";
       prm.leave_subsection();
       require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
                 newton_tolerance < 1,
@@ -639,6 +644,14 @@ namespace DynamicContact
     solver.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
+    require(solver.store_bulk_matrix ||
+              (solver.linear_solver !=
+                 Parameters::Solver::LinearSolver::direct &&
+               solver.contact_solver !=
+                 Parameters::Solver::ContactSolver::condensed),
+            "Solver/Preconditioner = matrix-free GMG stores no K0: it needs "
+            "Solver/Contact solver = assembled (or auto) and Solver/Linear "
+            "solver = iterative (or auto).");
     require(!solver.geometric_multigrid || finite_element.degree <= 2,
             "Solver/Preconditioner = GMG is made for elements of degree 1 "
             "and 2 (Finite element/Polynomial degree = " +

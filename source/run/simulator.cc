@@ -96,7 +96,14 @@ namespace DynamicContact
     step_solver.reinit(c_t, steps_per_matrix(start_time));
     // The bulk forms stored for the condensed solver, applied from the
     // cells for the assembled solver (BulkOperator).
-    bulk.reinit(step_solver.solver_plan().condensed);
+    // K0 itself is stored unless the assembled iterative solver runs with
+    // the matrix-free multigrid.
+    const SolverPlan &plan = step_solver.solver_plan();
+    bulk.reinit(plan.condensed,
+                plan.condensed ||
+                  plan.linear_solver ==
+                    Parameters::Solver::LinearSolver::direct ||
+                  parameters.solver.store_bulk_matrix);
     force_balance.reinit();
   }
 

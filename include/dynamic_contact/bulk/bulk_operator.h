@@ -9,10 +9,14 @@
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/face_load_quadrature.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
+#include <dynamic_contact/bulk/bulk_kernel.h>
 #include <dynamic_contact/bulk/cell_operators.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/bulk/scene.h>
 #include <dynamic_contact/time/time_scheme.h>
+
+#include <array>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -61,6 +65,22 @@ namespace DynamicContact
     void
     reinit(const bool stored);
 
+    /**
+     * The same, with @p store_newton_matrix false: K0 not stored either
+     * (matrix-free forms only), applied cell by cell (newton_vmult()),
+     * its nodal blocks computed from the cells (newton_blocks()). For the
+     * assembled solver with Solver/Preconditioner = matrix-free GMG.
+     */
+    void
+    reinit(const bool stored, const bool store_newton_matrix);
+
+    /** Whether K0 is a stored matrix (newton_matrix()). */
+    bool
+    stores_newton_matrix() const
+    {
+      return newton_stored;
+    }
+
     /** Whether the forms are stored matrices (the last reinit()). */
     bool
     stores_forms() const
@@ -76,12 +96,32 @@ namespace DynamicContact
     void
     set_time_step(const TimeScheme &scheme);
 
-    /** K0 for the last k and theta. */
+    /** K0 for the last k and theta (only if stores_newton_matrix()). */
     const Matrix_t &
     newton_matrix() const
     {
+      Assert(newton_stored, ExcMessage("K0 is not stored."));
       return bulk_matrix;
     }
+
+    /**
+     * @p dst = K0 @p src for vectors in master form (collective): the
+     * stored K0, or cell by cell.
+     */
+    void
+    newton_vmult(Vector_t &dst, const Vector_t &src) const;
+
+    /**
+     * The dim x dim blocks of K0 at nodes: blocks[p][a][b] = K0(dofs[p][a],
+     * dofs[p][b]) for DoFs this process owns, from the stored K0 or from the
+     * cells (collective then: each process's owned cells, condensed with
+     * the constraints as the stored K0 is, summed over the processes; a
+     * constrained DoF's diagonal entry is the mean of its node's
+     * unconstrained ones there, as it is a stand-in in the stored K0 too).
+     */
+    std::vector<Tensor<2, dim>>
+    newton_blocks(
+      const std::vector<std::array<types::global_dof_index, dim>> &dofs) const;
 
     /** @p dst = M @p src, for vectors in master form (collective). */
     void
@@ -189,7 +229,8 @@ namespace DynamicContact
     const KelvinVoigtMaterial<dim> &material;
     const bool                      strain_norm;
 
-    bool                              stored = true;
+    bool                              stored        = true;
+    bool                              newton_stored = true;
     TrilinosWrappers::SparsityPattern pattern;
     /** M's: each component coupled with itself (stored forms only). */
     TrilinosWrappers::SparsityPattern mass_pattern;
@@ -235,6 +276,34 @@ namespace DynamicContact
     /** K0 assembled cell by cell (matrix-free forms). */
     void
     assemble_bulk_matrix(const TimeScheme &scheme);
+
+    /**
+     * K0's matrix on each cell that @p take (called on the owned and ghost
+     * cells) accepts, for the time scheme of @p kernel: @p cell_done(local,
+     * dofs).
+     */
+    template <typename Take, typename CellDone>
+    void
+    for_each_cell_matrix(const BulkKernel<dim> &kernel,
+                         const Take            &take,
+                         const CellDone        &cell_done) const;
+
+    /** K0's integrand for the last time scheme (set_time_step()). */
+    BulkKernel<dim> kernel;
+  };
+
+
+  /** K0 as an operator for deal.II's solvers: BulkOperator::newton_vmult(). */
+  template <int dim>
+  struct BulkMatrixOperator
+  {
+    const BulkOperator<dim> &bulk;
+
+    void
+    vmult(Vector_t &dst, const Vector_t &src) const
+    {
+      bulk.newton_vmult(dst, src);
+    }
   };
 } // namespace DynamicContact
 

@@ -6,6 +6,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/matrix_free/matrix_free.h>
 
+#include <dynamic_contact/bulk/bulk_kernel.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/laws/material.h>
@@ -65,6 +66,12 @@ namespace DynamicContact
     void
     vmult(const Form form, Vector_t &dst, const Vector_t &src) const;
 
+    /** @p dst = K0 @p src for the integrand @p kernel (collective). */
+    void
+    vmult(const BulkKernel<dim> &kernel,
+          Vector_t              &dst,
+          const Vector_t        &src) const;
+
     /** The cell data and the work vectors on this process, in bytes. */
     double
     memory_consumption() const;
@@ -81,6 +88,14 @@ namespace DynamicContact
     /** The tensor of @p form (elasticity or viscosity). */
     const Tensor4_t &
     tensor(const Form form) const;
+
+    /**
+     * @p dst = F @p src with F given by @p apply(phi) on each cell batch
+     * (evaluate, submit, integrate).
+     */
+    template <typename Apply>
+    void
+    apply_cells(const Apply &apply, Vector_t &dst, const Vector_t &src) const;
 
     /** @p target = @p source, with the ghost entries the cells read. */
     void

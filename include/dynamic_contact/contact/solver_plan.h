@@ -44,6 +44,8 @@ namespace DynamicContact
     bool smoothed_aggregation = true;
     /** Without one: geometric multigrid instead (Solver/Preconditioner). */
     bool geometric_multigrid = false;
+    /** With it: K0 applied cell by cell, not stored (matrix-free GMG). */
+    bool matrix_free_bulk = false;
     /** Why the contact solver and the factorization were chosen. */
     std::string reason;
     /**

@@ -110,6 +110,13 @@ namespace DynamicContact
     // step it was built for.
     std::unique_ptr<BulkPreconditioner> amg;
     TimeScheme               amg_scheme;
+    /** K0's blocks at the owned nodes, for the K0 they were taken from. */
+    std::vector<Tensor<2, dim>> bulk_blocks;
+    TimeScheme                  blocks_scheme;
+    /** BulkOperator::newton_blocks() at the nodes, unless K0 is unchanged. */
+    const std::vector<Tensor<2, dim>> &
+    nodal_bulk_blocks();
+
     /** Build the AMG of the current K0 unless it is built. */
     void
     prepare_amg();

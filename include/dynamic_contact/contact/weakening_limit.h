@@ -52,13 +52,14 @@ namespace DynamicContact
     constexpr unsigned int n_samples = 8;
 
     /**
-     * k_i: the smallest eigenvalue of the node's block of @p K0 (in its
-     * actual coordinates, P K_ii P^T) in its tangent plane. The node's rows
-     * must be owned by this process.
+     * k_i: the smallest eigenvalue of the node's block @p K_ii of K0 (in
+     * its actual coordinates, P K_ii P^T) in its tangent plane
+     * (BulkOperator::newton_blocks()).
      */
     template <int dim>
     double
-    tangential_stiffness(const ContactNode<dim> &node, const Matrix_t &K0);
+    tangential_stiffness(const ContactNode<dim> &node,
+                         const Tensor<2, dim>   &K_ii);
 
     /**
      * The largest eigenvalue of the node's compliance block @p C_ii in its

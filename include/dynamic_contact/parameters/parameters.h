@@ -325,6 +325,11 @@ namespace DynamicContact
        * (BulkMultigrid); false: the AMG of K0.
        */
       bool geometric_multigrid;
+      /**
+       * K0 is stored (false: Preconditioner = matrix-free GMG, K0 applied
+       * cell by cell where the assembled iterative solver runs).
+       */
+      bool store_bulk_matrix;
 
       static void
       declare_parameters(ParameterHandler &prm);
