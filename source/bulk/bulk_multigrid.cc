@@ -21,6 +21,7 @@
 #include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/bulk/bulk_kernel.h>
 #include <dynamic_contact/bulk/bulk_multigrid.h>
+#include <dynamic_contact/bulk/bulk_solver.h>
 
 namespace DynamicContact
 {
@@ -209,15 +210,17 @@ namespace DynamicContact
 
     /**
      * The coarsest level: a factorization (KLU) if it is small, else one
-     * V-cycle of ML with the translations as near null space.
+     * V-cycle of the AMG of its matrix (BulkAMG: ML with the rigid-body
+     * modes).
      */
     class CoarseSolve : public MGCoarseGridBase<LevelVector>
     {
     public:
       template <int dim>
-      CoarseSolve(const Matrix_t                 &matrix,
-                  std::unique_ptr<Matrix_t>       owned,
-                  const DoFHandler<dim>          &dofs)
+      CoarseSolve(const Matrix_t            &matrix,
+                  std::unique_ptr<Matrix_t>  owned,
+                  const Mapping<dim>        &mapping,
+                  const DoFHandler<dim>     &dofs)
         : owned(std::move(owned))
       {
         if (matrix.m() <= (dim == 2 ? 50000u : 5000u))
@@ -230,13 +233,8 @@ namespace DynamicContact
           }
         else
           {
-            TrilinosWrappers::PreconditionAMG::AdditionalData data;
-            data.elliptic        = true;
-            data.smoother_sweeps = 2;
-            DoFTools::extract_constant_modes(dofs,
-                                             ComponentMask(dim, true),
-                                             data.constant_modes);
-            amg.initialize(matrix, data);
+            amg = std::make_unique<BulkAMG>();
+            amg->initialize(matrix, mapping, dofs);
           }
       }
 
@@ -248,7 +246,13 @@ namespace DynamicContact
         if (direct)
           direct->solve(dst, src);
         else
-          amg.vmult(dst, src);
+          amg->vmult(dst, src);
+      }
+
+      double
+      memory_consumption() const
+      {
+        return amg ? amg->memory_consumption() : 0.;
       }
 
     private:
@@ -256,7 +260,7 @@ namespace DynamicContact
       std::unique_ptr<Matrix_t>                               owned;
       mutable SolverControl                                   control;
       mutable std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
-      TrilinosWrappers::PreconditionAMG                       amg;
+      std::unique_ptr<BulkAMG>                                amg;
     };
 
 
@@ -395,6 +399,7 @@ namespace DynamicContact
           coarse_matrix ? *coarse_matrix : *finest_matrix;
         coarse = std::make_unique<CoarseSolve>(coarsest,
                                                std::move(coarse_matrix),
+                                               discretization.mapping,
                                                dofs(0));
 
         multigrid = std::make_unique<Multigrid<LevelVector>>(

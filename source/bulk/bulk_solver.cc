@@ -152,21 +152,33 @@ namespace DynamicContact
   rigid_body_modes(const Discretization<dim> &discretization,
                    std::vector<double>       *coordinates)
   {
+    return rigid_body_modes(discretization.mapping,
+                            discretization.dof_handler,
+                            coordinates);
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  rigid_body_modes(const Mapping<dim>     &mapping,
+                   const DoFHandler<dim> &dof_handler,
+                   std::vector<double>   *coordinates)
+  {
     // From each owned DoF's component and support point (every owned DoF
     // lies on an owned cell).
-    const IndexSet     &owned   = discretization.locally_owned;
+    const IndexSet      owned   = dof_handler.locally_owned_dofs();
     const unsigned int  n       = owned.n_elements();
     const unsigned int  n_modes = (dim == 2 ? 3 : 6);
     std::vector<double> modes(n_modes * n, 0.);
     if (coordinates != nullptr)
       coordinates->assign(n, 0.);
-    const auto                          &fe = discretization.fe;
-    FEValues<dim>                        fe_values(discretization.mapping,
+    const auto                          &fe = dof_handler.get_fe();
+    FEValues<dim>                        fe_values(mapping,
                             fe,
                             Quadrature<dim>(fe.get_unit_support_points()),
                             update_quadrature_points);
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
+    for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
@@ -202,10 +214,26 @@ namespace DynamicContact
                       const bool                 with_rotations,
                       const bool                 smoothed)
   {
-    modes = rigid_body_modes(discretization);
+    initialize(matrix,
+               discretization.mapping,
+               discretization.dof_handler,
+               with_rotations,
+               smoothed);
+  }
+
+
+  template <int dim>
+  void
+  BulkAMG::initialize(const Matrix_t        &matrix,
+                      const Mapping<dim>    &mapping,
+                      const DoFHandler<dim> &dof_handler,
+                      const bool             with_rotations,
+                      const bool             smoothed)
+  {
+    modes = rigid_body_modes(mapping, dof_handler);
     // The translations are the first dim columns.
     const unsigned int n_modes = (with_rotations ? (dim == 2 ? 3 : 6) : dim);
-    const auto        &fe      = discretization.fe;
+    const auto        &fe      = dof_handler.get_fe();
 
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true;
@@ -230,6 +258,26 @@ namespace DynamicContact
   }
 
 
+  template std::vector<double>
+  rigid_body_modes(const Mapping<2> &,
+                   const DoFHandler<2> &,
+                   std::vector<double> *);
+  template std::vector<double>
+  rigid_body_modes(const Mapping<3> &,
+                   const DoFHandler<3> &,
+                   std::vector<double> *);
+  template void
+  BulkAMG::initialize(const Matrix_t &,
+                      const Mapping<2> &,
+                      const DoFHandler<2> &,
+                      bool,
+                      bool);
+  template void
+  BulkAMG::initialize(const Matrix_t &,
+                      const Mapping<3> &,
+                      const DoFHandler<3> &,
+                      bool,
+                      bool);
   template std::vector<double>
   rigid_body_modes(const Discretization<2> &, std::vector<double> *);
   template std::vector<double>

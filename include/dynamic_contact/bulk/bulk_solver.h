@@ -1,6 +1,8 @@
 #ifndef dynamic_contact_bulk_solver_h
 #define dynamic_contact_bulk_solver_h
 
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -65,8 +67,25 @@ namespace DynamicContact
                const bool                 with_rotations = true,
                const bool                 smoothed       = true);
 
+    /** The same for a matrix of the DoFs of @p dof_handler (a level). */
+    template <int dim>
+    void
+    initialize(const Matrix_t        &matrix,
+               const Mapping<dim>    &mapping,
+               const DoFHandler<dim> &dof_handler,
+               const bool             with_rotations = true,
+               const bool             smoothed       = true);
+
     void
     vmult(Vector_t &dst, const Vector_t &src) const override
+    {
+      amg.vmult(dst, src);
+    }
+
+    /** The same for deal.II's own vectors (a multigrid level's). */
+    void
+    vmult(dealii::LinearAlgebra::distributed::Vector<double>       &dst,
+          const dealii::LinearAlgebra::distributed::Vector<double> &src) const
     {
       amg.vmult(dst, src);
     }
@@ -107,6 +126,13 @@ namespace DynamicContact
   std::vector<double>
   rigid_body_modes(const Discretization<dim> &discretization,
                    std::vector<double>       *coordinates = nullptr);
+
+  /** The same for the DoFs of @p dof_handler (a multigrid level). */
+  template <int dim>
+  std::vector<double>
+  rigid_body_modes(const dealii::Mapping<dim>    &mapping,
+                   const dealii::DoFHandler<dim> &dof_handler,
+                   std::vector<double>           *coordinates = nullptr);
 
   /**
    * The Trilinos Amesos package of Solver/Direct solver package ('auto':
