@@ -82,22 +82,6 @@ namespace
   }
 
 
-  /** A viscous material: E = 2e11, nu = 0.3; C with (lambda, mu) = (3, 5). */
-  template <int dim>
-  KelvinVoigtMaterial<dim>
-  material()
-  {
-    Parameters::Material m;
-    m.density          = 7850;
-    m.young_modulus    = 2e11;
-    m.poisson_ratio    = 0.3;
-    m.plane_model      = Parameters::Material::PlaneModel::plane_stress;
-    m.viscosity_lambda = 3;
-    m.viscosity_mu     = 5;
-    return KelvinVoigtMaterial<dim>(m);
-  }
-
-
   /** Refine the cells of the left half: hanging nodes. */
   template <int dim>
   Discretization<dim> &
@@ -135,7 +119,7 @@ check(const unsigned int degree)
     bc.clamped = {0};
     bc.roller  = {2};
     d.setup_dofs(bc);
-    const auto         m = material<dim>();
+    const auto         m = test_tools::steel<dim>(3, 5);
     CellOperators<dim> forms(d, m);
     forms.reinit();
 
@@ -192,7 +176,7 @@ check(const unsigned int degree)
     Discretization<dim> d(MPI_COMM_WORLD, degree);
     make_mesh(d);
     d.setup_dofs(Parameters::BoundaryConditions());
-    const auto         m = material<dim>();
+    const auto         m = test_tools::steel<dim>(3, 5);
     CellOperators<dim> forms(d, m);
     forms.reinit();
     Vector_t u;

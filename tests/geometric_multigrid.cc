@@ -36,21 +36,6 @@ using namespace DynamicContact;
 
 namespace
 {
-  template <int dim>
-  KelvinVoigtMaterial<dim>
-  material()
-  {
-    Parameters::Material m;
-    m.density          = 7850;
-    m.young_modulus    = 2e11;
-    m.poisson_ratio    = 0.3;
-    m.plane_model      = Parameters::Material::PlaneModel::plane_stress;
-    m.viscosity_lambda = 0;
-    m.viscosity_mu     = 0;
-    return KelvinVoigtMaterial<dim>(m);
-  }
-
-
   /**
    * CG iterations of K0 x = K0 x_exact with the GMG; checks the answer, and
    * K0 from the cells against the stored one.
@@ -80,7 +65,7 @@ namespace
     bc.roller  = {2};
     d.setup_dofs(bc);
 
-    const auto        m = material<dim>();
+    const auto        m = test_tools::steel<dim>();
     BulkOperator<dim> bulk(d, m, false);
     bulk.reinit(/*stored=*/false);
     const TimeScheme scheme(1e-4);

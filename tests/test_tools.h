@@ -9,6 +9,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/parameters/parameters.h>
 #include <dynamic_contact/time/time_loop.h>
 
@@ -257,6 +258,27 @@ namespace test_tools
       {}
     return dealii::Utilities::MPI::max(level, MPI_COMM_WORLD);
   }
+
+  /**
+   * Steel (rho = 7850, E = 2e11, nu = 0.3, plane stress in 2D) with the
+   * viscosity tensor of Lame constants (@p viscosity_lambda,
+   * @p viscosity_mu).
+   */
+  template <int dim>
+  DynamicContact::KelvinVoigtMaterial<dim>
+  steel(const double viscosity_lambda = 0, const double viscosity_mu = 0)
+  {
+    DynamicContact::Parameters::Material m;
+    m.density          = 7850;
+    m.young_modulus    = 2e11;
+    m.poisson_ratio    = 0.3;
+    m.plane_model =
+      DynamicContact::Parameters::Material::PlaneModel::plane_stress;
+    m.viscosity_lambda = viscosity_lambda;
+    m.viscosity_mu     = viscosity_mu;
+    return DynamicContact::KelvinVoigtMaterial<dim>(m);
+  }
+
 
   /**
    * Read a scene with overrides (quiet, no timings, no VTU by default), run

@@ -22,6 +22,7 @@
 #include <dynamic_contact/bulk/bulk_kernel.h>
 #include <dynamic_contact/bulk/bulk_multigrid.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
+#include <dynamic_contact/bulk/cell_operators.h>
 
 namespace DynamicContact
 {
@@ -50,16 +51,10 @@ namespace DynamicContact
         , kernel(kernel)
         , stored(stored)
       {
-        typename MatrixFree<dim, double>::AdditionalData data;
-        data.tasks_parallel_scheme =
-          MatrixFree<dim, double>::AdditionalData::none;
-        data.mapping_update_flags =
-          update_values | update_gradients | update_JxW_values;
-        matrix_free.reinit(discretization.mapping,
-                           dof_handler,
-                           constraints,
-                           QGauss<1>(degree + 1),
-                           data);
+        reinit_cell_data(matrix_free,
+                         discretization.mapping,
+                         dof_handler,
+                         constraints);
         constrained = matrix_free.get_constrained_dofs();
         compute_inverse_diagonal();
       }

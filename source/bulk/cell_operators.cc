@@ -24,6 +24,28 @@ namespace DynamicContact
 
 
   template <int dim>
+  void
+  reinit_cell_data(MatrixFree<dim, double>         &matrix_free,
+                   const Mapping<dim>              &mapping,
+                   const DoFHandler<dim>           &dof_handler,
+                   const AffineConstraints<double> &constraints)
+  {
+    typename MatrixFree<dim, double>::AdditionalData data;
+    // One thread, cells in a fixed order: the sums do not depend on the
+    // threads.
+    data.tasks_parallel_scheme =
+      MatrixFree<dim, double>::AdditionalData::none;
+    data.mapping_update_flags =
+      update_values | update_gradients | update_JxW_values;
+    matrix_free.reinit(mapping,
+                       dof_handler,
+                       constraints,
+                       QGauss<1>(dof_handler.get_fe().degree + 1),
+                       data);
+  }
+
+
+  template <int dim>
   CellOperators<dim>::CellOperators(const Discretization<dim>      &d,
                                     const KelvinVoigtMaterial<dim> &material)
     : discretization(d)
@@ -36,18 +58,10 @@ namespace DynamicContact
   void
   CellOperators<dim>::reinit()
   {
-    typename MatrixFree<dim, double>::AdditionalData data;
-    // One thread, cells in a fixed order: the sums do not depend on the
-    // threads.
-    data.tasks_parallel_scheme =
-      MatrixFree<dim, double>::AdditionalData::none;
-    data.mapping_update_flags =
-      update_values | update_gradients | update_JxW_values;
-    matrix_free.reinit(discretization.mapping,
-                       discretization.dof_handler,
-                       discretization.constraints,
-                       QGauss<1>(discretization.fe.degree + 1),
-                       data);
+    reinit_cell_data(matrix_free,
+                     discretization.mapping,
+                     discretization.dof_handler,
+                     discretization.constraints);
     matrix_free.initialize_dof_vector(x_work);
     matrix_free.initialize_dof_vector(y_work);
   }
@@ -285,6 +299,16 @@ namespace DynamicContact
   }
 
 
+  template void
+  reinit_cell_data(MatrixFree<2, double> &,
+                   const Mapping<2> &,
+                   const DoFHandler<2> &,
+                   const AffineConstraints<double> &);
+  template void
+  reinit_cell_data(MatrixFree<3, double> &,
+                   const Mapping<3> &,
+                   const DoFHandler<3> &,
+                   const AffineConstraints<double> &);
   template class CellOperators<2>;
   template class CellOperators<3>;
 } // namespace DynamicContact

@@ -32,6 +32,20 @@ namespace DynamicContact
    * inhomogeneities play no part), and a constrained row of F x is zero.
    * The cells are visited in a fixed order on one thread.
    */
+  /**
+   * Set up @p matrix_free for the vector field of @p dof_handler as the
+   * bulk forms apply it: values, gradients and JxW at QGauss(p + 1), the
+   * cells in a fixed order on one thread (sums that do not depend on the
+   * threads).
+   */
+  template <int dim>
+  void
+  reinit_cell_data(MatrixFree<dim, double>         &matrix_free,
+                   const Mapping<dim>              &mapping,
+                   const DoFHandler<dim>           &dof_handler,
+                   const AffineConstraints<double> &constraints);
+
+
   template <int dim>
   class CellOperators
   {
