@@ -24,6 +24,8 @@
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/bulk/cell_operators.h>
 
+#include <algorithm>
+
 namespace DynamicContact
 {
   namespace
@@ -272,7 +274,12 @@ namespace DynamicContact
      * mesh keeps the finer mesh's vertices and faces (deal.II does not
      * compact them), a made one only its own cells. Each coarse cell goes
      * to the process that owns its first child, so that the transfers stay
-     * on the process where they can.
+     * on the process where they can. The hierarchy stops above a mesh that
+     * would leave some process without a cell (deal.II 9.4's fully
+     * distributed triangulation cannot be made with an empty process), or
+     * that p4est could not truncate (a family of cells split between
+     * processes is not coarsened): its coarsest level is then the last
+     * mesh made.
      */
     template <int dim>
     std::vector<std::shared_ptr<const Triangulation<dim>>>
@@ -295,6 +302,27 @@ namespace DynamicContact
                 static_cast<unsigned int>(cell->level()) == level)
               cell->set_coarsen_flag();
           coarsened.execute_coarsening_and_refinement();
+          int finest = 0;
+          for (const auto &cell : coarsened.active_cell_iterators())
+            if (cell->is_locally_owned())
+              finest = std::max(finest, cell->level());
+          if (Utilities::MPI::max(finest, comm) >= static_cast<int>(level))
+            return std::vector<std::shared_ptr<const Triangulation<dim>>>(
+              levels.begin() + level, levels.end());
+          // The cells each process would own.
+          const auto   partition = policy.partition(coarsened);
+          const auto   n_ranks   = Utilities::MPI::n_mpi_processes(comm);
+          std::vector<unsigned int> owned(n_ranks, 0);
+          if (partition.size() == 0)
+            owned[Utilities::MPI::this_mpi_process(comm)] =
+              coarsened.n_locally_owned_active_cells();
+          else
+            for (const double rank : partition)
+              ++owned[static_cast<unsigned int>(rank)];
+          Utilities::MPI::sum(owned, comm, owned);
+          if (*std::min_element(owned.begin(), owned.end()) == 0)
+            return std::vector<std::shared_ptr<const Triangulation<dim>>>(
+              levels.begin() + level, levels.end());
           auto made =
             std::make_shared<parallel::fullydistributed::Triangulation<dim>>(
               comm);
@@ -303,8 +331,7 @@ namespace DynamicContact
               made->set_manifold(id, fine.get_manifold(id));
           made->create_triangulation(
             TriangulationDescription::Utilities::
-              create_description_from_triangulation(
-                coarsened, policy.partition(coarsened)));
+              create_description_from_triangulation(coarsened, partition));
           levels[level - 1] = made;
         }
       return levels;
