@@ -438,16 +438,9 @@ namespace DynamicContact
       void
       vmult(Vector_t &dst, const Vector_t &src) const override
       {
-        // Both vectors keep the owned entries, in the same order.
-        const auto &in = src.trilinos_vector();
-        AssertDimension(static_cast<unsigned int>(in.MyLength()),
-                        src_work.locally_owned_size());
-        for (int k = 0; k < in.MyLength(); ++k)
-          src_work.local_element(k) = in[0][k];
+        copy_owned(src, src_work);
         preconditioner->vmult(dst_work, src_work);
-        auto &out = dst.trilinos_vector();
-        for (int k = 0; k < out.MyLength(); ++k)
-          out[0][k] = dst_work.local_element(k);
+        copy_owned(dst_work, dst);
       }
 
       double

@@ -23,6 +23,30 @@ namespace DynamicContact
   } // namespace
 
 
+  void
+  copy_owned(const Vector_t                             &source,
+             LinearAlgebra::distributed::Vector<double> &target)
+  {
+    const auto &local = source.trilinos_vector();
+    AssertDimension(static_cast<unsigned int>(local.MyLength()),
+                    target.locally_owned_size());
+    for (int k = 0; k < local.MyLength(); ++k)
+      target.local_element(k) = local[0][k];
+  }
+
+
+  void
+  copy_owned(const LinearAlgebra::distributed::Vector<double> &source,
+             Vector_t                                         &target)
+  {
+    auto &local = target.trilinos_vector();
+    AssertDimension(static_cast<unsigned int>(local.MyLength()),
+                    source.locally_owned_size());
+    for (int k = 0; k < local.MyLength(); ++k)
+      local[0][k] = source.local_element(k);
+  }
+
+
   template <int dim>
   void
   reinit_cell_data(MatrixFree<dim, double>         &matrix_free,
@@ -89,14 +113,8 @@ namespace DynamicContact
   void
   CellOperators<dim>::import(const Vector_t &source, Work_t &target) const
   {
-    // Both vectors keep the owned entries (one contiguous range, as the
-    // work vector's partitioner requires) in the same order.
-    const auto &local = source.trilinos_vector();
-    AssertDimension(static_cast<unsigned int>(local.MyLength()),
-                    target.locally_owned_size());
     target.zero_out_ghost_values();
-    for (int k = 0; k < local.MyLength(); ++k)
-      target.local_element(k) = local[0][k];
+    copy_owned(source, target);
     target.update_ghost_values();
   }
 
@@ -261,12 +279,7 @@ namespace DynamicContact
       }
     y_work.compress(VectorOperation::add);
 
-    // The owned entries back, in the same order (import()).
-    auto &local = dst.trilinos_vector();
-    AssertDimension(static_cast<unsigned int>(local.MyLength()),
-                    y_work.locally_owned_size());
-    for (int k = 0; k < local.MyLength(); ++k)
-      local[0][k] = y_work.local_element(k);
+    copy_owned(y_work, dst);
   }
 
 

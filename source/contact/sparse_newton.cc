@@ -79,8 +79,8 @@ namespace DynamicContact
   {
     for (auto *v : {&increment, &scratch, &scratch2, &base_residual})
       problem.discretization.reinit_owned(*v);
-    amg.reset();
-    amg_scheme    = TimeScheme();
+    preconditioner.reset();
+    preconditioner_scheme = TimeScheme();
     bulk_blocks.clear();
     blocks_scheme = TimeScheme();
     limits_scheme = TimeScheme();
@@ -334,12 +334,12 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::prepare_amg()
+  SparseNewton<dim>::prepare_preconditioner()
   {
-    if (amg && amg_scheme == problem.bulk.scheme())
+    if (preconditioner && preconditioner_scheme == problem.bulk.scheme())
       return;
     TimerSection t(problem.timer, "Newton: AMG setup");
-    amg.reset();
+    preconditioner.reset();
     // A mesh without levels to coarsen to (Geometry/Global refinements = 0)
     // has no geometric hierarchy: the AMG of the stored K0 serves there
     // (without a stored K0 the multigrid's coarsest level is the mesh).
@@ -347,7 +347,7 @@ namespace DynamicContact
     if (problem.parameters.geometric_multigrid &&
         (problem.discretization.triangulation.n_global_levels() > 1 ||
          !stored))
-      amg = create_bulk_multigrid(problem.discretization,
+      preconditioner = create_bulk_multigrid(problem.discretization,
                                   problem.bulk.material_law(),
                                   problem.bulk.scheme(),
                                   stored ? &problem.bulk.newton_matrix() :
@@ -359,9 +359,9 @@ namespace DynamicContact
                               problem.discretization,
                               /*with_rotations=*/true,
                               problem.parameters.smoothed_aggregation);
-        amg = std::move(algebraic);
+        preconditioner = std::move(algebraic);
       }
-    amg_scheme = problem.bulk.scheme();
+    preconditioner_scheme = problem.bulk.scheme();
   }
 
 
@@ -371,7 +371,7 @@ namespace DynamicContact
                                 Vector_t       &x,
                                 const double    tolerance)
   {
-    prepare_amg();
+    prepare_preconditioner();
     if (x.size() != b.size())
       problem.discretization.reinit_owned(x);
     x = 0;
@@ -384,7 +384,7 @@ namespace DynamicContact
     try
       {
         const BulkMatrixOperator<dim> K0{problem.bulk};
-        cg.solve(K0, x, b, *amg);
+        cg.solve(K0, x, b, *preconditioner);
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -477,7 +477,7 @@ namespace DynamicContact
   {
     const auto  &nodes = problem.boundary.nodes();
     const double theta = newton.scheme.effective_derivative();
-    prepare_amg();
+    prepare_preconditioner();
     TimerSection t(problem.timer, "Newton: iterative solve");
 
     // dw = dw0 + delta: dw0 holds the prescribed tangential increments of
@@ -529,9 +529,9 @@ namespace DynamicContact
       apply_jacobian(system, projected, y);
       sticks.add_tangential(v, 1., y);
     }};
-    const Operator preconditioner{[&](Vector_t &y, const Vector_t &v) {
+    const Operator projected_preconditioner{[&](Vector_t &y, const Vector_t &v) {
       sticks.project(v, projected);
-      amg->vmult(y, projected);
+      preconditioner->vmult(y, projected);
       sticks.add_tangential(v, -1., y);
     }};
 
@@ -554,7 +554,7 @@ namespace DynamicContact
     problem.discretization.reinit_owned(delta);
     try
       {
-        gmres.solve(A, delta, f, preconditioner);
+        gmres.solve(A, delta, f, projected_preconditioner);
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -697,11 +697,12 @@ namespace DynamicContact
   void
   SparseNewton<dim>::memory_consumption(MemoryItems &items) const
   {
-    if (amg)
-      items.push_back({dynamic_cast<const BulkAMG *>(amg.get()) ? "AMG of K0" :
-                                                                  "GMG of K0",
-                       amg->memory_consumption(),
-                       amg->memory_measured()});
+    if (preconditioner)
+      items.push_back({dynamic_cast<const BulkAMG *>(preconditioner.get()) ?
+                         "AMG of K0" :
+                         "GMG of K0",
+                       preconditioner->memory_consumption(),
+                       preconditioner->memory_measured()});
     if (problem.parameters.linear_solver ==
         Parameters::Solver::LinearSolver::iterative)
       items.push_back({"GMRES basis (the most a solve used)",

@@ -33,6 +33,19 @@ namespace DynamicContact
    * The cells are visited in a fixed order on one thread.
    */
   /**
+   * Copy the owned entries between a Trilinos vector and a deal.II vector
+   * of the same DoFs (both keep them in one contiguous range, in the same
+   * order); ghost entries are not touched.
+   */
+  void
+  copy_owned(const Vector_t                                   &source,
+             LinearAlgebra::distributed::Vector<double>       &target);
+  void
+  copy_owned(const LinearAlgebra::distributed::Vector<double> &source,
+             Vector_t                                         &target);
+
+
+  /**
    * Set up @p matrix_free for the vector field of @p dof_handler as the
    * bulk forms apply it: values, gradients and JxW at QGauss(p + 1), the
    * cells in a fixed order on one thread (sums that do not depend on the

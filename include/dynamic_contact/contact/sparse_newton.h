@@ -25,7 +25,8 @@ namespace DynamicContact
    * nodal terms (a product with K0 plus the nodal blocks), with the stick
    * constraints imposed by projection: the tangential components of a stick
    * node are prescribed, the system is solved on the complement, and the
-   * preconditioner is algebraic multigrid of K0 (BulkAMG) built once per K0,
+   * preconditioner is multigrid of K0 (BulkAMG, or the geometric one of
+   * Solver/Preconditioner) built once per K0,
    * i.e. once per mesh and time step, and used for every Newton iteration,
    * convexification pass and step with that K0. The Krylov tolerance
    * follows the Newton residual (inexact Newton): 1e-2 far from the
@@ -108,8 +109,8 @@ namespace DynamicContact
 
     // Iterative: the multigrid of K0 (algebraic or geometric), for the time
     // step it was built for.
-    std::unique_ptr<BulkPreconditioner> amg;
-    TimeScheme               amg_scheme;
+    std::unique_ptr<BulkPreconditioner> preconditioner;
+    TimeScheme                          preconditioner_scheme;
     /** K0's blocks at the owned nodes, for the K0 they were taken from. */
     std::vector<Tensor<2, dim>> bulk_blocks;
     TimeScheme                  blocks_scheme;
@@ -119,7 +120,7 @@ namespace DynamicContact
 
     /** Build the AMG of the current K0 unless it is built. */
     void
-    prepare_amg();
+    prepare_preconditioner();
     /**
      * x = K0^{-1} b by CG with the AMG of K0, to @p tolerance relative to
      * |b| (constrained entries zero).
