@@ -15,8 +15,11 @@
 //    (hanging nodes, the hierarchy changes with the mesh) and on the
 //    rail's small scene (10 x 1 x 1 cells refined once); the memory table
 //    shows the GMG, not the AMG. The same with the matrix-free GMG, whose
-//    memory table has no K0. The .mpirun=2 variant runs everything on
-//    two processes and must print the same.
+//    memory table has no K0. Preconditioner = auto with Solver/Memory per
+//    process = 0.001 (1 MB: nothing fits) takes the matrix-free GMG, its
+//    solver plan says so, and it gives the matrix-free run's answers
+//    exactly. The .mpirun=2 variant runs everything on two processes and
+//    must print the same.
 
 #include <deal.II/base/function_lib.h>
 #include <deal.II/grid/grid_generator.h>
@@ -193,6 +196,7 @@ namespace
       {"Solver/Contact solver=condensed", "Solver/Linear solver=direct"},
       "condensed");
     const auto &a = reference->time_series();
+    std::vector<StepRecord<dim>> matrix_free_series;
     for (const std::string preconditioner : {"GMG", "matrix-free GMG"})
       {
         const bool matrix_free = preconditioner != "GMG";
@@ -216,7 +220,26 @@ namespace
                            std::string::npos) == matrix_free,
                           what + (matrix_free ? ": K0 not stored" :
                                                 ": K0 stored"));
+        if (matrix_free)
+          matrix_free_series = b;
       }
+    // Preconditioner = auto where not even the matrix-free GMG fits into
+    // Solver/Memory per process: it, the same run.
+    const auto chosen = with({"Solver/Contact solver=assembled",
+                              "Solver/Linear solver=iterative",
+                              "Solver/Preconditioner=auto",
+                              "Solver/Memory per process=0.001"},
+                             "auto");
+    test_tools::check(
+      chosen->simulator().solver_plan().find(
+        "preconditioner matrix-free GMG (peak predicted") !=
+          std::string::npos &&
+        chosen->simulator().memory_table().find("bulk matrix K0") ==
+          std::string::npos &&
+        test_tools::largest_difference(matrix_free_series,
+                                       chosen->time_series()) == 0,
+      name + ", Preconditioner = auto within 1 MB per process: the "
+             "matrix-free GMG, the plan says why, the same answers");
   }
 } // namespace
 

@@ -3,18 +3,20 @@
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/resources.h>
+#include <dynamic_contact/contact/cost_model.h>
 
 #include <unistd.h>
 
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 
 namespace DynamicContact
 {
-  void
+  double
   check_resources(const RunParameters &parameters,
                   const unsigned int   dim,
                   const double         n_coarse_cells,
@@ -22,16 +24,31 @@ namespace DynamicContact
   {
     // Estimates for the mesh after Geometry/Global refinements (an
     // adaptive mesh may grow beyond it; Mesh refinement/Cell budget bounds
-    // it). DoFs as on a box; memory: the one stored bulk matrix K0 and at
-    // least as much for its factorization or its AMG, 12 bytes per entry
-    // (value and column index): a lower bound, so that no scene that fits
-    // is refused.
+    // it). DoFs as on a box; memory: a third of what the memory model
+    // predicts with the preconditioner of least memory that the
+    // parameters allow (a lower bound, so that no scene that fits is
+    // refused: the model's GMRES basis and unitemized heap alone can be
+    // half of its prediction).
     const double refinements = parameters.geometry.global_refinements;
     const double cells       = n_coarse_cells * std::pow(2., dim * refinements);
     const double p           = parameters.finite_element.degree;
     const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
-    const double entries_per_row = dim * std::pow(2 * p + 1, dim);
-    const double bytes           = 2 * 12 * entries_per_row * dofs;
+    using P           = Parameters::Solver::Preconditioner;
+    const P     given = parameters.solver.preconditioner;
+    double      bytes = std::numeric_limits<double>::infinity();
+    for (const P candidate : {P::amg, P::gmg, P::matrix_free_gmg})
+      if (given == candidate ||
+          (given == P::automatic && (candidate == P::amg || p <= 2)))
+        bytes = std::min(bytes,
+                         predicted_memory(
+                                 candidate,
+                                 dim,
+                                 parameters.finite_element.degree,
+                                 static_cast<types::global_dof_index>(
+                                   std::min(dofs, 4294967295.)),
+                                 1,
+                                 0.) /
+                           3);
 
     // The memory available: MemAvailable of every host of the run, once.
     double available = 0;
@@ -53,13 +70,21 @@ namespace DynamicContact
     char host[MPI_MAX_PROCESSOR_NAME] = {};
     int  length                       = 0;
     MPI_Get_processor_name(host, &length);
-    std::map<std::string, double> hosts;
+    // Per host: what it has available and the processes of the run on it.
+    std::map<std::string, std::pair<double, unsigned int>> hosts;
     for (const auto &[name, a] : Utilities::MPI::all_gather(
            comm, std::make_pair(std::string(host, length), available)))
-      hosts[name] = std::max(hosts[name], a);
-    double total = 0;
+      {
+        auto &[most, processes] = hosts[name];
+        most = std::max(most, a);
+        ++processes;
+      }
+    double total = 0, per_process = std::numeric_limits<double>::infinity();
     for (const auto &h : hosts)
-      total += h.second;
+      {
+        total += h.second.first;
+        per_process = std::min(per_process, h.second.first / h.second.second);
+      }
 
     const auto giga = [](const double b) {
       std::ostringstream s;
@@ -85,8 +110,10 @@ namespace DynamicContact
     if (bytes > total)
       throw CollectiveError(
         "The scene does not fit into memory: " + estimate + " need at least " +
-        giga(bytes) + " for the matrices alone, and " + giga(total) +
+        giga(bytes) + " with Solver/Preconditioner = " +
+        preconditioner_name(given) + ", and " + giga(total) +
         " are available on the " + std::to_string(hosts.size()) + " host" +
         (hosts.size() > 1 ? "s" : "") + " of this run." + fix);
+    return parameters.solver.memory_per_process.value_or(per_process);
   }
 } // namespace DynamicContact

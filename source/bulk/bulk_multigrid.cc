@@ -220,7 +220,7 @@ namespace DynamicContact
                   const DoFHandler<dim>     &dofs)
         : owned(std::move(owned))
       {
-        if (matrix.m() <= (dim == 2 ? 50000u : 5000u))
+        if (matrix.m() <= largest_factorized_coarse_level(dim))
           {
             direct = std::make_unique<TrilinosWrappers::SolverDirect>(
               control,

@@ -1,3 +1,4 @@
+#include <dynamic_contact/bulk/bulk_multigrid.h>
 #include <dynamic_contact/contact/cost_model.h>
 
 #include <algorithm>
@@ -126,6 +127,153 @@ namespace DynamicContact
       s << std::lround(seconds * 1000) << " ms";
     else
       s << std::setprecision(3) << seconds << " s";
+    return s.str();
+  }
+
+
+  std::string
+  preconditioner_name(const Parameters::Solver::Preconditioner preconditioner)
+  {
+    using P = Parameters::Solver::Preconditioner;
+    switch (preconditioner)
+      {
+        case P::amg:
+          return "AMG";
+        case P::gmg:
+          return "GMG";
+        case P::matrix_free_gmg:
+          return "matrix-free GMG";
+        case P::automatic:
+          break;
+      }
+    return "auto";
+  }
+
+
+  namespace
+  {
+    /**
+     * The memory model's coefficients, fitted to benchmarks/memory on one
+     * process with Q1 elements: benchmarks/results/memory.csv (the 3D rail,
+     * 1 048 707 DoFs) and memory_2d.csv (the 2D paper's scene, 132 098
+     * DoFs).
+     */
+    struct MemoryCoefficients
+    {
+      /**
+       * Bytes per DoF of the mesh, DoF handlers, constraints, the cells'
+       * data of the bulk forms, the step's vectors, the GMRES basis and
+       * what the memory table does not itemize (MPI's buffers, the heap's
+       * slack).
+       */
+      double rest;
+      /**
+       * The AMG's hierarchy (ML, smoothed aggregation, rigid-body modes)
+       * and what it holds besides while it is built (the peak), per byte
+       * of K0 and its pattern.
+       */
+      double amg;
+      /**
+       * Bytes per DoF of the geometric multigrid's coarser levels (their
+       * cells' data, vectors and Chebyshev diagonals).
+       */
+      double gmg_levels;
+      /**
+       * Bytes per DoF of the multigrid's coarsest level where it is
+       * factorized (KLU).
+       */
+      double gmg_coarsest;
+    };
+
+    MemoryCoefficients
+    memory_coefficients(const unsigned int dim)
+    {
+      // 3D: mesh 138 MB, DoF handlers 72, constraints 8, cells' data 59,
+      // GMRES basis 288, vectors 88, not itemized 358 (30 of it fixed):
+      // 980 MB; K0 625 and its pattern 316 MB; the AMG 943 MB and 1554 MB
+      // more at its peak; the GMG's levels 219 MB (the coarsest, 10 x 1 x
+      // 1 cells, negligible; its factorization per DoF taken from 2D).
+      if (dim == 3)
+        return {980e6 / 1048707,
+                (943. + 1554.) / 941.,
+                219e6 / 1048707,
+                58e6 / 33282};
+      // 2D: mesh 19 MB, DoF handlers 7, constraints 1, cells' data 6,
+      // GMRES basis 103 (the paper's cells are 20 times longer than high:
+      // about 100 iterations), vectors 11, not itemized 61 (30 fixed):
+      // 178 MB; the AMG 1.69 times K0 and its pattern, its peak no higher;
+      // the GMG 86 MB: its levels as in 3D per DoF, the rest the coarsest
+      // level's factorization (33 282 DoFs, KLU).
+      return {178e6 / 132098, 48.9 / 28.9, 219e6 / 1048707, 58e6 / 33282};
+    }
+
+    /**
+     * The program, its libraries and MPI before the mesh (150 MB), and
+     * what the memory table leaves unitemized on a small mesh (30 MB), per
+     * process.
+     */
+    constexpr double program_bytes = 180e6;
+    /**
+     * Bytes per stored entry of K0: its value and, in the shared sparsity
+     * pattern, its column (the 3D rail's K0 and pattern: 941 MB for
+     * 1 048 707 rows of at most 81 entries).
+     */
+    constexpr double bytes_per_entry = 11.1;
+    /**
+     * The DoFs one process shares with its neighbours as ghosts grow its
+     * share by 1 + this / (its DoFs)^(1/dim): fitted to the 3D rail on 16
+     * processes, 65 544 DoFs each (1.27 with the AMG, 1.49 matrix-free).
+     */
+    constexpr double ghost_share = 15.;
+  } // namespace
+
+
+  double
+  predicted_memory(const Parameters::Solver::Preconditioner preconditioner,
+                   const unsigned int                    dim,
+                   const unsigned int                    degree,
+                   const dealii::types::global_dof_index n_dofs,
+                   const unsigned int                    n_processes,
+                   const double                          coarse_dofs)
+  {
+    const MemoryCoefficients c = memory_coefficients(dim);
+    // A node of an element of degree p couples on average with p + 2
+    // nodes in each direction (2p + 1 at the cells' vertices, p + 1
+    // within), dim components each.
+    const double matrix =
+      bytes_per_entry * dim * std::pow(degree + 2., static_cast<double>(dim));
+    const double per_process =
+      static_cast<double>(n_dofs) / std::max(n_processes, 1u);
+    double per_dof = c.rest, fixed = program_bytes;
+    using P        = Parameters::Solver::Preconditioner;
+    if (preconditioner == P::amg || preconditioner == P::automatic ||
+        coarse_dofs >= static_cast<double>(n_dofs))
+      per_dof += (1 + c.amg) * matrix;
+    else
+      {
+        per_dof += (preconditioner == P::gmg ? matrix : 0.) + c.gmg_levels;
+        // The coarsest level: factorized while small, else its AMG.
+        fixed += coarse_dofs *
+                 (coarse_dofs <= largest_factorized_coarse_level(dim) ?
+                    c.gmg_coarsest :
+                    (1 + c.amg) * matrix);
+      }
+    const double ghosts =
+      n_processes > 1 && per_process > 0 ?
+        1 + ghost_share / std::pow(per_process, 1. / dim) :
+        1.;
+    return fixed + per_process * per_dof * ghosts;
+  }
+
+
+  std::string
+  memory_string(const double bytes)
+  {
+    std::ostringstream s;
+    if (bytes < 1e9)
+      s << std::lround(bytes / 1e6) << " MB";
+    else
+      s << std::setprecision(3) << bytes / 1e9 << " GB";
     return s.str();
   }
 } // namespace DynamicContact

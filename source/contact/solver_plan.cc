@@ -3,8 +3,12 @@
 #include <dynamic_contact/contact/solver_plan.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -130,13 +134,60 @@ namespace DynamicContact
   }
 
 
+  Parameters::Solver::Preconditioner
+  choose_preconditioner(const unsigned int            dim,
+                        const types::global_dof_index n_dofs,
+                        const unsigned int            n_processes,
+                        const MemoryBudget           &memory,
+                        std::string                  &reason)
+  {
+    using P                 = Parameters::Solver::Preconditioner;
+    std::vector<P> candidates = {P::amg};
+    if (memory.degree <= 2)
+      candidates.insert(candidates.end(), {P::gmg, P::matrix_free_gmg});
+    std::ostringstream s;
+    s << "peak predicted per process:";
+    std::optional<P> chosen;
+    P                least      = P::amg;
+    double           least_need = std::numeric_limits<double>::infinity();
+    for (const P p : candidates)
+      {
+        const double need = predicted_memory(p,
+                                             dim,
+                                             memory.degree,
+                                             n_dofs,
+                                             n_processes,
+                                             memory.coarse_dofs);
+        s << (p == P::amg ? " " : ", ") << preconditioner_name(p) << " "
+          << memory_string(need);
+        if (!chosen && need <= memory.bytes_per_process)
+          chosen = p;
+        if (need < least_need)
+          {
+            least      = p;
+            least_need = need;
+          }
+      }
+    if (std::isfinite(memory.bytes_per_process))
+      s << "; " << memory_string(memory.bytes_per_process)
+        << " per process available";
+    else
+      s << "; no memory limit known";
+    if (!chosen)
+      s << ": none fits, the least";
+    reason = s.str();
+    return chosen.value_or(least);
+  }
+
+
   SolverPlan
   plan_solver(const Parameters::Solver     &parameters,
               const unsigned int            dim,
               const types::global_dof_index n_dofs,
               const unsigned int            n_contact_nodes,
               const unsigned int            steps_per_matrix,
-              const MPI_Comm                comm)
+              const MPI_Comm                comm,
+              const MemoryBudget           &memory)
   {
     using CS = Parameters::Solver::ContactSolver;
     using LS = Parameters::Solver::LinearSolver;
@@ -192,8 +243,17 @@ namespace DynamicContact
                              SolverPlan::Factorization::none :
                              SolverPlan::Factorization::amesos;
     plan.smoothed_aggregation = parameters.smoothed_aggregation;
-    plan.geometric_multigrid  = parameters.geometric_multigrid;
-    plan.matrix_free_bulk     = !parameters.store_bulk_matrix;
+    // The preconditioner: as set, or for Preconditioner = auto the
+    // fastest that fits where the assembled iterative solver runs (the
+    // condensed solver's iterative solves with K0 take the AMG).
+    using P             = Parameters::Solver::Preconditioner;
+    plan.preconditioner = parameters.preconditioner;
+    if (plan.preconditioner == P::automatic)
+      plan.preconditioner =
+        !plan.condensed && plan.linear_solver == LS::iterative ?
+          choose_preconditioner(
+            dim, n_dofs, n_processes, memory, plan.preconditioner_reason) :
+          P::amg;
     reason << "; " << n_dofs << " DoFs on " << n_processes << " process"
            << (n_processes == 1 ? "" : "es");
     plan.reason = reason.str();
@@ -206,6 +266,7 @@ namespace DynamicContact
   {
     Parameters::Solver resolved = given;
     resolved.linear_solver      = linear_solver;
+    resolved.preconditioner     = preconditioner;
     return resolved;
   }
 
@@ -237,14 +298,19 @@ namespace DynamicContact
           factor = "Amesos, distributed";
           break;
         case Factorization::none:
-          factor = geometric_multigrid ?
-                     std::string("none (Krylov with geometric multigrid") +
-                       (matrix_free_bulk ? ", K0 applied cell by cell)" : ")") :
-                     std::string("none (Krylov with algebraic multigrid") +
-                       (smoothed_aggregation ? ")" : ", plain aggregation)");
+          factor =
+            preconditioner != Parameters::Solver::Preconditioner::amg ?
+              std::string("none (Krylov with geometric multigrid") +
+                (matrix_free_bulk() ? ", K0 applied cell by cell)" : ")") :
+              std::string("none (Krylov with algebraic multigrid") +
+                (smoothed_aggregation ? ")" : ", plain aggregation)");
           break;
       }
     return contact_solver_name() + ", factorization: " + factor + " (" +
-           reason + ")";
+           reason + ")" +
+           (preconditioner_reason.empty() ?
+              std::string() :
+              "; preconditioner " + preconditioner_name(preconditioner) +
+                " (" + preconditioner_reason + ")");
   }
 } // namespace DynamicContact

@@ -344,7 +344,8 @@ namespace DynamicContact
     // has no geometric hierarchy: the AMG of the stored K0 serves there
     // (without a stored K0 the multigrid's coarsest level is the mesh).
     const bool stored = problem.bulk.stores_newton_matrix();
-    if (problem.parameters.geometric_multigrid &&
+    if (problem.parameters.preconditioner !=
+          Parameters::Solver::Preconditioner::amg &&
         (problem.discretization.triangulation.n_global_levels() > 1 ||
          !stored))
       preconditioner = create_bulk_multigrid(problem.discretization,

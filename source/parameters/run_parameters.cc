@@ -133,8 +133,8 @@ namespace DynamicContact
           "hierarchy's share).");
         prm.declare_entry(
           "Preconditioner",
-          "AMG",
-          Patterns::Selection("AMG|GMG|matrix-free GMG"),
+          "auto",
+          Patterns::Selection("auto|AMG|GMG|matrix-free GMG"),
           "The preconditioner of the iterative solver (the solves with K0 "
           "and the Newton systems of the assembled solver). 'AMG': "
           "algebraic multigrid of K0 (Trilinos ML; Solver/AMG "
@@ -147,7 +147,22 @@ namespace DynamicContact
           "and K0 is not stored either but applied cell by cell on every "
           "level, for the least memory (no matrix at all but the coarsest "
           "level's) at a slower product with K0: the assembled solver "
-          "with Linear solver = iterative only.");
+          "with Linear solver = iterative only. 'auto': for the assembled "
+          "iterative solver, the fastest of AMG, GMG and matrix-free GMG "
+          "(in this order) whose peak memory, as the memory model predicts "
+          "it for the mesh, fits into Solver/Memory per process (the least "
+          "hungry where none does); elsewhere the AMG. The log's solver "
+          "plan names the choice and the memory predicted.");
+        prm.declare_entry(
+          "Memory per process",
+          "auto",
+          Patterns::Anything(),
+          "The memory, in GB, that one process may use: Preconditioner = "
+          "auto chooses by it. 'auto': what each host of the run had "
+          "available when the run started (MemAvailable of /proc/meminfo), "
+          "shared by the run's processes on it, the least over the hosts. "
+          "Set it where the run may use less than the host has (a batch "
+          "system's memory limit, other jobs).");
       }
     } // namespace
 
@@ -419,8 +434,35 @@ namespace DynamicContact
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");
       smoothed_aggregation  = prm.get("AMG aggregation") == "smoothed";
-      geometric_multigrid   = prm.get("Preconditioner") != "AMG";
-      store_bulk_matrix     = prm.get("Preconditioner") != "matrix-free GMG";
+      {
+        const std::string name = prm.get("Preconditioner");
+        preconditioner =
+          name == "AMG"             ? Preconditioner::amg :
+          name == "GMG"             ? Preconditioner::gmg :
+          name == "matrix-free GMG" ? Preconditioner::matrix_free_gmg :
+                                      Preconditioner::automatic;
+      }
+      {
+        const std::string memory = prm.get("Memory per process");
+        memory_per_process.reset();
+        if (memory != "auto")
+          {
+            double      gb  = -1;
+            std::size_t end = 0;
+            try
+              {
+                gb = std::stod(memory, &end);
+              }
+            catch (...)
+              {}
+            while (end < memory.size() && std::isspace(memory[end]))
+              ++end;
+            require(std::isfinite(gb) && gb > 0 && end == memory.size(),
+                    "Solver/Memory per process: '" + memory +
+                      "' is neither a number of GB > 0 nor 'auto'.");
+            memory_per_process = gb * 1e9;
+          }
+      }
       prm.leave_subsection();
       require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
                 newton_tolerance < 1,
@@ -644,7 +686,8 @@ namespace DynamicContact
     solver.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
-    require(solver.store_bulk_matrix ||
+    require(solver.preconditioner !=
+                Parameters::Solver::Preconditioner::matrix_free_gmg ||
               (solver.linear_solver !=
                  Parameters::Solver::LinearSolver::direct &&
                solver.contact_solver !=
@@ -652,7 +695,10 @@ namespace DynamicContact
             "Solver/Preconditioner = matrix-free GMG stores no K0: it needs "
             "Solver/Contact solver = assembled (or auto) and Solver/Linear "
             "solver = iterative (or auto).");
-    require(!solver.geometric_multigrid || finite_element.degree <= 2,
+    require(solver.preconditioner == Parameters::Solver::Preconditioner::amg ||
+              solver.preconditioner ==
+                Parameters::Solver::Preconditioner::automatic ||
+              finite_element.degree <= 2,
             "Solver/Preconditioner = GMG is made for elements of degree 1 "
             "and 2 (Finite element/Polynomial degree = " +
               std::to_string(finite_element.degree) + ").");

@@ -93,7 +93,18 @@ namespace DynamicContact
                          parameters.friction.complementarity_constant :
                          parameters.material.young_modulus /
                            discretization.minimal_cell_diameter();
-    step_solver.reinit(c_t, steps_per_matrix(start_time));
+    MemoryBudget memory;
+    memory.bytes_per_process = memory_per_process;
+    memory.degree            = parameters.finite_element.degree;
+    // The coarsest level's share of the DoFs as its share of the cells.
+    const auto &tria = discretization.triangulation;
+    memory.coarse_dofs =
+      static_cast<double>(discretization.dof_handler.n_dofs()) *
+      (tria.n_global_levels() > 1 ?
+         static_cast<double>(tria.n_cells(0)) /
+           static_cast<double>(tria.n_global_active_cells()) :
+         1.);
+    step_solver.reinit(c_t, steps_per_matrix(start_time), memory);
     // The bulk forms stored for the condensed solver, applied from the
     // cells for the assembled solver (BulkOperator).
     // K0 itself is stored unless the assembled iterative solver runs with
@@ -103,7 +114,7 @@ namespace DynamicContact
                 plan.condensed ||
                   plan.linear_solver ==
                     Parameters::Solver::LinearSolver::direct ||
-                  parameters.solver.store_bulk_matrix);
+                  !plan.matrix_free_bulk());
     force_balance.reinit();
   }
 
@@ -277,15 +288,16 @@ namespace DynamicContact
         double n = 1;
         for (const unsigned int r : parameters.geometry.repetitions)
           n *= r;
-        check_resources(parameters, dim, n, comm);
+        memory_per_process = check_resources(parameters, dim, n, comm);
       }
     TimerSection t(timer, "Setup: mesh");
     scene.create_mesh(discretization.triangulation, false);
     if (!rectangle)
-      check_resources(parameters,
-                      dim,
-                      discretization.triangulation.n_cells(0),
-                      comm);
+      memory_per_process =
+        check_resources(parameters,
+                        dim,
+                        discretization.triangulation.n_cells(0),
+                        comm);
   }
 
 

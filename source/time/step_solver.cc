@@ -62,8 +62,9 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::reinit(const double       complementarity_constant,
-                          const unsigned int steps_per_matrix)
+  StepSolver<dim>::reinit(const double        complementarity_constant,
+                          const unsigned int  steps_per_matrix,
+                          const MemoryBudget &memory)
   {
     c_t  = complementarity_constant;
     plan = plan_solver(parameters,
@@ -71,7 +72,8 @@ namespace DynamicContact
                        discretization.dof_handler.n_dofs(),
                        contact_boundary.n_global_nodes(),
                        steps_per_matrix,
-                       discretization.comm);
+                       discretization.comm,
+                       memory);
     planned_parameters = plan.solver_parameters(parameters);
     details << "  solver plan: " << plan.description() << std::endl;
     for (auto &newton : newtons)

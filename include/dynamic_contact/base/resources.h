@@ -13,9 +13,11 @@ namespace DynamicContact
    * Geometry/Global refinements, Finite element/Polynomial degree); refuse
    * (CollectiveError) a scene that cannot fit into the memory of the hosts
    * of the run, or that this build of deal.II cannot count, with the
-   * estimate and what to reduce.
+   * estimate and what to reduce. Returns the bytes one process may use:
+   * Solver/Memory per process, or what each host has available now shared
+   * by the processes of @p comm on it, the least over the hosts.
    */
-  void
+  double
   check_resources(const RunParameters &parameters,
                   const unsigned int   dim,
                   const double         n_coarse_cells,

@@ -46,13 +46,24 @@ namespace DynamicContact
    * K0 is used if there is one; the smoother is Chebyshev iteration with
    * the inverse diagonal (degree 2, on the upper 1/20 of the spectrum); the
    * coarsest level's matrix is assembled and factorized (KLU) if it has at
-   * most 50000 DoFs, else approximated by one V-cycle of algebraic
-   * multigrid. Unlike the AMG of K0 it stores no prolongators and no
+   * most largest_factorized_coarse_level() DoFs, else approximated by one
+   * V-cycle of algebraic multigrid. Unlike the AMG of K0 it stores no prolongators and no
    * coarse matrices beyond the coarsest: about the cell data of the levels
    * (a seventh of the finest mesh's in 3D) and a few vectors per level.
    *
    * Made for Q1 and Q2 elements (create_bulk_multigrid()).
    */
+  /**
+   * The most DoFs of a coarsest level that the multigrid factorizes (KLU):
+   * 50000 in 2D, 5000 in 3D (whose factors fill in far more).
+   */
+  constexpr unsigned int
+  largest_factorized_coarse_level(const unsigned int dim)
+  {
+    return dim == 2 ? 50000u : 5000u;
+  }
+
+
   template <int dim>
   std::unique_ptr<BulkPreconditioner>
   create_bulk_multigrid(const Discretization<dim>      &discretization,

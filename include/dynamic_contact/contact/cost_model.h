@@ -3,6 +3,8 @@
 
 #include <deal.II/base/types.h>
 
+#include <dynamic_contact/parameters/parameters.h>
+
 #include <string>
 #include <vector>
 
@@ -111,6 +113,36 @@ namespace DynamicContact
    */
   double
   largest_costed_mesh(const unsigned int dim, const CostedSolver solver);
+
+  /** "AMG", "GMG", "matrix-free GMG" or "auto", as in the parameter file. */
+  std::string
+  preconditioner_name(const Parameters::Solver::Preconditioner preconditioner);
+
+  /**
+   * The peak memory, in bytes, of the largest process of a run of the
+   * assembled iterative solver with @p preconditioner on a mesh of
+   * @p n_dofs bulk DoFs of elements of degree @p degree on @p n_processes
+   * processes (benchmarks/memory at 10^6 DoFs): the program itself, and
+   * per DoF the mesh, the vectors and the GMRES basis, the stored K0 and
+   * its sparsity pattern (from the entries of a row), and the
+   * preconditioner's hierarchy, with the AMG's transient peak while it is
+   * built; for the geometric multigrid its levels and its coarsest level
+   * of @p coarse_dofs DoFs (factorized while small, else its AMG). On a
+   * mesh without refinement levels (@p coarse_dofs = @p n_dofs) the
+   * geometric multigrid has none to coarsen to, and it needs the AMG's
+   * memory.
+   */
+  double
+  predicted_memory(const Parameters::Solver::Preconditioner preconditioner,
+                   const unsigned int                    dim,
+                   const unsigned int                    degree,
+                   const dealii::types::global_dof_index n_dofs,
+                   const unsigned int                    n_processes,
+                   const double                          coarse_dofs);
+
+  /** "1.23 GB" or "456 MB": a predicted memory for the log. */
+  std::string
+  memory_string(const double bytes);
 
   /** "1.23 s" or "45 ms": a predicted time for the log. */
   std::string

@@ -8,6 +8,7 @@
 
 #include <mpi.h>
 
+#include <limits>
 #include <string>
 
 namespace DynamicContact
@@ -42,12 +43,16 @@ namespace DynamicContact
     Factorization factorization = Factorization::cholmod;
     /** Without one: the AMG's aggregation (Solver/AMG aggregation). */
     bool smoothed_aggregation = true;
-    /** Without one: geometric multigrid instead (Solver/Preconditioner). */
-    bool geometric_multigrid = false;
-    /** With it: K0 applied cell by cell, not stored (matrix-free GMG). */
-    bool matrix_free_bulk = false;
+    /**
+     * Without one: the preconditioner (Solver/Preconditioner, auto
+     * resolved: choose_preconditioner()).
+     */
+    Parameters::Solver::Preconditioner preconditioner =
+      Parameters::Solver::Preconditioner::amg;
     /** Why the contact solver and the factorization were chosen. */
     std::string reason;
+    /** Preconditioner = auto: why this one (empty otherwise). */
+    std::string preconditioner_reason;
     /**
      * Contact solver = auto: the predicted costs of both solvers (not
      * calibrated where the model has no terms, or the boundary exceeds the
@@ -55,6 +60,14 @@ namespace DynamicContact
      */
     SolverCost   condensed_cost, assembled_cost;
     unsigned int steps_per_matrix = 1;
+
+    /** K0 is applied cell by cell, not stored (matrix-free GMG). */
+    bool
+    matrix_free_bulk() const
+    {
+      return preconditioner ==
+             Parameters::Solver::Preconditioner::matrix_free_gmg;
+    }
 
     /** The solver parameters the chosen solver works with. */
     Parameters::Solver
@@ -70,13 +83,47 @@ namespace DynamicContact
   };
 
   /**
+   * What Solver/Preconditioner = auto weighs besides the size of the mesh:
+   * the memory one process may use (Solver/Memory per process, or what
+   * the hosts had available at the start: check_resources()), the
+   * elements' degree, and the DoFs of the mesh's coarsest level (the
+   * geometric multigrid's coarsest level).
+   */
+  struct MemoryBudget
+  {
+    /** Bytes per process; infinite: no limit known (the AMG). */
+    double       bytes_per_process = std::numeric_limits<double>::infinity();
+    unsigned int degree            = 1;
+    /** The DoFs of the coarsest level; the mesh's DoFs: no levels. */
+    double coarse_dofs = 0;
+  };
+
+  /**
+   * The preconditioner of the assembled iterative solver for
+   * Solver/Preconditioner = auto: the first of AMG, GMG and matrix-free
+   * GMG (the order of their speed, benchmarks/memory) whose peak memory
+   * predicted on the largest process (predicted_memory()) fits into the
+   * budget; the one of least memory where none fits. The geometric ones
+   * only for elements of degree 1 and 2. @p reason: the memory each needs
+   * and the budget, for the log.
+   */
+  Parameters::Solver::Preconditioner
+  choose_preconditioner(const unsigned int                    dim,
+                        const dealii::types::global_dof_index n_dofs,
+                        const unsigned int                    n_processes,
+                        const MemoryBudget                   &memory,
+                        std::string                          &reason);
+
+  /**
    * The plan for a problem of @p n_dofs bulk DoFs and @p n_contact_nodes
    * nodes on Gamma_3 on the processes of @p comm (every process decides
    * alike), whose bulk matrix K0 is expected to serve @p steps_per_matrix
    * steps (the steps left, or fewer where the mesh or the time step
    * changes): Contact solver = auto takes the solver of the lower cost
    * predicted for them (cost_model.h), the condensed one only while
-   * dim x contact nodes is within its limit.
+   * dim x contact nodes is within its limit. Preconditioner = auto:
+   * choose_preconditioner() within @p memory for the assembled iterative
+   * solver, the AMG elsewhere.
    */
   SolverPlan
   plan_solver(const Parameters::Solver              &parameters,
@@ -84,7 +131,8 @@ namespace DynamicContact
               const dealii::types::global_dof_index n_dofs,
               const unsigned int                     n_contact_nodes,
               const unsigned int                     steps_per_matrix,
-              const MPI_Comm                         comm);
+              const MPI_Comm                         comm,
+              const MemoryBudget                    &memory = MemoryBudget());
 
   /**
    * How a bulk matrix of @p n_dofs rows is factorized with these

@@ -320,16 +320,28 @@ namespace DynamicContact
        * false: plain aggregation (a smaller hierarchy, more iterations).
        */
       bool smoothed_aggregation;
+      enum class Preconditioner
+      {
+        /** Chosen by the solver plan from the memory model. */
+        automatic,
+        /** The AMG of K0 (BulkAMG). */
+        amg,
+        /** Geometric multigrid (BulkMultigrid), K0 stored. */
+        gmg,
+        /** Geometric multigrid, K0 applied cell by cell (not stored). */
+        matrix_free_gmg
+      };
       /**
-       * The iterative solver's preconditioner is geometric multigrid
-       * (BulkMultigrid); false: the AMG of K0.
+       * The iterative solver's preconditioner (Solver/Preconditioner); in
+       * the parameters a solver works with (SolverPlan::
+       * solver_parameters()) never automatic.
        */
-      bool geometric_multigrid;
+      Preconditioner preconditioner = Preconditioner::automatic;
       /**
-       * K0 is stored (false: Preconditioner = matrix-free GMG, K0 applied
-       * cell by cell where the assembled iterative solver runs).
+       * Bytes one process may use (Solver/Memory per process);
+       * std::nullopt for 'auto' (measured when the run starts).
        */
-      bool store_bulk_matrix;
+      std::optional<double> memory_per_process;
 
       static void
       declare_parameters(ParameterHandler &prm);

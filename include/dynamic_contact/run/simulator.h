@@ -26,6 +26,7 @@
 #include <functional>
 #include <array>
 #include <memory>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -340,6 +341,12 @@ namespace DynamicContact
      * the next step is E_n of the last one (reset when the DoFs change).
      */
     std::optional<double> energy_of_state;
+    /**
+     * The bytes one process may use (Solver/Memory per process, or what
+     * the hosts had available at the start: check_resources()), for
+     * Preconditioner = auto.
+     */
+    double memory_per_process = std::numeric_limits<double>::infinity();
     double
     energy_now();
 

@@ -126,12 +126,14 @@ namespace DynamicContact
     /**
      * After a change of the mesh (or of Gamma_3): size the Gamma_3 solution
      * (ContactState::reinit) and plan the solver (plan_solver) for
-     * @p steps_per_matrix steps with one bulk matrix; @p c_t is the
-     * complementarity constant of friction.
+     * @p steps_per_matrix steps with one bulk matrix within @p memory
+     * (Preconditioner = auto); @p c_t is the complementarity constant of
+     * friction.
      */
     void
-    reinit(const double       complementarity_constant,
-           const unsigned int steps_per_matrix);
+    reinit(const double        complementarity_constant,
+           const unsigned int  steps_per_matrix,
+           const MemoryBudget &memory);
 
     /**
      * Solve one step of @p scheme (k, theta; bulk's K0 must be formed for it:
