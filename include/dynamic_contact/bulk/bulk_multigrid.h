@@ -37,23 +37,6 @@ namespace DynamicContact
 
 
   /**
-   * Geometric multigrid of K0 on the mesh hierarchy (Solver/Preconditioner =
-   * GMG): the coarser meshes are the current one coarsened globally, once
-   * per level, until no cell can be coarsened (deal.II's global-coarsening
-   * multigrid, as in step-75), each with the same element and the same
-   * clamped, roller and hanging-node constraints. On each level K0 is
-   * applied cell by cell (MatrixFree), except on the finest where a stored
-   * K0 is used if there is one; the smoother is Chebyshev iteration with
-   * the inverse diagonal (degree 2, on the upper 1/20 of the spectrum); the
-   * coarsest level's matrix is assembled and factorized (KLU) if it has at
-   * most largest_factorized_coarse_level() DoFs, else approximated by one
-   * V-cycle of algebraic multigrid. Unlike the AMG of K0 it stores no prolongators and no
-   * coarse matrices beyond the coarsest: about the cell data of the levels
-   * (a seventh of the finest mesh's in 3D) and a few vectors per level.
-   *
-   * Made for Q1 and Q2 elements (create_bulk_multigrid()).
-   */
-  /**
    * The most DoFs of a coarsest level that the multigrid factorizes (KLU):
    * 50000 in 2D, 5000 in 3D (whose factors fill in far more).
    */
@@ -64,6 +47,25 @@ namespace DynamicContact
   }
 
 
+  /**
+   * Geometric multigrid of K0 on the mesh hierarchy (Solver/Preconditioner =
+   * GMG): the coarser meshes are the current one with its finest level of
+   * cells removed, then the next, down to the coarse mesh (deal.II's
+   * global-coarsening transfer, as in step-75), each with the same
+   * element and the same
+   * clamped, roller and hanging-node constraints. On each level K0 is
+   * applied cell by cell (MatrixFree), except on the finest where a stored
+   * K0 is used if there is one; the smoother is Chebyshev iteration with
+   * the inverse diagonal (degree 2, on the upper 1/20 of the spectrum); the
+   * coarsest level's matrix is assembled and factorized (KLU) if it has at
+   * most largest_factorized_coarse_level() DoFs, else approximated by one
+   * V-cycle of algebraic multigrid. Unlike the AMG of K0 it stores no
+   * prolongators and no coarse matrices beyond the coarsest: about the cell
+   * data of the levels (a seventh of the finest mesh's in 3D) and a few
+   * vectors per level.
+   *
+   * Made for Q1 and Q2 elements (create_bulk_multigrid()).
+   */
   template <int dim>
   std::unique_ptr<BulkPreconditioner>
   create_bulk_multigrid(const Discretization<dim>      &discretization,

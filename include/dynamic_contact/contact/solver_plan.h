@@ -101,7 +101,8 @@ namespace DynamicContact
   /**
    * The preconditioner of the assembled iterative solver for
    * Solver/Preconditioner = auto: the first of AMG, GMG and matrix-free
-   * GMG (the order of their speed, benchmarks/memory) whose peak memory
+   * GMG (fastest first: benchmarks/results/scaling_preconditioners.csv)
+   * whose peak memory
    * predicted on the largest process (predicted_memory()) fits into the
    * budget; the one of least memory where none fits. The geometric ones
    * only for elements of degree 1 and 2. @p reason: the memory each needs
