@@ -36,19 +36,17 @@ namespace DynamicContact
     using P           = Parameters::Solver::Preconditioner;
     const P     given = parameters.solver.preconditioner;
     double      bytes = std::numeric_limits<double>::infinity();
-    for (const P candidate : {P::amg, P::gmg, P::matrix_free_gmg})
-      if (given == candidate ||
-          (given == P::automatic && (candidate == P::amg || p <= 2)))
-        bytes = std::min(bytes,
-                         predicted_memory(
-                                 candidate,
-                                 dim,
-                                 parameters.finite_element.degree,
-                                 static_cast<types::global_dof_index>(
-                                   std::min(dofs, 4294967295.)),
-                                 1,
-                                 0.) /
-                           3);
+    for (const P candidate :
+         preconditioner_candidates(given, parameters.finite_element.degree))
+      bytes = std::min(bytes,
+                       predicted_memory(candidate,
+                                        dim,
+                                        parameters.finite_element.degree,
+                                        static_cast<types::global_dof_index>(
+                                          std::min(dofs, 4294967295.)),
+                                        1,
+                                        0.) /
+                         3);
 
     // The memory available: MemAvailable of every host of the run, once.
     double available = 0;

@@ -150,6 +150,19 @@ namespace DynamicContact
   }
 
 
+  std::vector<Parameters::Solver::Preconditioner>
+  preconditioner_candidates(const Parameters::Solver::Preconditioner given,
+                            const unsigned int                       degree)
+  {
+    using P = Parameters::Solver::Preconditioner;
+    if (given != P::automatic)
+      return {given};
+    if (degree <= 2)
+      return {P::amg, P::gmg, P::matrix_free_gmg};
+    return {P::amg};
+  }
+
+
   namespace
   {
     /**

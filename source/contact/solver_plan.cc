@@ -8,7 +8,6 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <vector>
 
 namespace DynamicContact
 {
@@ -141,16 +140,13 @@ namespace DynamicContact
                         const MemoryBudget           &memory,
                         std::string                  &reason)
   {
-    using P                 = Parameters::Solver::Preconditioner;
-    std::vector<P> candidates = {P::amg};
-    if (memory.degree <= 2)
-      candidates.insert(candidates.end(), {P::gmg, P::matrix_free_gmg});
+    using P = Parameters::Solver::Preconditioner;
     std::ostringstream s;
     s << "peak predicted per process:";
     std::optional<P> chosen;
     P                least      = P::amg;
     double           least_need = std::numeric_limits<double>::infinity();
-    for (const P p : candidates)
+    for (const P p : preconditioner_candidates(P::automatic, memory.degree))
       {
         const double need = predicted_memory(p,
                                              dim,

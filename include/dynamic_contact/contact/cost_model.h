@@ -119,6 +119,16 @@ namespace DynamicContact
   preconditioner_name(const Parameters::Solver::Preconditioner preconditioner);
 
   /**
+   * The preconditioners Solver/Preconditioner = @p given allows with
+   * elements of degree @p degree: @p given itself, or for 'auto' the AMG,
+   * GMG and matrix-free GMG, fastest first, the geometric ones only for
+   * degree 1 and 2.
+   */
+  std::vector<Parameters::Solver::Preconditioner>
+  preconditioner_candidates(const Parameters::Solver::Preconditioner given,
+                            const unsigned int                       degree);
+
+  /**
    * The peak memory, in bytes, of the largest process of a run of the
    * assembled iterative solver with @p preconditioner on a mesh of
    * @p n_dofs bulk DoFs of elements of degree @p degree on @p n_processes
