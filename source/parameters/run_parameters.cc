@@ -37,6 +37,35 @@ namespace DynamicContact
   {
     namespace
     {
+      /**
+       * The number that the whole of @p text is (read by @p read, e.g.
+       * std::stol or std::stod), or std::nullopt for 'auto'; @p error
+       * (CollectiveError) where it is neither or fails @p valid.
+       */
+      template <typename Number, typename Read>
+      std::optional<Number>
+      number_or_auto(const std::string                &text,
+                     const Read                       &read,
+                     const std::function<bool(Number)> &valid,
+                     const std::string                &error)
+      {
+        if (text == "auto")
+          return std::nullopt;
+        std::size_t end   = 0;
+        Number      value = 0;
+        bool        read_ = false;
+        try
+          {
+            value = read(text, &end);
+            read_ = true;
+          }
+        catch (...)
+          {}
+        require(read_ && end == text.size() && valid(value), error);
+        return value;
+      }
+
+
       /** Time: the entries of adaptive time steps. */
       void
       declare_adaptive_entries(ParameterHandler &prm)
@@ -403,23 +432,17 @@ namespace DynamicContact
       {
         const std::string limit =
           prm.get("Condensed limit on several processes");
-        if (limit == "auto")
-          condensed_limit_on_several_processes.reset();
-        else
-          {
-            std::size_t end   = 0;
-            long        value = -1;
-            try
-              {
-                value = std::stol(limit, &end);
-              }
-            catch (...)
-              {}
-            require(value >= 0 && end == limit.size(),
-                    "Solver/Condensed limit on several processes: '" + limit +
-                      "' is neither an integer >= 0 nor 'auto'.");
-            condensed_limit_on_several_processes = value;
-          }
+        const std::optional<long> value = number_or_auto<long>(
+          limit,
+          [](const std::string &t, std::size_t *end) {
+            return std::stol(t, end);
+          },
+          [](const long v) { return v >= 0; },
+          "Solver/Condensed limit on several processes: '" + limit +
+            "' is neither an integer >= 0 nor 'auto'.");
+        condensed_limit_on_several_processes.reset();
+        if (value)
+          condensed_limit_on_several_processes = *value;
       }
       min_dofs_per_process  = prm.get_integer("Minimum DoFs per process");
       provisional_passes    = prm.get_bool("Provisional passes");
@@ -444,24 +467,17 @@ namespace DynamicContact
       }
       {
         const std::string memory = prm.get("Memory per process");
+        const std::optional<double> gb = number_or_auto<double>(
+          memory,
+          [](const std::string &t, std::size_t *end) {
+            return std::stod(t, end);
+          },
+          [](const double v) { return std::isfinite(v) && v > 0; },
+          "Solver/Memory per process: '" + memory +
+            "' is neither a number of GB > 0 nor 'auto'.");
         memory_per_process.reset();
-        if (memory != "auto")
-          {
-            double      gb  = -1;
-            std::size_t end = 0;
-            try
-              {
-                gb = std::stod(memory, &end);
-              }
-            catch (...)
-              {}
-            while (end < memory.size() && std::isspace(memory[end]))
-              ++end;
-            require(std::isfinite(gb) && gb > 0 && end == memory.size(),
-                    "Solver/Memory per process: '" + memory +
-                      "' is neither a number of GB > 0 nor 'auto'.");
-            memory_per_process = gb * 1e9;
-          }
+        if (gb)
+          memory_per_process = *gb * 1e9;
       }
       prm.leave_subsection();
       require(std::isfinite(newton_tolerance) && newton_tolerance > 0 &&
