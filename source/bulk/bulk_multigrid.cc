@@ -35,7 +35,9 @@ namespace DynamicContact
     /**
      * K0 on one level of the hierarchy: applied cell by cell, or by the
      * stored matrix of the finest level; constrained rows as the identity
-     * (cell by cell) or as condensation left them (stored).
+     * (cell by cell) or as condensation left them (stored). The cell data
+     * are the level's own, or (on the finest level) the bulk forms' where
+     * they have them: the same mesh, constraints and quadrature.
      */
     template <int dim, int degree>
     class LevelOperator : public Subscriptor
@@ -48,15 +50,20 @@ namespace DynamicContact
                     const DoFHandler<dim>           &dof_handler,
                     const AffineConstraints<double> &constraints,
                     const BulkKernel<dim>           &kernel,
-                    const Matrix_t                  *stored)
+                    const Matrix_t                  *stored,
+                    const MatrixFree<dim, double>   *shared_cell_data)
         : constraints(constraints)
         , kernel(kernel)
         , stored(stored)
+        , matrix_free(shared_cell_data ? *shared_cell_data : own_cell_data)
       {
-        reinit_cell_data(matrix_free,
-                         discretization.mapping,
-                         dof_handler,
-                         constraints);
+        if (shared_cell_data == nullptr)
+          reinit_cell_data(own_cell_data,
+                           discretization.mapping,
+                           dof_handler,
+                           constraints);
+        Assert(&matrix_free.get_dof_handler() == &dof_handler,
+               ExcMessage("The shared cell data are of another mesh."));
         constrained = matrix_free.get_constrained_dofs();
         compute_inverse_diagonal();
       }
@@ -141,19 +148,14 @@ namespace DynamicContact
                                         this);
       }
 
-      double
-      memory_consumption() const
-      {
-        return matrix_free.memory_consumption() +
-               inverse->get_vector().memory_consumption() +
-               constrained.size() * sizeof(unsigned int);
-      }
-
     private:
       const AffineConstraints<double>                  &constraints;
       const BulkKernel<dim>                             kernel;
       const Matrix_t                                   *stored;
-      MatrixFree<dim, double>                           matrix_free;
+      /** The level's own cell data (unless shared). */
+      MatrixFree<dim, double>                           own_cell_data;
+      /** The cell data used: own_cell_data or the shared ones. */
+      const MatrixFree<dim, double>                    &matrix_free;
       std::vector<unsigned int>                         constrained;
       std::shared_ptr<DiagonalMatrix<LevelVector>>      inverse =
         std::make_shared<DiagonalMatrix<LevelVector>>();
@@ -350,7 +352,8 @@ namespace DynamicContact
       BulkMultigrid(const Discretization<dim>      &discretization,
                     const KelvinVoigtMaterial<dim> &material,
                     const TimeScheme               &scheme,
-                    const Matrix_t                 *finest_matrix)
+                    const Matrix_t                 *finest_matrix,
+                    const MatrixFree<dim, double>  *finest_cell_data)
         : discretization(discretization)
       {
         const HeapGrowth growth;
@@ -385,7 +388,8 @@ namespace DynamicContact
               dofs(level),
               level_constraints(level),
               kernel,
-              finest ? finest_matrix : nullptr);
+              finest ? finest_matrix : nullptr,
+              finest ? finest_cell_data : nullptr);
           }
         for (unsigned int level = 0; level < top; ++level)
           transfers[level + 1].reinit_geometric_transfer(
@@ -495,7 +499,8 @@ namespace DynamicContact
   create_bulk_multigrid(const Discretization<dim>      &discretization,
                         const KelvinVoigtMaterial<dim> &material,
                         const TimeScheme               &scheme,
-                        const Matrix_t                 *finest_matrix)
+                        const Matrix_t                 *finest_matrix,
+                        const MatrixFree<dim, double>  *finest_cell_data)
   {
     switch (discretization.fe.degree)
       {
@@ -503,12 +508,14 @@ namespace DynamicContact
           return std::make_unique<BulkMultigrid<dim, 1>>(discretization,
                                                          material,
                                                          scheme,
-                                                         finest_matrix);
+                                                         finest_matrix,
+                                                         finest_cell_data);
         case 2:
           return std::make_unique<BulkMultigrid<dim, 2>>(discretization,
                                                          material,
                                                          scheme,
-                                                         finest_matrix);
+                                                         finest_matrix,
+                                                         finest_cell_data);
         default:
           AssertThrow(false,
                       ExcMessage("Solver/Preconditioner = GMG is made for "
@@ -522,10 +529,12 @@ namespace DynamicContact
   create_bulk_multigrid(const Discretization<2> &,
                         const KelvinVoigtMaterial<2> &,
                         const TimeScheme &,
-                        const Matrix_t *);
+                        const Matrix_t *,
+                        const MatrixFree<2, double> *);
   template std::unique_ptr<BulkPreconditioner>
   create_bulk_multigrid(const Discretization<3> &,
                         const KelvinVoigtMaterial<3> &,
                         const TimeScheme &,
-                        const Matrix_t *);
+                        const Matrix_t *,
+                        const MatrixFree<3, double> *);
 } // namespace DynamicContact

@@ -204,20 +204,21 @@ namespace DynamicContact
       // 3D: mesh 138 MB, DoF handlers 72, constraints 8, cells' data 59,
       // GMRES basis 288, vectors 88, not itemized 358 (30 of it fixed):
       // 980 MB; K0 625 and its pattern 316 MB; the AMG 943 MB and 1554 MB
-      // more at its peak; the GMG's levels 219 MB (the coarsest, 10 x 1 x
-      // 1 cells, negligible; its factorization per DoF taken from 2D).
+      // more at its peak; the GMG's levels 142 MB (the finest on the bulk
+      // forms' cell data; the coarsest, 10 x 1 x 1 cells, negligible; its
+      // factorization per DoF taken from 2D).
       if (dim == 3)
         return {980e6 / 1048707,
                 (943. + 1554.) / 941.,
-                219e6 / 1048707,
-                58e6 / 33282};
+                142e6 / 1048707,
+                61e6 / 33282};
       // 2D: mesh 19 MB, DoF handlers 7, constraints 1, cells' data 6,
       // GMRES basis 103 (the paper's cells are 20 times longer than high:
       // about 100 iterations), vectors 11, not itemized 61 (30 fixed):
       // 178 MB; the AMG 1.69 times K0 and its pattern, its peak no higher;
-      // the GMG 86 MB: its levels as in 3D per DoF, the rest the coarsest
+      // the GMG 79 MB: its levels as in 3D per DoF, the rest the coarsest
       // level's factorization (33 282 DoFs, KLU).
-      return {178e6 / 132098, 48.9 / 28.9, 219e6 / 1048707, 58e6 / 33282};
+      return {178e6 / 132098, 48.9 / 28.9, 142e6 / 1048707, 61e6 / 33282};
     }
 
     /**

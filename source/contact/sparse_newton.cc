@@ -352,7 +352,8 @@ namespace DynamicContact
                                   problem.bulk.material_law(),
                                   problem.bulk.scheme(),
                                   stored ? &problem.bulk.newton_matrix() :
-                                           nullptr);
+                                           nullptr,
+                                  problem.bulk.cell_data());
     else
       {
         auto algebraic = std::make_unique<BulkAMG>();

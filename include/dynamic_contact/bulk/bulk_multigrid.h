@@ -1,6 +1,8 @@
 #ifndef dynamic_contact_bulk_multigrid_h
 #define dynamic_contact_bulk_multigrid_h
 
+#include <deal.II/matrix_free/matrix_free.h>
+
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/laws/material.h>
@@ -65,13 +67,20 @@ namespace DynamicContact
    * vectors per level.
    *
    * Made for Q1 and Q2 elements (create_bulk_multigrid()).
+   *
+   * @p finest_matrix: the stored K0, if there is one. @p finest_cell_data:
+   * the cell data of the mesh's bulk forms (BulkOperator::cell_data()), if
+   * they are set up; the finest level uses them instead of setting up its
+   * own (at 10^6 DoFs in 3D, 59 MB less).
    */
   template <int dim>
   std::unique_ptr<BulkPreconditioner>
-  create_bulk_multigrid(const Discretization<dim>      &discretization,
-                        const KelvinVoigtMaterial<dim> &material,
-                        const TimeScheme               &scheme,
-                        const Matrix_t                 *finest_matrix);
+  create_bulk_multigrid(
+    const Discretization<dim>      &discretization,
+    const KelvinVoigtMaterial<dim> &material,
+    const TimeScheme               &scheme,
+    const Matrix_t                 *finest_matrix,
+    const MatrixFree<dim, double>  *finest_cell_data = nullptr);
 } // namespace DynamicContact
 
 #endif

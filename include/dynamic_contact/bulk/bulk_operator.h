@@ -96,6 +96,16 @@ namespace DynamicContact
     void
     set_time_step(const TimeScheme &scheme);
 
+    /**
+     * The cell data of the forms on the current mesh (reinit_cell_data()),
+     * or nullptr where the forms are stored matrices.
+     */
+    const MatrixFree<dim, double> *
+    cell_data() const
+    {
+      return stored ? nullptr : &forms.cell_data();
+    }
+
     /** K0 for the last k and theta (only if stores_newton_matrix()). */
     const Matrix_t &
     newton_matrix() const

@@ -99,6 +99,13 @@ namespace DynamicContact
           Vector_t              &dst,
           const Vector_t        &src) const;
 
+    /** The cell data (as reinit_cell_data() sets them up). */
+    const MatrixFree<dim, double> &
+    cell_data() const
+    {
+      return matrix_free;
+    }
+
     /** The cell data and the work vectors on this process, in bytes. */
     double
     memory_consumption() const;
