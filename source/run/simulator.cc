@@ -106,15 +106,10 @@ namespace DynamicContact
          1.);
     step_solver.reinit(c_t, steps_per_matrix(start_time), memory);
     // The bulk forms stored for the condensed solver, applied from the
-    // cells for the assembled solver (BulkOperator).
-    // K0 itself is stored unless the assembled iterative solver runs with
-    // the matrix-free multigrid.
+    // cells for the assembled solver (BulkOperator); K0 stored unless the
+    // plan applies it cell by cell.
     const SolverPlan &plan = step_solver.solver_plan();
-    bulk.reinit(plan.condensed,
-                plan.condensed ||
-                  plan.linear_solver ==
-                    Parameters::Solver::LinearSolver::direct ||
-                  !plan.matrix_free_bulk());
+    bulk.reinit(plan.condensed, !plan.matrix_free_bulk());
     force_balance.reinit();
   }
 

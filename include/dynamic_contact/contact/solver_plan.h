@@ -61,12 +61,18 @@ namespace DynamicContact
     SolverCost   condensed_cost, assembled_cost;
     unsigned int steps_per_matrix = 1;
 
-    /** K0 is applied cell by cell, not stored (matrix-free GMG). */
+    /**
+     * K0 is applied cell by cell, not stored: the matrix-free GMG for the
+     * assembled iterative solver (the condensed solver and the direct one
+     * need K0 stored, whatever the preconditioner).
+     */
     bool
     matrix_free_bulk() const
     {
       return preconditioner ==
-             Parameters::Solver::Preconditioner::matrix_free_gmg;
+               Parameters::Solver::Preconditioner::matrix_free_gmg &&
+             !condensed &&
+             linear_solver == Parameters::Solver::LinearSolver::iterative;
     }
 
     /** The solver parameters the chosen solver works with. */
