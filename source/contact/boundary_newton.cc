@@ -28,7 +28,7 @@ namespace DynamicContact
     it.base.resize(n);
     it.signature = 0;
     it.active.clear();
-    it.f_scale      = 1e-300;
+    it.f_scale      = std::max(force_scale, 1e-300); // SystemNewton's floor
     it.law_residual = 0;
     it.law_squares  = 0;
     for (unsigned int i = 0; i < n; ++i)
@@ -113,9 +113,7 @@ namespace DynamicContact
     residual(const Iterate &x) const
     {
       return std::max(x.equilibrium / w_scale, x.law_residual / x.f_scale);
-    }
-
-    /** With the force scale of the current iterate. */
+    }    /** With the force scale of the current iterate. */
     double
     merit(const Iterate &trial, const Iterate &current) const
     {

@@ -97,13 +97,17 @@ namespace DynamicContact
             const Tensor<1, dim> w_e = scheme.weighted(it.w[i], it.w_old[i]);
             for (const auto &t : nodes[i].tangents)
               {
-                const double c     = t * (compliance.column(i)[i] * t);
-                const double scale = c > 0 ? 1. / c : 1.;
-                row_vectors[a].push_back(scale * t);
-                column_vectors[a].push_back(t);
+                // The unknown is c_s l_s, a velocity like y (c_s = t_s . C_ii
+                // t_s, the node's own tangential compliance): every entry of
+                // the reduced matrix is then a pure number, and its pivots
+                // are the same in any consistent system of units.
+                const double c = t * (compliance.column(i)[i] * t);
+                Assert(c > 0, ExcInternalError());
+                row_vectors[a].push_back(t);
+                column_vectors[a].push_back(t / c);
                 // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s .
-                // w_e)/theta (scaled like the row).
-                stick_target[a].push_back(-scale * (t * w_e) /
+                // w_e)/theta.
+                stick_target[a].push_back(-(t * w_e) /
                                           scheme.effective_derivative());
               }
           }

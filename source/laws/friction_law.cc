@@ -16,7 +16,7 @@ namespace DynamicContact
   FrictionLaw::sample_points(const double s_max)
   {
     std::vector<double> s = {0.};
-    for (double x = 1e-9; x < s_max; x *= 1.02)
+    for (double x = 1e-11 * s_max; x < s_max; x *= 1.02)
       s.push_back(x);
     for (unsigned int i = 1; i <= 1000; ++i)
       s.push_back(s_max * i / 1000.);
@@ -39,18 +39,24 @@ namespace DynamicContact
 
 
   void
+  FrictionLaw::set_slip_rate_window(const double)
+  {}
+
+
+  void
   FrictionLaw::check_nonnegative(const double s_max) const
   {
     for (const double s : sample_points(s_max))
       {
         const double mu = value(s);
         AssertThrow(std::isfinite(mu) && mu >= 0,
-                    ExcMessage("Friction: the friction coefficient must be "
-                               "finite and >= 0 on the slip rates [0, "
-                               "Friction/Maximum slip rate = " +
-                               std::to_string(s_max) + "] m/s, but mu(" +
-                               std::to_string(s) + ") = " + std::to_string(mu) +
-                               "."));
+                    ExcMessage("Friction: the friction coefficient " +
+                               description() +
+                               " must be finite and >= 0 on the slip rates "
+                               "[0, " +
+                               sig6(s_max) +
+                               "] (Friction/Maximum slip rate), but mu(" +
+                               sig6(s) + ") = " + sig6(mu) + "."));
       }
   }
 
@@ -282,9 +288,33 @@ namespace DynamicContact
   double
   ExpressionFriction::derivative(const double s) const
   {
-    const double h = 1e-7 * std::max(1., s);
-    return (value(s + h) - value(std::max(0., s - h))) /
-           (s + h - std::max(0., s - h));
+    const double h = 1e-6 * std::max(s, velocity_scale);
+    if (s >= h)
+      return (value(s + h) - value(s - h)) / (2 * h);
+    // Near s = 0, one-sided and of second order too.
+    return (-3 * value(s) + 4 * value(s + h) - value(s + 2 * h)) / (2 * h);
+  }
+
+  void
+  ExpressionFriction::set_slip_rate_window(const double s_max)
+  {
+    // The range of mu and its steepest slope on the window (sampled).
+    const auto s       = sample_points(s_max);
+    double     lo      = value(0.), hi = lo, slope = 0;
+    double     mu_last = lo;
+    for (unsigned int i = 1; i < s.size(); ++i)
+      {
+        const double mu = value(s[i]);
+        lo              = std::min(lo, mu);
+        hi              = std::max(hi, mu);
+        if (s[i] > s[i - 1])
+          slope = std::max(slope, std::abs(mu - mu_last) / (s[i] - s[i - 1]));
+        mu_last = mu;
+      }
+    velocity_scale =
+      (slope > 0 && std::isfinite(slope) && hi > lo) ?
+        std::min(s_max, (hi - lo) / slope) :
+        s_max;
   }
 
   bool

@@ -30,6 +30,74 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * A Window entry: a length >= 0, or 'auto' (returned as -1), named
+     * @p entry in the error.
+     */
+    double
+    parse_window(const std::string &text, const std::string &entry)
+    {
+      if (text == "auto")
+        return -1;
+      double value = -1;
+      try
+        {
+          std::size_t end = 0;
+          value           = std::stod(text, &end);
+          if (end != text.size())
+            value = -1;
+        }
+      catch (...)
+        {}
+      AssertThrow(std::isfinite(value) && value >= 0,
+                  ExcMessage(entry + ": '" + text +
+                             "' is neither a length >= 0 nor 'auto'."));
+      return value;
+    }
+
+
+    /**
+     * The thickness of the body: the smallest side of the bounding box of
+     * the coarse mesh (which every process holds), a length of the scene.
+     */
+    template <int dim>
+    double
+    body_thickness(const Triangulation<dim> &tria)
+    {
+      Point<dim> lo, hi;
+      bool       first = true;
+      for (const auto &cell : tria.cell_iterators_on_level(0))
+        for (const auto v : cell->vertex_indices())
+          {
+            const Point<dim> &p = cell->vertex(v);
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                lo[c] = first ? p[c] : std::min(lo[c], p[c]);
+                hi[c] = first ? p[c] : std::max(hi[c], p[c]);
+              }
+            first = false;
+          }
+      double thickness = hi[0] - lo[0];
+      for (unsigned int c = 1; c < dim; ++c)
+        thickness = std::min(thickness, hi[c] - lo[c]);
+      return thickness;
+    }
+
+
+    /** @p window, or for 'auto' (-1) @p factor times the body's thickness. */
+    template <int dim>
+    double
+    resolved_window(const double              window,
+                    const double              factor,
+                    const Triangulation<dim> &tria)
+    {
+      return window >= 0 ? window : factor * body_thickness(tria);
+    }
+  } // namespace
+
+
   template <int dim>
   std::vector<std::unique_ptr<const RefinementStrategy<dim>>>
   RefinementStrategy<dim>::create(ParameterHandler               &prm,
@@ -159,12 +227,14 @@ namespace DynamicContact
       declare_parameters(ParameterHandler &prm)
       {
         prm.declare_entry("Window",
-                          "0.2",
-                          Patterns::Double(0),
-                          "Cells closer than this (m) to a point where the "
-                          "load is large get the finest level. It must "
-                          "reach from the loaded boundary to the contact "
-                          "boundary if both should be fine.");
+                          "auto",
+                          Patterns::Anything(),
+                          "Cells closer than this (a length: m in SI) to a "
+                          "point where the load is large get the finest "
+                          "level. It must reach from the loaded boundary to "
+                          "the contact boundary if both should be fine. "
+                          "'auto': twice the body's thickness (the smallest "
+                          "side of the coarse mesh's bounding box).");
         prm.declare_entry("Threshold",
                           "0.05",
                           Patterns::Double(0, 1),
@@ -175,14 +245,16 @@ namespace DynamicContact
       void
       parse_parameters(ParameterHandler &prm) override
       {
-        window    = prm.get_double("Window");
+        window    = parse_window(prm.get("Window"),
+                              "Mesh refinement/Load following/Window");
         threshold = prm.get_double("Threshold");
       }
 
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        const double window = this->window;
+        const double window = resolved_window(
+          this->window, 2., context.discretization.triangulation);
         return [window, points = large_load_points(context, threshold)](
                  const auto &cell, const unsigned int max_level) {
           return cell_near<dim>(cell, points, window) ?
@@ -192,7 +264,7 @@ namespace DynamicContact
       }
 
     private:
-      double window    = 0.2;
+      double window    = -1; // auto
       double threshold = 0.05;
     };
 
@@ -209,22 +281,27 @@ namespace DynamicContact
       declare_parameters(ParameterHandler &prm)
       {
         prm.declare_entry("Window",
-                          "0.05",
-                          Patterns::Double(0),
-                          "Cells closer than this (m) to a node that "
-                          "penetrates the foundation get the finest level.");
+                          "auto",
+                          Patterns::Anything(),
+                          "Cells closer than this (a length: m in SI) to a "
+                          "node that penetrates the foundation get the "
+                          "finest level. 'auto': half the body's thickness "
+                          "(the smallest side of the coarse mesh's bounding "
+                          "box).");
       }
 
       void
       parse_parameters(ParameterHandler &prm) override
       {
-        window = prm.get_double("Window");
+        window = parse_window(prm.get("Window"),
+                              "Mesh refinement/Contact following/Window");
       }
 
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        const double window = this->window;
+        const double window = resolved_window(
+          this->window, 0.5, context.discretization.triangulation);
         return [window, &points = context.contact_points](
                  const auto &cell, const unsigned int max_level) {
           return cell_near<dim>(cell, points, window) ?
@@ -240,7 +317,7 @@ namespace DynamicContact
       }
 
     private:
-      double window = 0.05;
+      double window = -1; // auto
     };
 
 

@@ -449,6 +449,15 @@ namespace DynamicContact
                 str(viscosity_lambda) + ".");
     }
 
+    double
+    Material::p_wave_speed() const
+    {
+      const double nu     = poisson_ratio;
+      const double lambda = young_modulus * nu / ((1 + nu) * (1 - 2 * nu));
+      const double mu     = young_modulus / (2 * (1 + nu));
+      return std::sqrt((lambda + 2 * mu) / density);
+    }
+
     // ---------------------------------------------------------- Foundation
     void
     Foundation::declare_parameters(ParameterHandler  &prm,
@@ -484,11 +493,16 @@ namespace DynamicContact
         FrictionLaw::declare_parameters(prm);
         prm.declare_entry(
           "Maximum slip rate",
-          "100",
-          Patterns::Double(),
-          "Slip rates on which mu(s) >= 0 and its one-sided Lipschitz "
-          "constant are checked at start-up (m/s); the run also checks every "
-          "value it uses.");
+          "auto",
+          Patterns::Anything(),
+          "The slip rates [0, Maximum slip rate] (a velocity: m/s in SI) on "
+          "which mu(s) is checked at start-up (finite, >= 0, not increasing "
+          "unless Velocity strengthening = allow) and its one-sided "
+          "Lipschitz constant is sampled; the run also checks every value it "
+          "uses. 'auto': the P-wave speed of the body, sqrt((lambda + 2 "
+          "mu)/rho), which the velocities of a linearly elastic body stay far "
+          "below (its strains are about v/c), so that the window scales with "
+          "the scene in any consistent units.");
         prm.declare_entry("Convexification tolerance",
                           "1e-6",
                           Patterns::Double(),
@@ -550,8 +564,9 @@ namespace DynamicContact
           "Complementarity constant",
           "0",
           Patterns::Double(),
-          "c_t of the complementarity function of friction (Pa s/m^2 ... "
-          "scaled like E/h). 0 chooses E/h with h the smallest cell size.");
+          "c_t of the complementarity function of friction, a stiffness per "
+          "unit area like E/h (Pa/m in SI): c_t k m_i w_tau is a nodal "
+          "force. 0 chooses E/h with h the smallest cell size.");
         prm.declare_entry(
           "Velocity strengthening",
           "refuse",
@@ -569,13 +584,25 @@ namespace DynamicContact
     }
 
     void
-    Friction::parse_parameters(ParameterHandler &prm)
+    Friction::parse_parameters(ParameterHandler &prm, const Material &material)
     {
       {
         const ScopedSubsection section(prm, "Friction");
-        law                       = FrictionLaw::create(prm);
-        law_name                  = prm.get("Law");
-        maximum_slip_rate         = prm.get_double("Maximum slip rate");
+        std::unique_ptr<FrictionLaw> new_law = FrictionLaw::create(prm);
+        law_name                             = prm.get("Law");
+        const std::string window             = prm.get("Maximum slip rate");
+        const std::optional<double> s_max    = number_or_auto<double>(
+          window,
+          [](const std::string &t, std::size_t *end) {
+            return std::stod(t, end);
+          },
+          [](const double v) { return std::isfinite(v) && v > 0; },
+          "Friction/Maximum slip rate: '" + window +
+            "' is neither a positive number nor 'auto'.");
+        maximum_slip_rate = s_max ? *s_max : material.p_wave_speed();
+        if (new_law)
+          new_law->set_slip_rate_window(maximum_slip_rate);
+        law                       = std::move(new_law);
         convexification_tolerance = prm.get_double("Convexification tolerance");
         coefficient_tolerance     = prm.get_double("Coefficient tolerance");
         relaxation                = prm.get_double("Relaxation");
@@ -592,8 +619,6 @@ namespace DynamicContact
           prm.get("Velocity strengthening") == "allow";
       }
 
-      require(std::isfinite(maximum_slip_rate) && maximum_slip_rate > 0,
-              "Friction/Maximum slip rate must be positive.");
       require(std::isfinite(convexification_tolerance) &&
                 convexification_tolerance > 0,
               "Friction/Convexification tolerance must be positive.");

@@ -279,6 +279,14 @@ namespace DynamicContact
            "'Section/Entry=value'`\n"
            "overrides one on the command line.\n"
            "\n"
+           "Units: the program takes every number in one consistent "
+           "system of units; the\n"
+           "texts name the SI unit (m, kg, s, N, Pa), and the defaults "
+           "with a unit are the\n"
+           "paper's values in SI. In mm-tonne-s or inch-lbf-s set them "
+           "(`scripts/convert-units`\n"
+           "writes a scene in another system: running.md, \"Units\").\n"
+           "\n"
            "## Top level\n"
            "\n";
     write_section(out, two, &three, "", 2);

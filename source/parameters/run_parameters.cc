@@ -37,35 +37,6 @@ namespace DynamicContact
   {
     namespace
     {
-      /**
-       * The number that the whole of @p text is (read by @p read, e.g.
-       * std::stol or std::stod), or std::nullopt for 'auto'; @p error
-       * (CollectiveError) where it is neither or fails @p valid.
-       */
-      template <typename Number, typename Read>
-      std::optional<Number>
-      number_or_auto(const std::string                &text,
-                     const Read                       &read,
-                     const std::function<bool(Number)> &valid,
-                     const std::string                &error)
-      {
-        if (text == "auto")
-          return std::nullopt;
-        std::size_t end   = 0;
-        Number      value = 0;
-        bool        read_ = false;
-        try
-          {
-            value = read(text, &end);
-            read_ = true;
-          }
-        catch (...)
-          {}
-        require(read_ && end == text.size() && valid(value), error);
-        return value;
-      }
-
-
       /** Time: the entries of adaptive time steps. */
       void
       declare_adaptive_entries(ParameterHandler &prm)
@@ -696,7 +667,7 @@ namespace DynamicContact
     boundary_conditions.parse_parameters(prm, geometry, dimension);
     material.parse_parameters(prm);
     foundation.parse_parameters(prm);
-    friction.parse_parameters(prm);
+    friction.parse_parameters(prm, material);
     mesh_refinement.parse_parameters(prm, geometry.global_refinements);
     time.parse_parameters(prm);
     solver.parse_parameters(prm);

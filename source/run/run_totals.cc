@@ -19,6 +19,7 @@ namespace DynamicContact
     max_coefficient_residual =
       std::max(max_coefficient_residual, step.coefficient_residual);
     coupled_fallbacks += step.coupled_fallbacks;
+    cycling_steps += step.active_set_cycles > 0;
     if (step.contraction_factor >= 1)
       non_unique_steps.push_back(step.step);
     max_contraction = std::max(max_contraction, step.contraction_factor);
@@ -65,7 +66,8 @@ namespace DynamicContact
              value("coefficient_residual"),
              static_cast<unsigned int>(value("coupled_fallbacks")),
              has("uniqueness_bound") ? value("uniqueness_bound") : -1.,
-             has("contraction_factor") ? value("contraction_factor") : -1.});
+             has("contraction_factor") ? value("contraction_factor") : -1.,
+             static_cast<unsigned int>(value("active_set_cycles"))});
       }
   }
 
@@ -139,7 +141,10 @@ namespace DynamicContact
           << state.unconverged_steps
           << "; steps whose Newton iteration ended at stagnation (residual "
              "below the square root of Solver/Newton tolerance): "
-          << stagnated_steps << "\n"
+          << stagnated_steps
+          << "; steps whose Newton iteration cycled (came back to active "
+             "sets or an iterate it had seen; damped steps from there on): "
+          << cycling_steps << "\n"
           << "  largest relative energy balance defect: "
           << scientific(state.max_relative_defect, 2);
     if (friction)

@@ -404,8 +404,8 @@ namespace DynamicContact
           << (step_solver.has_friction() ? friction_law->description() :
                                            std::string("none"));
     if (step_solver.has_friction())
-      pcout << ", one-sided Lipschitz constant on [0, "
-            << parameters.friction.maximum_slip_rate << "] m/s: "
+      pcout << ", one-sided Lipschitz constant on the slip rates [0, "
+            << sig6(parameters.friction.maximum_slip_rate) << "]: "
             << sig6(friction_law->one_sided_lipschitz_constant(
                  parameters.friction.maximum_slip_rate))
             << (friction_law->is_constant() ? " (constant: one pass)" : "");
@@ -434,8 +434,9 @@ namespace DynamicContact
             mu[i] = friction_law->value(s[i]);
             if (!std::isfinite(mu[i]))
               throw CollectiveError(name +
-                                    " is not finite at s = " + sig6(s[i]) +
-                                    " m/s (" + scientific(mu[i]) + ").");
+                                    " is not finite at the slip rate s = " +
+                                    sig6(s[i]) + " (" + scientific(mu[i]) +
+                                    ").");
           }
         friction_law->check_nonnegative(s_max);
         double mu_max = 0; // the largest |mu| so far

@@ -557,9 +557,14 @@ namespace DynamicContact
                                      mu);
           }
 
+        // A provisional pass that gains less than 1 % on the best
+        // coefficient residual so far is finished (not 'no gain at all': a
+        // node that changes from stick to fast slip leaves a - b in two
+        // passes, equal but for round-off, and which pass was finished
+        // followed the round-off of the scene's units).
         Measures m = measure(pass);
         if (provisional && (m.converged || pass + 1 == max_passes ||
-                            m.coefficient_residual >= best_residual))
+                            m.coefficient_residual > 0.99 * best_residual))
           finish_provisional(pass, after_provisional, m);
         // A coupled pass's coefficient residual is 0 by construction: it
         // says nothing of how far the loop is from its end.

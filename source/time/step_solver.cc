@@ -91,15 +91,18 @@ namespace DynamicContact
     auto &newton = newtons[scheme.theta() == 0.5 ? 1 : 0];
     if (!newton)
       {
-        const ContactProblem<dim> problem{discretization,
-                                          bulk,
-                                          contact_boundary,
-                                          foundation,
-                                          planned_parameters,
-                                          timer,
-                                          details,
-                                          friction,
-                                          c_t};
+        ContactProblem<dim> problem{discretization,
+                                    bulk,
+                                    contact_boundary,
+                                    foundation,
+                                    planned_parameters,
+                                    timer,
+                                    details,
+                                    friction,
+                                    c_t};
+        if (lipschitz_constant > 0)
+          problem.slip_rate_accuracy =
+            friction_parameters.coefficient_tolerance / lipschitz_constant;
         if (plan.condensed)
           newton = std::make_unique<CondensedNewton<dim>>(problem);
         else

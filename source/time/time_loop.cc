@@ -627,7 +627,8 @@ namespace DynamicContact
                 statistics.coupled_fallbacks,
                 record.uniqueness_monitor ? statistics.uniqueness_bound : -1.,
                 record.uniqueness_monitor ? statistics.contraction_factor :
-                                            -1.});
+                                            -1.,
+                statistics.cycles});
     if (model.newton_residual() > parameters.solver.newton_tolerance)
       ++totals.stagnated_steps;
     state.max_relative_defect =

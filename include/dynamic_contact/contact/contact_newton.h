@@ -14,6 +14,7 @@
 #include <dynamic_contact/parameters/parameters.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,6 +61,14 @@ namespace DynamicContact
      * nodal laws use c = c_t k.
      */
     double c_t;
+    /**
+     * How accurately the convexification loop needs the slip rates:
+     * Friction/Coefficient tolerance over the law's one-sided Lipschitz
+     * constant (a velocity; infinite without a slip-rate dependent law).
+     * The condensed solver's whole-system phase takes a step where the
+     * solve left the nodal velocities of its boundary phase by more.
+     */
+    double slip_rate_accuracy = std::numeric_limits<double>::infinity();
   };
 
 

@@ -59,7 +59,33 @@ namespace DynamicContact
      * loop; the stagnation test keeps the Newton tolerance).
      */
     double tolerance = 0;
+    /**
+     * Newton steps taken before the stopping test may end the iteration
+     * (the condensed solver's whole-system phase where its start is not
+     * accurate enough for the convexification loop).
+     */
+    unsigned int minimum_iterations = 0;
   };
+
+
+  /**
+   * Whether @p current, whose active sets are those of the last iterate,
+   * returns to an iterate before the last one (the past iterates' sets
+   * @p history and residuals @p residuals): its sets and its residual to
+   * 1e-9 (relative, so in any units the same).
+   */
+  inline bool
+  revisits(const std::vector<std::uint64_t> &history,
+           const std::vector<double>        &residuals,
+           const NewtonMeasure              &current)
+  {
+    for (std::size_t j = 0; j + 1 < history.size(); ++j)
+      if (history[j] == current.signature &&
+          std::abs(residuals[j] - current.residual) <=
+            1e-9 * current.residual)
+        return true;
+    return false;
+  }
 
 
   /**
@@ -109,6 +135,7 @@ namespace DynamicContact
     Iterate                    full, trial;
     NewtonMeasure              current = problem.evaluate(x);
     std::vector<std::uint64_t> history; // active sets of the past iterates
+    std::vector<double>        residuals; // and their residuals
     std::vector<double>        merits;
     bool                       monotone          = policy.monotone;
     double                     previous_residual = 0;
@@ -124,21 +151,33 @@ namespace DynamicContact
           current.residual > policy.stagnation_factor * previous_residual &&
           current.residual < std::sqrt(tol);
         result.residual = current.residual;
-        if (current.residual <= stop_tol || stagnated)
+        if ((current.residual <= stop_tol || stagnated) &&
+            iteration >= policy.minimum_iterations)
           break;
         check_newton_cap(result.iterations, current.residual, parameters);
         previous_residual = current.residual;
 
-        // Active-set cycling: a return to sets seen before, with other sets
-        // in between (keeping the last sets, as a damped step does, is no
-        // cycle). The line search then damps the step (the remedy).
+        // Cycling: a return to active sets seen before, with other sets in
+        // between (keeping the last sets, as a damped step does, is no
+        // cycle), or to an iterate seen before (its sets and its residual
+        // again, to 1e-9, after another iterate: a cycle of full steps that
+        // the non-monotone rule below would accept for ever, e.g. of period
+        // 3 within its window of 5). The line search then damps the step
+        // (the remedy) and the rule turns monotone.
         const bool cycling =
-          history.size() >= 2 && current.signature != history.back() &&
-          std::find(history.begin(), history.end() - 1, current.signature) !=
-            history.end() - 1;
+          history.size() >= 2 &&
+          (current.signature != history.back() ?
+             std::find(history.begin(), history.end() - 1, current.signature) !=
+               history.end() - 1 :
+             revisits(history, residuals, current));
         result.cycles += cycling;
+        if (cycling && !monotone)
+          details << "    Newton " << result.iterations << " (" << policy.name
+                  << "): cycle detected, damped steps from here on"
+                  << std::endl;
         monotone = monotone || cycling;
         history.push_back(current.signature);
+        residuals.push_back(current.residual);
         const double merit_now = current.merit;
         merits.push_back(merit_now);
 

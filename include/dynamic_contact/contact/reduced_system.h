@@ -38,7 +38,7 @@ namespace DynamicContact
     std::vector<unsigned int>   active;
     double equilibrium_squares = 0; // sum |w_i - (w_free - C g)_i|^2
     double equilibrium         = 0; // largest
-    double f_scale             = 0;
+    double f_scale             = 0; // largest force, at least |b|_inf
     double law_residual        = 0; // largest
     double law_squares         = 0; // sum of squares
   };
@@ -56,7 +56,10 @@ namespace DynamicContact
    *   t_s^T sum_j C_ij (U_j y_j + T_j l_j) = t_s^T r_i - target_s,
    * sum_j k_j + (dim - 1) n_stick unknowns instead of dim n + (dim - 1)
    * n_stick (the same Newton step; in 2D about half as many unknowns, an
-   * LU several times cheaper). Stick rows are scaled by 1/(t_s^T C_ii t_s).
+   * LU several times cheaper). The unknown of a stick tangent is c_s l_s,
+   * c_s = t_s^T C_ii t_s, so that it is a velocity like y and every entry
+   * of the reduced matrix a pure number: its pivoting, and in single
+   * precision its accuracy, do not depend on the units of the scene.
    *
    * Systems of large_system unknowns or more are factorized in single
    * precision with refinement (MixedPrecisionLU), and a factorization
@@ -130,8 +133,8 @@ namespace DynamicContact
 
     /**
      * The unknowns of the current step, per active node: the row vectors
-     * (V_i, then the scaled tangents), the column vectors (U_i, then the
-     * tangents), the number of low-rank terms, the stick targets, and the
+     * (V_i, then the tangents), the column vectors (U_i, then the
+     * tangents over their compliance c_s), the number of low-rank terms, the stick targets, and the
      * offsets of each node's unknowns.
      */
     std::vector<unsigned int>                active;

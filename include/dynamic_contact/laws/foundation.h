@@ -103,13 +103,26 @@ namespace DynamicContact
      * The discrete gradient (Pi(b) - Pi(a))/(b - a): the compliance force of
      * the energy-consistent trapezoidal scheme, with which the work of the
      * force over a step is exactly the change of Pi (p((a+b)/2) as b -> a).
+     * Exact on the linear pieces of p: p((a+b)/2) where a and b lie on one,
+     * else the integral piece by piece (no difference of two values of Pi,
+     * and no threshold on b - a, which would be a length).
      */
     double
     discrete_gradient(const double a, const double b) const
     {
-      if (std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+      if (a == b || on_one_piece(a, b))
         return value(0.5 * (a + b));
-      return (primitive(b) - primitive(a)) / (b - a);
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      const double pieces[4] = {lo,
+                                std::clamp(0., lo, hi),
+                                std::clamp(kink, lo, hi),
+                                hi};
+      double       integral  = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        if (pieces[i + 1] > pieces[i])
+          integral += (pieces[i + 1] - pieces[i]) *
+                      value(0.5 * (pieces[i] + pieces[i + 1]));
+      return integral / (hi - lo);
     }
 
     /**
@@ -120,12 +133,17 @@ namespace DynamicContact
     double
     discrete_gradient_derivative(const double a, const double b) const
     {
-      const bool linear_piece = (a > 0 && b > 0 && a < kink && b < kink) ||
-                                (a <= 0 && b <= 0) || (a >= kink && b >= kink);
-      if (linear_piece ||
-          std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+      if (a == b || on_one_piece(a, b))
         return 0.5 * derivative(0.5 * (a + b));
       return dissipation(a, b) / ((b - a) * (b - a));
+    }
+
+    /** Whether a and b lie on one linear piece of the ramp. */
+    bool
+    on_one_piece(const double a, const double b) const
+    {
+      return (a > 0 && b > 0 && a < kink && b < kink) || (a <= 0 && b <= 0) ||
+             (a >= kink && b >= kink);
     }
 
     double
@@ -186,11 +204,14 @@ namespace DynamicContact
     {
       return std::max(0., value(b) * (b - a) - (primitive(b) - primitive(a)));
     }
-    /** (Pi(b) - Pi(a))/(b - a), f((a+b)/2) as b -> a. */
+    /**
+     * (Pi(b) - Pi(a))/(b - a), f((a+b)/2) as b -> a: where b - a is below
+     * close() of a and b, whose difference of Pi would cancel most digits.
+     */
     virtual double
     discrete_gradient(const double a, const double b) const
     {
-      if (std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+      if (close(a, b))
         return value(0.5 * (a + b));
       return (primitive(b) - primitive(a)) / (b - a);
     }
@@ -198,9 +219,20 @@ namespace DynamicContact
     virtual double
     discrete_gradient_derivative(const double a, const double b) const
     {
-      if (std::abs(b - a) <= 1e-12 * (1 + std::abs(a) + std::abs(b)))
+      if (close(a, b))
         return 0.5 * derivative(0.5 * (a + b));
       return dissipation(a, b) / ((b - a) * (b - a));
+    }
+    /**
+     * |b - a| at most 1e-8 (about the square root of the round-off) of
+     * max(|a|, |b|): relative, so that the same scene in other units takes
+     * the same branch. Then f((a+b)/2) errs by O((b - a)^2) where the
+     * quotient would lose 8 of its digits.
+     */
+    static bool
+    close(const double a, const double b)
+    {
+      return std::abs(b - a) <= 1e-8 * std::max(std::abs(a), std::abs(b));
     }
 
     /** Parse the law's own subsection (called inside it). */

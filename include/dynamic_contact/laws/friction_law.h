@@ -61,12 +61,21 @@ namespace DynamicContact
     check_nonnegative(const double s_max) const;
 
     /**
-     * Where the laws are checked on [0, s_max]: 0, a geometric sequence from
-     * 1e-9 (dense near 0, where laws change fastest) and 1000 equal steps,
-     * sorted.
+     * Where the laws are checked on [0, s_max]: 0, a geometric sequence
+     * from 1e-11 s_max (dense near 0, where laws change fastest) and 1000
+     * equal steps, sorted. Relative to s_max, so that a scene in other
+     * units is sampled at the same slip rates.
      */
     static std::vector<double>
     sample_points(const double s_max);
+
+    /**
+     * The slip rates of the scene, [0, s_max] (Friction/Maximum slip
+     * rate), for a law that needs a velocity scale of its own (the
+     * expression's difference quotient); called once before the run.
+     */
+    virtual void
+    set_slip_rate_window(const double s_max);
 
     /** Parse the law's own subsection (called inside it). */
     virtual void
@@ -177,12 +186,22 @@ namespace DynamicContact
     parse_parameters(ParameterHandler &prm) override;
     double
     value(const double s) const override;
+    /**
+     * A central difference quotient with the step h = 1e-6 max(s, s_law)
+     * (one-sided, of second order too, below s = h), s_law the slip rate
+     * over which mu changes by
+     * its range at its steepest slope on the window
+     * (set_slip_rate_window()): a velocity of the law, so that the step is
+     * the same in any consistent units.
+     */
     double
     derivative(const double s) const override;
     bool
     is_constant() const override;
     std::string
     description() const override;
+    void
+    set_slip_rate_window(const double s_max) override;
 
   private:
     /** Parse @p expression with the constants "name=value, ...". */
@@ -191,6 +210,8 @@ namespace DynamicContact
 
     std::string                        expression;
     std::unique_ptr<FunctionParser<1>> parser;
+    /** s_law of derivative() (1 before set_slip_rate_window()). */
+    double velocity_scale = 1;
   };
 } // namespace DynamicContact
 

@@ -114,6 +114,14 @@ namespace DynamicContact
       declare_parameters(ParameterHandler &prm);
       void
       parse_parameters(ParameterHandler &prm);
+
+      /**
+       * sqrt((lambda + 2 mu)/rho) with the Lame constants of E and the
+       * Poisson ratio: the body's P-wave speed, a velocity scale of the
+       * scene.
+       */
+      double
+      p_wave_speed() const;
     };
 
     struct Foundation
@@ -138,7 +146,11 @@ namespace DynamicContact
        */
       std::shared_ptr<const FrictionLaw> law;
       std::string                        law_name;
-      double maximum_slip_rate; // range on which mu is checked
+      /**
+       * The slip rates [0, maximum_slip_rate] on which mu is checked (the
+       * entry, or for 'auto' the P-wave speed of the material).
+       */
+      double maximum_slip_rate;
 
       // Convexification loop (doc/theory.md section 4).
       double       convexification_tolerance; // epsilon_conv, eq. (85)
@@ -174,7 +186,7 @@ namespace DynamicContact
       static void
       declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler &prm, const Material &material);
 
       bool
       enabled() const

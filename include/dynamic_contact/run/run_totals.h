@@ -28,6 +28,11 @@ namespace DynamicContact
     /** Coupled passes that fell back to the frozen loop. */
     unsigned int coupled_fallbacks = 0;
     /**
+     * Steps in which a Newton iteration came back to active sets or an
+     * iterate it had seen (a cycle), which its line search then damped.
+     */
+    unsigned int cycling_steps = 0;
+    /**
      * The uniqueness measures (doc/theory.md section 5.2): the steps whose
      * contraction factor was 1 or more (the frozen loop may be repelled
      * from the solution), the steps where the paper's bound was evaluated
@@ -49,6 +54,7 @@ namespace DynamicContact
       unsigned int coupled_fallbacks;
       double       uniqueness_bound;   // -1: not evaluated
       double       contraction_factor; // -1: not evaluated
+      unsigned int active_set_cycles;  // Newton cycles answered by damping
     };
 
     /** Add the counts of one step. */

@@ -1,0 +1,1231 @@
+#!/usr/bin/python3
+"""The test `convert_units`: scripts/convert-units converts scenes between
+the unit systems SI, mm-t-s and in-lbf-s exactly.
+
+    convert_units.py --work-dir DIR [--source-dir REPO] [--program EXE]
+
+1. Every prm/*.prm and prm/stress/*.prm (and the rail on its MSH 2.2
+   mesh, and the scene of 2.) goes SI -> mm-t-s -> in-lbf-s -> SI and
+   comes back to itself in the values a run uses (the program's defaults
+   filled in where a file leaves an entry out, since the conversion
+   writes them out): numbers to 1e-12 (relative), the functions
+   evaluated at a few points to 1e-12 and textually the same (the unit
+   constants taken out again; components that are numbers to 1e-12), the
+   mesh file's node coordinates to 1e-12. On the way, the mm-t-s scene
+   states exactly the defaults of a dimension that the scene leaves out
+   and that are not 0 (nor converted with a factor of 1), converted
+   exactly; its functions at the points scaled to mm equal the SI ones
+   times their factor (1e-12), and its mesh nodes are 1000 times the SI
+   ones (correctly rounded). With --program, every converted scene passes
+   `dynamic-contact --validate`.
+2. Known values, computed here from the definitions (inch = 0.0254 m, lbf =
+   4.4482216152605 N) in exact arithmetic: E = 2.1e11 Pa is 2.1e5 MPa and
+   30457924.92... psi, the density 7850 kg/m^3 is 7.85e-9 t/mm^3, and one
+   entry of every other dimension; the friction law mu(s) of the slip rate.
+   'auto' stays in Friction/Maximum slip rate and the Windows of Mesh
+   refinement (also in a test-overrides line), 0 (automatic) stays 0 in
+   Time/Minimum and Maximum time step and Friction/Complementarity
+   constant (with --program: the scenes pass --validate).
+3. Errors: an unknown entry or subsection, a number that does not parse
+   ('auto' in another entry too), an include line, an old-layout entry, an
+   unclosed subsection, Variable names that do not fit the dimension are
+   refused with exit code 1 and one message naming the file, the line and
+   the entry, and nothing is written; so are an unknown unit system and
+   -o IN.prm.
+4. The converter's table (--print-table) has exactly the entries of
+   doc/parameters.md, and where the documentation gives a unit in an
+   entry's text, the table's dimension is that unit (but for the known
+   disagreement below); a number of a dimension has its unit in the text.
+5. The defaults a scene leaves out: a minimal 2D scene (an exponential
+   friction law, an initial velocity) in mm-t-s gets, each with the
+   comment '# default of the program (SI), converted', Density 1e-9,
+   Young modulus 1e5, Stiffness 5 N/mm^3, the caps, the damping, Decay
+   rate 2 s/mm and Upper right 2000, 100 (not the times: factor 1; not
+   Lower left: 0), as the exact text expected, in new blocks at the end;
+   a 3D scene that has some of the subsections gets them there, before
+   their 'end', at their indentation; back to SI they are the defaults
+   again; a scene in mm-t-s converted to SI states the defaults as it ran
+   them (Density 1000 t/mm^3 = 1e15 kg/m^3), and no corners for a gmsh
+   mesh. With --program: these scenes pass --validate, and the minimal
+   scene runs three steps identically in SI and in mm-t-s (iterations,
+   contact states, mu; displacements times 1000).
+6. With --program: the converter's table of defaults (DEFAULTS) has every
+   number and list of a dimension of its table, and is what
+   `dynamic-contact --print-parameters=json` prints in 2D and in 3D; the
+   functions of a dimension are 0 by default.
+
+Standard library only. Prints one line per check; exit code 1 if one fails.
+"""
+
+import csv
+import importlib.machinery
+import importlib.util
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+from fractions import Fraction
+
+from script_checks import check, finish, write
+
+INCH = Fraction("0.0254")
+LBF = Fraction("4.4482216152605")
+# (length, mass, time) of each system in SI units.
+SYSTEMS = {"SI": (Fraction(1), Fraction(1), Fraction(1)),
+           "mm-t-s": (Fraction(1, 1000), Fraction(1000), Fraction(1)),
+           "in-lbf-s": (INCH, LBF / INCH, Fraction(1))}
+
+# The dimension (L, M, T) of the value of each function of space and time.
+FUNCTIONS = {
+    "Body force": (-2, 1, -2),
+    "Boundary conditions/Traction function": (-1, 1, -2),
+    "Boundary conditions/Contact source": (-1, 1, -2),
+    "Initial conditions/Displacement": (1, 0, 0),
+    "Initial conditions/Velocity": (1, 0, -1),
+    "Exact solution/Displacement": (1, 0, 0),
+    "Exact solution/Velocity": (1, 0, -1),
+    "Foundation/Initial gap": (1, 0, 0),
+}
+
+# The units of doc/parameters.md's texts: (L, M, T) of each symbol.
+SYMBOLS = {"m": (1, 0, 0), "kg": (0, 1, 0), "s": (0, 0, 1),
+           "N": (1, 1, -2), "Pa": (-1, 1, -2)}
+UNIT_RE = re.compile(r"(?:Pa|N|kg|m|s)(?:\^-?\d+)?"
+                     r"(?:(?: |/)(?:Pa|N|kg|m|s)(?:\^-?\d+)?)*")
+
+
+def doc_unit(text):
+    """The dimension of the first unit in parentheses in an entry's text
+    of doc/parameters.md ("(Pa)", "(kg/m^3)", "(Pa s/m), >= 0", "(Pa s/m^2
+    ... scaled like E/h)"; not the argument of "mu(s)"), None if none."""
+    for group in re.findall(r"(?<![A-Za-z0-9_])\(([^()]*)\)", text):
+        m = UNIT_RE.match(group)
+        if not m or not re.match(r"\s*($|,|;|\.\.\.)", group[m.end():]):
+            continue
+        dimension = [0, 0, 0]
+        sign = 1
+        for separator, symbol, power in re.findall(
+                r"(^|[ /])(Pa|N|kg|m|s)(?:\^(-?\d+))?", m.group()):
+            if separator == "/":
+                sign = -1
+            for i in range(3):
+                dimension[i] += sign * int(power or 1) * SYMBOLS[symbol][i]
+        return tuple(dimension)
+    return None
+
+
+# Where the documentation's text and the converter disagree on purpose:
+# c = c_t k, and c m_i w_tau is a nodal force (m_i an area), so c_t is a
+# force per volume (Pa/m), like its default E/h; the text's "Pa s/m^2" is
+# the unit of c/h, not of c_t.
+DOC_DISAGREEMENTS = {"Friction/Complementarity constant"}
+# Times whose texts give no unit.
+DOC_WITHOUT_UNIT = {"Time/Maximum time step", "Time/Minimum time step"}
+
+
+def unit(system, dimension):
+    u = Fraction(1)
+    for b, e in zip(SYSTEMS[system], dimension):
+        u *= b ** e
+    return u
+
+
+def factor(source, target, dimension):
+    """A value of @p dimension in @p source times this is in @p target."""
+    return unit(source, dimension) / unit(target, dimension)
+
+
+def exact(x, f):
+    return float(Fraction(x) * f)
+
+
+def close(a, b, tolerance=1e-12, scale=0.0):
+    return abs(a - b) <= tolerance * max(abs(a), abs(b), scale)
+
+
+# ------------------------------------------------- muparser expressions
+class Expression:
+    """A muparser expression (deal.II's FunctionParser syntax) evaluated
+    in Python: numbers, names, + - * / ^, comparisons, && ||, a ? b : c,
+    and the usual functions."""
+
+    FUNCTIONS = {
+        "sin": math.sin, "cos": math.cos, "tan": math.tan,
+        "asin": math.asin, "acos": math.acos, "atan": math.atan,
+        "sinh": math.sinh, "cosh": math.cosh, "tanh": math.tanh,
+        "exp": math.exp, "log": math.log, "ln": math.log,
+        "log10": math.log10, "sqrt": math.sqrt, "abs": abs,
+        "floor": math.floor, "ceil": math.ceil, "pow": math.pow,
+        "atan2": math.atan2, "min": min, "max": max,
+        "sign": lambda x: (x > 0) - (x < 0),
+        "if": lambda c, a, b: a if c else b,
+    }
+    TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?"
+                       r"\d+)?)|([A-Za-z_][A-Za-z0-9_]*)|(&&|\|\||<=|>=|==|"
+                       r"!=|[-+*/^(),?:<>!]))")
+
+    def __init__(self, text):
+        self.tokens = []
+        position = 0
+        text = text.rstrip()
+        while position < len(text):
+            m = self.TOKEN.match(text, position)
+            if not m:
+                raise ValueError("cannot read '%s' at %d" % (text, position))
+            self.tokens.append(m.group(1) and ("num", float(m.group(1))) or
+                               m.group(2) and ("id", m.group(2)) or
+                               ("op", m.group(3)))
+            position = m.end()
+
+    def __call__(self, names):
+        self.names = names
+        self.k = 0
+        value = self.ternary()
+        if self.k != len(self.tokens):
+            raise ValueError("unexpected %r" % (self.tokens[self.k],))
+        return value
+
+    def peek(self):
+        return self.tokens[self.k][1] if self.k < len(self.tokens) else None
+
+    def take(self, op=None):
+        token = self.tokens[self.k]
+        if op is not None and token[1] != op:
+            raise ValueError("expected %s, got %r" % (op, token))
+        self.k += 1
+        return token
+
+    def ternary(self):
+        c = self.binary(0)
+        if self.peek() == "?":
+            self.take()
+            a = self.ternary()
+            self.take(":")
+            b = self.ternary()
+            return a if c else b
+        return c
+
+    LEVELS = [("||",), ("&&",), ("==", "!=", "<", ">", "<=", ">="),
+              ("+", "-"), ("*", "/")]
+
+    def binary(self, level):
+        if level == len(self.LEVELS):
+            return self.unary()
+        value = self.binary(level + 1)
+        while self.peek() in self.LEVELS[level] and \
+                self.tokens[self.k][0] == "op":
+            op = self.take()[1]
+            right = self.binary(level + 1)
+            value = {"||": lambda a, b: float(bool(a) or bool(b)),
+                     "&&": lambda a, b: float(bool(a) and bool(b)),
+                     "==": lambda a, b: float(a == b),
+                     "!=": lambda a, b: float(a != b),
+                     "<": lambda a, b: float(a < b),
+                     ">": lambda a, b: float(a > b),
+                     "<=": lambda a, b: float(a <= b),
+                     ">=": lambda a, b: float(a >= b),
+                     "+": lambda a, b: a + b, "-": lambda a, b: a - b,
+                     "*": lambda a, b: a * b,
+                     "/": lambda a, b: a / b}[op](value, right)
+        return value
+
+    def unary(self):
+        if self.peek() in ("-", "+", "!") and self.tokens[self.k][0] == "op":
+            op = self.take()[1]
+            value = self.unary()
+            return -value if op == "-" else (
+                value if op == "+" else float(not value))
+        return self.power()
+
+    def power(self):
+        base = self.primary()
+        if self.peek() == "^":
+            self.take()
+            return math.pow(base, self.unary())
+        return base
+
+    def primary(self):
+        kind, value = self.take()
+        if kind == "num":
+            return value
+        if kind == "id":
+            if self.peek() == "(":
+                self.take()
+                arguments = [self.ternary()]
+                while self.peek() == ",":
+                    self.take()
+                    arguments.append(self.ternary())
+                self.take(")")
+                return float(self.FUNCTIONS[value](*arguments))
+            return self.names[value]
+        if value == "(":
+            inner = self.ternary()
+            self.take(")")
+            return inner
+        raise ValueError("unexpected %r" % value)
+
+
+def constants_of(text):
+    names = {"pi": math.pi, "Pi": math.pi}
+    for item in text.split(","):
+        if item.strip():
+            name, value = item.split("=")
+            names[name.strip()] = float(value)
+    return names
+
+
+def evaluate(expression, constants, variables, point):
+    """The components of @p expression at @p point (values of the
+    @p variables)."""
+    names = constants_of(constants)
+    names.update(zip(variables, point))
+    return [Expression(c)(names) for c in expression.split(";")]
+
+
+# ------------------------------------------------------------ utilities
+def load_prm_reader(source_dir):
+    """read_prm of python/dynamic_contact/prm.py (without the package,
+    which needs numpy)."""
+    path = os.path.join(source_dir, "python", "dynamic_contact", "prm.py")
+    spec = importlib.util.spec_from_file_location("dc_prm", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.read_prm
+
+
+def mesh_nodes(path):
+    """The node coordinates [x, y, z, ...] of a MSH 2 or 4.1 ASCII file."""
+    with open(path) as f:
+        lines = [l.strip() for l in f]
+    version = lines[lines.index("$MeshFormat") + 1].split()[0]
+    k = lines.index("$Nodes") + 1
+    coordinates = []
+    if version.startswith("2"):
+        n = int(lines[k])
+        for line in lines[k + 1:k + 1 + n]:
+            coordinates.extend(float(v) for v in line.split()[1:4])
+        return coordinates
+    blocks = int(lines[k].split()[0])
+    k += 1
+    for _ in range(blocks):
+        n = int(lines[k].split()[3])
+        k += 1 + n
+        for line in lines[k:k + n]:
+            coordinates.extend(float(v) for v in line.split()[:3])
+        k += n
+    return coordinates
+
+
+def load_script(path):
+    """The script @p path (no .py) as a module: its tables."""
+    loader = importlib.machinery.SourceFileLoader("convert_units_script",
+                                                  path)
+    spec = importlib.util.spec_from_loader(loader.name, loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+class Converter:
+    def __init__(self, source_dir):
+        self.script = os.path.join(source_dir, "scripts", "convert-units")
+        self.module = load_script(self.script)
+
+    def run(self, *arguments):
+        return subprocess.run([sys.executable, self.script] + list(arguments),
+                              capture_output=True, text=True)
+
+    def convert(self, source, target, path, output):
+        r = self.run("--from", source, "--to", target, path, "-o", output)
+        if r.returncode != 0:
+            raise RuntimeError(r.stderr.strip())
+
+
+def points(dimension, system="SI"):
+    """Points (x, y, [z,] t) in the units of @p system."""
+    si = [(0.375, 0.0625, 0.03125, 0.3125), (1.25, 0.046875, 0.0859375, 0.625),
+          (0.8125, 0.015625, 0.0703125, 0.9375)]
+    f = float(factor("SI", system, (1, 0, 0)))
+    return [tuple(c * f for c in p[:dimension]) + (p[3],) for p in si]
+
+
+def variables_of(entries, subsection, dimension):
+    names = entries.get(subsection + "/Variable names",
+                        "x,y,t" if dimension == 2 else "x,y,z,t")
+    return [v.strip() for v in names.split(",")]
+
+
+def number_list(text):
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        return None
+
+
+def nonzero_numbers(text):
+    """True if @p text is a number or list of numbers not all 0."""
+    numbers = number_list(text) if text.strip() else None
+    return bool(numbers) and any(numbers)
+
+
+def unstated_defaults(module, entries):
+    """{entry: the program's default} of the numbers of a dimension that
+    @p entries (a scene) leave out and whose default is not 0 (the corners
+    of the rectangle: only for Type = rectangle), by the converter's table
+    of defaults (which check_defaults() compares with the program)."""
+    dimension = int(entries.get("Dimension", "2"))
+    rectangle = entries.get("Geometry/Type", "rectangle") == "rectangle"
+    out = {}
+    for key in module.DEFAULTS:
+        text = module.default_of(key, dimension)
+        if key not in entries and nonzero_numbers(text) and \
+                (rectangle or key not in module.RECTANGLE_ONLY):
+            out[key] = text
+    return out
+
+
+def with_defaults(module, entries):
+    """@p entries with the defaults they leave out: the values a run
+    uses."""
+    out = dict(entries)
+    dimension = int(entries.get("Dimension", "2"))
+    for key in module.DEFAULTS:
+        out.setdefault(key, module.default_of(key, dimension))
+    return out
+
+
+def differences(a, back):
+    """What differs between the entries @p a and @p back: numbers to
+    1e-12, expressions and constants as they were (but for components
+    that are numbers), the mesh file's name not at all."""
+    problems = []
+    for key in sorted(set(a) | set(back)):
+        if key not in a:
+            if not (key.endswith("/Function constants") and not back[key]):
+                problems.append("%s added" % key)
+            continue
+        if key not in back:
+            problems.append("%s lost" % key)
+            continue
+        x, y = a[key], back[key]
+        if key == "Geometry/Mesh file" or x == y:
+            continue
+        if key.endswith("/Function constants"):
+            if constants_of(x) != constants_of(y):
+                problems.append(key)
+            continue
+        if key.endswith("/Function expression"):
+            # The same text, but for components that are numbers.
+            u, v = x.split(";"), y.split(";")
+            if len(u) != len(v) or not all(
+                    p.strip() == q.strip() or (
+                        number_list(p) and number_list(q) and
+                        close(number_list(p)[0], number_list(q)[0]))
+                    for p, q in zip(u, v)):
+                problems.append("%s: '%s' -> '%s'" % (key, x, y))
+            continue
+        u, v = number_list(x), number_list(y)
+        if u is None or v is None or len(u) != len(v) or \
+                not all(close(p, q) for p, q in zip(u, v)):
+            problems.append("%s: '%s' -> '%s'" % (key, x, y))
+    return problems
+
+
+# ----------------------------------------------------------------- 1.
+def check_scene(converter, read_prm, work, relative, original, program):
+    """The round trip of the scene @p original (named @p relative)."""
+    name = re.sub(r"[^A-Za-z0-9_.-]+", "_",
+                  os.path.splitext(relative)[0]).strip("_")
+    directory = os.path.join(work, "round_trip", name)
+    os.makedirs(directory, exist_ok=True)
+    chain = [("SI", original)]
+    try:
+        for system, tag in (("mm-t-s", "mm"), ("in-lbf-s", "in"),
+                            ("SI", "si")):
+            out = os.path.join(directory, "%s_%s.prm" % (name, tag))
+            converter.convert(chain[-1][0], system, chain[-1][1], out)
+            chain.append((system, out))
+    except RuntimeError as e:
+        check(False, "%s: converts SI -> mm-t-s -> in-lbf-s -> SI (%s)"
+              % (relative, e))
+        return
+    check(True, "%s: converts SI -> mm-t-s -> in-lbf-s -> SI" % relative)
+    a = read_prm(original)
+    mm = read_prm(chain[1][1])
+    back = read_prm(chain[3][1])
+    dimension = int(a.get("Dimension", "2"))
+    module = converter.module
+
+    # The defaults the scene leaves out: stated in mm-t-s, converted.
+    expected = {}
+    for key, text in unstated_defaults(module, a).items():
+        f = factor("SI", "mm-t-s", module.TABLE[key][1])
+        if f != 1:
+            expected[key] = [exact(v, f) for v in number_list(text)]
+    stated = {key: number_list(mm[key]) for key in mm
+              if key not in a and key in module.DEFAULTS}
+    check(stated == expected, "%s: the mm-t-s scene states the defaults "
+          "the scene leaves out (not 0, a factor other than 1), converted "
+          "exactly: %s" % (relative, ", ".join(
+              "%s = %s" % (key.split("/", 1)[-1], mm.get(key))
+              for key in sorted(set(stated) | set(expected))) or "none"))
+
+    # Back to itself: the values a run uses (the defaults filled in).
+    problems = differences(with_defaults(module, a),
+                           with_defaults(module, back))
+    check(not problems, "%s: the round trip gives every value a run uses "
+          "back (numbers to 1e-12, expressions and constants as they "
+          "were, but for components that are numbers)%s"
+          % (relative, "" if not problems else ": " + "; ".join(problems)))
+
+    # The functions: evaluated, round trip and mm-t-s.
+    problems = []
+    for subsection, dimension_of_value in FUNCTIONS.items():
+        key = subsection + "/Function expression"
+        if not a.get(key, "").strip():
+            continue
+        constants_key = subsection + "/Function constants"
+        variables = variables_of(a, subsection, dimension)
+        f = float(factor("SI", "mm-t-s", dimension_of_value))
+        for p, q in zip(points(dimension), points(dimension, "mm-t-s")):
+            reference = evaluate(a[key], a.get(constants_key, ""), variables,
+                                 p)
+            scale = max(abs(r) for r in reference)
+            again = evaluate(back[key], back.get(constants_key, ""),
+                             variables_of(back, subsection, dimension), p)
+            in_mm = evaluate(mm[key], mm.get(constants_key, ""),
+                             variables_of(mm, subsection, dimension), q)
+            if not all(close(r, s, scale=scale)
+                       for r, s in zip(reference, again)):
+                problems.append("%s round trip at %s" % (subsection, p))
+            if not all(close(r * f, s, scale=scale * f)
+                       for r, s in zip(reference, in_mm)):
+                problems.append("%s in mm-t-s at %s" % (subsection, q))
+    check(not problems, "%s: the functions evaluated: the same after the "
+          "round trip, and in mm-t-s at the points in mm the SI values "
+          "times their factor (1e-12)%s"
+          % (relative, "" if not problems else ": " + "; ".join(problems)))
+
+    if a.get("Geometry/Type") == "gmsh":
+        def mesh(prm_path, entries):
+            return mesh_nodes(os.path.join(os.path.dirname(prm_path),
+                                           entries["Geometry/Mesh file"]))
+        nodes = mesh(original, a)
+        nodes_mm = mesh(chain[1][1], mm)
+        nodes_back = mesh(chain[3][1], back)
+        check(os.path.dirname(os.path.join(
+            directory, mm["Geometry/Mesh file"])) == directory and
+            mm["Geometry/Mesh file"] == name + "_mm.msh",
+            "%s: the mm-t-s scene names its mesh copy next to it" % relative)
+        check(nodes_mm == [exact(x, 1000) for x in nodes],
+              "%s: the mm-t-s mesh's nodes are 1000 times the SI ones "
+              "(correctly rounded)" % relative)
+        check(len(nodes_back) == len(nodes) and
+              all(close(x, y, scale=1e-3) for x, y in zip(nodes, nodes_back)),
+              "%s: the mesh's nodes come back to 1e-12" % relative)
+
+    if program:
+        failed = []
+        for system, path in chain[1:]:
+            r = subprocess.run([program, "--validate", path],
+                               capture_output=True, text=True,
+                               cwd=directory)
+            if r.returncode != 0:
+                failed.append("%s: %s" % (system, (r.stdout + r.stderr)
+                                          .strip().splitlines()[-1:]))
+        check(not failed, "%s: the converted scenes pass dynamic-contact "
+              "--validate%s" % (relative, "" if not failed else
+                                ": " + "; ".join(failed)))
+
+
+# ----------------------------------------------------------------- 2.
+KNOWN = """# test-overrides: Geometry/Upper right=4, 0.2 | Time/End time=0.1
+set Dimension = 2
+subsection Geometry
+  set Lower left  = 0, -0.25
+  set Upper right = 2, 0.1   # the rail
+end
+subsection Material
+  set Density          = 7850
+  set Young modulus    = 2.1e11
+  set Viscosity mu     = 1e3
+end
+subsection Foundation
+  subsection Normal compliance
+    subsection Capped ramp
+      set Stiffness = 5e9
+      set Cap = 1e17
+    end
+  end
+  subsection Normal damping
+    subsection Capped ramp
+      set Coefficient = 1e8
+    end
+  end
+end
+subsection Friction
+  set Law = expression
+  set Maximum slip rate = 100
+  set Complementarity constant = 1e12
+  subsection Exponential
+    set Decay rate = 2000
+  end
+  subsection Expression
+    set Function expression = 0.5 + 0.5*exp(-alpha*s)
+    set Function constants = alpha=2000
+  end
+end
+subsection Mesh refinement
+  subsection Load following
+    set Window = 0.2
+    set Threshold = 0.05
+  end
+end
+subsection Body force
+  set Function expression = 0; -9810
+end
+subsection Time
+  set End time = 0.8
+  set Time step = 0.0078125
+end
+subsection Output
+  set Output times = 0.2, 0.4
+end
+"""
+
+# entry: (SI value, dimension)
+KNOWN_VALUES = {
+    "Material/Young modulus": (2.1e11, (-1, 1, -2)),
+    "Material/Density": (7850, (-3, 1, 0)),
+    "Material/Viscosity mu": (1e3, (-1, 1, -1)),
+    "Foundation/Normal compliance/Capped ramp/Stiffness": (5e9, (-2, 1, -2)),
+    "Foundation/Normal compliance/Capped ramp/Cap": (1e17, (-1, 1, -2)),
+    "Foundation/Normal damping/Capped ramp/Coefficient": (1e8, (-2, 1, -1)),
+    "Friction/Maximum slip rate": (100, (1, 0, -1)),
+    "Friction/Complementarity constant": (1e12, (-2, 1, -2)),
+    "Friction/Exponential/Decay rate": (2000, (-1, 0, 1)),
+    "Mesh refinement/Load following/Window": (0.2, (1, 0, 0)),
+    "Mesh refinement/Load following/Threshold": (0.05, (0, 0, 0)),
+    "Time/End time": (0.8, (0, 0, 1)),
+    "Time/Time step": (0.0078125, (0, 0, 1)),
+}
+
+
+def check_known_values(converter, read_prm, work):
+    directory = os.path.join(work, "known")
+    os.makedirs(directory, exist_ok=True)
+    path = os.path.join(directory, "known.prm")
+    write(path, KNOWN)
+    converted = {}
+    for system in ("mm-t-s", "in-lbf-s"):
+        out = os.path.join(directory, "known_%s.prm" % system)
+        converter.convert("SI", system, path, out)
+        converted[system] = read_prm(out)
+    mm, psi = converted["mm-t-s"], converted["in-lbf-s"]
+
+    check(mm["Material/Young modulus"] == "210000",
+          "E = 2.1e11 Pa is 210000 MPa")
+    e_psi = Fraction(2.1e11) * INCH ** 2 / LBF
+    check(float(psi["Material/Young modulus"]) == float(e_psi) and
+          psi["Material/Young modulus"].startswith("30457924.92"),
+          "E = 2.1e11 Pa is 30457924.92... psi (2.1e11 in^2/lbf, "
+          "correctly rounded)")
+    check(mm["Material/Density"] == "7.85e-09",
+          "the density 7850 kg/m^3 is 7.85e-9 t/mm^3")
+    rho_psi = Fraction(7850) * INCH ** 3 / (LBF / INCH)
+    check(float(psi["Material/Density"]) == float(rho_psi),
+          "the density in lbf s^2/in^4")
+    wrong = []
+    for system, entries in converted.items():
+        for key, (value, dimension) in KNOWN_VALUES.items():
+            expected = exact(value, factor("SI", system, dimension))
+            if float(entries[key]) != expected:
+                wrong.append("%s %s: %s, not %r"
+                             % (system, key, entries[key], expected))
+        for key in ("Geometry/Lower left", "Geometry/Upper right"):
+            expected = [exact(float(v), factor("SI", system, (1, 0, 0)))
+                        for v in read_prm(path)[key].split(",")]
+            if number_list(entries[key]) != expected:
+                wrong.append("%s %s" % (system, key))
+    check(not wrong, "every dimension: the stiffness, caps, damping, "
+          "viscosity, slip rate, c_t, decay rate, windows, lists of lengths "
+          "converted exactly, the threshold and the times unchanged%s"
+          % ("" if not wrong else ": " + "; ".join(wrong)))
+    check(mm["Time/End time"] == "0.8" and
+          mm["Output/Output times"] == "0.2, 0.4" and
+          mm["Geometry/Lower left"] == "0, -250",
+          "times keep their text (factor 1), 0 stays 0")
+    check(mm["Body force/Function expression"] == "0; -9.81e-06",
+          "a body force component that is a number: 9810 N/m^3 is "
+          "9.81e-6 N/mm^3; 0 stays 0")
+    with open(os.path.join(directory, "known_mm-t-s.prm")) as f:
+        text = f.read()
+    check(text.startswith("# Units: mm-t-s") and "  set Upper right = 2000,"
+          " 100   # the rail\n" in text,
+          "a first comment line names the units; comments and indentation "
+          "stay")
+    check("# test-overrides: Geometry/Upper right=4000, 200 | Time/End "
+          "time=0.1\n" in text,
+          "the values of a '# test-overrides:' line are converted")
+
+    # mu(s): the slip rate in mm/s and in in/s.
+    for system, entries in converted.items():
+        v = float(factor("SI", system, (1, 0, -1)))
+        mu = Expression(entries["Friction/Expression/Function expression"])
+        names = constants_of(entries["Friction/Expression/Function constants"])
+        ok = True
+        for s in (0.0, 1e-4, 5e-4, 0.01):
+            names["s"] = s * v
+            ok = ok and close(mu(names), 0.5 + 0.5 * math.exp(-2000 * s))
+        check(ok and "unit_velocity" in names,
+              "friction law 'expression' in %s: mu(s * %.6g) is mu(s) of "
+              "the SI scene" % (system, v))
+
+
+# ------------------------------------------------------- 2. 'auto', 0
+AUTO_SCENE = """# test-overrides: Friction/Maximum slip rate=auto
+subsection Friction
+  set Law = constant
+  set Maximum slip rate = auto
+  set Complementarity constant = 0
+end
+subsection Mesh refinement
+  subsection Contact following
+    set Window = auto
+  end
+  subsection Load following
+    set Window = auto
+  end
+end
+subsection Time
+  set Minimum time step = 0
+  set Maximum time step = 0
+end
+"""
+
+
+def check_auto(converter, read_prm, work, program):
+    """'auto' stays 'auto' where the program takes it; 0 (automatic)
+    stays 0."""
+    directory = os.path.join(work, "auto")
+    os.makedirs(directory, exist_ok=True)
+    path = os.path.join(directory, "auto.prm")
+    write(path, AUTO_SCENE)
+    original = read_prm(path)
+    for system in ("mm-t-s", "in-lbf-s"):
+        out = os.path.join(directory, "auto_%s.prm" % system)
+        try:
+            converter.convert("SI", system, path, out)
+        except RuntimeError as e:
+            check(False, "'auto' and 0 in %s: converted (%s)" % (system, e))
+            continue
+        entries = read_prm(out)
+        with open(out) as f:
+            text = f.read()
+        check(all(entries[key] == original[key] for key in original) and
+              "# test-overrides: Friction/Maximum slip rate=auto\n" in text,
+              "%s: 'auto' stays in Friction/Maximum slip rate and the "
+              "Windows of Contact and Load following (also in a "
+              "test-overrides line), 0 in Time/Minimum and Maximum time "
+              "step and Friction/Complementarity constant stays 0" % system)
+        if program:
+            r = subprocess.run([program, "--validate", out],
+                               capture_output=True, text=True,
+                               cwd=directory)
+            last = (r.stdout + r.stderr).strip().splitlines()[-1:]
+            check(r.returncode == 0, "%s: the scene with 'auto' passes "
+                  "dynamic-contact --validate%s"
+                  % (system, "" if r.returncode == 0 else ": %s" % last))
+
+
+# ----------------------------------------------------------------- 5.
+# A scene that sets next to nothing: it runs with the program's defaults,
+# numbers of SI, which the mm-t-s scene must state converted.
+MINIMAL = """set Dimension = 2
+subsection Friction
+  set Law = exponential
+end
+subsection Initial conditions
+  subsection Velocity
+    set Function expression = 1; -0.1
+  end
+end
+"""
+
+COMMENT = "  # default of the program (SI), converted"
+
+MINIMAL_MM = """set Dimension = 2
+subsection Friction
+  set Law = exponential
+  subsection Exponential
+    set Decay rate = 2%(c)s
+  end
+end
+subsection Initial conditions
+  subsection Velocity
+    set Function expression = 1000; -100
+  end
+end
+
+subsection Foundation
+  subsection Normal compliance
+    subsection Capped ramp
+      set Stiffness = 5%(c)s
+      set Cap = 100000000000%(c)s
+    end
+  end
+  subsection Normal damping
+    subsection Capped ramp
+      set Coefficient = 0.1%(c)s
+      set Cap = 100000000000%(c)s
+    end
+  end
+end
+subsection Geometry
+  set Upper right = 2000, 100%(c)s
+end
+subsection Material
+  set Density = 1e-09%(c)s
+  set Young modulus = 100000%(c)s
+end
+""" % {"c": COMMENT}
+
+# Entries into the subsections the file has (before their 'end'), at
+# their depth; in 3D.
+PARTIAL = """set Dimension = 3
+subsection Boundary conditions
+    set Roller = 4, 5
+end
+subsection Material
+    set Poisson ratio = 0.25
+end
+subsection Foundation
+    subsection Normal compliance
+        subsection Capped ramp
+            set Stiffness = 1e10
+        end
+    end
+end
+subsection Time
+    set End time = 0.5
+end
+"""
+
+PARTIAL_MM = """set Dimension = 3
+subsection Boundary conditions
+    set Roller = 4, 5
+end
+subsection Material
+    set Poisson ratio = 0.25
+    set Density = 1e-09%(c)s
+    set Young modulus = 100000%(c)s
+end
+subsection Foundation
+    subsection Normal compliance
+        subsection Capped ramp
+            set Stiffness = 10
+            set Cap = 100000000000%(c)s
+        end
+    end
+    subsection Normal damping
+        subsection Capped ramp
+            set Coefficient = 0.1%(c)s
+            set Cap = 100000000000%(c)s
+        end
+    end
+end
+subsection Time
+    set End time = 0.5
+end
+
+subsection Friction
+    subsection Exponential
+        set Decay rate = 2%(c)s
+    end
+end
+subsection Geometry
+    set Upper right = 2000, 100, 100%(c)s
+end
+""" % {"c": COMMENT}
+
+
+def run_steps(program, path, output, steps=3):
+    """Runs the scene @p path for @p steps steps of its Time step (the
+    default) into @p output; the run's time series and contact files."""
+    r = subprocess.run([program, "--set", "Time/End time=%r" %
+                        (steps * 0.0078125), "--set", "Output/Directory=" +
+                        output, "--set", "Output/Write VTU=false", path],
+                       capture_output=True, text=True,
+                       cwd=os.path.dirname(path))
+    if r.returncode != 0:
+        return None
+    with open(os.path.join(output, "time_series.csv")) as f:
+        series = list(csv.DictReader(f))
+    contact = []
+    for n in range(steps + 1):
+        with open(os.path.join(output, "contact_%05d.csv" % n)) as f:
+            contact.append(list(csv.DictReader(f)))
+    return series, contact
+
+
+def check_defaults_written(converter, read_prm, work, program):
+    """The defaults a scene leaves out are written, converted, into the
+    mm-t-s scene, where a reader finds them; the scene runs as before."""
+    directory = os.path.join(work, "defaults")
+    os.makedirs(directory, exist_ok=True)
+    header = "# Units: mm-t-s (length mm, mass t, time s; force N, stress " \
+        "MPa); converted from SI by scripts/convert-units (from %s).\n"
+    results = {}
+    for name, text, expected in (("minimal", MINIMAL, MINIMAL_MM),
+                                 ("partial", PARTIAL, PARTIAL_MM)):
+        path = os.path.join(directory, name + ".prm")
+        out = os.path.join(directory, name + "_mm.prm")
+        write(path, text)
+        try:
+            converter.convert("SI", "mm-t-s", path, out)
+        except RuntimeError as e:
+            check(False, "%s scene: converted (%s)" % (name, e))
+            continue
+        with open(out) as f:
+            results[name] = (path, out, f.read())
+        got = results[name][2]
+        want = header % (name + ".prm") + expected
+        check(got == want, "%s scene: the defaults it leaves out are "
+              "written in mm-t-s, each with the comment '%s': into the "
+              "subsection the file has, before its 'end' (at its "
+              "indentation), else in a new block at the end%s"
+              % (name, COMMENT.strip(), "" if got == want else
+                 "; got:\n" + got))
+    if "minimal" in results:
+        mm = read_prm(results["minimal"][1])
+        check(mm.get("Material/Density") == "1e-09" and
+              mm.get("Material/Young modulus") == "100000" and
+              mm.get("Foundation/Normal compliance/Capped ramp/Stiffness")
+              == "5" and
+              mm.get("Friction/Exponential/Decay rate") == "2" and
+              mm.get("Geometry/Upper right") == "2000, 100" and
+              "Time/Time step" not in mm and "Time/End time" not in mm and
+              "Geometry/Lower left" not in mm,
+              "the minimal scene in mm-t-s: Density 1e-9 t/mm^3, Young "
+              "modulus 1e5 MPa, Stiffness 5e9 Pa/m = 5 N/mm^3, Decay rate "
+              "2 s/mm, Upper right 2000, 100 mm; the times (factor 1) and "
+              "the lower left corner (0) are not written")
+        # Back to SI: the numbers of the program's defaults again.
+        back = os.path.join(directory, "minimal_si.prm")
+        try:
+            converter.convert("mm-t-s", "SI", results["minimal"][1], back)
+            entries = read_prm(back)
+            module = converter.module
+            wrong = [key for key, text in unstated_defaults(
+                         module, read_prm(results["minimal"][0])).items()
+                     if key in mm and not all(close(p, q) for p, q in zip(
+                         number_list(entries[key]), number_list(text)))]
+            check(not wrong, "the minimal scene back in SI states the "
+                  "program's defaults (to 1e-12)%s"
+                  % ("" if not wrong else ": " + ", ".join(wrong)))
+        except RuntimeError as e:
+            check(False, "the minimal scene back to SI (%s)" % e)
+    # A scene in mm-t-s without a density ran with 1000 t/mm^3.
+    path = os.path.join(directory, "mm_scene.prm")
+    write(path, "subsection Geometry\n  set Type = gmsh\n  set Mesh file = "
+          + os.path.join(os.path.dirname(converter.script), "..", "prm",
+                         "gmsh_rail.msh") + "\nend\n")
+    r = converter.run("--from", "mm-t-s", "--to", "SI", path, "-o",
+                      os.path.join(directory, "mm_scene_si.prm"))
+    entries = read_prm(os.path.join(directory, "mm_scene_si.prm")) \
+        if r.returncode == 0 else {}
+    check(entries.get("Material/Density") == "1000000000000000" and
+          entries.get("Material/Young modulus") == "1e+17" and
+          "Geometry/Upper right" not in entries,
+          "a scene in mm-t-s without Density ran with 1000 t/mm^3: in SI "
+          "1e15 kg/m^3, E 1e11 MPa = 1e17 Pa; no corners for Type = gmsh")
+
+    if not program or "minimal" not in results:
+        return
+    failed = []
+    for name, (path, out, _) in sorted(results.items()):
+        for scene in (path, out):
+            r = subprocess.run([program, "--validate", scene],
+                               capture_output=True, text=True,
+                               cwd=directory)
+            if r.returncode != 0:
+                failed.append("%s: %s" % (os.path.basename(scene),
+                                          (r.stdout + r.stderr).strip()
+                                          .splitlines()[-1:]))
+    check(not failed, "the scenes with their defaults written pass "
+          "dynamic-contact --validate%s"
+          % ("" if not failed else ": " + "; ".join(failed)))
+    path, out, _ = results["minimal"]
+    si = run_steps(program, path, os.path.join(directory, "run_si"))
+    mm = run_steps(program, out, os.path.join(directory, "run_mm"))
+    if si is None or mm is None:
+        check(False, "the minimal scene runs three steps in SI and in "
+              "mm-t-s")
+        return
+    counts = ("time", "cutbacks", "newton_iterations",
+              "convexification_iterations", "n_contact", "n_stick", "n_slip",
+              "dofs", "cells")
+    same = len(si[0]) == len(mm[0]) and all(
+        p[k] == q[k] for p, q in zip(si[0], mm[0]) for k in counts)
+    scale = max(abs(float(p[k])) for step in si[1] for p in step
+                for k in ("u_x", "u_y")) or 1.0
+    for s_step, m_step in zip(si[1], mm[1]):
+        same = same and len(s_step) == len(m_step) and all(
+            p["state"] == q["state"] and
+            close(float(p["mu"]), float(q["mu"]), 1e-9, 1.0) and
+            all(close(1000 * float(p[k]), float(q[k]), 1e-9, 1000 * scale)
+                for k in ("x", "u_x", "u_y"))
+            for p, q in zip(s_step, m_step))
+    check(same, "the minimal scene runs identically in SI and in mm-t-s "
+          "(three steps: the same iterations, contact states and mu, the "
+          "displacements 1000 times in mm, to 1e-9)")
+
+
+# ----------------------------------------------------------------- 6.
+def program_entries(program, dimension, directory):
+    """{entry: (value, default)} that the program prints for a scene of
+    @p dimension that sets nothing else."""
+    path = os.path.join(directory, "dimension_%d.prm" % dimension)
+    write(path, "set Dimension = %d\n" % dimension)
+    r = subprocess.run([program, "--print-parameters=json", path],
+                       capture_output=True, text=True, cwd=directory)
+    if r.returncode != 0:
+        return None
+    out = {}
+
+    def walk(node, prefix):
+        for name, value in node.items():
+            if isinstance(value, dict) and "default_value" in value:
+                out[prefix + name] = value["default_value"]
+            elif isinstance(value, dict):
+                walk(value, prefix + name + "/")
+    walk(json.loads(r.stdout), "")
+    return out
+
+
+def same_value(a, b):
+    if a is None or b is None:
+        return a is b
+    if a.strip() == b.strip():
+        return True
+    u, v = number_list(a), number_list(b)
+    return u is not None and u == v
+
+
+def check_defaults(converter, program, work):
+    """The converter's table of defaults (what it writes where a scene
+    leaves an entry out) is what the program prints, in 2D and 3D."""
+    module = converter.module
+    directory = os.path.join(work, "program_defaults")
+    os.makedirs(directory, exist_ok=True)
+    numbers = {key for key, (kind, _) in module.TABLE.items()
+               if kind in (module.NUMBER, module.LIST)}
+    check(set(module.DEFAULTS) == numbers, "the converter's table of "
+          "defaults has every number and list of a dimension%s"
+          % "".join("; %s %s" % (what, ", ".join(sorted(keys)))
+                    for what, keys in (
+                        ("missing:", numbers - set(module.DEFAULTS)),
+                        ("not a number of a dimension:",
+                         set(module.DEFAULTS) - numbers)) if keys))
+    for dimension in (2, 3):
+        printed = program_entries(program, dimension, directory)
+        if printed is None:
+            check(False, "%dD: dynamic-contact --print-parameters=json"
+                  % dimension)
+            continue
+        wrong = []
+        for key in sorted(module.DEFAULTS):
+            ours = module.default_of(key, dimension)
+            if not same_value(ours, printed.get(key)):
+                wrong.append("%s: the program's %r, the table's %r"
+                             % (key, printed.get(key), ours))
+        # The functions of a dimension: 0 by default (nothing to write).
+        for subsection in FUNCTIONS:
+            text = printed.get(subsection + "/Function expression")
+            if text is None or any(
+                    c.strip() and number_list(c) != [0.0]
+                    for c in text.split(";")):
+                wrong.append("%s/Function expression: the program's %r, "
+                             "not 0" % (subsection, text))
+        check(not wrong, "%dD: the converter's table of defaults is what "
+              "dynamic-contact --print-parameters prints (and the "
+              "functions of a dimension are 0 by default)%s"
+              % (dimension, "" if not wrong else ": " + "; ".join(wrong)))
+
+
+# ----------------------------------------------------------------- 3.
+def check_errors(converter, work):
+    directory = os.path.join(work, "errors")
+    os.makedirs(directory, exist_ok=True)
+    cases = [
+        ("unknown_entry",
+         "subsection Material\n  set Density = 1000\n"
+         "  set Youngs modulus = 1e11\nend\n",
+         ["line 3", "Material/Youngs modulus", "unknown entry"]),
+        ("not_a_number",
+         "subsection Material\n  set Young modulus = 1e11x\nend\n",
+         ["line 2", "Material/Young modulus", "1e11x", "not a number"]),
+        ("include",
+         "include other.prm\n", ["line 1", "include"]),
+        ("old_layout",
+         "subsection Friction\n  set Decay rate = 2000\nend\n",
+         ["line 2", "Friction/Decay rate", "update-prm"]),
+        ("unclosed",
+         "subsection Material\n  set Density = 1000\n",
+         ["line 1", "Material", "not closed"]),
+        ("unknown_subsection",
+         "subsection Materials\n  set Density = 1000\nend\n",
+         ["line 1", "Materials"]),
+        ("auto_elsewhere",
+         "subsection Material\n  set Density = auto\nend\n",
+         ["line 2", "Material/Density", "'auto'", "not a number"]),
+        ("bad_function",
+         "subsection Body force\n  set Variable names = x\n"
+         "  set Function expression = x; x\nend\n",
+         ["line 2", "Body force/Variable names"]),
+    ]
+    for name, text, words in cases:
+        path = os.path.join(directory, name + ".prm")
+        out = os.path.join(directory, name + "_out.prm")
+        write(path, text)
+        if os.path.exists(out):
+            os.remove(out)
+        r = converter.run("--from", "SI", "--to", "mm-t-s", path, "-o", out)
+        message = r.stderr.strip()
+        check(r.returncode == 1 and len(message.splitlines()) == 1 and
+              name + ".prm" in message and
+              all(w in message for w in words) and not os.path.exists(out),
+              "%s: refused with exit code 1 and one message naming the "
+              "file, the line and the entry; nothing written" % name)
+    path = os.path.join(directory, "unknown_entry.prm")
+    r = converter.run("--from", "cgs", "--to", "SI", path)
+    check(r.returncode == 1 and "cgs" in r.stderr,
+          "an unknown unit system is refused with exit code 1")
+    write(os.path.join(directory, "good.prm"),
+          "subsection Material\n  set Density = 1000\nend\n")
+    good = os.path.join(directory, "good.prm")
+    r = converter.run("--from", "SI", "--to", "mm-t-s", good, "-o", good)
+    with open(good) as f:
+        unchanged = f.read() == \
+            "subsection Material\n  set Density = 1000\nend\n"
+    check(r.returncode == 1 and "overwrite" in r.stderr and unchanged,
+          "-o IN.prm is refused (the input stays)")
+    r = converter.run("--from", "SI", "--to", "mm-t-s", good)
+    check(r.returncode == 0 and "set Density = 1e-09" in r.stdout,
+          "without -o the scene goes to standard output")
+    r = converter.run("--help")
+    check(r.returncode == 0 and "in-lbf-s" in r.stdout, "--help")
+
+
+# ----------------------------------------------------------------- 4.
+def doc_entries(path):
+    """{Section/Entry: text} of doc/parameters.md."""
+    entries = {}
+    section = ""
+    current = None
+    with open(path) as f:
+        for line in f:
+            m = re.match(r"^(#{2,4}) (.*)$", line)
+            if m:
+                title = m.group(2).strip()
+                section = "" if title == "Top level" else title + "/"
+                current = None
+                continue
+            m = re.match(r"^- \*\*(.+?)\*\* =", line)
+            if m:
+                current = section + m.group(1)
+                entries[current] = ""
+                continue
+            if current is not None and line.startswith("  "):
+                entries[current] += line.strip() + " "
+    return entries
+
+
+def check_table(converter, source_dir):
+    r = converter.run("--print-table")
+    table = {}   # path: (dimension or None, description)
+    for line in r.stdout.splitlines():
+        m = re.match(r"^(.*?)\s{2,}(\([-0-9, ]*\)|-)\s{2,}(.*)$", line)
+        if m:
+            table[m.group(1)] = (None if m.group(2) == "-" else tuple(
+                int(e) for e in m.group(2)[1:-1].split(",")), m.group(3))
+    doc = doc_entries(os.path.join(source_dir, "doc", "parameters.md"))
+    missing = sorted(set(doc) - set(table))
+    extra = sorted(set(table) - set(doc))
+    check(r.returncode == 0 and not missing and not extra,
+          "the converter's table has exactly the entries of "
+          "doc/parameters.md%s%s"
+          % ("; not in the table: " + ", ".join(missing) if missing else "",
+             "; not in the doc: " + ", ".join(extra) if extra else ""))
+    wrong = []
+    for path, text in doc.items():
+        if path not in table or path in DOC_DISAGREEMENTS or \
+                path.startswith("Friction/Expression/"):
+            continue
+        documented = doc_unit(text)
+        dimension, kind = table[path]
+        if documented is not None and documented != dimension:
+            wrong.append("%s: the doc's unit %s, the table's %s"
+                         % (path, documented, kind))
+        if documented is None and path not in DOC_WITHOUT_UNIT and \
+                dimension is not None and "function" not in kind and \
+                "Gmsh" not in kind:
+            wrong.append("%s: the doc gives no unit, the table %s"
+                         % (path, kind))
+    check(not wrong, "the units in the text of doc/parameters.md are the "
+          "table's dimensions (but for %s)%s"
+          % (", ".join(sorted(DOC_DISAGREEMENTS)),
+             "" if not wrong else ": " + "; ".join(wrong)))
+
+
+def main():
+    import argparse
+    here = os.path.dirname(os.path.realpath(__file__))
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
+    parser.add_argument("--work-dir", required=True)
+    parser.add_argument("--source-dir", default=os.path.dirname(here))
+    parser.add_argument("--program", default=None,
+                        help="dynamic-contact: validate the converted "
+                        "scenes, run one, compare the converter's defaults "
+                        "with the program's")
+    args = parser.parse_args()
+    source_dir = os.path.abspath(args.source_dir)
+    work = os.path.abspath(args.work_dir)
+    os.makedirs(work, exist_ok=True)
+    converter = Converter(source_dir)
+    read_prm = load_prm_reader(source_dir)
+
+    scenes = []
+    for folder in ("prm", os.path.join("prm", "stress")):
+        for name in sorted(os.listdir(os.path.join(source_dir, folder))):
+            if name.endswith(".prm"):
+                scenes.append(os.path.join(folder, name))
+    # The MSH 2.2 copy of the rail's mesh, through a scene that names it.
+    msh22 = os.path.join(work, "gmsh_rail_msh22.prm")
+    with open(os.path.join(source_dir, "prm", "gmsh_rail.prm")) as f:
+        write(msh22, f.read().replace(
+            "set Mesh file = gmsh_rail.msh",
+            "set Mesh file = " + os.path.join(source_dir, "prm",
+                                              "gmsh_rail_msh22.msh")))
+    program = args.program and os.path.abspath(args.program)
+    for relative in scenes:
+        check_scene(converter, read_prm, work, relative,
+                    os.path.join(source_dir, relative), program)
+    check_scene(converter, read_prm, work,
+                "prm/gmsh_rail.prm on prm/gmsh_rail_msh22.msh", msh22, program)
+    check_known_values(converter, read_prm, work)
+    check_scene(converter, read_prm, work, "the scene of known values",
+                os.path.join(work, "known", "known.prm"), program)
+    check_auto(converter, read_prm, work, program)
+    check_defaults_written(converter, read_prm, work, program)
+    check_errors(converter, work)
+    check_table(converter, source_dir)
+    if program:
+        check_defaults(converter, program, work)
+    finish("convert_units")
+
+
+if __name__ == "__main__":
+    main()
