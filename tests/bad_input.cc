@@ -578,10 +578,9 @@ main(int argc, char **argv)
       1,
       {"Foundation/Initial gap", "log(x-2)"});
   add("friction_not_finite",
-      scene +
-        "\nsubsection Friction\n  set Law = expression\n  subsection "
-        "Expression\n    set Function expression = 0.5+sqrt(1-s)\n  "
-        "end\nend\n",
+      scene + "\nsubsection Friction\n  set Law = expression\n  subsection "
+              "Expression\n    set Function expression = 0.5+sqrt(1-s)\n  "
+              "end\nend\n",
       file,
       1,
       {"Friction/Expression", "0.5+sqrt(1-s)", "not finite"});

@@ -228,7 +228,8 @@ main(int argc, char *argv[])
       "Friction/Expression/Function expression=0.5-0.01*s"};
     const std::string error = error_of("range-default", law);
     check(error.find("Friction/Maximum slip rate") != std::string::npos,
-          "Friction/Maximum slip rate = 100: mu < 0 beyond 50 m/s refused");
+          "Friction/Maximum slip rate = auto (the P-wave speed): mu < 0 "
+          "beyond 50 m/s refused");
     auto narrow = law;
     narrow.push_back("Friction/Maximum slip rate=10");
     check(error_of("range-narrow", narrow).empty(),

@@ -113,7 +113,9 @@ namespace DynamicContact
     residual(const Iterate &x) const
     {
       return std::max(x.equilibrium / w_scale, x.law_residual / x.f_scale);
-    }    /** With the force scale of the current iterate. */
+    }
+
+    /** With the force scale of the current iterate. */
     double
     merit(const Iterate &trial, const Iterate &current) const
     {

@@ -134,7 +134,8 @@ namespace DynamicContact
       {
         compliance.solve(rhs, free_response, result);
         cached_rhs          = rhs;
-        force_scale         = rhs.linfty_norm();
+        force_scale         = resolvable_force(rhs.linfty_norm(),
+                                       problem.parameters.newton_tolerance);
         w_free_nodes        = gather_values(free_response);
         free_response_valid = true;
         // A new step: the reduced factorization starts afresh, so a step

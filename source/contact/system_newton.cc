@@ -18,7 +18,8 @@ namespace DynamicContact
     , u_old(step.u_old)
     , w_old(step.w_old)
     , mu(step.mu)
-    , force_scale(step.rhs.linfty_norm())
+    , force_scale(resolvable_force(step.rhs.linfty_norm(),
+                                   problem.parameters.newton_tolerance))
     , backend(backend)
     , result(result)
   {}
@@ -50,7 +51,7 @@ namespace DynamicContact
     x.forces.resize(n);
     x.base.resize(n);
     double law_residual = 0, law_squares = 0, f_scale = 1e-300, stick_rate = 0,
-           stick_squares = 0;
+           stick_squares    = 0;
     std::uint64_t signature = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
@@ -66,7 +67,7 @@ namespace DynamicContact
         x.lin[i]                    = e.lin;
         x.forces[i]                 = e.force;
         x.base[i]                   = e.base;
-        f_scale = std::max(f_scale, e.force.norm());
+        f_scale                     = std::max(f_scale, e.force.norm());
         // Where the stick condition is measured in velocity units
         // (velocity_scale), a stick node's law residual, c m_i |w_e,tau|
         // exactly, is left to that measure: c m_i is stiff (c = c_t k, c_t
@@ -95,11 +96,11 @@ namespace DynamicContact
       [&](const unsigned int i) { return x.forces[i]; }, 1., x.residual);
     x.law_residual = Utilities::MPI::max(law_residual, comm);
     x.law_squares  = Utilities::MPI::sum(law_squares, comm);
-    x.stick_squares =
-      velocity_scale > 0 ? Utilities::MPI::sum(stick_squares, comm) /
-                             (velocity_scale * velocity_scale) :
-                           0.;
-    x.f_scale      = std::max(Utilities::MPI::max(f_scale, comm), force_scale);
+    x.stick_squares = velocity_scale > 0 ?
+                        Utilities::MPI::sum(stick_squares, comm) /
+                          (velocity_scale * velocity_scale) :
+                        0.;
+    x.f_scale       = std::max(Utilities::MPI::max(f_scale, comm), force_scale);
 
     NewtonMeasure m;
     x.residual_norm = x.residual.l2_norm();

@@ -7,6 +7,7 @@
 #include <cctype>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -31,10 +32,20 @@ namespace DynamicContact
     const auto s      = sample_points(s_max);
     double     lambda = 0;
     for (unsigned int i = 1; i < s.size(); ++i)
-      if (s[i] > s[i - 1])
-        lambda = std::max(lambda,
-                          -(value(s[i]) - value(s[i - 1])) / (s[i] - s[i - 1]));
+      {
+        const double a = value(s[i - 1]), b = value(s[i]);
+        if (s[i] > s[i - 1] && measurable(a, b))
+          lambda = std::max(lambda, -(b - a) / (s[i] - s[i - 1]));
+      }
     return lambda;
+  }
+
+
+  bool
+  FrictionLaw::measurable(const double a, const double b)
+  {
+    return std::abs(b - a) >= 1e6 * std::numeric_limits<double>::epsilon() *
+                                std::max(std::abs(a), std::abs(b));
   }
 
 
@@ -50,13 +61,12 @@ namespace DynamicContact
       {
         const double mu = value(s);
         AssertThrow(std::isfinite(mu) && mu >= 0,
-                    ExcMessage("Friction: the friction coefficient " +
-                               description() +
+                    ExcMessage("Friction/Maximum slip rate = " + sig6(s_max) +
+                               ": the friction coefficient " + description() +
                                " must be finite and >= 0 on the slip rates "
                                "[0, " +
-                               sig6(s_max) +
-                               "] (Friction/Maximum slip rate), but mu(" +
-                               sig6(s) + ") = " + sig6(mu) + "."));
+                               sig6(s_max) + "], but mu(" + sig6(s) +
+                               ") = " + sig6(mu) + "."));
       }
   }
 
@@ -299,22 +309,21 @@ namespace DynamicContact
   ExpressionFriction::set_slip_rate_window(const double s_max)
   {
     // The range of mu and its steepest slope on the window (sampled).
-    const auto s       = sample_points(s_max);
-    double     lo      = value(0.), hi = lo, slope = 0;
+    const auto s  = sample_points(s_max);
+    double     lo = value(0.), hi = lo, slope = 0;
     double     mu_last = lo;
     for (unsigned int i = 1; i < s.size(); ++i)
       {
         const double mu = value(s[i]);
         lo              = std::min(lo, mu);
         hi              = std::max(hi, mu);
-        if (s[i] > s[i - 1])
+        if (s[i] > s[i - 1] && measurable(mu_last, mu))
           slope = std::max(slope, std::abs(mu - mu_last) / (s[i] - s[i - 1]));
         mu_last = mu;
       }
-    velocity_scale =
-      (slope > 0 && std::isfinite(slope) && hi > lo) ?
-        std::min(s_max, (hi - lo) / slope) :
-        s_max;
+    velocity_scale = (slope > 0 && std::isfinite(slope) && hi > lo) ?
+                       std::min(s_max, (hi - lo) / slope) :
+                       s_max;
   }
 
   bool

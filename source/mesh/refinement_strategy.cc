@@ -229,8 +229,8 @@ namespace DynamicContact
         prm.declare_entry("Window",
                           "auto",
                           Patterns::Anything(),
-                          "Cells closer than this (a length: m in SI) to a "
-                          "point where the load is large get the finest "
+                          "Cells closer than this (m) to a point where the "
+                          "load is large get the finest "
                           "level. It must reach from the loaded boundary to "
                           "the contact boundary if both should be fine. "
                           "'auto': twice the body's thickness (the smallest "
@@ -253,8 +253,10 @@ namespace DynamicContact
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        const double window = resolved_window(
-          this->window, 2., context.discretization.triangulation);
+        const double window =
+          resolved_window(this->window,
+                          2.,
+                          context.discretization.triangulation);
         return [window, points = large_load_points(context, threshold)](
                  const auto &cell, const unsigned int max_level) {
           return cell_near<dim>(cell, points, window) ?
@@ -283,8 +285,8 @@ namespace DynamicContact
         prm.declare_entry("Window",
                           "auto",
                           Patterns::Anything(),
-                          "Cells closer than this (a length: m in SI) to a "
-                          "node that penetrates the foundation get the "
+                          "Cells closer than this (m) to a node that "
+                          "penetrates the foundation get the "
                           "finest level. 'auto': half the body's thickness "
                           "(the smallest side of the coarse mesh's bounding "
                           "box).");
@@ -300,8 +302,10 @@ namespace DynamicContact
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        const double window = resolved_window(
-          this->window, 0.5, context.discretization.triangulation);
+        const double window =
+          resolved_window(this->window,
+                          0.5,
+                          context.discretization.triangulation);
         return [window, &points = context.contact_points](
                  const auto &cell, const unsigned int max_level) {
           return cell_near<dim>(cell, points, window) ?

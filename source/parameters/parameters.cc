@@ -495,14 +495,14 @@ namespace DynamicContact
           "Maximum slip rate",
           "auto",
           Patterns::Anything(),
-          "The slip rates [0, Maximum slip rate] (a velocity: m/s in SI) on "
-          "which mu(s) is checked at start-up (finite, >= 0, not increasing "
-          "unless Velocity strengthening = allow) and its one-sided "
-          "Lipschitz constant is sampled; the run also checks every value it "
-          "uses. 'auto': the P-wave speed of the body, sqrt((lambda + 2 "
-          "mu)/rho), which the velocities of a linearly elastic body stay far "
-          "below (its strains are about v/c), so that the window scales with "
-          "the scene in any consistent units.");
+          "The largest slip rate (m/s) of the window [0, Maximum slip rate] "
+          "on which mu(s) is checked at start-up (finite, >= 0, not "
+          "increasing unless Velocity strengthening = allow) and its "
+          "one-sided Lipschitz constant is sampled; the run also checks every "
+          "value it uses. 'auto': the P-wave speed of the body, sqrt((lambda "
+          "+ 2 mu)/rho), which the velocities of a linearly elastic body stay "
+          "far below (its strains are about v/c), so that the window scales "
+          "with the scene in any consistent units.");
         prm.declare_entry("Convexification tolerance",
                           "1e-6",
                           Patterns::Double(),
@@ -564,8 +564,8 @@ namespace DynamicContact
           "Complementarity constant",
           "0",
           Patterns::Double(),
-          "c_t of the complementarity function of friction, a stiffness per "
-          "unit area like E/h (Pa/m in SI): c_t k m_i w_tau is a nodal "
+          "c_t of the complementarity function of friction (Pa/m), a "
+          "stiffness per unit area like E/h: c_t k m_i w_tau is a nodal "
           "force. 0 chooses E/h with h the smallest cell size.");
         prm.declare_entry(
           "Velocity strengthening",
@@ -590,7 +590,7 @@ namespace DynamicContact
         const ScopedSubsection section(prm, "Friction");
         std::unique_ptr<FrictionLaw> new_law = FrictionLaw::create(prm);
         law_name                             = prm.get("Law");
-        const std::string window             = prm.get("Maximum slip rate");
+        const std::string           window   = prm.get("Maximum slip rate");
         const std::optional<double> s_max    = number_or_auto<double>(
           window,
           [](const std::string &t, std::size_t *end) {

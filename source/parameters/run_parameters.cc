@@ -66,8 +66,8 @@ namespace DynamicContact
           "Maximum time step",
           "0",
           Patterns::Double(0),
-          "With Adaptive = true: the largest k (0: no bound but the End "
-          "time).");
+          "With Adaptive = true: the largest k (s); 0: no bound but the "
+          "End time.");
         prm.declare_entry(
           "Cut back where not unique",
           "false",
@@ -184,8 +184,9 @@ namespace DynamicContact
         "Minimum time step",
         "0",
         Patterns::Double(0),
-        "A step the solver cannot solve is retried with half the time step "
-        "(again and again, down to this; 0: Time step/1024), and the time "
+        "The smallest time step (s) of a cut-back: a step the solver "
+        "cannot solve is retried with half the time step, again and again "
+        "down to this (0: Time step/1024), and the time "
         "step grows back (doubling after three good steps) to Time step. A "
         "step that fails even at the minimum stops the run, the last good "
         "state written. Set it equal to Time step for no cut-back.");

@@ -141,10 +141,14 @@ namespace DynamicContact
           << state.unconverged_steps
           << "; steps whose Newton iteration ended at stagnation (residual "
              "below the square root of Solver/Newton tolerance): "
-          << stagnated_steps
-          << "; steps whose Newton iteration cycled (came back to active "
-             "sets or an iterate it had seen; damped steps from there on): "
-          << cycling_steps << "\n"
+          << stagnated_steps;
+    // A count of iterations, which follows round-off as they do (see
+    // print_progress()).
+    if (parameters.output.print_iteration_counts)
+      pcout << "; steps whose Newton iteration cycled (came back to active "
+               "sets or an iterate it had seen; damped steps from there on): "
+            << cycling_steps;
+    pcout << "\n"
           << "  largest relative energy balance defect: "
           << scientific(state.max_relative_defect, 2);
     if (friction)

@@ -433,10 +433,9 @@ namespace DynamicContact
           {
             mu[i] = friction_law->value(s[i]);
             if (!std::isfinite(mu[i]))
-              throw CollectiveError(name +
-                                    " is not finite at the slip rate s = " +
-                                    sig6(s[i]) + " (" + scientific(mu[i]) +
-                                    ").");
+              throw CollectiveError(
+                name + " is not finite at the slip rate s = " + sig6(s[i]) +
+                " (" + scientific(mu[i]) + ").");
           }
         friction_law->check_nonnegative(s_max);
         double mu_max = 0; // the largest |mu| so far

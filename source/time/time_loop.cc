@@ -626,8 +626,7 @@ namespace DynamicContact
                 statistics.coefficient_residual,
                 statistics.coupled_fallbacks,
                 record.uniqueness_monitor ? statistics.uniqueness_bound : -1.,
-                record.uniqueness_monitor ? statistics.contraction_factor :
-                                            -1.,
+                record.uniqueness_monitor ? statistics.contraction_factor : -1.,
                 statistics.cycles});
     if (model.newton_residual() > parameters.solver.newton_tolerance)
       ++totals.stagnated_steps;

@@ -117,10 +117,10 @@ namespace DynamicContact
     /** K0'^{-1} b for the last b (the passes of a step share it). */
     Vector_t                    free_response, cached_rhs;
     /**
-     * |b|_inf of cached_rhs: the floor of the force scale of the law
-     * residual on Gamma_3 (SystemNewton::force_scale).
+     * resolvable_force() of cached_rhs: the floor of the force scale of
+     * the law residual on Gamma_3 (SystemNewton::force_scale).
      */
-    double force_scale = 0;
+    double                      force_scale = 0;
     std::vector<Tensor<1, dim>> w_free_nodes;
     bool                        free_response_valid = false;
 
@@ -183,9 +183,6 @@ namespace DynamicContact
                     const double w_scale,
                     const double tolerance,
                     Result      &result);
-
-
-
 
     /**
      * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then

@@ -81,8 +81,7 @@ namespace DynamicContact
   {
     for (std::size_t j = 0; j + 1 < history.size(); ++j)
       if (history[j] == current.signature &&
-          std::abs(residuals[j] - current.residual) <=
-            1e-9 * current.residual)
+          std::abs(residuals[j] - current.residual) <= 1e-9 * current.residual)
         return true;
     return false;
   }
@@ -215,6 +214,26 @@ namespace DynamicContact
         current        = accepted;
         ++result.iterations;
       }
+  }
+
+
+  /**
+   * The smallest force a law residual can be measured against to
+   * @p tolerance: 16 eps |b|_inf / tolerance, @p rhs_force = |b|_inf the
+   * step's largest nodal force (inertia, elasticity, loads). The forces
+   * of a step carry round-off of about eps |b|_inf; where the contact
+   * forces are of that size themselves (a node that touches the
+   * foundation at a penetration of round-off), a law residual relative to
+   * them never falls below a tolerance (the impact stress scene written in
+   * mm-tonne-s touched that way at the end of a step: 46 Newton
+   * iterations with a rising residual, and a cut-back). Relative to the
+   * step's own forces it is the same in any consistent units; far below
+   * any contact force that carries load.
+   */
+  inline double
+  resolvable_force(const double rhs_force, const double tolerance)
+  {
+    return 16 * std::numeric_limits<double>::epsilon() * rhs_force / tolerance;
   }
 
 

@@ -38,7 +38,7 @@ namespace DynamicContact
     std::vector<unsigned int>   active;
     double equilibrium_squares = 0; // sum |w_i - (w_free - C g)_i|^2
     double equilibrium         = 0; // largest
-    double f_scale             = 0; // largest force, at least |b|_inf
+    double f_scale             = 0; // largest force, >= resolvable_force()
     double law_residual        = 0; // largest
     double law_squares         = 0; // sum of squares
   };
@@ -134,8 +134,8 @@ namespace DynamicContact
     /**
      * The unknowns of the current step, per active node: the row vectors
      * (V_i, then the tangents), the column vectors (U_i, then the
-     * tangents over their compliance c_s), the number of low-rank terms, the stick targets, and the
-     * offsets of each node's unknowns.
+     * tangents over their compliance c_s), the number of low-rank terms, the
+     * stick targets, and the offsets of each node's unknowns.
      */
     std::vector<unsigned int>                active;
     std::vector<unsigned int>                offset;

@@ -39,8 +39,8 @@ namespace DynamicContact
     Vector_t residual;
     /**
      * Largest |lambda_i - P_B(...)| (all ranks), and the force it is
-     * measured against: the largest nodal force, at least the step's force
-     * scale SystemNewton::force_scale.
+     * measured against: the largest nodal force, at least
+     * SystemNewton::force_scale.
      */
     double law_residual = 0;
     double law_squares  = 0; // sum of the squared law residuals
@@ -180,20 +180,14 @@ namespace DynamicContact
      * velocity while the law residual was far below its tolerance. The
      * scale must not vanish where the body comes to rest (the round-off of
      * w does not): the condensed solver gives max(|w|, 1e-6 |w_free|),
-     * w_free = K0^{-1} b.
+     * w_free = K0^{-1} b. Where it is set, a stick node's law residual (c
+     * m_i |w_e,tau| exactly) is left to this measure (evaluate()).
      */
     double velocity_scale = 0;
 
     /**
-     * The step's force scale |b|_inf, the largest nodal force of the
-     * right-hand side (inertia, elasticity, loads), below which the law
-     * residual's scale does not fall: where the contact forces are
-     * themselves round-off (a node that touches the foundation at a
-     * penetration of 1e-16 of its displacement), a law residual relative
-     * to them alone is round-off relative to round-off and never falls
-     * below a tolerance (the impact stress scene in mm-tonne-s, 46 Newton
-     * iterations with a rising residual and a cut-back). Relative to the
-     * step's own forces it is the same in any consistent units.
+     * The floor of the law residual's force scale: resolvable_force() of
+     * the step's |b|_inf.
      */
     const double force_scale;
 

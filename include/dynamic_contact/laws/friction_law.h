@@ -70,6 +70,14 @@ namespace DynamicContact
     sample_points(const double s_max);
 
     /**
+     * Whether mu changes between two samples @p a and @p b by more than
+     * its round-off (1e6 ulps): only such pairs give a slope to 1e-6
+     * (near s = 0 the samples lie 1e-11 s_max apart).
+     */
+    static bool
+    measurable(const double a, const double b);
+
+    /**
      * The slip rates of the scene, [0, s_max] (Friction/Maximum slip
      * rate), for a law that needs a velocity scale of its own (the
      * expression's difference quotient); called once before the run.
