@@ -557,14 +557,17 @@ namespace DynamicContact
                                      mu);
           }
 
-        // A provisional pass that gains less than 1 % on the best
-        // coefficient residual so far is finished (not 'no gain at all': a
-        // node that changes from stick to fast slip leaves a - b in two
-        // passes, equal but for round-off, and which pass was finished
-        // followed the round-off of the scene's units).
+        // A provisional pass that gains nothing beyond round-off (1e-9) on
+        // the best coefficient residual so far is finished: a node that
+        // changes from stick to fast slip leaves a - b in two passes, equal
+        // but for round-off, and which pass was finished followed the
+        // round-off of the scene's units (a gain of 1 % as the rule, tried,
+        // finished passes that the rail's loop did not need: 4 % more
+        // Newton iterations, a third more solves).
         Measures m = measure(pass);
-        if (provisional && (m.converged || pass + 1 == max_passes ||
-                            m.coefficient_residual > 0.99 * best_residual))
+        if (provisional &&
+            (m.converged || pass + 1 == max_passes ||
+             m.coefficient_residual > (1 - 1e-9) * best_residual))
           finish_provisional(pass, after_provisional, m);
         // A coupled pass's coefficient residual is 0 by construction: it
         // says nothing of how far the loop is from its end.
