@@ -66,7 +66,8 @@ TIME_SERIES = {
     "foundation_energy": ENERGY, "total_energy": ENERGY,
     "load_work": ENERGY, "dissipation": ENERGY,
     "remesh_energy_change": ENERGY,
-    "uniqueness_bound": (0, 0, 0), "contraction_factor": (0, 0, 0),
+    "uniqueness_bound": (0, 0, 0), "uniqueness_certificate": (0, 0, 0),
+    "contraction_factor": (0, 0, 0),
 }
 for prefix in ("applied_force", "reaction_force", "inertia_force"):
     for c in "xyz":

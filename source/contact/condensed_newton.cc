@@ -75,13 +75,13 @@ namespace DynamicContact
 
 
 
-
   template <int dim>
-  double
+  SpectralEstimate
   CondensedNewton<dim>::compliance_radius(
-    const std::vector<Tensor<2, dim>> &roots)
+    const std::vector<Tensor<2, dim>> &roots,
+    const bool                         certify)
   {
-    return compliance.radius(roots);
+    return compliance.radius(roots, certify);
   }
 
 

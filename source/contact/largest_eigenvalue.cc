@@ -6,15 +6,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace DynamicContact
 {
   namespace
   {
-    /** The largest eigenvalue of the symmetric tridiagonal (alpha, beta). */
+    /**
+     * The largest eigenvalue of the symmetric tridiagonal (alpha, beta),
+     * and in @p y its eigenvector where asked.
+     */
     double
     largest_ritz_value(const std::vector<double> &alpha,
-                       const std::vector<double> &beta)
+                       const std::vector<double> &beta,
+                       std::vector<double>       *y = nullptr)
     {
       const unsigned int                m = alpha.size();
       dealii::LAPACKFullMatrix<double> T(m, m);
@@ -27,22 +32,34 @@ namespace DynamicContact
       dealii::Vector<double>    values;
       dealii::FullMatrix<double> vectors;
       T.compute_eigenvalues_symmetric(-1e300, 1e300, 0., values, vectors);
-      double largest = 0;
+      double       largest = 0;
+      unsigned int which   = 0;
       for (unsigned int i = 0; i < values.size(); ++i)
-        largest = std::max(largest, values(i));
+        if (values(i) > largest)
+          {
+            largest = values(i);
+            which   = i;
+          }
+      if (y != nullptr)
+        {
+          y->assign(m, 0.);
+          if (values.size() > 0)
+            for (unsigned int i = 0; i < m; ++i)
+              (*y)[i] = vectors(i, which);
+        }
       return largest;
     }
   } // namespace
 
 
   double
-  largest_eigenvalue(
-    const std::function<void(const std::vector<double> &,
-                             std::vector<double> &)> &apply,
-    const std::vector<double>                        &start,
-    const std::function<double(double)>              &sum,
-    const double                                      tolerance,
-    const unsigned int                                max_steps)
+  largest_eigenvalue(const std::function<void(const std::vector<double> &,
+                                              std::vector<double> &)> &apply,
+                     const std::vector<double>                        &start,
+                     const std::function<double(double)>              &sum,
+                     const double         tolerance,
+                     const unsigned int   max_steps,
+                     std::vector<double> *ritz_vector)
   {
     const std::size_t n   = start.size();
     const auto        dot = [&](const std::vector<double> &a,
@@ -53,6 +70,8 @@ namespace DynamicContact
       return sum(local);
     };
     const double norm = std::sqrt(dot(start, start));
+    if (ritz_vector != nullptr)
+      ritz_vector->assign(n, 0.);
     if (!(norm > 0))
       return 0;
 
@@ -76,18 +95,52 @@ namespace DynamicContact
                 r[i] -= c * v[i];
             }
         const double b         = std::sqrt(dot(r, r));
-        const double new_value = largest_ritz_value(alpha, beta);
-        const bool   exhausted = !(b > 1e-12 * std::abs(new_value));
-        if (step > 0 &&
-            std::abs(new_value - estimate) <= tolerance * std::abs(new_value))
-          return new_value;
+        std::vector<double> y;
+        const double        new_value =
+          largest_ritz_value(alpha, beta, ritz_vector ? &y : nullptr);
+        const bool exhausted = !(b > 1e-12 * std::abs(new_value));
+        const bool converged = step > 0 && std::abs(new_value - estimate) <=
+                                             tolerance * std::abs(new_value);
         estimate = new_value;
-        if (exhausted)
+        if (ritz_vector != nullptr)
+          {
+            // The Ritz vector Q y of the basis so far.
+            ritz_vector->assign(n, 0.);
+            for (std::size_t j = 0; j < Q.size(); ++j)
+              for (std::size_t i = 0; i < n; ++i)
+                (*ritz_vector)[i] += y[j] * Q[j][i];
+          }
+        if (converged || exhausted)
           return estimate;
         beta.push_back(b);
         for (std::size_t i = 0; i < n; ++i)
           q[i] = r[i] / b;
       }
     return estimate;
+  }
+
+
+  double
+  collatz_upper_bound(
+    const std::function<void(const std::vector<std::vector<double>> &,
+                             std::vector<std::vector<double>> &)> &apply_abs,
+    const std::vector<std::vector<double>>                        &x)
+  {
+    std::vector<std::vector<double>> y(x.size());
+    for (std::size_t v = 0; v < x.size(); ++v)
+      y[v].assign(x[v].size(), 0.);
+    apply_abs(x, y);
+    double bound = std::numeric_limits<double>::infinity();
+    for (std::size_t v = 0; v < x.size(); ++v)
+      {
+        double largest = 0;
+        for (std::size_t i = 0; i < x[v].size(); ++i)
+          {
+            Assert(x[v][i] > 0, dealii::ExcMessage("x must be positive."));
+            largest = std::max(largest, y[v][i] / x[v][i]);
+          }
+        bound = std::min(bound, largest);
+      }
+    return bound;
   }
 } // namespace DynamicContact

@@ -437,8 +437,9 @@ namespace DynamicContact
 
 
   template <int dim>
-  double
-  SparseNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots)
+  SpectralEstimate
+  SparseNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots,
+                                       const bool)
   {
     const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
@@ -463,9 +464,13 @@ namespace DynamicContact
     std::vector<double> start(dim * n);
     for (unsigned int i = 0; i < n; ++i)
       set_nodal_entries<dim>(roots[i] * lanczos_start(nodes[i]), i, start);
-    return largest_eigenvalue(apply, start, [comm](const double v) {
-      return Utilities::MPI::sum(v, comm);
-    });
+    return SpectralEstimate{largest_eigenvalue(apply,
+                                               start,
+                                               [comm](const double v) {
+                                                 return Utilities::MPI::sum(
+                                                   v, comm);
+                                               }),
+                            -1.};
   }
 
 

@@ -41,6 +41,16 @@ namespace DynamicContact
   }
 
 
+  double
+  FrictionLaw::largest_value(const double s_max) const
+  {
+    double largest = 0;
+    for (const double s : sample_points(s_max))
+      largest = std::max(largest, value(s));
+    return largest;
+  }
+
+
   bool
   FrictionLaw::measurable(const double a, const double b)
   {

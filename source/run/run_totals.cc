@@ -21,12 +21,13 @@ namespace DynamicContact
     coupled_fallbacks += step.coupled_fallbacks;
     cycling_steps += step.active_set_cycles > 0;
     if (step.contraction_factor >= 1)
-      non_unique_steps.push_back(step.step);
+      repelling_steps.push_back(step.step);
     max_contraction = std::max(max_contraction, step.contraction_factor);
     if (step.uniqueness_bound >= 0)
       {
         ++bound_steps;
-        unique_steps += step.uniqueness_bound < 1;
+        proven_steps +=
+          step.uniqueness_certificate >= 0 && step.uniqueness_certificate < 1;
       }
     max_uniqueness_bound =
       std::max(max_uniqueness_bound, step.uniqueness_bound);
@@ -66,6 +67,8 @@ namespace DynamicContact
              value("coefficient_residual"),
              static_cast<unsigned int>(value("coupled_fallbacks")),
              has("uniqueness_bound") ? value("uniqueness_bound") : -1.,
+             has("uniqueness_certificate") ? value("uniqueness_certificate") :
+                                             -1.,
              has("contraction_factor") ? value("contraction_factor") : -1.,
              static_cast<unsigned int>(value("active_set_cycles"))});
       }
@@ -75,23 +78,25 @@ namespace DynamicContact
   void
   RunTotals::print_uniqueness(const ConditionalOStream &pcout) const
   {
-    // Whether the steps had one solution (doc/theory.md section 5.2).
-    pcout << "  uniqueness: the paper's bound theta rho(C L N) < 1 (one "
-             "solution) at "
-          << unique_steps << " of " << bound_steps
-          << " steps evaluated (largest " << sig6(max_uniqueness_bound)
-          << "); contraction factor at the solution >= 1 (the frozen "
-             "loop may be repelled, solutions may lie beside it) at "
-          << non_unique_steps.size() << " step"
-          << (non_unique_steps.size() == 1 ? "" : "s");
-    if (!non_unique_steps.empty())
+    // What the measures prove (doc/theory.md section 5.2): the bound is a
+    // sufficient condition, proven where its certificate is below 1; above
+    // 1 it proves nothing.
+    pcout << "  uniqueness: one solution proven (sufficient condition rho(C "
+             "Lambda) < 1, certified from above) at "
+          << proven_steps << " of " << bound_steps
+          << " steps evaluated (largest bound " << sig6(max_uniqueness_bound)
+          << "; at 1 or more nothing is proven); contraction factor at the "
+             "solution >= 1 (the frozen loop may be repelled from it) at "
+          << repelling_steps.size() << " step"
+          << (repelling_steps.size() == 1 ? "" : "s");
+    if (!repelling_steps.empty())
       {
         pcout << ":";
         const std::size_t shown =
-          std::min<std::size_t>(non_unique_steps.size(), 10);
+          std::min<std::size_t>(repelling_steps.size(), 10);
         for (std::size_t i = 0; i < shown; ++i)
-          pcout << " " << non_unique_steps[i];
-        if (shown < non_unique_steps.size())
+          pcout << " " << repelling_steps[i];
+        if (shown < repelling_steps.size())
           pcout << " ...";
       }
     pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"

@@ -620,14 +620,16 @@ namespace DynamicContact
       }
 
     const auto &statistics = record.statistics;
-    totals.add({state.step,
-                record.cutbacks,
-                statistics.convexification_iterations,
-                statistics.coefficient_residual,
-                statistics.coupled_fallbacks,
-                record.uniqueness_monitor ? statistics.uniqueness_bound : -1.,
-                record.uniqueness_monitor ? statistics.contraction_factor : -1.,
-                statistics.cycles});
+    totals.add(
+      {state.step,
+       record.cutbacks,
+       statistics.convexification_iterations,
+       statistics.coefficient_residual,
+       statistics.coupled_fallbacks,
+       record.uniqueness_monitor ? statistics.uniqueness_bound : -1.,
+       record.uniqueness_monitor ? statistics.uniqueness_certificate : -1.,
+       record.uniqueness_monitor ? statistics.contraction_factor : -1.,
+       statistics.cycles});
     if (model.newton_residual() > parameters.solver.newton_tolerance)
       ++totals.stagnated_steps;
     state.max_relative_defect =

@@ -7,6 +7,7 @@
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/contact/contact_newton.h>
+#include <dynamic_contact/contact/largest_eigenvalue.h>
 
 #include <cstddef>
 #include <functional>
@@ -181,10 +182,13 @@ namespace DynamicContact
 
     /**
      * The largest eigenvalue of R C R^T over the nodes with a root R_i in
-     * @p roots (one per owned node; collective).
+     * @p roots (one per owned node; collective), and where @p certify and
+     * the Lanczos value is below 1 an upper bound of it
+     * (collatz_upper_bound() over the entries of R C R^T, from C's columns
+     * and the Woodbury correction: rigorous to C's round-off).
      */
-    double
-    radius(const std::vector<Tensor<2, dim>> &roots);
+    SpectralEstimate
+    radius(const std::vector<Tensor<2, dim>> &roots, const bool certify);
 
     /**
      * What it holds on this process: K0' (its values; the pattern is K0's),
@@ -240,6 +244,17 @@ namespace DynamicContact
      * (S^{-1} - P C' P^T)^{-1} of apply_k0() and the springs' (node,
      * component) pairs, for the K0' they were made with.
      */
+    /**
+     * sum_b |R_a [K0^{-1}]_ab R_b^T| x_b for every vector x of @p x (rank
+     * 0, after apply_k0() over @p nodes): the entries of K0^{-1} one block
+     * at a time, C' plus the springs' Woodbury term.
+     */
+    void
+    apply_absolute(const std::vector<unsigned int>        &nodes,
+                   const std::vector<Tensor<2, dim>>      &R,
+                   const std::vector<std::vector<double>> &x,
+                   std::vector<std::vector<double>>       &y) const;
+
     FullMatrix<double>                                 spring_correction;
     std::vector<std::pair<unsigned int, unsigned int>> spring_dofs;
     TimeScheme                                         correction_scheme;

@@ -84,9 +84,13 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>>
     provisional_velocities() const override;
 
-    /** From the dense compliance C of Gamma_3 (every node, replicated). */
-    double
-    compliance_radius(const std::vector<Tensor<2, dim>> &roots) override;
+    /**
+     * From the dense compliance C of Gamma_3 (on rank 0), the upper bound
+     * from C's entries (BoundaryCompliance::radius()).
+     */
+    SpectralEstimate
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots,
+                      const bool                         certify) override;
 
     void
     memory_consumption(MemoryItems &items) const override;

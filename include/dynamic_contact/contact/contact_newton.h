@@ -4,12 +4,13 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/contact/contact_boundary.h>
+#include <dynamic_contact/contact/largest_eigenvalue.h>
 #include <dynamic_contact/laws/contact_law.h>
-#include <dynamic_contact/base/error_messages.h>
-#include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -192,10 +193,14 @@ namespace DynamicContact
      * elasticity in it, the contact laws not), S the block diagonal of the
      * symmetric @p roots of the owned nodes (zero leaves a node out). The
      * uniqueness measures of a step (doc/theory.md section 5.2) are of this
-     * form. Lanczos (largest_eigenvalue()); collective.
+     * form. Lanczos (largest_eigenvalue()); collective. Where @p certify
+     * and the Lanczos value is below 1, a solver that holds C's entries
+     * adds an upper bound of the eigenvalue (SpectralEstimate::upper; -1
+     * where it cannot).
      */
-    virtual double
-    compliance_radius(const std::vector<Tensor<2, dim>> &roots) = 0;
+    virtual SpectralEstimate
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots,
+                      const bool                         certify) = 0;
 
     /**
      * What the solver holds on this process beyond the bulk operator

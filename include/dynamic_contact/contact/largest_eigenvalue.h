@@ -27,16 +27,48 @@ namespace DynamicContact
    * @p apply(x, y) sets y = A x. The vectors may be distributed over the
    * processes: @p sum turns a process's part of a dot product into the
    * whole (the identity where every process holds all of it). Returns 0 if
-   * @p start or A start is zero.
+   * @p start or A start is zero. Where @p ritz_vector is given, it is set
+   * to the Ritz vector of the value returned (unit length; this process's
+   * part).
    */
   double
-  largest_eigenvalue(
-    const std::function<void(const std::vector<double> &,
-                             std::vector<double> &)> &apply,
-    const std::vector<double>                        &start,
-    const std::function<double(double)>              &sum,
-    const double                                      tolerance = 1e-10,
-    const unsigned int                                max_steps = 60);
+  largest_eigenvalue(const std::function<void(const std::vector<double> &,
+                                              std::vector<double> &)> &apply,
+                     const std::vector<double>                        &start,
+                     const std::function<double(double)>              &sum,
+                     const double         tolerance   = 1e-10,
+                     const unsigned int   max_steps   = 60,
+                     std::vector<double> *ritz_vector = nullptr);
+
+
+  /**
+   * An upper bound of the largest eigenvalue of a symmetric matrix A, from
+   * the matrix |A| of its entries' magnitudes (Collatz and Wielandt): for
+   * every x with positive entries, lambda_max(A) <= rho(|A|) <= max_i
+   * (|A| x)_i / x_i. The bound is the smallest over the vectors @p x (each
+   * with positive entries); @p apply_abs(xs, ys) sets ys[v] = |A| xs[v]
+   * for all of them at once. The Lanczos value of largest_eigenvalue() is a
+   * lower estimate; this is what certifies it from above (the uniqueness
+   * bound of doc/theory.md section 5.2). Where A's entries are mostly of one
+   * sign, an x near the Ritz vector's magnitudes makes it tight; x = 1
+   * gives the largest absolute row sum.
+   */
+  double
+  collatz_upper_bound(
+    const std::function<void(const std::vector<std::vector<double>> &,
+                             std::vector<std::vector<double>> &)> &apply_abs,
+    const std::vector<std::vector<double>>                        &x);
+
+
+  /**
+   * A largest eigenvalue as the Lanczos iteration estimates it, and an
+   * upper bound of it where one was computed (-1 where not).
+   */
+  struct SpectralEstimate
+  {
+    double lanczos = 0;
+    double upper   = -1;
+  };
 
 
   /** Node @p i's entries of a vector of dim entries per node. */

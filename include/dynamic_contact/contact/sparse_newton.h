@@ -53,9 +53,13 @@ namespace DynamicContact
           std::vector<Tensor<1, dim>> &lambda,
           Vector_t                    &w) override;
 
-    /** By solves with K0 (CG, preconditioned with the AMG of K0). */
-    double
-    compliance_radius(const std::vector<Tensor<2, dim>> &roots) override;
+    /**
+     * By solves with K0 (CG, preconditioned with the AMG of K0); no upper
+     * bound (the entries of C are not at hand).
+     */
+    SpectralEstimate
+    compliance_radius(const std::vector<Tensor<2, dim>> &roots,
+                      const bool                         certify) override;
 
     void
     memory_consumption(MemoryItems &items) const override;

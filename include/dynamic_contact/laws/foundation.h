@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace DynamicContact
@@ -186,6 +187,16 @@ namespace DynamicContact
     /** Whether f vanishes everywhere (the law switched off). */
     virtual bool
     is_zero() const = 0;
+    /**
+     * The largest slope of f, sup |f(b) - f(a)|/|b - a| (a force per area
+     * per unit of r); +infinity where a law does not know it. The
+     * uniqueness bound (doc/theory.md section 5.2) needs it.
+     */
+    virtual double
+    lipschitz_constant() const
+    {
+      return std::numeric_limits<double>::infinity();
+    }
     /** Where the law acts (r > 0): a set of the active-set Newton. */
     virtual bool
     active(const double r) const
@@ -287,6 +298,11 @@ namespace DynamicContact
     is_zero() const override
     {
       return ramp.get_slope() == 0;
+    }
+    double
+    lipschitz_constant() const override
+    {
+      return ramp.get_slope();
     }
     bool
     active(const double r) const override
@@ -395,6 +411,24 @@ namespace DynamicContact
     damping_acts(const double u_nu) const
     {
       return !damping_only_in_contact || u_nu > 0;
+    }
+
+    /**
+     * The largest slope of the pressure p(u_nu) + q(w_nu) as a function
+     * of the step's unknown normal velocity, where u_nu grows with it at
+     * @p du_dw and w_nu at @p dw_dw (TimeScheme::displacement_derivative()
+     * and effective_derivative()): du_dw Lip(p) + dw_dw Lip(q). The
+     * discrete gradient of the trapezoidal scheme is no steeper than p.
+     * +infinity where a law does not know its slope, or where q acts only
+     * in contact (the pressure then jumps where the contact begins).
+     */
+    double
+    pressure_lipschitz_constant(const double du_dw, const double dw_dw) const
+    {
+      if (damping_only_in_contact && has_damping())
+        return std::numeric_limits<double>::infinity();
+      return du_dw * p->lipschitz_constant() +
+             (has_damping() ? dw_dw * q->lipschitz_constant() : 0.);
     }
 
     /** The normal pressure p(u_nu) + q(w_nu) (a force per unit area). */

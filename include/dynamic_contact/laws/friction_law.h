@@ -54,6 +54,14 @@ namespace DynamicContact
     one_sided_lipschitz_constant(const double s_max) const;
 
     /**
+     * The largest coefficient on [0, s_max]: sampled (sample_points()),
+     * exact for the built-in laws. The uniqueness bound's coupling through
+     * the normal forces (doc/theory.md section 5.2) needs it.
+     */
+    virtual double
+    largest_value(const double s_max) const;
+
+    /**
      * Throws an ExcMessage naming the parameter if mu is negative or not
      * finite somewhere on [0, s_max] (sampled).
      */
@@ -138,6 +146,11 @@ namespace DynamicContact
     {
       return 0;
     }
+    double
+    largest_value(const double) const override
+    {
+      return mu;
+    }
 
   private:
     double mu = 0;
@@ -174,6 +187,12 @@ namespace DynamicContact
     one_sided_lipschitz_constant(const double) const override
     {
       return std::max(0., alpha * (a - b));
+    }
+    /** max(a, b): at s = 0 where mu falls, as s grows where it rises. */
+    double
+    largest_value(const double) const override
+    {
+      return std::max(a, b);
     }
 
   private:

@@ -35,12 +35,13 @@ namespace DynamicContact
     /**
      * The uniqueness measures (doc/theory.md section 5.2): the steps whose
      * contraction factor was 1 or more (the frozen loop may be repelled
-     * from the solution), the steps where the paper's bound was evaluated
-     * and where it was below 1 (one solution), and the largest of each.
+     * from the solution), the steps where the bound was evaluated and
+     * those where its certificate (an upper bound) was below 1 (one
+     * solution proven), and the largest of each.
      */
-    std::vector<unsigned int> non_unique_steps;
+    std::vector<unsigned int> repelling_steps;
     unsigned int              bound_steps          = 0;
-    unsigned int              unique_steps         = 0;
+    unsigned int              proven_steps         = 0;
     double                    max_uniqueness_bound = -1;
     double                    max_contraction      = -1;
 
@@ -52,8 +53,9 @@ namespace DynamicContact
       unsigned int convexification_iterations;
       double       coefficient_residual;
       unsigned int coupled_fallbacks;
-      double       uniqueness_bound;   // -1: not evaluated
-      double       contraction_factor; // -1: not evaluated
+      double       uniqueness_bound;       // -1: not evaluated
+      double       uniqueness_certificate; // -1: not evaluated
+      double       contraction_factor;     // -1: not evaluated
       unsigned int active_set_cycles;  // Newton cycles answered by damping
     };
 

@@ -113,6 +113,7 @@ namespace DynamicContact
         {
           // doc/theory.md section 5.2; -1 where not evaluated.
           r.add("uniqueness_bound", statistics.uniqueness_bound);
+          r.add("uniqueness_certificate", statistics.uniqueness_certificate);
           r.add("contraction_factor", statistics.contraction_factor);
         }
       r.add_integer("factorizations", statistics.factorizations);

@@ -59,14 +59,21 @@ namespace DynamicContact
       /**
        * The uniqueness measures of the solution (doc/theory.md section
        * 5.2), -1 where they were not evaluated (Friction/Uniqueness
-       * monitor): the paper's smallness condition theta rho(C L N) (below
-       * 1 the step has one solution), and theta rho(C D) at the solution,
-       * a bound of the frozen-coefficient loop's contraction factor there
-       * (below 1: the loop is attracted to it; 1 or more: it may be
-       * repelled, and other solutions may lie beside it).
+       * monitor). uniqueness_bound: rho(C Lambda), Lambda_i = theta L N_i
+       * + mu_max^2 m_i kappa_i / 4 (the paper's smallness condition with
+       * the coupling through the normal forces), as the Lanczos iteration
+       * estimates it from below; a sufficient condition: below 1 the step
+       * has one solution, at 1 or more nothing is proven.
+       * uniqueness_certificate: an upper bound of it, computed where the
+       * Lanczos value is below 1 and the solver holds C's entries (the
+       * condensed solver), -1 elsewhere: below 1, one solution is proven.
+       * contraction_factor: rho(C D) at the solution, a bound of the
+       * frozen-coefficient loop's contraction factor there (below 1: the
+       * loop is attracted to it; 1 or more: it may be repelled).
        */
-      double uniqueness_bound   = -1;
-      double contraction_factor = -1;
+      double       uniqueness_bound       = -1;
+      double       uniqueness_certificate = -1;
+      double       contraction_factor     = -1;
       unsigned int n_contact            = 0;
       unsigned int n_stick              = 0;
       unsigned int n_slip               = 0;
@@ -106,6 +113,11 @@ namespace DynamicContact
           std::max(coefficient_residual, earlier.coefficient_residual);
         coupled_fallbacks += earlier.coupled_fallbacks;
         uniqueness_bound = std::max(uniqueness_bound, earlier.uniqueness_bound);
+        // Proven only where every sub-step is.
+        uniqueness_certificate =
+          uniqueness_certificate < 0 || earlier.uniqueness_certificate < 0 ?
+            -1. :
+            std::max(uniqueness_certificate, earlier.uniqueness_certificate);
         contraction_factor =
           std::max(contraction_factor, earlier.contraction_factor);
       }
@@ -242,7 +254,8 @@ namespace DynamicContact
 
     /**
      * The uniqueness measures of the solved step into @p statistics
-     * (Statistics::uniqueness_bound, contraction_factor; collective).
+     * (Statistics::uniqueness_bound, uniqueness_certificate,
+     * contraction_factor; collective).
      */
     void
     measure_uniqueness(const TimeScheme   &scheme,
