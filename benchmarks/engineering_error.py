@@ -1,5 +1,5 @@
 """The quantities an engineer reads from a run of the paper's scene, and
-their errors against the converged reference of benchmarks/reference
+their errors against the extrapolated reference of benchmarks/reference
 (doc/accuracy.md defines every one of them).
 
 Not a command; imported by benchmarks/reference and benchmarks/work-precision.
