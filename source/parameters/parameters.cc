@@ -541,21 +541,22 @@ namespace DynamicContact
           "body's tangential stiffness at the node) and lands on a fixed "
           "point of the loop, which the next, frozen, pass confirms: most "
           "steps take two passes and, on the 3D rail, half the Newton "
-          "iterations. But where a step has several solutions (the "
-          "Uniqueness monitor's bound above 1: the paper's scenes at every "
-          "step) it may end at another one than the frozen loop, chosen by "
-          "details as small as round-off: its answers then depend on the "
-          "contact solver and the number of processes. A coupled pass that "
-          "does not converge sends the step back to its start, for the "
-          "frozen loop (counted in coupled_fallbacks).");
+          "iterations. But it may end at another point than the frozen "
+          "loop, chosen by details as small as round-off, so that its "
+          "answers depend on the contact solver and the number of processes "
+          "(on the paper's scenes, where the Uniqueness monitor's bound, a "
+          "sufficient condition, is far above 1 and so proves nothing). A "
+          "coupled pass that does not converge sends the step back to its "
+          "start, for the frozen loop (counted in coupled_fallbacks).");
         prm.declare_entry(
           "Uniqueness monitor",
           "auto",
           Patterns::Selection("auto|always|never"),
           "When a slip-rate dependent law's uniqueness measures are "
           "evaluated after a step (doc/theory.md section 5.2; the columns "
-          "uniqueness_bound and contraction_factor of time_series.csv, -1 "
-          "where not evaluated): 'auto' where the condensed contact solver "
+          "uniqueness_bound, uniqueness_certificate and contraction_factor "
+          "of time_series.csv, -1 where not evaluated; a bound certified "
+          "below 1 proves one solution, above 1 nothing): 'auto' where the condensed contact solver "
           "solves the step (from its compliance table, a few ms), 'always' "
           "(with the assembled solver each costs a few dozen solves with K0 "
           "by CG), 'never' (no columns). Time/Cut back where not unique "
