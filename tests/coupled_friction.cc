@@ -26,11 +26,15 @@
 //    - alpha = 0.01, k = 0.001, a soft foundation: one solution, proven
 //      (certificate below 1, above the Lanczos value).
 //    In each the bound lies at or somewhat above its rigid-body value (the
-//    elastic block is more compliant than the rigid one).
+//    elastic block is more compliant than the rigid one), and the starts of
+//    Friction/Count solutions find two solutions where there are three and
+//    one where there is one.
 // 4. The paper's small scene with the coupled linearization, on both contact
 //    solvers: completed, the loop's stopping rule met at every step, two
 //    passes a step (the coupled one and the frozen one that confirms it),
-//    fewer passes than the frozen loop, the energy balance. (Its Newton
+//    fewer passes than the frozen loop, the energy balance; with Friction/
+//    Count solutions the same answers, and steps with several solutions
+//    found. (Its Newton
 //    iterations are not fewer on this coarse scene: 625 against 549.)
 
 #include <deal.II/lac/full_matrix.h>
@@ -276,6 +280,7 @@ namespace
          "Friction/Exponential/Dynamic coefficient=0.4",
          "Friction/Exponential/Decay rate=" + std::to_string(c.decay_rate),
          "Friction/Linearization=" + linearization,
+         "Friction/Count solutions=true",
          "Time/Cut back where not unique=true"})
         ->time_series();
     return series.back();
@@ -363,6 +368,13 @@ namespace
             else
               check(st.uniqueness_bound >= 1 && st.uniqueness_certificate == -1,
                     prefix + "bound >= 1: nothing proven, no certificate");
+            // The starts' count (Friction/Count solutions): two distinct
+            // solutions found prove several; where there is one, every
+            // start that converged reached it.
+            check(c.solutions > 1 ? st.solutions >= 2 : st.solutions == 1,
+                  prefix + "the starts found " + std::to_string(st.solutions) +
+                    " distinct solution(s) (" +
+                    std::to_string(st.failed_starts) + " reached none)");
             check(st.contraction_factor < 1 && r.cutbacks == 0,
                   prefix + "contraction factor < 1 at the solution found, "
                            "no cut-back");
@@ -404,6 +416,36 @@ namespace
                         "Output/Directory=output-paper-" + solver + "-" +
                           linearization})
                        ->time_series());
+    // Friction/Count solutions solves each step again from other starts:
+    // the run's own answers stay those of its loop, to the bit, and on this
+    // scene the starts find steps with several solutions.
+    const auto counted =
+      test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
+                         {"Solver/Contact solver=condensed",
+                          "Friction/Count solutions=true",
+                          "Output/Directory=output-paper-count"})
+        ->time_series();
+    bool         same    = counted.size() == frozen[0].size();
+    unsigned int several = 0, failed = 0;
+    for (unsigned int n = 1; same && n < counted.size(); ++n)
+      {
+        const auto &a = counted[n], &b = frozen[0][n];
+        same =
+          a.normal_force == b.normal_force &&
+          a.tangential_force == b.tangential_force &&
+          a.terms.energy.total() == b.terms.energy.total() &&
+          a.statistics.newton_iterations == b.statistics.newton_iterations &&
+          a.statistics.convexification_iterations ==
+            b.statistics.convexification_iterations;
+        several += a.statistics.solutions > 1;
+        failed += a.statistics.failed_starts;
+      }
+    check(same,
+          "paper small, Count solutions: the run's answers and iteration "
+          "counts those of the frozen loop alone, to the bit");
+    check(several > 0 && failed < counted.size(),
+          "paper small, Count solutions: steps with two or more distinct "
+          "solutions found");
     for (unsigned int s = 0; s < 2; ++s)
       {
         const std::string name =

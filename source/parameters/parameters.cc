@@ -544,8 +544,8 @@ namespace DynamicContact
           "iterations. But it may end at another point than the frozen "
           "loop, chosen by details as small as round-off, so that its "
           "answers depend on the contact solver and the number of processes "
-          "(on the paper's scenes, where the Uniqueness monitor's bound, a "
-          "sufficient condition, is far above 1 and so proves nothing). A "
+          "(most steps of the paper's scenes have several solutions: Count "
+          "solutions). A "
           "coupled pass that does not converge sends the step back to its "
           "start, for the frozen loop (counted in coupled_fallbacks).");
         prm.declare_entry(
@@ -561,6 +561,21 @@ namespace DynamicContact
           "(with the assembled solver each costs a few dozen solves with K0 "
           "by CG), 'never' (no columns). Time/Cut back where not unique "
           "needs them at every step.");
+        prm.declare_entry(
+          "Count solutions",
+          "false",
+          Patterns::Bool(),
+          "With a slip-rate dependent law, a diagnostic of several times "
+          "the cost: true solves every step again from four starts (the "
+          "last step's velocity, all of Gamma_3 sticking, all of it slipping "
+          "fast, and the coupled linearization), each with the frozen loop "
+          "to max |mu_i - mu(|w_tau,i|)| <= Coefficient tolerance/100, and "
+          "counts the distinct "
+          "solutions they reach (doc/theory.md section 5.3; the columns "
+          "solutions, solution_spread and failed_starts of "
+          "time_series.csv). A count of 1 says the starts agree, not that "
+          "the solution is unique; 2 or more proves several. The run's "
+          "answers are those of its own loop, unchanged.");
         prm.declare_entry(
           "Complementarity constant",
           "0",
@@ -615,6 +630,7 @@ namespace DynamicContact
           monitor == "always" ? Monitor::always :
           monitor == "never"  ? Monitor::never :
                                 Monitor::automatic;
+        count_solutions          = prm.get_bool("Count solutions");
         complementarity_constant = prm.get_double("Complementarity constant");
         allow_velocity_strengthening =
           prm.get("Velocity strengthening") == "allow";

@@ -31,6 +31,13 @@ namespace DynamicContact
       }
     max_uniqueness_bound =
       std::max(max_uniqueness_bound, step.uniqueness_bound);
+    if (step.solutions > 0)
+      {
+        ++counted_steps;
+        if (step.solutions > 1)
+          several_solution_steps.push_back(step.step);
+      }
+    failed_starts += step.failed_starts;
   }
 
 
@@ -70,7 +77,9 @@ namespace DynamicContact
              has("uniqueness_certificate") ? value("uniqueness_certificate") :
                                              -1.,
              has("contraction_factor") ? value("contraction_factor") : -1.,
-             static_cast<unsigned int>(value("active_set_cycles"))});
+             static_cast<unsigned int>(value("active_set_cycles")),
+             static_cast<unsigned int>(value("solutions")),
+             static_cast<unsigned int>(value("failed_starts"))});
       }
   }
 
@@ -100,6 +109,31 @@ namespace DynamicContact
           pcout << " ...";
       }
     pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"
+          << std::endl;
+  }
+
+
+  void
+  RunTotals::print_solution_count(const ConditionalOStream &pcout) const
+  {
+    // Friction/Count solutions (doc/theory.md section 5.3): two or more
+    // distinct verified solutions prove several; one proves nothing.
+    pcout << "  solution count: two or more distinct solutions (from the "
+             "starts previous, stick, fast slip, coupled; each to a "
+             "coefficient residual of Coefficient tolerance/100) at "
+          << several_solution_steps.size() << " of " << counted_steps
+          << " steps counted";
+    if (!several_solution_steps.empty())
+      {
+        pcout << ":";
+        const std::size_t shown =
+          std::min<std::size_t>(several_solution_steps.size(), 10);
+        for (std::size_t i = 0; i < shown; ++i)
+          pcout << " " << several_solution_steps[i];
+        if (shown < several_solution_steps.size())
+          pcout << " ...";
+      }
+    pcout << "; starts that reached no solution: " << failed_starts
           << std::endl;
   }
 
@@ -170,6 +204,8 @@ namespace DynamicContact
             << std::endl;
     if (friction && (bound_steps > 0 || max_contraction >= 0))
       print_uniqueness(pcout);
+    if (counted_steps > 0)
+      print_solution_count(pcout);
 
     // An honest ending: completed, or completed with what did not hold.
     std::vector<std::string> warnings;

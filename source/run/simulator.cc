@@ -344,6 +344,16 @@ namespace DynamicContact
 
 
   template <int dim>
+  bool
+  Simulator<dim>::solution_count_columns() const
+  {
+    return parameters.friction.count_solutions &&
+           StepSolver<dim>::runs_convexification_loop(
+             parameters.friction.law.get());
+  }
+
+
+  template <int dim>
   StepRecord<dim>
   Simulator<dim>::initial_record()
   {
@@ -356,6 +366,7 @@ namespace DynamicContact
     record.cells         = discretization.triangulation.n_global_active_cells();
     record.adaptive_time = parameters.time.adaptive; // the columns, 0
     record.uniqueness_monitor = uniqueness_columns();  // -1: not evaluated
+    record.solution_count     = solution_count_columns();
     return record;
   }
 

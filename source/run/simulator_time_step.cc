@@ -234,6 +234,7 @@ namespace DynamicContact
         record.rejected      = rejected;
       }
     record.uniqueness_monitor = uniqueness_columns();
+    record.solution_count     = solution_count_columns();
     record_errors(record, t);
     record.dofs     = discretization.dof_handler.n_dofs();
     record.cells    = discretization.triangulation.n_global_active_cells();

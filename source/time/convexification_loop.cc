@@ -301,7 +301,8 @@ namespace DynamicContact
                         const std::vector<Tensor<1, dim>> &u_old_nodes,
                         const std::vector<Tensor<1, dim>> &w_old_nodes,
                         Vector_t                          &w,
-                        Statistics                        &statistics)
+                        Statistics                        &statistics,
+                        const LoopOptions                 &options)
       : solver(solver)
       , newton(newton)
       , scheme(scheme)
@@ -324,11 +325,10 @@ namespace DynamicContact
                  u_old_nodes,
                  w_old_nodes,
                  solver.friction_parameters.convexification_tolerance,
-                 solver.friction_parameters.coefficient_tolerance,
+                 options.coefficient_tolerance,
                  solver.discretization.comm)
-      , max_passes(
-          loop ? solver.friction_parameters.max_convexification_iterations : 1)
-      , coupling(loop && solver.friction_parameters.coupled_linearization)
+      , max_passes(loop ? options.max_passes : 1)
+      , coupling(loop && options.coupled)
     {
       if (coupling)
         {
@@ -613,15 +613,23 @@ namespace DynamicContact
     ContactNewton<dim> &newton      = newton_for(scheme);
     const auto          u_old_nodes = contact_boundary.values(u_old);
     const auto          w_old_nodes = contact_boundary.values(w_old);
-    ConvexificationLoop loop(*this,
-                             newton,
-                             scheme,
-                             rhs,
-                             u_old,
-                             u_old_nodes,
-                             w_old_nodes,
-                             w,
-                             statistics);
+    const bool          count       = friction_parameters.count_solutions &&
+                       runs_convexification_loop(friction_law);
+    const ContactState<dim> start_state =
+      count ? contact_state : ContactState<dim>();
+    ConvexificationLoop loop(
+      *this,
+      newton,
+      scheme,
+      rhs,
+      u_old,
+      u_old_nodes,
+      w_old_nodes,
+      w,
+      statistics,
+      LoopOptions{friction_parameters.coefficient_tolerance,
+                  friction_parameters.max_convexification_iterations,
+                  friction_parameters.coupled_linearization});
     loop.run(accept_unconverged_loop);
 
     update_states(scheme, u_old_nodes, w_old_nodes, w, statistics);
@@ -631,7 +639,154 @@ namespace DynamicContact
                              Parameters::Friction::Monitor::automatic &&
                            plan.condensed)))
       measure_uniqueness(scheme, newton, statistics);
+    if (count)
+      count_solutions(scheme, rhs, u_old, w_old, start_state, statistics);
     return statistics;
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::count_solutions(const TimeScheme        &scheme,
+                                   const Vector_t          &rhs,
+                                   const Vector_t          &u_old,
+                                   const Vector_t          &w_old,
+                                   const ContactState<dim> &start_state,
+                                   Statistics              &statistics)
+  {
+    // doc/theory.md section 5.3. Each start: an initial velocity (which
+    // gives the loop its first coefficients mu(|w_tau|)), the friction
+    // forces to start from, and the linearization.
+    TimerSection            t(timer, "Friction: solution count");
+    const auto             &nodes        = contact_boundary.nodes();
+    const MPI_Comm          comm         = discretization.comm;
+    const double            theta        = scheme.effective_derivative();
+    const ContactState<dim> solved_state = contact_state;
+    ContactNewton<dim>     &newton       = newton_for(scheme);
+    const auto              u_old_nodes  = contact_boundary.values(u_old);
+    const auto              w_old_nodes  = contact_boundary.values(w_old);
+    // The slip rate of the fast start: 1000/L, far beyond where the law
+    // weakens (it changes by at most L s), kept inside [1e-3, 1] times
+    // Friction/Maximum slip rate.
+    const double fast =
+      std::min(friction_parameters.maximum_slip_rate,
+               std::max(1e3 / std::max(lipschitz_constant, 1e-300),
+                        1e-3 * friction_parameters.maximum_slip_rate));
+    enum Start
+    {
+      previous,
+      stick,
+      fast_slip,
+      coupled
+    };
+    const char *names[] = {"previous", "stick", "fast slip", "coupled"};
+    std::vector<std::vector<Tensor<1, dim>>> found;
+    std::vector<std::string>                 found_by;
+    double                                   scale = 0;
+    for (const Start start : {previous, stick, fast_slip, coupled})
+      {
+        Vector_t w    = w_old;
+        contact_state = start_state;
+        if (start == stick || start == fast_slip)
+          {
+            for (unsigned int i = 0; i < nodes.size(); ++i)
+              {
+                if (!nodes[i].unconstrained)
+                  continue;
+                const Tensor<1, dim> wi = nodes[i].value(w_old);
+                // w_e,tau = theta w_tau + (1 - theta) w_old,tau.
+                Tensor<1, dim> target;
+                if (start == fast_slip)
+                  {
+                    Tensor<1, dim> d = nodes[i].tangential(wi);
+                    if (!(d.norm() > 0))
+                      d = nodes[i].tangents[0];
+                    target = fast * d / d.norm();
+                  }
+                const Tensor<1, dim> w_tau =
+                  (target - (1 - theta) * nodes[i].tangential(wi)) / theta;
+                const Tensor<1, dim> value =
+                  wi - nodes[i].tangential(wi) + w_tau;
+                for (unsigned int c = 0; c < dim; ++c)
+                  w(nodes[i].dofs[c]) = value[c];
+                if (start == stick)
+                  contact_state.lambda[i] = Tensor<1, dim>();
+              }
+            w.compress(VectorOperation::insert);
+          }
+        Statistics unused;
+        try
+          {
+            ConvexificationLoop loop(
+              *this,
+              newton,
+              scheme,
+              rhs,
+              u_old,
+              u_old_nodes,
+              w_old_nodes,
+              w,
+              unused,
+              LoopOptions{
+                1e-2 * friction_parameters.coefficient_tolerance,
+                std::max(200u,
+                         friction_parameters.max_convexification_iterations),
+                start == coupled});
+            loop.run(false);
+          }
+        catch (const StepFailure &failure)
+          {
+            details << "  solution count: start " << names[start]
+                    << " reached no solution (" << failure.what() << ")"
+                    << std::endl;
+            ++statistics.failed_starts;
+            continue;
+          }
+        details << "  solution count: start " << names[start] << " reached a "
+                << "solution in " << unused.convexification_iterations
+                << " passes, max |mu_i - mu(|w_tau,i|)| "
+                << unused.coefficient_residual << std::endl;
+        found.push_back(contact_boundary.values(w));
+        found_by.push_back(names[start]);
+        for (const auto &v : found.back())
+          scale = std::max(scale, v.norm());
+      }
+    contact_state = solved_state;
+    scale         = Utilities::MPI::max(scale, comm);
+
+    // Distinct: farther apart than 1e-6 of the largest velocity on
+    // Gamma_3 (the loop's tolerance on mu leaves slip rates to tol/L).
+    const auto distance = [&](const std::vector<Tensor<1, dim>> &a,
+                              const std::vector<Tensor<1, dim>> &b) {
+      double d = 0;
+      for (unsigned int i = 0; i < a.size(); ++i)
+        d = std::max(d, (a[i] - b[i]).norm());
+      return Utilities::MPI::max(d, comm) / std::max(scale, 1e-300);
+    };
+    std::vector<unsigned int> distinct;
+    statistics.solution_spread = 0;
+    for (unsigned int a = 0; a < found.size(); ++a)
+      {
+        bool is_new = true;
+        for (const unsigned int b : distinct)
+          {
+            const double d = distance(found[a], found[b]);
+            statistics.solution_spread =
+              std::max(statistics.solution_spread, d);
+            is_new = is_new && d > 1e-6;
+          }
+        if (is_new)
+          distinct.push_back(a);
+      }
+    statistics.solutions = distinct.size();
+    for (unsigned int a = 1; a < found.size(); ++a)
+      details << "  solution count: start " << found_by[a]
+              << ": distance to start " << found_by[0] << "'s "
+              << distance(found[a], found[0]) << std::endl;
+    details << "  solution count: " << found.size() << " starts reached "
+            << distinct.size() << " distinct solution(s), largest distance "
+            << statistics.solution_spread
+            << " of the largest velocity on Gamma_3" << std::endl;
   }
 
 

@@ -629,7 +629,9 @@ namespace DynamicContact
        record.uniqueness_monitor ? statistics.uniqueness_bound : -1.,
        record.uniqueness_monitor ? statistics.uniqueness_certificate : -1.,
        record.uniqueness_monitor ? statistics.contraction_factor : -1.,
-       statistics.cycles});
+       statistics.cycles,
+       statistics.solutions,
+       statistics.failed_starts});
     if (model.newton_residual() > parameters.solver.newton_tolerance)
       ++totals.stagnated_steps;
     state.max_relative_defect =

@@ -176,6 +176,12 @@ namespace DynamicContact
         never
       };
       Monitor uniqueness_monitor;
+      /**
+       * Friction/Count solutions: solve every step again from several
+       * starts and count the distinct solutions (doc/theory.md section
+       * 5.3; a diagnostic: several times the cost).
+       */
+      bool count_solutions;
 
       // Complementarity constant c_t; 0 means "E/h".
       double complementarity_constant;

@@ -44,6 +44,14 @@ namespace DynamicContact
     unsigned int              proven_steps         = 0;
     double                    max_uniqueness_bound = -1;
     double                    max_contraction      = -1;
+    /**
+     * Friction/Count solutions (doc/theory.md section 5.3): the steps
+     * counted, those where the starts reached two or more solutions, and
+     * the starts that reached none.
+     */
+    unsigned int              counted_steps = 0;
+    std::vector<unsigned int> several_solution_steps;
+    unsigned int              failed_starts = 0;
 
     /** What a step adds: a row of time_series.csv, by column. */
     struct Step
@@ -57,6 +65,8 @@ namespace DynamicContact
       double       uniqueness_certificate; // -1: not evaluated
       double       contraction_factor;     // -1: not evaluated
       unsigned int active_set_cycles;  // Newton cycles answered by damping
+      unsigned int solutions     = 0;  // Friction/Count solutions; 0: not
+      unsigned int failed_starts = 0;
     };
 
     /** Add the counts of one step. */
@@ -91,6 +101,10 @@ namespace DynamicContact
     /** The summary's line on the uniqueness of the steps' solutions. */
     void
     print_uniqueness(const ConditionalOStream &pcout) const;
+
+    /** The summary's line of the solution count. */
+    void
+    print_solution_count(const ConditionalOStream &pcout) const;
   };
 } // namespace DynamicContact
 

@@ -134,6 +134,13 @@ namespace DynamicContact
      */
     bool
     uniqueness_columns() const;
+
+    /**
+     * time_series.csv has the solution count's columns (Friction/Count
+     * solutions with a slip-rate dependent law).
+     */
+    bool
+    solution_count_columns() const;
     /** @} */
 
     /** @name The steps of the scheme */

@@ -53,6 +53,8 @@ namespace DynamicContact
      * Friction/Uniqueness monitor not never).
      */
     bool uniqueness_monitor = false;
+    /** The solution count is a column (Friction/Count solutions). */
+    bool solution_count = false;
     /** Time/Adaptive: the step's error estimate and its rejected tries. */
     bool         adaptive_time = false;
     double       time_error    = 0;
@@ -115,6 +117,13 @@ namespace DynamicContact
           r.add("uniqueness_bound", statistics.uniqueness_bound);
           r.add("uniqueness_certificate", statistics.uniqueness_certificate);
           r.add("contraction_factor", statistics.contraction_factor);
+        }
+      if (solution_count)
+        {
+          // doc/theory.md section 5.3.
+          r.add_integer("solutions", statistics.solutions);
+          r.add("solution_spread", statistics.solution_spread);
+          r.add_integer("failed_starts", statistics.failed_starts);
         }
       r.add_integer("factorizations", statistics.factorizations);
       r.add_integer("active_set_cycles", statistics.cycles);

@@ -74,6 +74,15 @@ namespace DynamicContact
       double       uniqueness_bound       = -1;
       double       uniqueness_certificate = -1;
       double       contraction_factor     = -1;
+      /**
+       * Friction/Count solutions (doc/theory.md section 5.3): the distinct
+       * solutions that the step's starts reached (0: not counted), the
+       * largest distance between two of them relative to the largest
+       * velocity on Gamma_3, and the starts that reached none.
+       */
+      unsigned int solutions            = 0;
+      double       solution_spread      = 0;
+      unsigned int failed_starts        = 0;
       unsigned int n_contact            = 0;
       unsigned int n_stick              = 0;
       unsigned int n_slip               = 0;
@@ -113,6 +122,9 @@ namespace DynamicContact
           std::max(coefficient_residual, earlier.coefficient_residual);
         coupled_fallbacks += earlier.coupled_fallbacks;
         uniqueness_bound = std::max(uniqueness_bound, earlier.uniqueness_bound);
+        solutions        = std::max(solutions, earlier.solutions);
+        solution_spread  = std::max(solution_spread, earlier.solution_spread);
+        failed_starts += earlier.failed_starts;
         // Proven only where every sub-step is.
         uniqueness_certificate =
           uniqueness_certificate < 0 || earlier.uniqueness_certificate < 0 ?
@@ -251,6 +263,30 @@ namespace DynamicContact
 
     /** The convexification loop of one step (convexification_loop.cc). */
     class ConvexificationLoop;
+
+    /** What a convexification loop is asked to do. */
+    struct LoopOptions
+    {
+      double       coefficient_tolerance;
+      unsigned int max_passes;
+      bool         coupled;
+    };
+
+    /**
+     * Friction/Count solutions (doc/theory.md section 5.3): the step solved
+     * again from several starts to a coefficient residual of 1/100 of
+     * Friction/Coefficient tolerance, and the
+     * distinct solutions counted into @p statistics. @p start_state is the
+     * contact state at the step's start; the contact state and @p w of the
+     * step's solution are left as they were (collective).
+     */
+    void
+    count_solutions(const TimeScheme        &scheme,
+                    const Vector_t          &rhs,
+                    const Vector_t          &u_old,
+                    const Vector_t          &w_old,
+                    const ContactState<dim> &start_state,
+                    Statistics              &statistics);
 
     /**
      * The uniqueness measures of the solved step into @p statistics
