@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 namespace DynamicContact
@@ -152,6 +153,12 @@ namespace DynamicContact
       return slope;
     }
 
+    double
+    get_cap() const
+    {
+      return cap;
+    }
+
   private:
     double slope;
     double cap;
@@ -186,6 +193,17 @@ namespace DynamicContact
     /** Whether f vanishes everywhere (the law switched off). */
     virtual bool
     is_zero() const = 0;
+    /**
+     * The least upper bound of f, the cap c3 or c4 of the paper's H(p)(b),
+     * H(q)(b) (eqs. (33), (34)); infinite (the default) for a law that
+     * gives no bound. The well-posedness report (doc/theory.md section
+     * 1.5) takes the largest normal stress from it.
+     */
+    virtual double
+    supremum() const
+    {
+      return std::numeric_limits<double>::infinity();
+    }
     /** Where the law acts (r > 0): a set of the active-set Newton. */
     virtual bool
     active(const double r) const
@@ -287,6 +305,12 @@ namespace DynamicContact
     is_zero() const override
     {
       return ramp.get_slope() == 0;
+    }
+    /** c3 or c4 (0 where the law is switched off). */
+    double
+    supremum() const override
+    {
+      return is_zero() ? 0. : ramp.get_cap();
     }
     bool
     active(const double r) const override
@@ -395,6 +419,16 @@ namespace DynamicContact
     damping_acts(const double u_nu) const
     {
       return !damping_only_in_contact || u_nu > 0;
+    }
+
+    /**
+     * The largest normal pressure p + q the laws allow, c3 + c4 (infinite
+     * where a law gives no bound).
+     */
+    double
+    pressure_bound() const
+    {
+      return p->supremum() + (has_damping() ? q->supremum() : 0.);
     }
 
     /** The normal pressure p(u_nu) + q(w_nu) (a force per unit area). */
