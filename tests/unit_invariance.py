@@ -16,7 +16,9 @@ process taking part). Against the SI run on as many processes:
    back to SI by its unit, equals the SI run's to 1e-8 of the largest
    magnitude of that column (the nodes' states exactly); the round-off
    diagnostics (the energy balance's defect, the friction law's residual)
-   are compared with their own tolerances instead.
+   are compared with their own tolerances instead;
+3. the well-posedness report of `log.txt` (doc/theory.md section 1.5, its
+   ratios dimensionless) is the SI run's, line for line.
 
 Prints one line per check and exits with 1 if any failed.
 """
@@ -195,6 +197,21 @@ def run(program, mpiexec, processes, prm, out, overrides):
     return result.returncode == 0 and status == "completed"
 
 
+def well_posedness(out):
+    """The lines of the well-posedness report in out/log.txt ([]: none)."""
+    with open(os.path.join(out, "log.txt")) as f:
+        lines = f.read().splitlines()
+    report = []
+    for line in lines:
+        if line.startswith("  well-posedness"):
+            report.append(line)
+        elif report and line.startswith("    "):
+            report.append(line)
+        elif report:
+            break
+    return report
+
+
 def main():
     parser = program_arguments(__doc__)
     parser.add_argument("--mpiexec", default="mpiexec")
@@ -270,6 +287,10 @@ def main():
                 check([os.path.basename(f) for f in contact] ==
                       [os.path.basename(f) for f in si_contact],
                       "%s: the same contact CSVs" % label)
+                si_report = well_posedness(si)
+                check(si_report and well_posedness(out) == si_report,
+                      "%s: the same well-posedness report (%d lines)"
+                      % (label, len(si_report)))
                 si_tables = [read_csv(f) for f in si_contact]
                 peak_of = peaks(si_tables, CONTACT)
                 for a, b in zip(si_tables, contact):

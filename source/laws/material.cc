@@ -1,5 +1,6 @@
 #include <dynamic_contact/laws/material.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace DynamicContact
@@ -50,6 +51,19 @@ namespace DynamicContact
     viscous_lambda =
       effective_lambda(p.viscosity_lambda, p.viscosity_mu, p.plane_model, dim);
     viscosity_tensor = isotropic_tensor<dim>(viscous_lambda, p.viscosity_mu);
+  }
+
+
+  template <int dim>
+  double
+  KelvinVoigtMaterial<dim>::viscous_coercivity() const
+  {
+    // An isotropic tensor has the eigenvalue 2 mu_v on the deviators and
+    // 2 mu_v + dim lambda_v on the identity.
+    if (!viscous)
+      return 0.;
+    const double mu_v = viscosity_tensor[0][1][0][1];
+    return std::min(2 * mu_v, 2 * mu_v + dim * viscous_lambda);
   }
 
 

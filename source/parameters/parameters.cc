@@ -458,6 +458,13 @@ namespace DynamicContact
       return std::sqrt((lambda + 2 * mu) / density);
     }
 
+    double
+    Material::shear_wave_speed() const
+    {
+      const double mu = young_modulus / (2 * (1 + poisson_ratio));
+      return std::sqrt(mu / density);
+    }
+
     // ---------------------------------------------------------- Foundation
     void
     Foundation::declare_parameters(ParameterHandler  &prm,

@@ -2,6 +2,7 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
+#include <dynamic_contact/laws/well_posedness.h>
 #include <dynamic_contact/time/time_loop.h>
 
 #include <iostream>
@@ -38,7 +39,9 @@ namespace DynamicContact
                           << parameters.parameter_file << "' is valid ("
                           << summary << "); Output/Directory '"
                           << parameters.output.directory
-                          << "' is not looked at." << std::endl;
+                          << "' is not looked at." << std::endl
+                          << well_posedness_report<dim>(parameters)
+                          << std::flush;
             }
           else
             {

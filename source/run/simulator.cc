@@ -4,11 +4,12 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/base/error_messages.h>
-#include <dynamic_contact/bulk/error_norms.h>
 #include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/resources.h>
-#include <dynamic_contact/run/simulator.h>
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/bulk/error_norms.h>
+#include <dynamic_contact/laws/well_posedness.h>
+#include <dynamic_contact/run/simulator.h>
 
 #include <unistd.h>
 
@@ -421,6 +422,7 @@ namespace DynamicContact
                  parameters.friction.maximum_slip_rate))
             << (friction_law->is_constant() ? " (constant: one pass)" : "");
     pcout << '\n';
+    pcout << well_posedness_report<dim>(parameters);
   }
 
 

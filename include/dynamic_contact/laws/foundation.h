@@ -153,6 +153,12 @@ namespace DynamicContact
       return slope;
     }
 
+    double
+    get_cap() const
+    {
+      return cap;
+    }
+
   private:
     double slope;
     double cap;
@@ -194,6 +200,18 @@ namespace DynamicContact
      */
     virtual double
     lipschitz_constant() const
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+
+    /**
+     * The least upper bound of f, the cap c3 or c4 of the paper's H(p)(b),
+     * H(q)(b) (eqs. (33), (34)); infinite (the default) for a law that
+     * gives no bound. The well-posedness report (doc/theory.md section
+     * 1.5) takes the largest normal stress from it.
+     */
+    virtual double
+    supremum() const
     {
       return std::numeric_limits<double>::infinity();
     }
@@ -303,6 +321,12 @@ namespace DynamicContact
     lipschitz_constant() const override
     {
       return ramp.get_slope();
+    }
+    /** c3 or c4 (0 where the law is switched off). */
+    double
+    supremum() const override
+    {
+      return is_zero() ? 0. : ramp.get_cap();
     }
     bool
     active(const double r) const override
@@ -429,6 +453,16 @@ namespace DynamicContact
         return std::numeric_limits<double>::infinity();
       return du_dw * p->lipschitz_constant() +
              (has_damping() ? dw_dw * q->lipschitz_constant() : 0.);
+    }
+
+    /**
+     * The largest normal pressure p + q the laws allow, c3 + c4 (infinite
+     * where a law gives no bound).
+     */
+    double
+    pressure_bound() const
+    {
+      return p->supremum() + (has_damping() ? q->supremum() : 0.);
     }
 
     /** The normal pressure p(u_nu) + q(w_nu) (a force per unit area). */

@@ -63,6 +63,14 @@ namespace DynamicContact
       return viscous;
     }
 
+    /**
+     * The coercivity constant c2 of C (H(C)(b), eq. (31)): its smallest
+     * eigenvalue as a map on symmetric tensors, min(2 mu_v, 2 mu_v + dim
+     * lambda_v) with lambda_v of the plane model; 0 without viscosity.
+     */
+    double
+    viscous_coercivity() const;
+
     /** Lame constants of E as the plane model uses them. */
     double
     lambda() const

@@ -122,6 +122,15 @@ namespace DynamicContact
        */
       double
       p_wave_speed() const;
+
+      /**
+       * sqrt(mu/rho): the body's shear (S-) wave speed, the same in plane
+       * strain, plane stress and 3D; rho c_s is the body's radiation
+       * impedance to tangential motion of its boundary (doc/theory.md
+       * section 1.5).
+       */
+      double
+      shear_wave_speed() const;
     };
 
     struct Foundation
