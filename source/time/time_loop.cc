@@ -178,7 +178,7 @@ namespace DynamicContact
     // what differs from run to run: the times, and the iteration counts (on
     // several processes they follow the round-off of the parallel direct
     // solver near the stopping thresholds: two runs of tests/paper_small on
-    // 2 processes differed by one Newton iteration in 3 of 16 progress
+    // 2 processes differed by one Newton iteration in some progress
     // lines).
     pcout << "step " << std::setw(5) << state.step << '/'
           << state.step + schedule.remaining_steps(state.time)
