@@ -21,7 +21,9 @@
 // - Foundation/Normal damping/Only in contact = true: damping acts only at
 //   penetrating nodes, and the energy balance still closes;
 // - Time/Maximum time step bounds the adaptive steps;
-// - Mesh refinement/Cell budget caps the adaptive mesh; the error indicator
+// - Mesh refinement/Cell budget caps the adaptive mesh (and its solver plan
+//   stays); a Condensed limit that the adapted mesh's contact boundary
+//   crosses changes the plan, and log.txt has the new one; the error indicator
 //   with both fractions 0 leaves the mesh as it is, with a refine fraction
 //   it refines; contact following refines within its Window of the
 //   penetrating nodes.
@@ -31,6 +33,8 @@
 #include <dynamic_contact/parameters/parameters.h>
 
 #include "test_tools.h"
+
+#include <regex>
 
 using namespace DynamicContact;
 
@@ -301,6 +305,22 @@ main(int argc, char *argv[])
     });
     check(other_meshes == 0,
           "Cell budget = 256: the uniform mesh of the minimum level");
+
+    // A solver plan that an adapted mesh changes goes into log.txt, with
+    // the step it applies from: in the adaptive scene's first 0.25 s dim x
+    // contact nodes grows from 38 to 42, across a Condensed limit of 41. A
+    // run whose plan stays (the budget above) has no such line.
+    series("plan-change", {"Solver/Condensed limit=41"}, adaptive_scene);
+    const std::string changed =
+      test_tools::read_text("output-plan-change/log.txt");
+    check(std::regex_search(
+            changed,
+            std::regex(R"((^|\n)  solver plan from step [0-9]+ \(mesh )"
+                       R"(adapted at t = [^)]+\): assembled \(iterative\))")),
+          "a plan changed by remeshing: log.txt has the new one");
+    check(test_tools::read_text("output-budget/log.txt")
+              .find("solver plan from step") == std::string::npos,
+          "a plan unchanged by remeshing: log.txt has no new one");
     const auto frozen = series("indicator-frozen",
                                {"Mesh refinement/Strategy=error indicator",
                                 "Mesh refinement/Error indicator/"

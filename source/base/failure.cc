@@ -147,13 +147,6 @@ namespace DynamicContact
 
 
   int
-  received_stop_signal()
-  {
-    return stop_signal;
-  }
-
-
-  int
   signal_to_stop(const MPI_Comm comm)
   {
     return Utilities::MPI::max(static_cast<int>(stop_signal), comm);

@@ -335,11 +335,12 @@ namespace DynamicContact
     common.postorder          = postorder;
     common.supernodal         = supernodal;
     // The dense trailing block makes every solve dearer: taken while it
-    // at most doubles the factor (measured per solve: the paper's scene
-    // 1.07 times, the 3D rail 80 x 8 x 8 1.5 times, where the compliance
-    // columns it saves cost 300 solves; the paper domain 256 x 16, a
-    // strip 16 cells deep under 514 DoFs of Gamma_3, 3.3 times, and 12 %
-    // more wall time than the columns by solves).
+    // at most doubles the factor. Below that (the paper's scene, the 3D
+    // rail 80 x 8 x 8) a solve costs a little more and the compliance
+    // columns it saves many solves; on the paper domain 256 x 16, a strip
+    // 16 cells deep under 514 DoFs of Gamma_3, a solve costs several
+    // times as much and the run is slower than with the columns by solves
+    // (doc/algorithms.md, "Condensed").
     // The same choice on every process (a collective path follows it).
     trailing_used =
       Utilities::MPI::min(int(common.lnz <= max_growth * fill_entries),

@@ -250,8 +250,8 @@ namespace DynamicContact
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
     // K0 w = b - sum_i P_i^T f_i where w_i is the iterate of phase 1. (A
     // solve: w_free - sum_j X_j g_j from the stored columns costs as much
-    // and leaves a bulk residual up to 1e2 times larger, which the first
-    // Newton step of phase 2 would have to solve for.)
+    // and leaves a bulk residual far larger, which the first Newton step
+    // of phase 2 would have to solve for.)
     right_hand_side = rhs;
     add_nodal_forces(it.g, -1., right_hand_side);
     // The earlier provisional pass's velocity alike (finalize()): a sum of
@@ -299,8 +299,9 @@ namespace DynamicContact
     // convexification loop needs, one step makes w consistent to its own
     // round-off; else the loop's coefficient residual, max |mu_i -
     // mu(|w_tau,i|)|, follows that round-off (the steep-friction stress
-    // scene, alpha = 2e5 s/m: 300, 316 and 336 passes in SI, mm-tonne-s
-    // and inch-lbf-s without this step, 290, 292 and 290 with it).
+    // scene, alpha = 2e5 s/m, took more passes without this step, and a
+    // different number in SI, mm-tonne-s and inch-lbf-s; with it fewer,
+    // and nearly the same in all three).
     const std::vector<Tensor<1, dim>> solved = gather_values(w);
     double                            moved  = 0;
     for (const unsigned int i : it.active)
@@ -340,8 +341,8 @@ namespace DynamicContact
     // sum of the stored whole columns if they are kept, else a solve. (Tried:
     // z from C times the nodal part of v alone, the rest of v, bulk
     // round-off of about 1e-11 |b|, left out: its response at the nodes is
-    // some 500 times larger and left |w_tau| = 7.9e-8 at a stick node of
-    // the critical-speed stress scene, 2.6 times the law's tolerance.)
+    // far larger and left a stick node of the critical-speed stress scene
+    // slipping above the law's tolerance.)
     compliance.solve(residual, solution, result);
     const auto                  z = gather_values(solution);
     std::vector<Tensor<1, dim>> r(it.active.size()), dw, new_forces;

@@ -22,12 +22,11 @@ namespace DynamicContact
     /**
      * How much longer the condensed solver's work on Gamma_3 takes per
      * doubling of the processes beyond the two of the calibration: the
-     * processes share the memory bandwidth. Measured on a 16-core machine,
-     * the rail 80 x 8 x 8 with every process taking part: the boundary
-     * Newton took 14.1, 19.5 and 24.7 s on 4, 8 and 16 processes while
-     * every process repeated it (1.32 per doubling), and 12.1 and 15.3 s on
-     * 4 and 8 with rank 0 alone iterating while the others polled without
-     * pause (1.26; benchmarks/results/every_process_16cores.txt). The
+     * processes share the memory bandwidth. Fitted to the boundary
+     * Newton's time on 4, 8 and 16 processes of a 16-core machine, the rail
+     * 80 x 8 x 8 with every process taking part, both while every process
+     * repeated it and while rank 0 alone iterated and the others polled
+     * without pause: benchmarks/results/every_process_16cores.txt. The
      * waiting processes now sleep between polls (LeadingProcess), not yet
      * measured there.
      */
@@ -201,42 +200,47 @@ namespace DynamicContact
     MemoryCoefficients
     memory_coefficients(const unsigned int dim)
     {
-      // 3D: mesh 138 MB, DoF handlers 72, constraints 8, cells' data 59,
-      // GMRES basis 288, vectors 88, not itemized 358 (30 of it fixed):
-      // 980 MB; K0 625 and its pattern 316 MB; the AMG 943 MB and 1554 MB
-      // more at its peak; the GMG's levels 142 MB (the finest on the bulk
-      // forms' cell data; the coarsest, 10 x 1 x 1 cells, negligible; its
-      // factorization per DoF taken from 2D).
+      // Quotients of the rows (MB) of the files above, one process (the
+      // AMG run, the GMG's rows from the GMG run). 3D, memory.csv:
+      // rest = the mesh, DoF handlers, constraints, bulk forms, GMRES
+      // basis, the step's vectors and what is not itemized (less its fixed
+      // part, in program_bytes), over the DoFs; amg = the AMG of K0 and the
+      // peak resident above resident now, over K0 and its pattern;
+      // gmg_levels = the GMG of K0 over the DoFs (the finest level on the
+      // bulk forms' cell data; the coarsest, 10 x 1 x 1 cells, negligible;
+      // its factorization per DoF taken from 2D).
       if (dim == 3)
         return {980e6 / 1048707,
                 (943. + 1554.) / 941.,
                 142e6 / 1048707,
                 61e6 / 33282};
-      // 2D: mesh 19 MB, DoF handlers 7, constraints 1, cells' data 6,
-      // GMRES basis 103 (the paper's cells are 20 times longer than high:
-      // about 100 iterations), vectors 11, not itemized 61 (30 fixed):
-      // 178 MB; the AMG 1.69 times K0 and its pattern, its peak no higher;
-      // the GMG 79 MB: its levels as in 3D per DoF, the rest the coarsest
-      // level's factorization (33 282 DoFs, KLU).
+      // 2D, memory_2d.csv: rest as in 3D (a larger GMRES basis per DoF:
+      // the paper's cells are 20 times longer than high, so GMRES takes
+      // more iterations); amg = the AMG of K0 over K0 and its pattern, its
+      // peak no higher; the GMG of K0: its levels as in 3D per DoF, the
+      // rest the coarsest level's factorization (33 282 DoFs, KLU).
       return {178e6 / 132098, 48.9 / 28.9, 142e6 / 1048707, 61e6 / 33282};
     }
 
     /**
-     * The program, its libraries and MPI before the mesh (150 MB), and
-     * what the memory table leaves unitemized on a small mesh (30 MB), per
-     * process.
+     * The program, its libraries and MPI before the mesh (the row
+     * "program, libraries, MPI (at start)" of memory.csv), and what the
+     * memory table leaves unitemized on a small mesh, per process.
      */
     constexpr double program_bytes = 180e6;
     /**
      * Bytes per stored entry of K0: its value and, in the shared sparsity
-     * pattern, its column (the 3D rail's K0 and pattern: 941 MB for
-     * 1 048 707 rows of at most 81 entries).
+     * pattern, its column (the rows "bulk matrix K0" and "sparsity
+     * pattern" of memory.csv over the 3D rail's 1 048 707 rows of at most
+     * 81 entries).
      */
     constexpr double bytes_per_entry = 11.1;
     /**
      * The DoFs one process shares with its neighbours as ghosts grow its
      * share by 1 + this / (its DoFs)^(1/dim): fitted to the 3D rail on 16
-     * processes, 65 544 DoFs each (1.27 with the AMG, 1.49 matrix-free).
+     * processes, 65 544 DoFs each: the largest process's peak in the
+     * 16-process rows of memory.csv (tests/cost_model checks the model
+     * against every row of peak resident there and in memory_2d.csv).
      */
     constexpr double ghost_share = 15.;
   } // namespace

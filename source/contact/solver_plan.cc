@@ -278,35 +278,54 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /** The factorization of @p plan in words (description()). */
+    std::string
+    factorization_text(const SolverPlan &plan)
+    {
+      using F = SolverPlan::Factorization;
+      switch (plan.factorization)
+        {
+          case F::cholmod:
+            return "CHOLMOD";
+          case F::cholmod_on_every_process:
+            return "CHOLMOD on every process";
+          case F::amesos:
+            return "Amesos, distributed";
+          case F::none:
+            break;
+        }
+      return plan.preconditioner != Parameters::Solver::Preconditioner::amg ?
+               std::string("none (Krylov with geometric multigrid") +
+                 (plan.matrix_free_bulk() ? ", K0 applied cell by cell)" :
+                                            ")") :
+               std::string("none (Krylov with algebraic multigrid") +
+                 (plan.smoothed_aggregation ? ")" : ", plain aggregation)");
+    }
+  } // namespace
+
+
+  std::string
+  SolverPlan::choices() const
+  {
+    return contact_solver_name() +
+           ", factorization: " + factorization_text(*this) +
+           (preconditioner_reason.empty() ?
+              std::string() :
+              "; preconditioner " + preconditioner_name(preconditioner));
+  }
+
+
   std::string
   SolverPlan::description() const
   {
-    std::string factor;
-    switch (factorization)
-      {
-        case Factorization::cholmod:
-          factor = "CHOLMOD";
-          break;
-        case Factorization::cholmod_on_every_process:
-          factor = "CHOLMOD on every process";
-          break;
-        case Factorization::amesos:
-          factor = "Amesos, distributed";
-          break;
-        case Factorization::none:
-          factor =
-            preconditioner != Parameters::Solver::Preconditioner::amg ?
-              std::string("none (Krylov with geometric multigrid") +
-                (matrix_free_bulk() ? ", K0 applied cell by cell)" : ")") :
-              std::string("none (Krylov with algebraic multigrid") +
-                (smoothed_aggregation ? ")" : ", plain aggregation)");
-          break;
-      }
-    return contact_solver_name() + ", factorization: " + factor + " (" +
-           reason + ")" +
+    return contact_solver_name() +
+           ", factorization: " + factorization_text(*this) + " (" + reason +
+           ")" +
            (preconditioner_reason.empty() ?
               std::string() :
-              "; preconditioner " + preconditioner_name(preconditioner) +
-                " (" + preconditioner_reason + ")");
+              "; preconditioner " + preconditioner_name(preconditioner) + " (" +
+                preconditioner_reason + ")");
   }
 } // namespace DynamicContact

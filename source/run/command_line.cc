@@ -154,13 +154,6 @@ namespace DynamicContact
 
 
   std::string
-  CommandLine::version_number()
-  {
-    return DYNAMIC_CONTACT_VERSION;
-  }
-
-
-  std::string
   CommandLine::version_text()
   {
     return std::string("dynamic-contact ") + DYNAMIC_CONTACT_VERSION +

@@ -150,6 +150,23 @@ namespace DynamicContact
 
   template <int dim>
   void
+  TimeLoop<dim>::log_changed_plan(const std::string &choices_before)
+  {
+    // With Output/Solver details the step solver prints every plan, on the
+    // screen and so in log.txt.
+    if (parameters.output.solver_details ||
+        Utilities::MPI::this_mpi_process(comm) != 0 ||
+        model.solver_choices() == choices_before)
+      return;
+    screen_log.log_only("  solver plan from step " +
+                        std::to_string(state.step + 1) +
+                        " (mesh adapted at t = " + sig6(state.time) +
+                        "): " + model.solver_plan() + "\n");
+  }
+
+
+  template <int dim>
+  void
   TimeLoop<dim>::output_results(const unsigned int n,
                                 const double       t,
                                 const bool         contact_csv,
@@ -178,7 +195,7 @@ namespace DynamicContact
     // what differs from run to run: the times, and the iteration counts (on
     // several processes they follow the round-off of the parallel direct
     // solver near the stopping thresholds: two runs of tests/paper_small on
-    // 2 processes differed by one Newton iteration in 3 of 16 progress
+    // 2 processes differed by one Newton iteration in some progress
     // lines).
     pcout << "step " << std::setw(5) << state.step << '/'
           << state.step + schedule.remaining_steps(state.time)
@@ -670,10 +687,15 @@ namespace DynamicContact
 
     double remesh_energy_change = 0;
     if (model.adaptation_due(state.step + 1))
-      remesh_energy_change =
-        model.adapt_mesh(state.time,
-                         std::min(T, state.time + model.lookahead_steps() * k0),
-                         k0);
+      {
+        const std::string choices_before = model.solver_choices();
+        remesh_energy_change =
+          model.adapt_mesh(state.time,
+                           std::min(T,
+                                    state.time + model.lookahead_steps() * k0),
+                           k0);
+        log_changed_plan(choices_before);
+      }
 
     double                k = 0, k_next = 0;
     const StepRecord<dim> record = take_step(remesh_energy_change, k, k_next);

@@ -159,10 +159,6 @@ namespace DynamicContact
   void
   install_stop_signal_handlers();
 
-  /** The signal this process received (0: none). */
-  int
-  received_stop_signal();
-
   /**
    * Collective: the signal any process received (the largest number if
    * several), 0 if none.

@@ -71,7 +71,8 @@ namespace DynamicContact
    * @p finest_matrix: the stored K0, if there is one. @p finest_cell_data:
    * the cell data of the mesh's bulk forms (BulkOperator::cell_data()), if
    * they are set up; the finest level uses them instead of setting up its
-   * own (on the 3D rail at 10^6 DoFs, about 70 MB less).
+   * own, a second copy as large (benchmarks/memory measures both:
+   * benchmarks/results/memory.csv, the rows "bulk forms" and "GMG of K0").
    */
   template <int dim>
   std::unique_ptr<BulkPreconditioner>

@@ -89,7 +89,7 @@ namespace DynamicContact
    * doubling (work shared at best halves it), and the condensed solver's
    * dense work on Gamma_3, which every process repeats, grows by 1.3 per
    * doubling (the processes share the memory bandwidth: measured on 16
-   * cores).
+   * cores, benchmarks/results/every_process_16cores.txt).
    */
   SolverCost
   predicted_cost(const CostedSolver                    solver,

@@ -30,7 +30,7 @@ namespace DynamicContact
    * Matrices of fewer than @p min_size rows are factorized in double: the
    * sweeps cost about what single precision saves (the paper's scene, at
    * most 2 x 127 unknowns: no faster; the 3D rail 80 x 8 x 8, 600 to 1050
-   * unknowns: the condensed solver's boundary iteration 17 % faster).
+   * unknowns: the condensed solver's boundary iteration faster).
    */
   class MixedPrecisionLU
   {

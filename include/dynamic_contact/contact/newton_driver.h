@@ -110,9 +110,10 @@ namespace DynamicContact
    * direction there, and it is meant to move a node away from a zero of
    * the merit function that the safeguard keeps the iteration from (a
    * slip rate at the onset of slip, where the law weakens faster than the
-   * body resists). A line search would undo that, step after step (the
-   * 3D rail: 28 iterations at 1/64 of a step). So a step from an iterate
-   * where the safeguard acts is taken in full unless the iteration cycles.
+   * body resists). A line search would undo that, step after step (on
+   * the 3D rail many iterations of a small fraction of a step each). So a
+   * step from an iterate where the safeguard acts is taken in full unless
+   * the iteration cycles.
    *
    * @p x is the starting iterate on entry and the solution on exit; @p
    * result counts iterations, cycles and line-search steps and holds the

@@ -83,6 +83,15 @@ namespace DynamicContact
     std::string
     contact_solver_name() const;
 
+    /**
+     * The choices alone: the contact solver, the factorization and, where
+     * it was chosen, the preconditioner, without the reasons and the
+     * predicted costs (which change with every mesh). Two plans that
+     * solve alike give the same text.
+     */
+    std::string
+    choices() const;
+
     /** One line: the choices and why. */
     std::string
     description() const;

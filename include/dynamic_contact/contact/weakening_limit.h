@@ -33,18 +33,18 @@ namespace DynamicContact
    * of K0 at the node, k_i (its smallest stiffness in the tangent plane),
    * divided by one ratio r = max_j k_j c_j measured once per K0 at a few
    * sample nodes spread along Gamma_3 (the exact compliance there: from the
-   * condensed solver's table, or by solves with K0). The ratio is the same
-   * along a uniform mesh (measured: 2.1 to 2.5 on the 3D rail, 47 to 48 on
-   * the thin beam of the paper's scene, whose cells are 20 times longer
-   * than high).
+   * condensed solver's table, or by solves with K0). The ratio is about the
+   * same along a uniform mesh, and far larger on the thin beam of the
+   * paper's scene, whose cells are 20 times longer than high, than on the
+   * 3D rail.
    */
   namespace WeakeningLimit
   {
     /**
-     * kappa. Measured on the 3D rail (80 x 8 x 8, 32 steps) with the exact
-     * compliance: 0.25 to 1 give 7.4 to 9.2 Newton iterations per step and
-     * no fallback, 2 gives 12.3 and two fallbacks, no limit one fallback in
-     * most steps.
+     * kappa. Chosen on the 3D rail (80 x 8 x 8, 32 steps) with the exact
+     * compliance: 0.25 to 1 give about the same Newton iterations per step
+     * and no fallback, 2 more iterations and fallbacks, no limit a
+     * fallback in most steps.
      */
     constexpr double fraction = 0.5;
 

@@ -33,10 +33,6 @@ namespace DynamicContact
     /** "dynamic-contact X.Y.Z (git H), deal.II A.B.C" */
     static std::string
     version_text();
-
-    /** "X.Y.Z": the version of dynamic-contact. */
-    static std::string
-    version_number();
   };
 } // namespace DynamicContact
 

@@ -15,13 +15,14 @@ namespace DynamicContact
    * Started without mpirun, an Open MPI 4 process is a "singleton": in
    * MPI_Init it starts a supporting daemon (orted) and probes the
    * high-speed networks' message layers (the 'cm' PML: PSM2, OFI), which
-   * costs about 0.3 s of wall time. A one-process run needs neither: it
-   * never spawns processes and sends no message to another. So, for such a
-   * process only, the program sets before MPI_Init:
+   * is a noticeable part of a short run's wall time. A one-process run
+   * needs neither: it never spawns processes and sends no message to
+   * another. So, for such a process only, the program sets before
+   * MPI_Init:
    *
    * - OMPI_MCA_pml=ob1: the PML whose transports are shared memory and
-   *   TCP (no network probing; about 0.2 s of wall time);
-   * - OMPI_MCA_ess_singleton_isolated=1: no orted (about 0.1 s);
+   *   TCP (no network probing);
+   * - OMPI_MCA_ess_singleton_isolated=1: no orted;
    * - OMPI_MCA_io_romio321_priority=100, with the previous one: MPI-IO
    *   (the checkpoints of a parallel::distributed mesh) through ROMIO.
    *   Open MPI's own MPI-IO (OMPIO) opens a shared-file-pointer file in

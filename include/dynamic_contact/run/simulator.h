@@ -242,6 +242,13 @@ namespace DynamicContact
       return step_solver.solver_plan().description();
     }
 
+    /** What the plan of the current mesh chose (SolverPlan::choices()). */
+    std::string
+    solver_choices() const
+    {
+      return step_solver.solver_plan().choices();
+    }
+
     /**
      * What the run holds, by part (memory_table(); collective): the mesh
      * and DoFs, the bulk operator's pattern and matrices, the contact

@@ -276,6 +276,15 @@ namespace DynamicContact
                    const bool         vtu);
     void
     print_header() const;
+    /**
+     * After the mesh was adapted for step state.step + 1: if the new
+     * mesh's solver plan chooses otherwise than @p choices_before
+     * (SolverPlan::choices()), write it into log.txt, with the step it
+     * applies from (the screen shows it only with Output/Solver details,
+     * which prints every plan).
+     */
+    void
+    log_changed_plan(const std::string &choices_before);
     void
     print_progress(const StepRecord<dim> &record) const;
 
