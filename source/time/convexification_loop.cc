@@ -561,9 +561,10 @@ namespace DynamicContact
         // the best coefficient residual so far is finished: a node that
         // changes from stick to fast slip leaves a - b in two passes, equal
         // but for round-off, and which pass was finished followed the
-        // round-off of the scene's units (a gain of 1 % as the rule, tried,
-        // finished passes that the rail's loop did not need: 4 % more
-        // Newton iterations, a third more solves).
+        // round-off of the scene's units (a fixed relative gain as the
+        // rule, tried, finished passes that the rail's loop did not need:
+        // more Newton iterations and solves; the commit that made this
+        // rule records the counts).
         Measures m = measure(pass);
         if (provisional &&
             (m.converged || pass + 1 == max_passes ||
