@@ -39,28 +39,13 @@ namespace
     return p;
   }
 
-  /** The Mandel basis of symmetric tensors (orthonormal for ':'). */
-  template <int dim>
-  std::vector<SymmetricTensor<2, dim>>
-  mandel_basis()
-  {
-    std::vector<SymmetricTensor<2, dim>> basis;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        {
-          SymmetricTensor<2, dim> b;
-          b[i][j] = (i == j ? 1. : 1. / std::sqrt(2.));
-          basis.push_back(b);
-        }
-    return basis;
-  }
 
   /** Sorted eigenvalues of C as a map on symmetric tensors. */
   template <int dim>
   std::vector<double>
   eigenvalues(const SymmetricTensor<4, dim> &C)
   {
-    const auto               basis = mandel_basis<dim>();
+    const auto               basis = test_tools::mandel_basis<dim>();
     const unsigned int       n     = basis.size();
     LAPACKFullMatrix<double> A(n, n);
     for (unsigned int a = 0; a < n; ++a)

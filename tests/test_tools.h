@@ -7,6 +7,7 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/grid/grid_tools.h>
 
 #include <dynamic_contact/laws/material.h>
@@ -27,6 +28,23 @@
 
 namespace test_tools
 {
+  /** The Mandel basis of symmetric tensors (orthonormal for ':'). */
+  template <int dim>
+  std::vector<dealii::SymmetricTensor<2, dim>>
+  mandel_basis()
+  {
+    std::vector<dealii::SymmetricTensor<2, dim>> basis;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        {
+          dealii::SymmetricTensor<2, dim> b;
+          b[i][j] = (i == j ? 1. : 1. / std::sqrt(2.));
+          basis.push_back(b);
+        }
+    return basis;
+  }
+
+
   /**
    * The file the harness compares; written by rank 0 only (by the one
    * process of a test that does not initialize MPI).

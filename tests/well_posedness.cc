@@ -216,14 +216,7 @@ namespace
   double
   smallest_eigenvalue(const SymmetricTensor<4, dim> &C)
   {
-    std::vector<SymmetricTensor<2, dim>> basis;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        {
-          SymmetricTensor<2, dim> b;
-          b[i][j] = (i == j ? 1. : 1. / std::sqrt(2.));
-          basis.push_back(b);
-        }
+    const auto               basis = test_tools::mandel_basis<dim>();
     LAPACKFullMatrix<double> A(basis.size(), basis.size());
     for (unsigned int a = 0; a < basis.size(); ++a)
       for (unsigned int b = 0; b < basis.size(); ++b)

@@ -11,6 +11,25 @@
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /** ": s1 s2 ..." for the first ten of @p steps (nothing if none). */
+    void
+    print_steps(const ConditionalOStream        &pcout,
+                const std::vector<unsigned int> &steps)
+    {
+      if (steps.empty())
+        return;
+      pcout << ":";
+      const std::size_t shown = std::min<std::size_t>(steps.size(), 10);
+      for (std::size_t i = 0; i < shown; ++i)
+        pcout << " " << steps[i];
+      if (shown < steps.size())
+        pcout << " ...";
+    }
+  } // namespace
+
+
   void
   RunTotals::add(const Step &step)
   {
@@ -98,16 +117,7 @@ namespace DynamicContact
              "solution >= 1 (the frozen loop may be repelled from it) at "
           << repelling_steps.size() << " step"
           << (repelling_steps.size() == 1 ? "" : "s");
-    if (!repelling_steps.empty())
-      {
-        pcout << ":";
-        const std::size_t shown =
-          std::min<std::size_t>(repelling_steps.size(), 10);
-        for (std::size_t i = 0; i < shown; ++i)
-          pcout << " " << repelling_steps[i];
-        if (shown < repelling_steps.size())
-          pcout << " ...";
-      }
+    print_steps(pcout, repelling_steps);
     pcout << " (largest " << sig6(std::max(max_contraction, 0.)) << ")"
           << std::endl;
   }
@@ -123,16 +133,7 @@ namespace DynamicContact
              "coefficient residual of Coefficient tolerance/100) at "
           << several_solution_steps.size() << " of " << counted_steps
           << " steps counted";
-    if (!several_solution_steps.empty())
-      {
-        pcout << ":";
-        const std::size_t shown =
-          std::min<std::size_t>(several_solution_steps.size(), 10);
-        for (std::size_t i = 0; i < shown; ++i)
-          pcout << " " << several_solution_steps[i];
-        if (shown < several_solution_steps.size())
-          pcout << " ...";
-      }
+    print_steps(pcout, several_solution_steps);
     pcout << "; starts that reached no solution: " << failed_starts
           << std::endl;
   }

@@ -618,39 +618,56 @@ namespace DynamicContact
                        runs_convexification_loop(friction_law);
     const ContactState<dim> start_state =
       count ? contact_state : ContactState<dim>();
-    ConvexificationLoop loop(
-      *this,
-      newton,
-      scheme,
-      rhs,
-      u_old,
-      u_old_nodes,
-      w_old_nodes,
-      w,
-      statistics,
-      LoopOptions{friction_parameters.coefficient_tolerance,
-                  friction_parameters.max_convexification_iterations,
-                  friction_parameters.coupled_linearization});
-    loop.run(accept_unconverged_loop);
+    const LoopArguments arguments{
+      scheme, newton, rhs, u_old, u_old_nodes, w_old_nodes};
+    const bool loop_active =
+      run_loop(arguments,
+               w,
+               statistics,
+               LoopOptions{friction_parameters.coefficient_tolerance,
+                           friction_parameters.max_convexification_iterations,
+                           friction_parameters.coupled_linearization},
+               accept_unconverged_loop);
 
     update_states(scheme, u_old_nodes, w_old_nodes, w, statistics);
-    if (loop.active() && (friction_parameters.uniqueness_monitor ==
-                            Parameters::Friction::Monitor::always ||
-                          (friction_parameters.uniqueness_monitor ==
-                             Parameters::Friction::Monitor::automatic &&
-                           plan.condensed)))
+    if (loop_active && (friction_parameters.uniqueness_monitor ==
+                          Parameters::Friction::Monitor::always ||
+                        (friction_parameters.uniqueness_monitor ==
+                           Parameters::Friction::Monitor::automatic &&
+                         plan.condensed)))
       measure_uniqueness(scheme, newton, statistics);
     if (count)
-      count_solutions(scheme, rhs, u_old, w_old, start_state, statistics);
+      count_solutions(arguments, w_old, start_state, statistics);
     return statistics;
   }
 
 
   template <int dim>
+  bool
+  StepSolver<dim>::run_loop(const LoopArguments &a,
+                            Vector_t            &w,
+                            Statistics          &statistics,
+                            const LoopOptions   &options,
+                            const bool           accept_unconverged_loop)
+  {
+    ConvexificationLoop loop(*this,
+                             a.newton,
+                             a.scheme,
+                             a.rhs,
+                             a.u_old,
+                             a.u_old_nodes,
+                             a.w_old_nodes,
+                             w,
+                             statistics,
+                             options);
+    loop.run(accept_unconverged_loop);
+    return loop.active();
+  }
+
+
+  template <int dim>
   void
-  StepSolver<dim>::count_solutions(const TimeScheme        &scheme,
-                                   const Vector_t          &rhs,
-                                   const Vector_t          &u_old,
+  StepSolver<dim>::count_solutions(const LoopArguments     &arguments,
                                    const Vector_t          &w_old,
                                    const ContactState<dim> &start_state,
                                    Statistics              &statistics)
@@ -661,11 +678,8 @@ namespace DynamicContact
     TimerSection            t(timer, "Friction: solution count");
     const auto             &nodes        = contact_boundary.nodes();
     const MPI_Comm          comm         = discretization.comm;
-    const double            theta        = scheme.effective_derivative();
+    const double            theta = arguments.scheme.effective_derivative();
     const ContactState<dim> solved_state = contact_state;
-    ContactNewton<dim>     &newton       = newton_for(scheme);
-    const auto              u_old_nodes  = contact_boundary.values(u_old);
-    const auto              w_old_nodes  = contact_boundary.values(w_old);
     // The slip rate of the fast start: 1000/L, far beyond where the law
     // weakens (it changes by at most L s), kept inside [1e-3, 1] times
     // Friction/Maximum slip rate.
@@ -718,22 +732,16 @@ namespace DynamicContact
         Statistics unused;
         try
           {
-            ConvexificationLoop loop(
-              *this,
-              newton,
-              scheme,
-              rhs,
-              u_old,
-              u_old_nodes,
-              w_old_nodes,
+            run_loop(
+              arguments,
               w,
               unused,
               LoopOptions{
                 1e-2 * friction_parameters.coefficient_tolerance,
                 std::max(200u,
                          friction_parameters.max_convexification_iterations),
-                start == coupled});
-            loop.run(false);
+                start == coupled},
+              false);
           }
         catch (const StepFailure &failure)
           {

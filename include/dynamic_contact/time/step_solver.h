@@ -272,6 +272,29 @@ namespace DynamicContact
       bool         coupled;
     };
 
+    /** What every convexification loop of a step shares. */
+    struct LoopArguments
+    {
+      const TimeScheme                  &scheme;
+      ContactNewton<dim>                &newton;
+      const Vector_t                    &rhs;
+      const Vector_t                    &u_old;
+      const std::vector<Tensor<1, dim>> &u_old_nodes;
+      const std::vector<Tensor<1, dim>> &w_old_nodes;
+    };
+
+    /**
+     * A convexification loop of the step from the initial guess @p w (its
+     * solution on return) with @p options; whether the loop updates the
+     * coefficients (ConvexificationLoop::active()).
+     */
+    bool
+    run_loop(const LoopArguments &arguments,
+             Vector_t            &w,
+             Statistics          &statistics,
+             const LoopOptions   &options,
+             const bool           accept_unconverged_loop);
+
     /**
      * Friction/Count solutions (doc/theory.md section 5.3): the step solved
      * again from several starts to a coefficient residual of 1/100 of
@@ -281,9 +304,7 @@ namespace DynamicContact
      * step's solution are left as they were (collective).
      */
     void
-    count_solutions(const TimeScheme        &scheme,
-                    const Vector_t          &rhs,
-                    const Vector_t          &u_old,
+    count_solutions(const LoopArguments     &arguments,
                     const Vector_t          &w_old,
                     const ContactState<dim> &start_state,
                     Statistics              &statistics);
