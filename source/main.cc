@@ -1,14 +1,14 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <dynamic_contact/run/command_line.h>
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/memory_report.h>
-#include <dynamic_contact/run/mpi_startup.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/parameters/provenance.h>
-#include <dynamic_contact/time/time_loop.h>
+#include <dynamic_contact/run/command_line.h>
+#include <dynamic_contact/run/mpi_startup.h>
+#include <dynamic_contact/run/provenance.h>
+#include <dynamic_contact/run/time_loop.h>
 
 #include <iostream>
 

@@ -12,7 +12,7 @@
 
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/time/time_loop.h>
+#include <dynamic_contact/run/time_loop.h>
 
 #include <cmath>
 #include <cstdio>

@@ -15,6 +15,7 @@
 #include <dynamic_contact/laws/friction_law.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/laws/well_posedness.h>
+#include <dynamic_contact/parameters/well_posedness_report.h>
 
 #include "test_tools.h"
 

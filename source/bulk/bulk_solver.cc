@@ -7,11 +7,11 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
+#include <dynamic_contact/base/mpi_gather.h>
+#include <dynamic_contact/bulk/bulk_factorization.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/bulk/cholesky.h>
 #include <dynamic_contact/bulk/cholmod_views.h>
-#include <dynamic_contact/base/mpi_gather.h>
-#include <dynamic_contact/contact/solver_plan.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -340,7 +340,7 @@ namespace DynamicContact
     problem.reset();
     if (parameters.linear_solver == Parameters::Solver::LinearSolver::direct &&
         bulk_factorization(parameters, dim, A.m(), A.get_mpi_communicator()) !=
-          SolverPlan::Factorization::amesos)
+          BulkFactorization::amesos)
       {
         // Keep the analysis of the last factorization (same pattern).
         if (!cholesky)

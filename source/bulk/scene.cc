@@ -3,7 +3,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/base/error_messages.h>
-#include <dynamic_contact/mesh/gmsh_file.h>
+#include <dynamic_contact/base/gmsh_file.h>
 #include <dynamic_contact/bulk/scene.h>
 
 #include <cmath>

@@ -16,31 +16,6 @@ namespace DynamicContact
   namespace
   {
     /**
-     * A direct solve with K0 under these parameters factorizes by CHOLMOD:
-     * with Direct solver package = auto, on one process, and on several
-     * while K0 is small enough that the whole factor on every process is
-     * faster than MUMPS over them (the limits are the crossovers measured
-     * on two processes: benchmarks/results/replicated_factorization.txt;
-     * 2D factors are much sparser).
-     */
-    bool
-    by_cholmod(const Parameters::Solver     &parameters,
-               const unsigned int            dim,
-               const types::global_dof_index n_dofs,
-               const unsigned int            n)
-    {
-      if (parameters.direct_solver_package != "auto")
-        return false;
-      // The whole factor on every process: while K0 is small, and on at
-      // most 4 processes (on 8 and 16 processes of a 16-core machine every
-      // process's factorization took many times as long as on one:
-      // benchmarks/results/replicated_factorization_16cores.txt).
-      const double limit = dim == 2 ? 1e5 : 3e4;
-      return n == 1 || (n_dofs <= limit && n <= 4);
-    }
-
-
-    /**
      * Contact solver = auto within the condensed solver's limit: the
      * solver of the lower cost predicted for plan.steps_per_matrix steps;
      * the condensed one on meshes smaller than the model's, or where it
@@ -105,34 +80,6 @@ namespace DynamicContact
   } // namespace
 
 
-  SolverPlan::Factorization
-  bulk_factorization(const Parameters::Solver     &parameters,
-                     const unsigned int            dim,
-                     const types::global_dof_index n_dofs,
-                     const unsigned int            n_processes)
-  {
-    using F = SolverPlan::Factorization;
-    if (parameters.linear_solver == Parameters::Solver::LinearSolver::iterative)
-      return F::none;
-    if (!by_cholmod(parameters, dim, n_dofs, n_processes))
-      return F::amesos;
-    return n_processes == 1 ? F::cholmod : F::cholmod_on_every_process;
-  }
-
-
-  SolverPlan::Factorization
-  bulk_factorization(const Parameters::Solver     &parameters,
-                     const unsigned int            dim,
-                     const types::global_dof_index n_dofs,
-                     const MPI_Comm                comm)
-  {
-    return bulk_factorization(parameters,
-                              dim,
-                              n_dofs,
-                              Utilities::MPI::n_mpi_processes(comm));
-  }
-
-
   Parameters::Solver::Preconditioner
   choose_preconditioner(const unsigned int            dim,
                         const types::global_dof_index n_dofs,
@@ -191,7 +138,7 @@ namespace DynamicContact
     std::ostringstream reason;
     const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
     const bool         one_factor =
-      by_cholmod(parameters, dim, n_dofs, n_processes);
+      factorized_by_cholmod(parameters, dim, n_dofs, n_processes);
 
     // The condensed solver's dense tables are bounded by its limit
     // (doc/algorithms.md, "Choosing"): Condensed limit on one process. With

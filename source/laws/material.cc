@@ -5,6 +5,23 @@
 
 namespace DynamicContact
 {
+  double
+  MaterialConstants::p_wave_speed() const
+  {
+    const double nu     = poisson_ratio;
+    const double lambda = young_modulus * nu / ((1 + nu) * (1 - 2 * nu));
+    const double mu     = young_modulus / (2 * (1 + nu));
+    return std::sqrt((lambda + 2 * mu) / density);
+  }
+
+  double
+  MaterialConstants::shear_wave_speed() const
+  {
+    const double mu = young_modulus / (2 * (1 + poisson_ratio));
+    return std::sqrt(mu / density);
+  }
+
+
   template <int dim>
   SymmetricTensor<4, dim>
   isotropic_tensor(const double lambda, const double mu)
@@ -22,22 +39,22 @@ namespace DynamicContact
 
 
   double
-  effective_lambda(const double                           lambda,
-                   const double                           mu,
-                   const Parameters::Material::PlaneModel model,
-                   const unsigned int                     dim)
+  effective_lambda(const double                        lambda,
+                   const double                        mu,
+                   const MaterialConstants::PlaneModel model,
+                   const unsigned int                  dim)
   {
-    if (dim == 2 && model == Parameters::Material::PlaneModel::plane_stress)
+    if (dim == 2 && model == MaterialConstants::PlaneModel::plane_stress)
       return (lambda + 2 * mu == 0 ? 0. : 2 * lambda * mu / (lambda + 2 * mu));
     return lambda;
   }
 
 
   template <int dim>
-  KelvinVoigtMaterial<dim>::KelvinVoigtMaterial(const Parameters::Material &p)
+  KelvinVoigtMaterial<dim>::KelvinVoigtMaterial(const MaterialConstants &p)
     : rho(p.density)
-    , plane_strain(dim == 2 && p.plane_model ==
-                                 Parameters::Material::PlaneModel::plane_strain)
+    , plane_strain(dim == 2 &&
+                   p.plane_model == MaterialConstants::PlaneModel::plane_strain)
   {
     const double E     = p.young_modulus;
     const double kappa = p.poisson_ratio;

@@ -1,7 +1,4 @@
 #include <dynamic_contact/base/error_messages.h>
-#include <dynamic_contact/laws/foundation.h>
-#include <dynamic_contact/laws/friction_law.h>
-#include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/laws/well_posedness.h>
 
 #include <cmath>
@@ -169,30 +166,4 @@ namespace DynamicContact
                  "a priori:\n";
     return heading + radiation_line() + viscosity_line();
   }
-
-
-  template <int dim>
-  std::string
-  well_posedness_report(const RunParameters &parameters)
-  {
-    const auto &friction = parameters.friction;
-    if (!friction.law || friction.law->is_constant())
-      return "";
-    const KelvinVoigtMaterial<dim> material(parameters.material);
-    WellPosedness::Data            data;
-    data.weakening =
-      friction.law->one_sided_lipschitz_constant(friction.maximum_slip_rate);
-    data.normal_stress      = parameters.foundation.law->pressure_bound();
-    data.density            = parameters.material.density;
-    data.shear_wave_speed   = parameters.material.shear_wave_speed();
-    data.viscous_coercivity = material.viscous_coercivity();
-    data.end_time           = parameters.time.end_time;
-    return WellPosedness(data).report();
-  }
-
-
-  template std::string
-  well_posedness_report<2>(const RunParameters &);
-  template std::string
-  well_posedness_report<3>(const RunParameters &);
 } // namespace DynamicContact

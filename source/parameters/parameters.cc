@@ -2,11 +2,11 @@
 #include <deal.II/base/utilities.h>
 
 #include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/gmsh_file.h>
+#include <dynamic_contact/base/plugins.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/laws/friction_law.h>
-#include <dynamic_contact/mesh/gmsh_file.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/laws/plugins.h>
 
 #include "parameter_tools.h"
 
@@ -447,22 +447,6 @@ namespace DynamicContact
               "positive semi-definite (3 lambda_v + 2 mu_v >= 0), got "
               "lambda_v = " +
                 str(viscosity_lambda) + ".");
-    }
-
-    double
-    Material::p_wave_speed() const
-    {
-      const double nu     = poisson_ratio;
-      const double lambda = young_modulus * nu / ((1 + nu) * (1 - 2 * nu));
-      const double mu     = young_modulus / (2 * (1 + nu));
-      return std::sqrt((lambda + 2 * mu) / density);
-    }
-
-    double
-    Material::shear_wave_speed() const
-    {
-      const double mu = young_modulus / (2 * (1 + poisson_ratio));
-      return std::sqrt(mu / density);
     }
 
     // ---------------------------------------------------------- Foundation

@@ -7,11 +7,11 @@
 #include <deal.II/base/utilities.h>
 
 #include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/gmsh_file.h>
+#include <dynamic_contact/base/plugins.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/laws/friction_law.h>
-#include <dynamic_contact/mesh/gmsh_file.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/laws/plugins.h>
 
 #include "parameter_tools.h"
 

@@ -2,8 +2,8 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
-#include <dynamic_contact/laws/well_posedness.h>
-#include <dynamic_contact/time/time_loop.h>
+#include <dynamic_contact/parameters/well_posedness_report.h>
+#include <dynamic_contact/run/time_loop.h>
 
 #include <iostream>
 #include <memory>

@@ -5,10 +5,10 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
-#include <dynamic_contact/base/resources.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/bulk/error_norms.h>
-#include <dynamic_contact/laws/well_posedness.h>
+#include <dynamic_contact/parameters/well_posedness_report.h>
+#include <dynamic_contact/run/resources.h>
 #include <dynamic_contact/run/simulator.h>
 
 #include <unistd.h>

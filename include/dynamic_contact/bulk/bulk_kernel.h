@@ -5,8 +5,8 @@
 #include <deal.II/base/vectorization.h>
 #include <deal.II/matrix_free/evaluation_flags.h>
 
+#include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/laws/material.h>
-#include <dynamic_contact/time/time_scheme.h>
 
 namespace DynamicContact
 {

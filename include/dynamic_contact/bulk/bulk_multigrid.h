@@ -3,10 +3,10 @@
 
 #include <deal.II/matrix_free/matrix_free.h>
 
+#include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/laws/material.h>
-#include <dynamic_contact/time/time_scheme.h>
 
 #include <memory>
 

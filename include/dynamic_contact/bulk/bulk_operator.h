@@ -6,14 +6,14 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <dynamic_contact/base/memory_report.h>
+#include <dynamic_contact/base/time_scheme.h>
+#include <dynamic_contact/bulk/bulk_kernel.h>
+#include <dynamic_contact/bulk/cell_operators.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/face_load_quadrature.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
-#include <dynamic_contact/bulk/bulk_kernel.h>
-#include <dynamic_contact/bulk/cell_operators.h>
-#include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/bulk/scene.h>
-#include <dynamic_contact/time/time_scheme.h>
+#include <dynamic_contact/laws/material.h>
 
 #include <array>
 #include <vector>

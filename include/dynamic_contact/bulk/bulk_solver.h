@@ -151,7 +151,7 @@ namespace DynamicContact
    * Solves with one (symmetric positive definite) matrix, many times: a
    * sparse direct factorization made once, or CG with algebraic multigrid
    * built once. How it factorizes is bulk_factorization()'s choice
-   * (solver_plan.h): a supernodal Cholesky factorization (SuiteSparse
+   * (bulk_factorization.h): a supernodal Cholesky factorization (SuiteSparse
    * CHOLMOD) on one process, or of the whole matrix on every process of
    * several, else Trilinos Amesos (MUMPS or KLU) over the processes. Unlike
    * deal.II's TrilinosWrappers::SolverDirect it solves blocks of

@@ -5,8 +5,8 @@
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/distributed/tria.h>
 
+#include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/time/time_scheme.h>
 
 #include <map>
 #include <memory>

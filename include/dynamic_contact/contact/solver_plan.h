@@ -3,6 +3,7 @@
 
 #include <deal.II/base/types.h>
 
+#include <dynamic_contact/bulk/bulk_factorization.h>
 #include <dynamic_contact/contact/cost_model.h>
 #include <dynamic_contact/parameters/parameters.h>
 
@@ -23,17 +24,8 @@ namespace DynamicContact
    */
   struct SolverPlan
   {
-    enum class Factorization
-    {
-      /** SuiteSparse CHOLMOD, one process. */
-      cholmod,
-      /** CHOLMOD on every process, each with the whole matrix. */
-      cholmod_on_every_process,
-      /** Trilinos Amesos (MUMPS or KLU), distributed. */
-      amesos,
-      /** No factorization: CG or GMRES with algebraic multigrid. */
-      none
-    };
+    /** How K0 is factorized (bulk_factorization()). */
+    using Factorization = BulkFactorization;
 
     /** The condensed solver; else the assembled one. */
     bool condensed = true;
@@ -142,34 +134,13 @@ namespace DynamicContact
    * solver, the AMG elsewhere.
    */
   SolverPlan
-  plan_solver(const Parameters::Solver              &parameters,
-              const unsigned int                     dim,
+  plan_solver(const Parameters::Solver             &parameters,
+              const unsigned int                    dim,
               const dealii::types::global_dof_index n_dofs,
-              const unsigned int                     n_contact_nodes,
-              const unsigned int                     steps_per_matrix,
-              const MPI_Comm                         comm,
-              const MemoryBudget                    &memory = MemoryBudget());
-
-  /**
-   * How a bulk matrix of @p n_dofs rows is factorized with these
-   * parameters on the processes of @p comm (Solver/Direct solver package
-   * = auto: CHOLMOD on one process; on up to 4, CHOLMOD on every process
-   * while the matrix is small, see the definition for the measured
-   * limits, else MUMPS over the processes). Linear solver = iterative:
-   * none.
-   */
-  SolverPlan::Factorization
-  bulk_factorization(const Parameters::Solver             &parameters,
-                     const unsigned int                    dim,
-                     const dealii::types::global_dof_index n_dofs,
-                     const MPI_Comm                        comm);
-
-  /** The same on @p n_processes processes. */
-  SolverPlan::Factorization
-  bulk_factorization(const Parameters::Solver             &parameters,
-                     const unsigned int                    dim,
-                     const dealii::types::global_dof_index n_dofs,
-                     const unsigned int                    n_processes);
+              const unsigned int                    n_contact_nodes,
+              const unsigned int                    steps_per_matrix,
+              const MPI_Comm                        comm,
+              const MemoryBudget                   &memory = MemoryBudget());
 } // namespace DynamicContact
 
 #endif

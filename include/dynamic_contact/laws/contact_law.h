@@ -3,10 +3,10 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <dynamic_contact/contact/contact_boundary.h>
+#include <dynamic_contact/base/time_scheme.h>
+#include <dynamic_contact/laws/contact_node.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/laws/friction_law.h>
-#include <dynamic_contact/time/time_scheme.h>
 
 #include <limits>
 #include <vector>

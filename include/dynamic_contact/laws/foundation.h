@@ -3,7 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <dynamic_contact/laws/plugins.h>
+#include <dynamic_contact/base/plugins.h>
 
 #include <algorithm>
 #include <cmath>

@@ -3,11 +3,48 @@
 
 #include <deal.II/base/symmetric_tensor.h>
 
-#include <dynamic_contact/parameters/parameters.h>
-
 namespace DynamicContact
 {
   using namespace dealii;
+
+  /**
+   * The constants of the Kelvin-Voigt law: density, Young's modulus,
+   * Poisson's ratio, the 2D plane model and the two constants of the
+   * viscosity tensor (Parameters::Material reads them from the parameter
+   * file).
+   */
+  struct MaterialConstants
+  {
+    enum class PlaneModel
+    {
+      plane_strain,
+      plane_stress
+    };
+    double     density;
+    double     young_modulus;
+    double     poisson_ratio;
+    PlaneModel plane_model;
+    double     viscosity_lambda; // first constant of the viscosity tensor C
+    double     viscosity_mu;     // second constant of C
+
+    /**
+     * sqrt((lambda + 2 mu)/rho) with the Lame constants of E and the
+     * Poisson ratio: the body's P-wave speed, a velocity scale of the
+     * scene.
+     */
+    double
+    p_wave_speed() const;
+
+    /**
+     * sqrt(mu/rho): the body's shear (S-) wave speed, the same in plane
+     * strain, plane stress and 3D; rho c_s is the body's radiation
+     * impedance to tangential motion of its boundary (doc/theory.md
+     * section 1.5).
+     */
+    double
+    shear_wave_speed() const;
+  };
+
 
   /** Isotropic fourth-order tensor lambda I (x) I + 2 mu I^sym. */
   template <int dim>
@@ -20,10 +57,10 @@ namespace DynamicContact
    * out-of-plane stress eliminated).
    */
   double
-  effective_lambda(const double                           lambda,
-                   const double                           mu,
-                   const Parameters::Material::PlaneModel model,
-                   const unsigned int                     dim);
+  effective_lambda(const double                        lambda,
+                   const double                        mu,
+                   const MaterialConstants::PlaneModel model,
+                   const unsigned int                  dim);
 
   /**
    * The Kelvin-Voigt law sigma = C eps(u') + E eps(u), eq. (13): isotropic
@@ -35,7 +72,7 @@ namespace DynamicContact
   class KelvinVoigtMaterial
   {
   public:
-    explicit KelvinVoigtMaterial(const Parameters::Material &parameters);
+    explicit KelvinVoigtMaterial(const MaterialConstants &parameters);
 
     double
     density() const

@@ -5,9 +5,9 @@
 #include <deal.II/base/point.h>
 #include <deal.II/grid/tria.h>
 
+#include <dynamic_contact/base/plugins.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
-#include <dynamic_contact/laws/plugins.h>
 #include <dynamic_contact/bulk/scene.h>
 
 #include <functional>

@@ -4,7 +4,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
-#include <dynamic_contact/time/time_scheme.h>
+#include <dynamic_contact/base/time_scheme.h>
+#include <dynamic_contact/laws/material.h>
 
 #include <map>
 #include <memory>
@@ -96,41 +97,16 @@ namespace DynamicContact
       all_ids() const;
     };
 
-    struct Material
+    /**
+     * The constants of the Kelvin-Voigt law (MaterialConstants, with the
+     * law in material.h), read from the subsection Material.
+     */
+    struct Material : MaterialConstants
     {
-      enum class PlaneModel
-      {
-        plane_strain,
-        plane_stress
-      };
-      double     density;
-      double     young_modulus;
-      double     poisson_ratio;
-      PlaneModel plane_model;
-      double     viscosity_lambda; // first constant of the viscosity tensor C
-      double     viscosity_mu;     // second constant of C
-
       static void
       declare_parameters(ParameterHandler &prm);
       void
       parse_parameters(ParameterHandler &prm);
-
-      /**
-       * sqrt((lambda + 2 mu)/rho) with the Lame constants of E and the
-       * Poisson ratio: the body's P-wave speed, a velocity scale of the
-       * scene.
-       */
-      double
-      p_wave_speed() const;
-
-      /**
-       * sqrt(mu/rho): the body's shear (S-) wave speed, the same in plane
-       * strain, plane stress and 3D; rho c_s is the body's radiation
-       * impedance to tangential motion of its boundary (doc/theory.md
-       * section 1.5).
-       */
-      double
-      shear_wave_speed() const;
     };
 
     struct Foundation

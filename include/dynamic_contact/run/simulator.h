@@ -6,20 +6,20 @@
 #include <deal.II/base/timer.h>
 
 #include <dynamic_contact/bulk/bulk_operator.h>
-#include <dynamic_contact/output/checkpoint.h>
+#include <dynamic_contact/bulk/discretization.h>
+#include <dynamic_contact/bulk/scene.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/contact/contact_state.h>
-#include <dynamic_contact/bulk/discretization.h>
-#include <dynamic_contact/time/energy_balance.h>
-#include <dynamic_contact/bulk/force_balance.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/laws/friction_law.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/mesh/mesh_adaptation.h>
+#include <dynamic_contact/output/checkpoint.h>
 #include <dynamic_contact/output/output.h>
 #include <dynamic_contact/output/output_directory.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/bulk/scene.h>
+#include <dynamic_contact/time/energy_balance.h>
+#include <dynamic_contact/time/force_balance.h>
 #include <dynamic_contact/time/step_record.h>
 #include <dynamic_contact/time/step_solver.h>
 

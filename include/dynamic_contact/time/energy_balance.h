@@ -1,11 +1,11 @@
 #ifndef dynamic_contact_energy_balance_h
 #define dynamic_contact_energy_balance_h
 
+#include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/laws/contact_law.h>
 #include <dynamic_contact/laws/foundation.h>
-#include <dynamic_contact/time/time_scheme.h>
 
 namespace DynamicContact
 {

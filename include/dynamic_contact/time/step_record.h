@@ -1,10 +1,10 @@
 #ifndef dynamic_contact_step_record_h
 #define dynamic_contact_step_record_h
 
-#include <dynamic_contact/time/energy_balance.h>
 #include <dynamic_contact/bulk/error_norms.h>
-#include <dynamic_contact/bulk/force_balance.h>
 #include <dynamic_contact/output/output.h>
+#include <dynamic_contact/time/energy_balance.h>
+#include <dynamic_contact/time/force_balance.h>
 #include <dynamic_contact/time/step_solver.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <dynamic_contact/run/command_line.h>
-#include <dynamic_contact/parameters/provenance.h>
+#include <dynamic_contact/run/provenance.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>

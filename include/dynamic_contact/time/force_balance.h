@@ -3,13 +3,13 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <dynamic_contact/contact/contact_boundary.h>
-#include <dynamic_contact/laws/contact_law.h>
+#include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/face_load_quadrature.h>
-#include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/bulk/scene.h>
-#include <dynamic_contact/time/time_scheme.h>
+#include <dynamic_contact/contact/contact_boundary.h>
+#include <dynamic_contact/laws/contact_law.h>
+#include <dynamic_contact/laws/material.h>
 
 namespace DynamicContact
 {

@@ -3,9 +3,9 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
-#include <dynamic_contact/bulk/scene.h>
-#include <dynamic_contact/time/time_loop.h>
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/bulk/scene.h>
+#include <dynamic_contact/run/time_loop.h>
 
 #include <cmath>
 #include <csignal>
@@ -498,8 +498,7 @@ namespace DynamicContact
   {
     // The usual controller: the local error of a scheme of order p scales
     // like k^(p+1).
-    const double order =
-      parameters.time.local_error_order();
+    const double order = parameters.time.local_error_order();
     const double factor =
       error > 0 ?
         std::min(2., std::max(0.2, 0.9 * std::pow(error, -1. / order))) :

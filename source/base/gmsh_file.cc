@@ -1,7 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
-#include <dynamic_contact/mesh/gmsh_file.h>
+#include <dynamic_contact/base/gmsh_file.h>
 
 #include <fstream>
 #include <sstream>

@@ -5,14 +5,14 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
-#include <dynamic_contact/output/checkpoint.h>
 #include <dynamic_contact/base/fault_injection.h>
+#include <dynamic_contact/output/checkpoint.h>
 #include <dynamic_contact/output/output.h>
 #include <dynamic_contact/output/output_directory.h>
 #include <dynamic_contact/output/output_schedule.h>
-#include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/parameters/provenance.h>
 #include <dynamic_contact/output/resume.h>
+#include <dynamic_contact/parameters/parameters.h>
+#include <dynamic_contact/run/provenance.h>
 #include <dynamic_contact/run/run_totals.h>
 #include <dynamic_contact/run/simulator.h>
 #include <dynamic_contact/time/step_record.h>

@@ -3,7 +3,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/vector.h>
 
-#include <dynamic_contact/bulk/force_balance.h>
+#include <dynamic_contact/time/force_balance.h>
 
 #include <set>
 

@@ -2,8 +2,8 @@
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
-#include <dynamic_contact/base/resources.h>
 #include <dynamic_contact/contact/cost_model.h>
+#include <dynamic_contact/run/resources.h>
 
 #include <unistd.h>
 
@@ -34,8 +34,8 @@ namespace DynamicContact
     const double p           = parameters.finite_element.degree;
     const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
     using P           = Parameters::Solver::Preconditioner;
-    const P     given = parameters.solver.preconditioner;
-    double      bytes = std::numeric_limits<double>::infinity();
+    const P given     = parameters.solver.preconditioner;
+    double  bytes     = std::numeric_limits<double>::infinity();
     for (const P candidate :
          preconditioner_candidates(given, parameters.finite_element.degree))
       bytes = std::min(bytes,
@@ -74,7 +74,7 @@ namespace DynamicContact
            comm, std::make_pair(std::string(host, length), available)))
       {
         auto &[most, processes] = hosts[name];
-        most = std::max(most, a);
+        most                    = std::max(most, a);
         ++processes;
       }
     double total = 0, per_process = std::numeric_limits<double>::infinity();
