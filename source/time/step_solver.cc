@@ -3,7 +3,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <dynamic_contact/contact/condensed_newton.h>
-#include <dynamic_contact/contact/sparse_newton.h>
+#include <dynamic_contact/contact/assembled_newton.h>
 #include <dynamic_contact/time/step_solver.h>
 #include <dynamic_contact/base/timing.h>
 
@@ -106,7 +106,7 @@ namespace DynamicContact
         if (plan.condensed)
           newton = std::make_unique<CondensedNewton<dim>>(problem);
         else
-          newton = std::make_unique<SparseNewton<dim>>(problem);
+          newton = std::make_unique<AssembledNewton<dim>>(problem);
         newton->reinit();
       }
     return *newton;

@@ -124,7 +124,7 @@ namespace DynamicContact
    * implementations share one globalized Newton driver (globalized_newton(),
    * newton_driver.h) and differ in the linear algebra: CondensedNewton (static
    * condensation onto Gamma_3: K0 factorized once, dense systems on the active
-   * nodes; replicates Gamma_3 on every process) and SparseNewton (the sparse
+   * nodes; replicates Gamma_3 on every process) and AssembledNewton (the sparse
    * Newton system of the whole body, by a direct factorization or by GMRES
    * preconditioned with algebraic multigrid of K0; O(N) per iteration, nothing
    * replicated).

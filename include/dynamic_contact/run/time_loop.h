@@ -152,13 +152,6 @@ namespace DynamicContact
       return state.time;
     }
 
-    /** The discrete problem: mesh, fields, Gamma_3. */
-    const Simulator<dim> &
-    simulator() const
-    {
-      return model;
-    }
-
   private:
     const RunParameters parameters;
     MPI_Comm            comm;
@@ -175,7 +168,7 @@ namespace DynamicContact
      * and an error there must leave no timer behind to complain about an
      * exception in flight.
      */
-    Simulator<dim> model;
+    Simulator<dim> simulator;
     TimerOutput    timer;
 
     /** Created in the constructor, opened (locked, checked) by initialize. */

@@ -4,7 +4,7 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <dynamic_contact/contact/largest_eigenvalue.h>
-#include <dynamic_contact/contact/sparse_newton.h>
+#include <dynamic_contact/contact/assembled_newton.h>
 #include <dynamic_contact/base/timing.h>
 #include <dynamic_contact/contact/weakening_limit.h>
 
@@ -68,14 +68,14 @@ namespace DynamicContact
 
 
   template <int dim>
-  SparseNewton<dim>::SparseNewton(const ContactProblem<dim> &problem)
+  AssembledNewton<dim>::AssembledNewton(const ContactProblem<dim> &problem)
     : problem(problem)
   {}
 
 
   template <int dim>
   void
-  SparseNewton<dim>::reinit()
+  AssembledNewton<dim>::reinit()
   {
     for (auto *v : {&increment, &scratch, &scratch2, &base_residual})
       problem.discretization.reinit_owned(*v);
@@ -98,8 +98,8 @@ namespace DynamicContact
 
 
   template <int dim>
-  typename SparseNewton<dim>::Result
-  SparseNewton<dim>::solve(const ContactStep<dim>      &step,
+  typename AssembledNewton<dim>::Result
+  AssembledNewton<dim>::solve(const ContactStep<dim>      &step,
                            std::vector<Tensor<1, dim>> &lambda,
                            Vector_t                    &w)
   {
@@ -136,7 +136,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::newton_step(const SystemNewton<dim>  &newton,
+  AssembledNewton<dim>::newton_step(const SystemNewton<dim>  &newton,
                                  const SystemIterate<dim> &x,
                                  SystemIterate<dim>       &full,
                                  Result                   &result)
@@ -203,7 +203,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::apply_jacobian(const NodalSystem &system,
+  AssembledNewton<dim>::apply_jacobian(const NodalSystem &system,
                                     const Vector_t    &x,
                                     Vector_t          &y) const
   {
@@ -318,7 +318,7 @@ namespace DynamicContact
 
   template <int dim>
   const std::vector<Tensor<2, dim>> &
-  SparseNewton<dim>::nodal_bulk_blocks()
+  AssembledNewton<dim>::nodal_bulk_blocks()
   {
     if (blocks_scheme == problem.bulk.scheme() &&
         bulk_blocks.size() == problem.boundary.nodes().size())
@@ -334,7 +334,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::prepare_preconditioner()
+  AssembledNewton<dim>::prepare_preconditioner()
   {
     if (preconditioner && preconditioner_scheme == problem.bulk.scheme())
       return;
@@ -369,7 +369,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::solve_bulk(const Vector_t &b,
+  AssembledNewton<dim>::solve_bulk(const Vector_t &b,
                                 Vector_t       &x,
                                 const double    tolerance)
   {
@@ -398,7 +398,7 @@ namespace DynamicContact
 
   template <int dim>
   const std::vector<double> &
-  SparseNewton<dim>::coupled_limits()
+  AssembledNewton<dim>::coupled_limits()
   {
     if (limits_scheme == problem.bulk.scheme() && !weakening_limits.empty())
       return weakening_limits;
@@ -438,7 +438,7 @@ namespace DynamicContact
 
   template <int dim>
   SpectralEstimate
-  SparseNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots,
+  AssembledNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots,
                                        const bool)
   {
     const auto        &nodes = problem.boundary.nodes();
@@ -476,7 +476,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::solve_iterative(const NodalSystem        &system,
+  AssembledNewton<dim>::solve_iterative(const NodalSystem        &system,
                                      const SystemNewton<dim>  &newton,
                                      const SystemIterate<dim> &x,
                                      Vector_t                 &dw,
@@ -581,7 +581,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::assemble_direct_matrix(const NodalSystem &system)
+  AssembledNewton<dim>::assemble_direct_matrix(const NodalSystem &system)
   {
     const auto &nodes = problem.boundary.nodes();
     TimerSection t(problem.timer, "Newton: matrix update");
@@ -639,7 +639,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::solve_direct(const NodalSystem        &system,
+  AssembledNewton<dim>::solve_direct(const NodalSystem        &system,
                                   const SystemNewton<dim>  &newton,
                                   const SystemIterate<dim> &x,
                                   Vector_t                 &dw,
@@ -702,7 +702,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SparseNewton<dim>::memory_consumption(MemoryItems &items) const
+  AssembledNewton<dim>::memory_consumption(MemoryItems &items) const
   {
     if (preconditioner)
       items.push_back({dynamic_cast<const BulkAMG *>(preconditioner.get()) ?
@@ -728,6 +728,6 @@ namespace DynamicContact
   }
 
 
-  template class SparseNewton<2>;
-  template class SparseNewton<3>;
+  template class AssembledNewton<2>;
+  template class AssembledNewton<3>;
 } // namespace DynamicContact

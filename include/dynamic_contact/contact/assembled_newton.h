@@ -1,5 +1,5 @@
-#ifndef dynamic_contact_sparse_newton_h
-#define dynamic_contact_sparse_newton_h
+#ifndef dynamic_contact_assembled_newton_h
+#define dynamic_contact_assembled_newton_h
 
 #include <deal.II/lac/trilinos_solver.h>
 
@@ -38,12 +38,12 @@ namespace DynamicContact
    * factorization reused while it does not.
    */
   template <int dim>
-  class SparseNewton : public ContactNewton<dim>, public LinearBackend<dim>
+  class AssembledNewton : public ContactNewton<dim>, public LinearBackend<dim>
   {
   public:
     using Result = ContactNewtonResult;
 
-    explicit SparseNewton(const ContactProblem<dim> &problem);
+    explicit AssembledNewton(const ContactProblem<dim> &problem);
 
     void
     reinit() override;
