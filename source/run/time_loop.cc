@@ -41,7 +41,7 @@ namespace DynamicContact
     , details(screen_log,
               Utilities::MPI::this_mpi_process(comm) == 0 &&
                 parameters.output.solver_details)
-    , simulator(this->parameters, prm, comm, timer, details)
+    , the_simulator(this->parameters, prm, comm, timer, details)
     , timer(comm,
             pcout,
             // The table of the sections is printed by finish() (disjoint
@@ -110,8 +110,8 @@ namespace DynamicContact
   void
   TimeLoop<dim>::print_header() const
   {
-    pcout << "dynamic-contact: " << simulator.summary();
-    if (simulator.adaptive_mesh())
+    pcout << "dynamic-contact: " << the_simulator.summary();
+    if (the_simulator.adaptive_mesh())
       pcout << " (adaptive)";
     pcout << '\n';
     if (!process_note.empty())
@@ -122,7 +122,7 @@ namespace DynamicContact
           coarse_mesh_note(parameters.geometry.repetitions,
                            parameters.geometry.global_refinements,
                            Utilities::MPI::n_mpi_processes(comm),
-                           simulator.adaptive_mesh());
+                           the_simulator.adaptive_mesh());
         if (!note.empty())
           pcout << "  note: " << note << ".\n";
       }
@@ -135,7 +135,7 @@ namespace DynamicContact
                       start_time) +
       "\n";
     // With the solver plan (it names the number of processes).
-    const std::string plan = "  solver plan: " + simulator.solver_plan() + "\n";
+    const std::string plan = "  solver plan: " + the_simulator.solver_plan() + "\n";
     if (parameters.output.print_timings)
       pcout << provenance << plan;
     else if (Utilities::MPI::this_mpi_process(comm) == 0)
@@ -143,8 +143,8 @@ namespace DynamicContact
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
             << ", parameter file: " << parameters.parameter_file
-            << ", contact solver: " << simulator.solver_name() << '\n';
-    simulator.print_model(pcout);
+            << ", contact solver: " << the_simulator.solver_name() << '\n';
+    the_simulator.print_model(pcout);
   }
 
 
@@ -156,12 +156,12 @@ namespace DynamicContact
     // screen and so in log.txt.
     if (parameters.output.solver_details ||
         Utilities::MPI::this_mpi_process(comm) != 0 ||
-        simulator.solver_choices() == choices_before)
+        the_simulator.solver_choices() == choices_before)
       return;
     screen_log.log_only("  solver plan from step " +
                         std::to_string(state.step + 1) +
                         " (mesh adapted at t = " + sig6(state.time) +
-                        "): " + simulator.solver_plan() + "\n");
+                        "): " + the_simulator.solver_plan() + "\n");
   }
 
 
@@ -174,11 +174,11 @@ namespace DynamicContact
   {
     TimerSection scope(timer, "Output");
     if (contact_csv)
-      simulator.write_contact_csv(*output_directory, n, t);
+      the_simulator.write_contact_csv(*output_directory, n, t);
     if (vtu)
       {
         const auto start = std::chrono::steady_clock::now();
-        simulator.write_vtu(*vtu_writer, n, t);
+        the_simulator.write_vtu(*vtu_writer, n, t);
         vtu_seconds += std::chrono::duration<double>(
                          std::chrono::steady_clock::now() - start)
                          .count();
@@ -207,12 +207,12 @@ namespace DynamicContact
     if (parameters.output.print_iteration_counts)
       {
         pcout << "  Newton " << statistics.newton_iterations;
-        if (simulator.has_friction())
+        if (the_simulator.has_friction())
           pcout << "  convexification "
                 << statistics.convexification_iterations;
       }
     pcout << "  contact " << statistics.n_contact;
-    if (simulator.adaptive_mesh())
+    if (the_simulator.adaptive_mesh())
       pcout << "  cells " << record.cells;
     pcout << "  N = " << sig6(record.normal_force)
           << "  E = " << sig6(record.terms.energy.total());
@@ -256,7 +256,7 @@ namespace DynamicContact
     TimerSection scope(timer, "Checkpoint");
     RunState     saved = state;
     saved.vtu_records  = vtu_writer->get_records();
-    simulator.save_checkpoint(*output_directory,
+    the_simulator.save_checkpoint(*output_directory,
                           saved,
                           parameters_of_run,
                           parameters.checkpoint.keep,
@@ -297,7 +297,7 @@ namespace DynamicContact
         resume_from_checkpoint();
         return;
       }
-    simulator.set_up_initial_state();
+    the_simulator.set_up_initial_state();
 
     // --validate: the scene would start; nothing is written.
     if (validate_only)
@@ -318,7 +318,7 @@ namespace DynamicContact
 
     print_header();
 
-    const StepRecord<dim> record = simulator.initial_record();
+    const StepRecord<dim> record = the_simulator.initial_record();
     time_series_writer->write(record.row());
     rows.push_back(record);
     output_results(0, 0., true, parameters.output.write_vtu);
@@ -332,7 +332,7 @@ namespace DynamicContact
     validate_only = true;
     initialize(false);
     timer.disable_output(); // set-up times of a run that does not run
-    return simulator.summary();
+    return the_simulator.summary();
   }
 
 
@@ -343,7 +343,7 @@ namespace DynamicContact
     const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
     create_mesh_once();
     const unsigned int minimum = parameters.solver.min_dofs_per_process;
-    const double       dofs    = simulator.initial_dofs_estimate();
+    const double       dofs    = the_simulator.initial_dofs_estimate();
     if (n == 1 || minimum == 0 || dofs >= double(n) * minimum)
       return n;
     const unsigned int m =
@@ -362,7 +362,7 @@ namespace DynamicContact
   TimeLoop<dim>::create_mesh_once()
   {
     if (!mesh_created)
-      simulator.create_mesh();
+      the_simulator.create_mesh();
     mesh_created = true;
   }
 
@@ -380,7 +380,7 @@ namespace DynamicContact
   TimeLoop<dim>::resume_from_checkpoint()
   {
     const std::string &directory = parameters.output.directory;
-    simulator.check_input(true);
+    the_simulator.check_input(true);
     // The directory: ours, and no other run in it.
     output_directory->open(true);
 
@@ -405,7 +405,7 @@ namespace DynamicContact
         "changed.");
 
     // The mesh, the fields and the loop state of the checkpoint.
-    simulator.load_checkpoint(latest, saved.time);
+    the_simulator.load_checkpoint(latest, saved.time);
     state                = saved;
     last_checkpoint_step = state.step;
 
@@ -533,7 +533,7 @@ namespace DynamicContact
     // A step the solver cannot solve is retried from the last good state
     // with half the time step, down to Time/Minimum time step; a step
     // whose error estimate is too large (Time/Adaptive) with a shorter one.
-    const auto   good     = simulator.restore_point();
+    const auto   good     = the_simulator.restore_point();
     unsigned int cutbacks = 0, rejected = 0;
     k_next = state.time_step;
     for (;;)
@@ -541,7 +541,7 @@ namespace DynamicContact
         k = next_step_length();
         try
           {
-            StepRecord<dim> record = simulator.do_time_step(state.step + 1,
+            StepRecord<dim> record = the_simulator.do_time_step(state.step + 1,
                                                         state.time + k,
                                                         k,
                                                         remesh_energy_change,
@@ -569,7 +569,7 @@ namespace DynamicContact
                 if (!accepted)
                   {
                     // Rejected: again from the last good state.
-                    simulator.restore(good);
+                    the_simulator.restore(good);
                     state.time_step = k_new;
                     ++rejected;
                     continue;
@@ -580,12 +580,12 @@ namespace DynamicContact
           }
         catch (const NonFiniteValue &e)
           {
-            simulator.restore(good);
+            the_simulator.restore(good);
             stop_with_last_good_state(e.what());
           }
         catch (const StepFailure &failure)
           {
-            simulator.restore(good);
+            the_simulator.restore(good);
             if (!can_cut_back(k))
               // Stop, with the last good state written out (fields and a
               // checkpoint to continue from with other settings).
@@ -648,7 +648,7 @@ namespace DynamicContact
        statistics.cycles,
        statistics.solutions,
        statistics.failed_starts});
-    if (simulator.newton_residual() > parameters.solver.newton_tolerance)
+    if (the_simulator.newton_residual() > parameters.solver.newton_tolerance)
       ++totals.stagnated_steps;
     state.max_relative_defect =
       std::max(state.max_relative_defect, record.relative_energy_defect());
@@ -685,13 +685,13 @@ namespace DynamicContact
       return false;
 
     double remesh_energy_change = 0;
-    if (simulator.adaptation_due(state.step + 1))
+    if (the_simulator.adaptation_due(state.step + 1))
       {
-        const std::string choices_before = simulator.solver_choices();
+        const std::string choices_before = the_simulator.solver_choices();
         remesh_energy_change =
-          simulator.adapt_mesh(state.time,
+          the_simulator.adapt_mesh(state.time,
                            std::min(T,
-                                    state.time + simulator.lookahead_steps() * k0),
+                                    state.time + the_simulator.lookahead_steps() * k0),
                            k0);
         log_changed_plan(choices_before);
       }
@@ -731,7 +731,7 @@ namespace DynamicContact
   {
     time_series_writer->close();
     const std::string status =
-      totals.print_summary(pcout, state, parameters, simulator.has_friction());
+      totals.print_summary(pcout, state, parameters, the_simulator.has_friction());
     if (parameters.output.print_timings)
       {
         const double wall = std::chrono::duration<double>(
@@ -742,7 +742,7 @@ namespace DynamicContact
         Utilities::System::get_memory_stats(memory);
         const double peak_mb =
           Utilities::MPI::sum(static_cast<double>(memory.VmHWM), comm) / 1024.;
-        pcout << "  contact solver: " << simulator.solver_name()
+        pcout << "  contact solver: " << the_simulator.solver_name()
               << ", peak memory: " << std::fixed << std::setprecision(0)
               << peak_mb
               << " MB (all processes), wall time: " << std::setprecision(1)
@@ -751,7 +751,7 @@ namespace DynamicContact
       }
     // What the run holds, by part: on the screen with the timings, in
     // log.txt always (resident memory differs from run to run).
-    const std::string memory = simulator.memory_table();
+    const std::string memory = the_simulator.memory_table();
     if (parameters.output.print_timings)
       pcout << memory;
     else if (Utilities::MPI::this_mpi_process(comm) == 0)

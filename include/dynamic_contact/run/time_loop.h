@@ -152,6 +152,13 @@ namespace DynamicContact
       return state.time;
     }
 
+    /** The discrete problem: mesh, fields, Gamma_3. */
+    const Simulator<dim> &
+    simulator() const
+    {
+      return the_simulator;
+    }
+
   private:
     const RunParameters parameters;
     MPI_Comm            comm;
@@ -168,7 +175,7 @@ namespace DynamicContact
      * and an error there must leave no timer behind to complain about an
      * exception in flight.
      */
-    Simulator<dim> simulator;
+    Simulator<dim> the_simulator;
     TimerOutput    timer;
 
     /** Created in the constructor, opened (locked, checked) by initialize. */
