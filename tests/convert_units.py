@@ -265,7 +265,9 @@ class Expression:
 
 
 def constants_of(text):
-    names = {"pi": math.pi, "Pi": math.pi}
+    # pi as scenes write it, and muparser's own constants (deal.II's
+    # FunctionParser): _pi, _e.
+    names = {"pi": math.pi, "Pi": math.pi, "_pi": math.pi, "_e": math.e}
     for item in text.split(","):
         if item.strip():
             name, value = item.split("=")
