@@ -150,6 +150,8 @@ class ShearBase:
             hi *= 2
         for _ in range(200):
             mid = (lo + hi) / 2
+            if not lo < mid < hi:
+                break  # lo and hi are neighbouring doubles: converged
             if self.residual(tau, mid) > 0:
                 lo = mid
             else:
