@@ -249,12 +249,12 @@ def used(p):
 
 # --- the reference files in benchmarks/results -------------------------------
 
-def write_reference(results_dir, histories, profiles, header):
-    """reference_histories.csv (time, normal_force, friction_force, energy;
-    deflection on its own time column) and reference_profiles.csv (time, x,
-    pressure, traction)."""
+def write_reference(results_dir, histories, profiles, header, prefix="reference"):
+    """PREFIX_histories.csv (time, normal_force, friction_force, energy;
+    deflection on its own time column) and PREFIX_profiles.csv (time, x,
+    pressure, traction); PREFIX is 'reference' for the paper's scene."""
     t = histories["normal_force"][0]
-    path = os.path.join(results_dir, "reference_histories.csv")
+    path = os.path.join(results_dir, prefix + "_histories.csv")
     with open(path, "w") as f:
         f.write(header)
         f.write("time,normal_force,friction_force,energy,deflection\n")
@@ -264,7 +264,7 @@ def write_reference(results_dir, histories, profiles, header):
             f.write("%.10g,%.10e,%.10e,%.10e,%.10e\n"
                     % (t[i], histories["normal_force"][1][i], histories["friction_force"][1][i],
                        histories["energy"][1][i], dd[i]))
-    path2 = os.path.join(results_dir, "reference_profiles.csv")
+    path2 = os.path.join(results_dir, prefix + "_profiles.csv")
     with open(path2, "w") as f:
         f.write(header)
         f.write("time,x,pressure,traction\n")
@@ -285,11 +285,12 @@ def _read_csv(path):
     return {n: data[:, i] for i, n in enumerate(names)}
 
 
-def read_reference(results_dir):
-    """The reference quantities in the layout of extract()."""
-    h = _read_csv(os.path.join(results_dir, "reference_histories.csv"))
+def read_reference(results_dir, prefix="reference"):
+    """The reference quantities in the layout of extract() (PREFIX as for
+    write_reference)."""
+    h = _read_csv(os.path.join(results_dir, prefix + "_histories.csv"))
     ref = {key: (h["time"], h[key]) for key in HISTORIES}
-    p = _read_csv(os.path.join(results_dir, "reference_profiles.csv"))
+    p = _read_csv(os.path.join(results_dir, prefix + "_profiles.csv"))
     for key in PROFILES:
         ref[key] = {}
         for T in PROFILE_TIMES:
