@@ -28,13 +28,12 @@ body's elasticity); in 3D the block keeps its direction (0.6, 0, 0.8) to
 1e-4. Prints the table and one line per check; exit code 1 if one failed.
 """
 
-import csv
 import glob
 import math
 import os
-import subprocess
 
-from script_checks import check, finish, program_arguments
+from script_checks import (check, finish, program_arguments, read_csv,
+                           run_scene)
 
 # The scenes' data (the closed form's).
 RHO, H, P = 1000., 0.2, 1e6
@@ -59,11 +58,6 @@ def closed_form():
     simpson = h / 3 * (f[0] + f[-1] + 4 * sum(f[1:-1:2]) +
                        2 * sum(f[2:-1:2]))
     return t_stop, scale * simpson
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 def stopping_time(rows, mass, direction, dim):
@@ -97,8 +91,6 @@ def distance(out, direction, dim):
 def main():
     args = program_arguments(__doc__).parse_args()
     os.makedirs(args.work_dir, exist_ok=True)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
     t_exact, d_exact = closed_form()
     print("closed form: T_stop = %.6e s, D = %.6e m" % (t_exact, d_exact))
     for dim, (scene, direction) in SCENES.items():
@@ -109,23 +101,14 @@ def main():
               % dim)
         for k in STEPS:
             out = os.path.join(args.work_dir, "%dd-%g" % (dim, k))
-            command = [args.program, "--set", "Output/Directory=" + out,
-                       "--set", "Time/Time step=%g" % k,
-                       "--set", "Output/Print timings=false",
-                       "--set", "Output/Progress every=0",
-                       os.path.join(args.source_dir, scene)]
-            result = subprocess.run(command, env=env, stdout=subprocess.PIPE,
-                                    stderr=subprocess.STDOUT)
-            status = ""
-            if os.path.exists(os.path.join(out, "run_status")):
-                with open(os.path.join(out, "run_status")) as f:
-                    status = f.read().strip()
+            completed = run_scene(args.program,
+                                  os.path.join(args.source_dir, scene), out,
+                                  ["Time/Time step=%g" % k])
             rows = read_csv(os.path.join(out, "time_series.csv")) \
-                if status == "completed" else []
+                if completed else []
             cutbacks = sum(int(r["cutbacks"]) for r in rows)
-            check(result.returncode == 0 and status == "completed" and
-                  cutbacks == 0, "%dD, k = %g: completed with 0 cut-backs"
-                  % (dim, k))
+            check(completed and cutbacks == 0,
+                  "%dD, k = %g: completed with 0 cut-backs" % (dim, k))
             if not rows:
                 continue
             t_stop = stopping_time(rows, mass, direction, dim)

@@ -36,14 +36,13 @@ k). Prints the table and one line per check;
 exit code 1 if one failed.
 """
 
-import csv
 import glob
 import math
 import os
-import subprocess
 
 from closed_form import ImpactBar, crossing
-from script_checks import check, finish, program_arguments
+from script_checks import (check, finish, program_arguments, read_csv,
+                           run_scene)
 
 RHO, EP, LENGTH, V, C_NU = 1000., 1e9, 1., 1., 2.5e9
 WIDTH = 0.1
@@ -51,28 +50,6 @@ END = 3e-3
 STEPS = [2e-5, 1e-5, 5e-6]
 DAMPINGS = [5e5, 0.]
 SCENES = {2: "prm/impact_bar.prm", 3: "prm/impact_bar_3d.prm"}
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def run(program, scene, out, overrides):
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-    command = [program, "--set", "Output/Directory=" + out,
-               "--set", "Output/Print timings=false",
-               "--set", "Output/Progress every=0"]
-    for o in overrides:
-        command += ["--set", o]
-    result = subprocess.run(command + [scene], env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    status = ""
-    if os.path.exists(os.path.join(out, "run_status")):
-        with open(os.path.join(out, "run_status")) as f:
-            status = f.read().strip()
-    return result.returncode == 0 and status == "completed"
 
 
 def measure(out, dim, exact):
@@ -126,11 +103,12 @@ def main():
             tcs, vrs, windows, peaks = [], [], [], []
             for k in STEPS:
                 out = os.path.join(args.work_dir, "%dd-%g-%g" % (dim, d_nu, k))
-                ok = run(args.program, os.path.join(args.source_dir, scene),
-                         out, ["Time/Time step=%g" % k,
-                               "Time/End time=%g" % END,
-                               "Foundation/Normal damping/Capped ramp/"
-                               "Coefficient=%g" % d_nu])
+                ok = run_scene(args.program,
+                               os.path.join(args.source_dir, scene), out,
+                               ["Time/Time step=%g" % k,
+                                "Time/End time=%g" % END,
+                                "Foundation/Normal damping/Capped ramp/"
+                                "Coefficient=%g" % d_nu])
                 m = measure(out, dim, exact) if ok else None
                 check(ok and m[5] == 0, "%s, k = %g: completed with 0 "
                       "cut-backs" % (name, k))

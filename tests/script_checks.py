@@ -1,11 +1,13 @@
 """What the Python test scripts of tests/ share: a check that prints one
 line and remembers a failure, a small file writer, the last line with the
-exit code (1 if a check failed), and the arguments of a script that runs
-the program. The scripts import it from their own folder (Python puts a
+exit code (1 if a check failed), the arguments of a script that runs
+the program, one run of a scene and a CSV reader. The scripts import it from their own folder (Python puts a
 script's folder first on its path)."""
 
 import argparse
+import csv
 import os
+import subprocess
 import sys
 
 failures = []
@@ -37,3 +39,29 @@ def program_arguments(doc):
     parser.add_argument("--work-dir", required=True)
     parser.add_argument("--source-dir", default=os.path.dirname(here))
     return parser
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def run_scene(program, scene, out, overrides=()):
+    """Run @p program on @p scene into the directory @p out (no timings,
+    no progress lines, one thread) with the entries @p overrides
+    ("Section/Name=value"); whether it exited 0 with run_status
+    'completed'."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
+    command = [program, "--set", "Output/Directory=" + out,
+               "--set", "Output/Print timings=false",
+               "--set", "Output/Progress every=0"]
+    for o in overrides:
+        command += ["--set", o]
+    result = subprocess.run(command + [scene], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    status = ""
+    if os.path.exists(os.path.join(out, "run_status")):
+        with open(os.path.join(out, "run_status")) as f:
+            status = f.read().strip()
+    return result.returncode == 0 and status == "completed"

@@ -43,14 +43,13 @@ Prints the table and one line per check;
 exit code 1 if one failed.
 """
 
-import csv
 import glob
 import math
 import os
-import subprocess
 
 from closed_form import ShearBase
-from script_checks import check, finish, program_arguments
+from script_checks import (check, finish, program_arguments, read_csv,
+                           run_scene)
 
 Z, P, A, TP = 1e6, 1e6, 1., 2.5e-4
 MU_A, MU_B = 1., 0.5
@@ -62,28 +61,6 @@ SCENES = {2: "prm/shear_wave.prm", 3: "prm/shear_wave_3d.prm"}
 
 def tau_inc(t):
     return Z * A * math.sin(math.pi * t / TP) ** 2 if 0 <= t <= TP else 0.
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def run(program, scene, out, overrides):
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-    command = [program, "--set", "Output/Directory=" + out,
-               "--set", "Output/Print timings=false",
-               "--set", "Output/Progress every=0"]
-    for o in overrides:
-        command += ["--set", o]
-    result = subprocess.run(command + [scene], env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    status = ""
-    if os.path.exists(os.path.join(out, "run_status")):
-        with open(os.path.join(out, "run_status")) as f:
-            status = f.read().strip()
-    return result.returncode == 0 and status == "completed"
 
 
 def centre_history(out, dim):
@@ -149,10 +126,10 @@ def main():
             distances, l1s = [], []
             for k in steps:
                 out = os.path.join(args.work_dir, "%dd-%g-%g" % (dim, alpha, k))
-                ok = run(args.program, scene, out,
-                         ["Time/Time step=%g" % k,
-                          "Time/Scheme=" + args.scheme,
-                          "Friction/Exponential/Decay rate=%g" % alpha])
+                ok = run_scene(args.program, scene, out,
+                               ["Time/Time step=%g" % k,
+                                "Time/Scheme=" + args.scheme,
+                                "Friction/Exponential/Decay rate=%g" % alpha])
                 check(ok, "%s, k = %g: completed" % (name, k))
                 if not ok:
                     continue
