@@ -100,6 +100,66 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * One right-hand side per node of @p missing and direction: a unit
+     * force in direction c at node j, through the node's constraints
+     * (P_j^T e_c).
+     */
+    template <int dim>
+    std::vector<BulkSolver::SparseColumn>
+    unit_forces(const std::vector<ContactNode<dim>> &all,
+                const std::vector<unsigned int>     &missing)
+    {
+      std::vector<BulkSolver::SparseColumn> rhs;
+      for (const unsigned int j : missing)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            BulkSolver::SparseColumn column;
+            for (unsigned int r = 0; r < dim; ++r)
+              if (all[j].constraint_map[c][r] != 0)
+                column.emplace_back(all[j].dofs[r],
+                                    all[j].constraint_map[c][r]);
+            rhs.push_back(column);
+          }
+      return rhs;
+    }
+
+
+    /**
+     * The responses @p values at the @p owned nodes (rows: their DoFs) to
+     * the unit forces of @p n_missing nodes, through each owned node's
+     * constraints, packed for rank 0 as (missing node m, direction c,
+     * global index of the owned node, dim entries).
+     */
+    template <int dim>
+    std::vector<double>
+    packed_responses(const std::vector<ContactNode<dim>>    &owned,
+                     const std::vector<unsigned int>        &global,
+                     const std::vector<std::vector<double>> &values,
+                     const unsigned int                      n_missing)
+    {
+      std::vector<double> packed;
+      for (unsigned int m = 0; m < n_missing; ++m)
+        for (unsigned int c = 0; c < dim; ++c)
+          for (unsigned int i = 0; i < owned.size(); ++i)
+            {
+              Tensor<1, dim> raw;
+              for (unsigned int r = 0; r < dim; ++r)
+                raw[r] = values[dim * m + c][dim * i + r];
+              const Tensor<1, dim> response = owned[i].constraint_map * raw;
+              packed.push_back(m);
+              packed.push_back(c);
+              packed.push_back(global[i]);
+              for (unsigned int r = 0; r < dim; ++r)
+                packed.push_back(response[r]);
+            }
+      return packed;
+    }
+  } // namespace
+
+
   template <int dim>
   void
   BoundaryCompliance<dim>::columns_by_solves(
@@ -107,19 +167,8 @@ namespace DynamicContact
     const unsigned int               block_size,
     Result                          &result)
   {
-    // One right-hand side per missing node and direction: a unit force in
-    // direction c at node j, through the node's constraints (P_j^T e_c).
-    const auto                           &all = gathered.all_nodes();
-    std::vector<BulkSolver::SparseColumn> rhs;
-    for (const unsigned int j : missing)
-      for (unsigned int c = 0; c < dim; ++c)
-        {
-          BulkSolver::SparseColumn column;
-          for (unsigned int r = 0; r < dim; ++r)
-            if (all[j].constraint_map[c][r] != 0)
-              column.emplace_back(all[j].dofs[r], all[j].constraint_map[c][r]);
-          rhs.push_back(column);
-        }
+    const auto                                 &all = gathered.all_nodes();
+    const std::vector<BulkSolver::SparseColumn> rhs = unit_forces(all, missing);
     // The responses at the owned nodes, then at every node.
     const auto                          &owned  = problem.boundary.nodes();
     const auto                          &global = gathered.global_indices();
@@ -153,21 +202,8 @@ namespace DynamicContact
       }
     result.bulk_solves += rhs.size();
 
-    std::vector<double> packed;
-    for (unsigned int m = 0; m < missing.size(); ++m)
-      for (unsigned int c = 0; c < dim; ++c)
-        for (unsigned int i = 0; i < owned.size(); ++i)
-          {
-            Tensor<1, dim> raw;
-            for (unsigned int r = 0; r < dim; ++r)
-              raw[r] = values[dim * m + c][dim * i + r];
-            const Tensor<1, dim> response = owned[i].constraint_map * raw;
-            packed.push_back(m);
-            packed.push_back(c);
-            packed.push_back(global[i]);
-            for (unsigned int r = 0; r < dim; ++r)
-              packed.push_back(response[r]);
-          }
+    const std::vector<double> packed =
+      packed_responses(owned, global, values, missing.size());
     // To rank 0, which holds C.
     const bool holds = holds_tables();
     for (const unsigned int j : missing)

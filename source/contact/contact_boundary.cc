@@ -288,6 +288,43 @@ namespace DynamicContact
           }
       return !all_zero;
     }
+
+    /**
+     * The contact node of the support point @p base_index of a face of
+     * Gamma_3 (its DoFs @p face_dofs) at @p position: its DoFs per
+     * component, its lumped weight, and the unit normal and tangents from
+     * the normal moments at its DoFs, its scalar DoF (of
+     * @p scalar_face_dofs) and its gap. Its constraints are the caller's.
+     */
+    template <int dim>
+    ContactNode<dim>
+    make_node(const FiniteElement<dim>                   &fe,
+              const std::vector<types::global_dof_index> &face_dofs,
+              const std::vector<types::global_dof_index> &scalar_face_dofs,
+              const unsigned int                          base_index,
+              const Point<dim>                           &position,
+              const TrilinosWrappers::MPI::Vector        &weights,
+              const TrilinosWrappers::MPI::Vector        &normal_moments,
+              const Function<dim>                        &initial_gap)
+    {
+      ContactNode<dim> node;
+      for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
+        if (fe.face_system_to_component_index(k).second == base_index)
+          node.dofs[fe.face_system_to_component_index(k).first] = face_dofs[k];
+      node.position = position;
+      node.weight   = weights[node.dofs[0]];
+      for (unsigned int c = 0; c < dim; ++c)
+        node.normal[c] = normal_moments[node.dofs[c]];
+      Assert(node.weight > 0 && node.normal.norm() > 0, ExcInternalError());
+      node.normal /= node.normal.norm();
+      node.tangents   = tangent_basis<dim>(node.normal);
+      node.scalar_dof = scalar_face_dofs[base_index];
+      node.gap        = initial_gap.value(node.position);
+      AssertThrow(node.gap >= 0,
+                  ExcMessage("Foundation/Initial gap must be >= 0, but it "
+                             "is negative at a node of Gamma_3."));
+      return node;
+    }
   } // namespace
 
 
@@ -347,26 +384,15 @@ namespace DynamicContact
                       continue;
                     seen.insert(dof0);
 
-                    ContactNode<dim> node;
-                    for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
-                      if (fe.face_system_to_component_index(k).second ==
-                          base_index)
-                        node.dofs[fe.face_system_to_component_index(k).first] =
-                          face_dofs[k];
-                    node.scalar_dof = scalar_face_dofs[base_index];
-                    node.position   = fe_face.quadrature_point(j);
-                    node.weight     = weights[dof0];
-                    for (unsigned int c = 0; c < dim; ++c)
-                      node.normal[c] = normal_moments[node.dofs[c]];
-                    Assert(node.weight > 0 && node.normal.norm() > 0,
-                           ExcInternalError());
-                    node.normal /= node.normal.norm();
-                    node.tangents = tangent_basis<dim>(node.normal);
-                    node.gap      = initial_gap.value(node.position);
-                    AssertThrow(node.gap >= 0,
-                                ExcMessage(
-                                  "Foundation/Initial gap must be >= 0, but it "
-                                  "is negative at a node of Gamma_3."));
+                    ContactNode<dim> node =
+                      make_node(fe,
+                                face_dofs,
+                                scalar_face_dofs,
+                                base_index,
+                                fe_face.quadrature_point(j),
+                                weights,
+                                normal_moments,
+                                initial_gap);
 
                     if (restrict_constraints(node, discretization.constraints))
                       owned_nodes.push_back(node);

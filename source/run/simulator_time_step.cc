@@ -169,65 +169,11 @@ namespace DynamicContact
     record.previous_energy      = energy_now(); // of u_old = u, w_old = w
 
     if (parameters.time.scheme == Parameters::Time::Scheme::bathe)
-      {
-        // The Bathe composite scheme (doc/theory.md section 2.4). Sub-step
-        // 1: the trapezoidal rule from t - k to t - k/2.
-        const CompositeScheme &composite = parameters.time.composite;
-        const TimeScheme       first     = composite.first_substep(k);
-        typename StepSolver<dim>::Statistics first_statistics;
-        EnergyBalanceTerms                   first_terms;
-        solve_substep(first,
-                      t - k / 2,
-                      u_old,
-                      w_old,
-                      record.previous_energy,
-                      accept_unconverged_loop,
-                      first_statistics,
-                      first_terms);
-        // Sub-step 2: a theta-step from the extrapolated state x_bar =
-        // (1 + a) x_{n-1/2} - a x_{n-1} to t (at rho_inf = 0 the three-point
-        // backward difference: backward Euler over k/3 from
-        // (4 x_{n-1/2} - x_{n-1})/3).
-        composite.extrapolate(u_bar, u, u_old);
-        composite.extrapolate(w_bar, w, w_old);
-        const Energy       bar_energy = energy_balance.energy(u_bar, w_bar);
-        const TimeScheme   last       = composite.second_substep(k);
-        EnergyBalanceTerms second_terms;
-        solve_second_substep(last,
-                             t,
-                             bar_energy.total(),
-                             accept_unconverged_loop,
-                             first_statistics,
-                             record,
-                             second_terms);
-        // (f, u_bar - u_{n-1/2}) = a/(1 + a) (f, u_bar - u_{n-1}) with the
-        // second sub-step's load f (f_n at rho_inf = 0).
-        scratch = u_bar;
-        scratch -= u_old;
-        const double extrapolation_work =
-          composite.extrapolation_share() * (load * scratch);
-        record.terms = bathe_terms(first_terms,
-                                   bar_energy,
-                                   second_terms,
-                                   extrapolation_work,
-                                   record.previous_energy);
-        measure_last_solve(record, last, u_bar, w_bar, t, k);
-      }
+      bathe_step(record, t, k, accept_unconverged_loop);
     else if (parameters.time.scheme == Parameters::Time::Scheme::sdirk)
       sdirk_step(record, t, k, accept_unconverged_loop);
     else
-      {
-        const TimeScheme scheme(k, parameters.time.theta());
-        solve_substep(scheme,
-                      t,
-                      u_old,
-                      w_old,
-                      record.previous_energy,
-                      accept_unconverged_loop,
-                      record.statistics,
-                      record.terms);
-        measure_last_solve(record, scheme, u_old, w_old, t, k);
-      }
+      theta_step(record, t, k, accept_unconverged_loop);
     if (parameters.time.adaptive)
       {
         record.adaptive_time = true;
@@ -242,6 +188,78 @@ namespace DynamicContact
     return record;
   }
 
+
+
+  template <int dim>
+  void
+  Simulator<dim>::bathe_step(StepRecord<dim> &record,
+                             const double     t,
+                             const double     k,
+                             const bool       accept_unconverged_loop)
+  {
+    // The Bathe composite scheme (doc/theory.md section 2.4). Sub-step
+    // 1: the trapezoidal rule from t - k to t - k/2.
+    const CompositeScheme               &composite = parameters.time.composite;
+    const TimeScheme                     first     = composite.first_substep(k);
+    typename StepSolver<dim>::Statistics first_statistics;
+    EnergyBalanceTerms                   first_terms;
+    solve_substep(first,
+                  t - k / 2,
+                  u_old,
+                  w_old,
+                  record.previous_energy,
+                  accept_unconverged_loop,
+                  first_statistics,
+                  first_terms);
+    // Sub-step 2: a theta-step from the extrapolated state x_bar =
+    // (1 + a) x_{n-1/2} - a x_{n-1} to t (at rho_inf = 0 the three-point
+    // backward difference: backward Euler over k/3 from
+    // (4 x_{n-1/2} - x_{n-1})/3).
+    composite.extrapolate(u_bar, u, u_old);
+    composite.extrapolate(w_bar, w, w_old);
+    const Energy       bar_energy = energy_balance.energy(u_bar, w_bar);
+    const TimeScheme   last       = composite.second_substep(k);
+    EnergyBalanceTerms second_terms;
+    solve_second_substep(last,
+                         t,
+                         bar_energy.total(),
+                         accept_unconverged_loop,
+                         first_statistics,
+                         record,
+                         second_terms);
+    // (f, u_bar - u_{n-1/2}) = a/(1 + a) (f, u_bar - u_{n-1}) with the
+    // second sub-step's load f (f_n at rho_inf = 0).
+    scratch = u_bar;
+    scratch -= u_old;
+    const double extrapolation_work =
+      composite.extrapolation_share() * (load * scratch);
+    record.terms = bathe_terms(first_terms,
+                               bar_energy,
+                               second_terms,
+                               extrapolation_work,
+                               record.previous_energy);
+    measure_last_solve(record, last, u_bar, w_bar, t, k);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::theta_step(StepRecord<dim> &record,
+                             const double     t,
+                             const double     k,
+                             const bool       accept_unconverged_loop)
+  {
+    const TimeScheme scheme(k, parameters.time.theta());
+    solve_substep(scheme,
+                  t,
+                  u_old,
+                  w_old,
+                  record.previous_energy,
+                  accept_unconverged_loop,
+                  record.statistics,
+                  record.terms);
+    measure_last_solve(record, scheme, u_old, w_old, t, k);
+  }
 
 
   template <int dim>

@@ -17,18 +17,6 @@
 
 namespace DynamicContact
 {
-  namespace
-  {
-    std::string
-    seconds(const double s)
-    {
-      std::ostringstream out;
-      out << std::fixed << std::setprecision(s < 100 ? 1 : 0) << s << " s";
-      return out.str();
-    }
-  } // namespace
-
-
   template <int dim>
   TimeLoop<dim>::TimeLoop(const RunParameters &parameters,
                           ParameterHandler    &prm,
@@ -108,65 +96,6 @@ namespace DynamicContact
 
   template <int dim>
   void
-  TimeLoop<dim>::print_header() const
-  {
-    pcout << "dynamic-contact: " << the_simulator.summary();
-    if (the_simulator.adaptive_mesh())
-      pcout << " (adaptive)";
-    pcout << '\n';
-    if (!process_note.empty())
-      pcout << "  " << process_note << ".\n";
-    if (parameters.geometry.type == Parameters::Geometry::Type::rectangle)
-      {
-        const std::string note =
-          coarse_mesh_note(parameters.geometry.repetitions,
-                           parameters.geometry.global_refinements,
-                           Utilities::MPI::n_mpi_processes(comm),
-                           the_simulator.adaptive_mesh());
-        if (!note.empty())
-          pcout << "  note: " << note << ".\n";
-      }
-    // Which program ran, where and when: on the screen with the timings
-    // (output that differs from run to run), in log.txt always.
-    const std::string provenance =
-      "  " +
-      provenance_line(Utilities::MPI::n_mpi_processes(comm),
-                      Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
-                      start_time) +
-      "\n";
-    // With the solver plan (it names the number of processes).
-    const std::string plan = "  solver plan: " + the_simulator.solver_plan() + "\n";
-    if (parameters.output.print_timings)
-      pcout << provenance << plan;
-    else if (Utilities::MPI::this_mpi_process(comm) == 0)
-      screen_log.log_only(provenance + plan);
-    if (parameters.output.print_timings)
-      pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
-            << ", parameter file: " << parameters.parameter_file
-            << ", contact solver: " << the_simulator.solver_name() << '\n';
-    the_simulator.print_model(pcout);
-  }
-
-
-  template <int dim>
-  void
-  TimeLoop<dim>::log_changed_plan(const std::string &choices_before)
-  {
-    // With Output/Solver details the step solver prints every plan, on the
-    // screen and so in log.txt.
-    if (parameters.output.solver_details ||
-        Utilities::MPI::this_mpi_process(comm) != 0 ||
-        the_simulator.solver_choices() == choices_before)
-      return;
-    screen_log.log_only("  solver plan from step " +
-                        std::to_string(state.step + 1) +
-                        " (mesh adapted at t = " + sig6(state.time) +
-                        "): " + the_simulator.solver_plan() + "\n");
-  }
-
-
-  template <int dim>
-  void
   TimeLoop<dim>::output_results(const unsigned int n,
                                 const double       t,
                                 const bool         contact_csv,
@@ -184,68 +113,6 @@ namespace DynamicContact
                          .count();
         ++vtu_files;
       }
-  }
-
-
-  template <int dim>
-  void
-  TimeLoop<dim>::print_progress(const StepRecord<dim> &record) const
-  {
-    // Output/Print timings and Print iteration counts = false leave out
-    // what differs from run to run: the times, and the iteration counts (on
-    // several processes they follow the round-off of the parallel direct
-    // solver near the stopping thresholds: two runs of tests/paper_small on
-    // 2 processes differed by one Newton iteration in some progress
-    // lines).
-    pcout << "step " << std::setw(5) << state.step << '/'
-          << state.step + schedule.remaining_steps(state.time)
-          << "  t = " << sig6(record.time);
-    if (record.time_step != parameters.time.time_step || record.cutbacks > 0)
-      pcout << "  k = " << sig6(record.time_step) << " (" << record.cutbacks
-            << " cut-backs)";
-    const auto &statistics = record.statistics;
-    if (parameters.output.print_iteration_counts)
-      {
-        pcout << "  Newton " << statistics.newton_iterations;
-        if (the_simulator.has_friction())
-          pcout << "  convexification "
-                << statistics.convexification_iterations;
-      }
-    pcout << "  contact " << statistics.n_contact;
-    if (the_simulator.adaptive_mesh())
-      pcout << "  cells " << record.cells;
-    pcout << "  N = " << sig6(record.normal_force)
-          << "  E = " << sig6(record.terms.energy.total());
-    if (parameters.output.print_timings)
-      {
-        const auto   now = std::chrono::steady_clock::now();
-        const double elapsed =
-          std::chrono::duration<double>(now - wall_start).count();
-        pcout << "  (" << seconds(elapsed);
-        // The wall time per simulated second since the end of the first
-        // step of this run (set-up and the first step's one-off work, the
-        // factorization and the first compliance columns, left out), times
-        // the simulated time left; VTU files (seconds each on large meshes,
-        // every few steps) apart: those still to come at their mean cost.
-        if (stepping_start)
-          {
-            const double stepping =
-              std::chrono::duration<double>(now - stepping_start->first)
-                .count() -
-              (vtu_seconds - vtu_seconds_at_start);
-            const double simulated = state.time - stepping_start->second;
-            if (simulated > 0)
-              pcout << ", ~"
-                    << seconds(
-                         std::max(0., stepping) / simulated *
-                           (parameters.time.end_time - state.time) +
-                         (vtu_files > 0 ? vtu_seconds / vtu_files : 0.) *
-                           schedule.vtu_files_left(state.step, state.time))
-                    << " left";
-          }
-        pcout << ")";
-      }
-    pcout << std::endl;
   }
 
 
@@ -372,84 +239,6 @@ namespace DynamicContact
   TimeLoop<dim>::set_process_note(const std::string &note)
   {
     process_note = note;
-  }
-
-
-  template <int dim>
-  void
-  TimeLoop<dim>::resume_from_checkpoint()
-  {
-    const std::string &directory = parameters.output.directory;
-    the_simulator.check_input(true);
-    // The directory: ours, and no other run in it.
-    output_directory->open(true);
-
-    const std::string latest = newest_good_checkpoint(directory, comm, pcout);
-    const RunState    saved  = read_run_state(latest, comm);
-    check_resumable(latest, saved, parameters_of_run, parameters, comm);
-    const std::string old_parameters = read_checkpoint_parameters(latest, comm);
-    const double      T              = parameters.time.end_time;
-    const double      k0             = parameters.time.time_step;
-    const std::string series         = directory + "/time_series.csv";
-    const TimeSeriesOnDisk on_disk = read_time_series(series, saved.step, comm);
-    totals.add_rows(on_disk.kept);
-    if (T < on_disk.last_time - 1e-9 * k0)
-      throw CollectiveError(
-        "--resume: Time/End time = " + sig6(T) +
-        " s is before the last row already written to " + series + " (step " +
-        std::to_string(on_disk.last_step) + ", t = " + sig6(on_disk.last_time) +
-        " s): a resumed run does not delete results. Give an end time of at "
-        "least " +
-        sig6(on_disk.last_time) +
-        " s, or start a new run. Nothing was "
-        "changed.");
-
-    // The mesh, the fields and the loop state of the checkpoint.
-    the_simulator.load_checkpoint(latest, saved.time);
-    state                = saved;
-    last_checkpoint_step = state.step;
-
-    // A new Time/Time step is honoured from the checkpoint on; otherwise
-    // the cut-back state goes on (within the new minimum).
-    const std::string old_step =
-      parameter_value(old_parameters, "Time/Time step");
-    const bool step_changed =
-      !old_step.empty() && std::strtod(old_step.c_str(), nullptr) != k0;
-    if (step_changed)
-      {
-        state.time_step                = k0;
-        state.good_steps_since_cutback = 0;
-      }
-    else
-      state.time_step = std::max(std::min(state.time_step,
-                                          parameters.time.adaptive ?
-                                            parameters.time.maximum_time_step :
-                                            k0),
-                                 parameters.time.minimum_time_step);
-
-    // The rows and the files of the interrupted continuation after the
-    // checkpoint are replaced by this run's.
-    write_status("running");
-    take_over_results_after(*output_directory, on_disk.kept, state.step, comm);
-    time_series_writer =
-      std::make_unique<TimeSeriesWriter>(*output_directory, comm, true);
-    vtu_writer =
-      std::make_unique<VtuWriter<dim>>(*output_directory,
-                                       comm,
-                                       parameters.boundary_conditions.contact,
-                                       parameters.output.vtu_subdivisions);
-    vtu_writer->set_records(state.vtu_records);
-    // The indexes list the VTU files up to the checkpoint only (none: they
-    // are removed).
-    vtu_writer->write_index();
-    write_provenance(true);
-    print_header();
-    pcout << "  resumed from " << latest << " (step " << state.step
-          << ", t = " << sig6(state.time) << " s)" << std::endl;
-    if (step_changed)
-      pcout << "  Time/Time step changed from " << old_step << " to "
-            << sig6(k0) << " s: the run goes on with the new time step"
-            << std::endl;
   }
 
 

@@ -266,7 +266,7 @@ namespace DynamicContact
   /**
    * The convexification loop of one step (doc/theory.md section 4): the
    * friction coefficients frozen from the previous iterate, starting from
-   * w^(0) = w_{n-1}, each pass a Newton solve (ContactNewton), until the
+   * w^(0) = w_{n-1}, each pass a Newton solve (ContactSolver), until the
    * stopping rule (85) holds.
    *
    * The slip-rate law inside Newton's linearization (Friction/
@@ -294,7 +294,7 @@ namespace DynamicContact
   {
   public:
     ConvexificationLoop(StepSolver<dim>                   &solver,
-                        ContactNewton<dim>                &newton,
+                        ContactSolver<dim>                &contact_solver,
                         const TimeScheme                  &scheme,
                         const Vector_t                    &rhs,
                         const Vector_t                    &u_old,
@@ -304,7 +304,7 @@ namespace DynamicContact
                         Statistics                        &statistics,
                         const LoopOptions                 &options)
       : solver(solver)
-      , newton(newton)
+      , contact_solver(contact_solver)
       , scheme(scheme)
       , rhs(rhs)
       , u_old(u_old)
@@ -353,7 +353,7 @@ namespace DynamicContact
     using Measures = typename LoopMeasures<dim>::Measures;
 
     StepSolver<dim>                   &solver;
-    ContactNewton<dim>                &newton;
+    ContactSolver<dim>                &contact_solver;
     const TimeScheme                  &scheme;
     const Vector_t                    &rhs, &u_old;
     const std::vector<Tensor<1, dim>> &u_old_nodes, &w_old_nodes;
@@ -432,7 +432,7 @@ namespace DynamicContact
     // A provisional pass is measured by its velocities at the nodes, a
     // whole one by w.
     const std::vector<Tensor<1, dim>> nodal =
-      provisional ? newton.provisional_velocities() :
+      provisional ? contact_solver.provisional_velocities() :
                     std::vector<Tensor<1, dim>>();
     return measures.measure(u_old,
                             k,
@@ -466,10 +466,10 @@ namespace DynamicContact
       scheme, rhs, u_old_nodes, w_old_nodes, coefficients};
     try
       {
-        const auto result =
-          allow_provisional ?
-            newton.solve_provisional(step, lambda, w, provisional_accuracy) :
-            newton.solve(step, lambda, w);
+        const auto result = allow_provisional ?
+                              contact_solver.solve_provisional(
+                                step, lambda, w, provisional_accuracy) :
+                              contact_solver.solve(step, lambda, w);
         statistics.add_newton(result);
         provisional = result.provisional;
         return true;
@@ -503,8 +503,8 @@ namespace DynamicContact
   {
     if (after_provisional)
       solver.discretization.reinit_owned(w_previous);
-    statistics.add_newton(
-      newton.finalize(w, lambda, after_provisional ? &w_previous : nullptr));
+    statistics.add_newton(contact_solver.finalize(
+      w, lambda, after_provisional ? &w_previous : nullptr));
     if (after_provisional)
       measures.remember(u_old, k, w_previous);
     provisional       = false;
@@ -552,7 +552,7 @@ namespace DynamicContact
             // of the passes after it.
             TimerSection t(solver.timer, "Friction: convexification update");
             measures.coefficients_at(provisional ?
-                                       newton.provisional_velocities() :
+                                       contact_solver.provisional_velocities() :
                                        solver.contact_boundary.values(w),
                                      mu);
           }
@@ -595,7 +595,7 @@ namespace DynamicContact
         relax_coefficients(m);
       }
     if (provisional)
-      statistics.add_newton(newton.finalize(w, lambda));
+      statistics.add_newton(contact_solver.finalize(w, lambda));
   }
 
 
@@ -611,7 +611,7 @@ namespace DynamicContact
     Assert(scheme == bulk.scheme(),
            ExcMessage("K0 is not formed for the step's time scheme."));
     Statistics          statistics;
-    ContactNewton<dim> &newton      = newton_for(scheme);
+    ContactSolver<dim> &contact_solver = solver_for(scheme);
     const auto          u_old_nodes = contact_boundary.values(u_old);
     const auto          w_old_nodes = contact_boundary.values(w_old);
     const bool          count       = friction_parameters.count_solutions &&
@@ -619,7 +619,7 @@ namespace DynamicContact
     const ContactState<dim> start_state =
       count ? contact_state : ContactState<dim>();
     const LoopArguments arguments{
-      scheme, newton, rhs, u_old, u_old_nodes, w_old_nodes};
+      scheme, contact_solver, rhs, u_old, u_old_nodes, w_old_nodes};
     const bool loop_active =
       run_loop(arguments,
                w,
@@ -635,7 +635,7 @@ namespace DynamicContact
                         (friction_parameters.uniqueness_monitor ==
                            Parameters::Friction::Monitor::automatic &&
                          plan.condensed)))
-      measure_uniqueness(scheme, newton, statistics);
+      measure_uniqueness(scheme, contact_solver, statistics);
     if (count)
       count_solutions(arguments, w_old, start_state, statistics);
     return statistics;
@@ -651,7 +651,7 @@ namespace DynamicContact
                             const bool           accept_unconverged_loop)
   {
     ConvexificationLoop loop(*this,
-                             a.newton,
+                             a.contact_solver,
                              a.scheme,
                              a.rhs,
                              a.u_old,
@@ -665,149 +665,20 @@ namespace DynamicContact
   }
 
 
-  template <int dim>
-  void
-  StepSolver<dim>::count_solutions(const LoopArguments     &arguments,
-                                   const Vector_t          &w_old,
-                                   const ContactState<dim> &start_state,
-                                   Statistics              &statistics)
-  {
-    // doc/theory.md section 5.3. Each start: an initial velocity (which
-    // gives the loop its first coefficients mu(|w_tau|)), the friction
-    // forces to start from, and the linearization.
-    TimerSection            t(timer, "Friction: solution count");
-    const auto             &nodes        = contact_boundary.nodes();
-    const MPI_Comm          comm         = discretization.comm;
-    const double            theta = arguments.scheme.effective_derivative();
-    const ContactState<dim> solved_state = contact_state;
-    // The slip rate of the fast start: 1000/L, far beyond where the law
-    // weakens (it changes by at most L s), kept inside [1e-3, 1] times
-    // Friction/Maximum slip rate.
-    const double fast =
-      std::min(friction_parameters.maximum_slip_rate,
-               std::max(1e3 / std::max(lipschitz_constant, 1e-300),
-                        1e-3 * friction_parameters.maximum_slip_rate));
-    enum Start
-    {
-      previous,
-      stick,
-      fast_slip,
-      coupled
-    };
-    const char *names[] = {"previous", "stick", "fast slip", "coupled"};
-    std::vector<std::vector<Tensor<1, dim>>> found;
-    std::vector<std::string>                 found_by;
-    double                                   scale = 0;
-    for (const Start start : {previous, stick, fast_slip, coupled})
-      {
-        Vector_t w    = w_old;
-        contact_state = start_state;
-        if (start == stick || start == fast_slip)
-          {
-            for (unsigned int i = 0; i < nodes.size(); ++i)
-              {
-                if (!nodes[i].unconstrained)
-                  continue;
-                const Tensor<1, dim> wi = nodes[i].value(w_old);
-                // w_e,tau = theta w_tau + (1 - theta) w_old,tau.
-                Tensor<1, dim> target;
-                if (start == fast_slip)
-                  {
-                    Tensor<1, dim> d = nodes[i].tangential(wi);
-                    if (!(d.norm() > 0))
-                      d = nodes[i].tangents[0];
-                    target = fast * d / d.norm();
-                  }
-                const Tensor<1, dim> w_tau =
-                  (target - (1 - theta) * nodes[i].tangential(wi)) / theta;
-                const Tensor<1, dim> value =
-                  wi - nodes[i].tangential(wi) + w_tau;
-                for (unsigned int c = 0; c < dim; ++c)
-                  w(nodes[i].dofs[c]) = value[c];
-                if (start == stick)
-                  contact_state.lambda[i] = Tensor<1, dim>();
-              }
-            w.compress(VectorOperation::insert);
-          }
-        Statistics unused;
-        try
-          {
-            run_loop(
-              arguments,
-              w,
-              unused,
-              LoopOptions{
-                1e-2 * friction_parameters.coefficient_tolerance,
-                std::max(200u,
-                         friction_parameters.max_convexification_iterations),
-                start == coupled},
-              false);
-          }
-        catch (const StepFailure &failure)
-          {
-            details << "  solution count: start " << names[start]
-                    << " reached no solution (" << failure.what() << ")"
-                    << std::endl;
-            ++statistics.failed_starts;
-            continue;
-          }
-        details << "  solution count: start " << names[start] << " reached a "
-                << "solution in " << unused.convexification_iterations
-                << " passes, max |mu_i - mu(|w_tau,i|)| "
-                << unused.coefficient_residual << std::endl;
-        found.push_back(contact_boundary.values(w));
-        found_by.push_back(names[start]);
-        for (const auto &v : found.back())
-          scale = std::max(scale, v.norm());
-      }
-    contact_state = solved_state;
-    scale         = Utilities::MPI::max(scale, comm);
-
-    // Distinct: farther apart than 1e-6 of the largest velocity on
-    // Gamma_3 (the loop's tolerance on mu leaves slip rates to tol/L).
-    const auto distance = [&](const std::vector<Tensor<1, dim>> &a,
-                              const std::vector<Tensor<1, dim>> &b) {
-      double d = 0;
-      for (unsigned int i = 0; i < a.size(); ++i)
-        d = std::max(d, (a[i] - b[i]).norm());
-      return Utilities::MPI::max(d, comm) / std::max(scale, 1e-300);
-    };
-    std::vector<unsigned int> distinct;
-    statistics.solution_spread = 0;
-    for (unsigned int a = 0; a < found.size(); ++a)
-      {
-        bool is_new = true;
-        for (const unsigned int b : distinct)
-          {
-            const double d = distance(found[a], found[b]);
-            statistics.solution_spread =
-              std::max(statistics.solution_spread, d);
-            is_new = is_new && d > 1e-6;
-          }
-        if (is_new)
-          distinct.push_back(a);
-      }
-    statistics.solutions = distinct.size();
-    for (unsigned int a = 1; a < found.size(); ++a)
-      details << "  solution count: start " << found_by[a]
-              << ": distance to start " << found_by[0] << "'s "
-              << distance(found[a], found[0]) << std::endl;
-    details << "  solution count: " << found.size() << " starts reached "
-            << distinct.size() << " distinct solution(s), largest distance "
-            << statistics.solution_spread
-            << " of the largest velocity on Gamma_3" << std::endl;
-  }
-
-
   // For 2D and 3D.
-#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                      \
-  template typename StepSolver<dim>::Statistics StepSolver<dim>::solve(       \
-    const TimeScheme &,                                                       \
-    const Vector_t &,                                                         \
-    const Vector_t &,                                                         \
-    const Vector_t &,                                                         \
-    Vector_t &,                                                               \
-    const bool);
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                \
+  template typename StepSolver<dim>::Statistics StepSolver<dim>::solve( \
+    const TimeScheme &,                                                 \
+    const Vector_t &,                                                   \
+    const Vector_t &,                                                   \
+    const Vector_t &,                                                   \
+    Vector_t &,                                                         \
+    const bool);                                                        \
+  template bool StepSolver<dim>::run_loop(const LoopArguments &,        \
+                                          Vector_t &,                   \
+                                          Statistics &,                 \
+                                          const LoopOptions &,          \
+                                          const bool);
 
   DYNAMIC_CONTACT_INSTANTIATE(2)
   DYNAMIC_CONTACT_INSTANTIATE(3)

@@ -19,6 +19,58 @@ namespace DynamicContact
       return d.constraints.is_constrained(dof) &&
              !d.hanging_node_constraints.is_constrained(dof);
     }
+
+    /**
+     * Adds to @p residual the point @p q's part of a cell's residual of the
+     * scheme's equation, (a - g) phi_i + sigma : eps(phi_i) times JxW, with
+     * the inertia a = rho (w - w_old)/k, the load g and the stress sigma
+     * at the point.
+     */
+    template <int dim>
+    void
+    add_point_residual(const FEValues<dim>           &fe_values,
+                       const unsigned int             q,
+                       const Tensor<1, dim>          &a,
+                       const Vector<double>          &g,
+                       const SymmetricTensor<2, dim> &sigma,
+                       Vector<double>                &residual)
+    {
+      const FEValuesExtractors::Vector displacement(0);
+      const auto                      &fe = fe_values.get_fe();
+      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+        {
+          const unsigned int c = fe.system_to_component_index(i).first;
+          residual(i) +=
+            ((a[c] - g(c)) * fe_values.shape_value(i, q) +
+             scalar_product(sigma,
+                            fe_values[displacement].symmetric_gradient(i, q))) *
+            fe_values.JxW(q);
+        }
+    }
+
+
+    /**
+     * A loaded face's force @p face_value (its integrals per cell DoF) into
+     * the applied force, and on a cell with a support out of its residual.
+     * The shape functions sum to one: a face's force is the sum of its
+     * integrals per component.
+     */
+    template <int dim>
+    void
+    add_face_load(const FiniteElement<dim> &fe,
+                  const Vector<double>     &face_value,
+                  const bool                has_support,
+                  Tensor<1, dim>           &applied,
+                  Vector<double>           &residual)
+    {
+      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+        {
+          const double F_i = face_value(i);
+          applied[fe.system_to_component_index(i).first] += F_i;
+          if (has_support)
+            residual(i) -= F_i;
+        }
+    }
   } // namespace
 
 
@@ -195,29 +247,12 @@ namespace DynamicContact
                   material.density() * (w_q[q] - w_old_q[q]) / k;
                 const SymmetricTensor<2, dim> sigma =
                   material.stress(eps_u[q], eps_w[q]);
-                for (unsigned int i = 0; i < n; ++i)
-                  {
-                    const unsigned int c =
-                      fe.system_to_component_index(i).first;
-                    residual(i) +=
-                      ((a[c] - value(c)) * fe_values.shape_value(i, q) +
-                       scalar_product(
-                         sigma,
-                         fe_values[displacement].symmetric_gradient(i, q))) *
-                      fe_values.JxW(q);
-                  }
+                add_point_residual(fe_values, q, a, value, sigma, residual);
               }
           }
-        // The shape functions sum to one: a face's force is the sum of its
-        // integrals per component.
         for (; face < faces.size() && face_cell[face] == c; ++face)
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              const double F_i = face_values[face](i);
-              b.applied[fe.system_to_component_index(i).first] += F_i;
-              if (has_support)
-                residual(i) -= F_i;
-            }
+          add_face_load(
+            fe, face_values[face], has_support, b.applied, residual);
         // At a supported DoF the equation is balanced by the support's
         // force (the boundary term of the weak form): it is the residual.
         if (has_support)

@@ -2,10 +2,10 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include <dynamic_contact/contact/condensed_newton.h>
-#include <dynamic_contact/contact/assembled_newton.h>
-#include <dynamic_contact/time/step_solver.h>
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/contact/assembled_solver.h>
+#include <dynamic_contact/contact/condensed_solver.h>
+#include <dynamic_contact/time/step_solver.h>
 
 #include <cmath>
 #include <limits>
@@ -76,8 +76,7 @@ namespace DynamicContact
                        memory);
     planned_parameters = plan.solver_parameters(parameters);
     details << "  solver plan: " << plan.description() << std::endl;
-    for (auto &newton : newtons)
-      newton.reset();
+    solvers.clear();
 
     contact_state.reinit(contact_boundary,
                          friction ? friction_law->value(0) : 0.);
@@ -85,11 +84,11 @@ namespace DynamicContact
 
 
   template <int dim>
-  ContactNewton<dim> &
-  StepSolver<dim>::newton_for(const TimeScheme &scheme)
+  ContactSolver<dim> &
+  StepSolver<dim>::solver_for(const TimeScheme &scheme)
   {
-    auto &newton = newtons[scheme.theta() == 0.5 ? 1 : 0];
-    if (!newton)
+    auto &solver = solvers[scheme.theta()];
+    if (!solver)
       {
         ContactProblem<dim> problem{discretization,
                                     bulk,
@@ -104,12 +103,12 @@ namespace DynamicContact
           problem.slip_rate_accuracy =
             friction_parameters.coefficient_tolerance / lipschitz_constant;
         if (plan.condensed)
-          newton = std::make_unique<CondensedNewton<dim>>(problem);
+          solver = std::make_unique<CondensedSolver<dim>>(problem);
         else
-          newton = std::make_unique<AssembledNewton<dim>>(problem);
-        newton->reinit();
+          solver = std::make_unique<AssembledSolver<dim>>(problem);
+        solver->reinit();
       }
-    return *newton;
+    return *solver;
   }
 
 
@@ -164,7 +163,7 @@ namespace DynamicContact
   template <int dim>
   void
   StepSolver<dim>::measure_uniqueness(const TimeScheme   &scheme,
-                                      ContactNewton<dim> &newton,
+                                      ContactSolver<dim> &solver,
                                       Statistics         &statistics)
   {
     // doc/theory.md section 5.2: with L the law's one-sided Lipschitz
@@ -223,14 +222,14 @@ namespace DynamicContact
       {
         const SpectralEstimate b =
           Utilities::MPI::max(any_bound ? 1 : 0, comm) == 1 ?
-            newton.compliance_radius(bound, true) :
+            solver.compliance_radius(bound, true) :
             SpectralEstimate{0., 0.};
         statistics.uniqueness_bound       = b.lanczos;
         statistics.uniqueness_certificate = b.upper;
       }
     statistics.contraction_factor =
       Utilities::MPI::max(any_contraction ? 1 : 0, comm) == 1 ?
-        newton.compliance_radius(contraction, false).lanczos :
+        solver.compliance_radius(contraction, false).lanczos :
         0.;
   }
 

@@ -6,7 +6,7 @@
 #include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/contact/contact_boundary.h>
-#include <dynamic_contact/contact/contact_newton.h>
+#include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/largest_eigenvalue.h>
 
 #include <cstddef>
@@ -18,7 +18,7 @@ namespace DynamicContact
 {
   /**
    * The compliance (Delassus) matrix of Gamma_3, the first part of the
-   * condensed solver (CondensedNewton): with K0 factorized, the velocity
+   * condensed solver (CondensedSolver): with K0 factorized, the velocity
    * a force f_j at node j causes at node i is C_ij f_j, C_ij = P_i
    * [K0'^{-1}]_ij P_j^T, and everything off Gamma_3 is linear.
    *
@@ -49,7 +49,7 @@ namespace DynamicContact
   class BoundaryCompliance
   {
   public:
-    using Result = ContactNewtonResult;
+    using Result = ContactSolveResult;
 
     BoundaryCompliance(const ContactProblem<dim>   &problem,
                        const GatheredBoundary<dim> &gathered);

@@ -3,7 +3,7 @@
 
 #include <deal.II/base/conditional_ostream.h>
 
-#include <dynamic_contact/contact/contact_newton.h>
+#include <dynamic_contact/contact/contact_solver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -88,6 +88,56 @@ namespace DynamicContact
 
 
   /**
+   * Whether the iterate measured @p current returns to active sets seen
+   * before (@p history, with other sets in between), or to an iterate seen
+   * before (its sets and its residual again, to 1e-9, after another
+   * iterate; @p residuals of the past iterates): globalized_newton()'s
+   * cycling test.
+   */
+  inline bool
+  is_cycling(const std::vector<std::uint64_t> &history,
+             const std::vector<double>        &residuals,
+             const NewtonMeasure              &current)
+  {
+    return history.size() >= 2 &&
+           (current.signature != history.back() ?
+              std::find(history.begin(),
+                        history.end() - 1,
+                        current.signature) != history.end() - 1 :
+              revisits(history, residuals, current));
+  }
+
+
+  /**
+   * Armijo backtracking from @p x along the full step to @p full, down to
+   * 1/128 of it: @p x becomes the accepted point, whose measure is
+   * returned. @p merit_now is the merit at @p x.
+   */
+  template <typename Problem, typename Result>
+  NewtonMeasure
+  backtrack_along_step(Problem                         &problem,
+                       typename Problem::Iterate       &x,
+                       const typename Problem::Iterate &full,
+                       const double                     merit_now,
+                       Result                          &result)
+  {
+    typename Problem::Iterate trial;
+    NewtonMeasure             accepted;
+    for (double alpha = 0.5;; alpha *= 0.5)
+      {
+        problem.combine(x, full, alpha, trial);
+        accepted = problem.evaluate(trial);
+        ++result.line_search_steps;
+        if (problem.merit(trial, x) <= (1 - 1e-4 * alpha) * merit_now ||
+            alpha < 1. / 64)
+          break;
+      }
+    std::swap(x, trial);
+    return accepted;
+  }
+
+
+  /**
    * One globalized semismooth Newton iteration, shared by every solver of
    * the step (the condensed solver's boundary phase, the whole-system
    * iteration with either linear back-end): stopping test, stagnation
@@ -132,7 +182,7 @@ namespace DynamicContact
     const double tol      = parameters.newton_tolerance;
     const double stop_tol = std::max(tol, policy.tolerance);
 
-    Iterate                    full, trial;
+    Iterate                    full;
     NewtonMeasure              current = problem.evaluate(x);
     std::vector<std::uint64_t> history; // active sets of the past iterates
     std::vector<double>        residuals; // and their residuals
@@ -164,12 +214,7 @@ namespace DynamicContact
         // the non-monotone rule below would accept for ever, e.g. of period
         // 3 within its window of 5). The line search then damps the step
         // (the remedy) and the rule turns monotone.
-        const bool cycling =
-          history.size() >= 2 &&
-          (current.signature != history.back() ?
-             std::find(history.begin(), history.end() - 1, current.signature) !=
-               history.end() - 1 :
-             revisits(history, residuals, current));
+        const bool cycling = is_cycling(history, residuals, current);
         result.cycles += cycling;
         if (cycling && !monotone)
           details << "    Newton " << result.iterations << " (" << policy.name
@@ -197,17 +242,8 @@ namespace DynamicContact
           rejected && (cycling || !problem.safeguarded(x));
         if (backtrack)
           {
-            // Armijo backtracking along the step, down to 1/128 of it.
-            for (double alpha = 0.5;; alpha *= 0.5)
-              {
-                problem.combine(x, full, alpha, trial);
-                accepted = problem.evaluate(trial);
-                ++result.line_search_steps;
-                if (problem.merit(trial, x) <= (1 - 1e-4 * alpha) * merit_now ||
-                    alpha < 1. / 64)
-                  break;
-              }
-            std::swap(x, trial);
+            accepted =
+              backtrack_along_step(problem, x, full, merit_now, result);
           }
         else
           std::swap(x, full);

@@ -32,7 +32,7 @@ namespace DynamicContact
     // lin[i].block is likewise B_i - s I at spring nodes.
     std::vector<Tensor<1, dim>> g;
     std::vector<Tensor<1, dim>> base;
-    // w_free - C g at every node (CondensedNewton's boundary iteration).
+    // w_free - C g at every node (CondensedSolver's boundary iteration).
     std::vector<Tensor<1, dim>> response;
     std::uint64_t               signature = 0; // of the sets
     std::vector<unsigned int>   active;
@@ -46,7 +46,7 @@ namespace DynamicContact
 
   /**
    * The reduced dense system of a Newton step on the active nodes of
-   * Gamma_3, the second part of the condensed solver (CondensedNewton):
+   * Gamma_3, the second part of the condensed solver (CondensedSolver):
    *   dw_i + sum_j C_ij (B_j dw_j + T_j l_j) = r_i,
    *   t_s . (w_i + dw_i) = 0 at stick nodes (l_j their tangential force),
    * reduced to the forces. With B_j = U_j V_j^T of rank k_j (a normal law,

@@ -467,6 +467,26 @@ namespace DynamicContact
                const double     t,
                const double     k,
                const bool       accept_unconverged_loop);
+    /**
+     * A step of Time/Scheme = bathe from (u_old, w_old) to t (doc/theory.md
+     * section 2.4): the trapezoidal sub-step to t - k/2, the second
+     * sub-step from the extrapolated state, and the step's energy balance
+     * into @p record.
+     */
+    void
+    bathe_step(StepRecord<dim> &record,
+               const double     t,
+               const double     k,
+               const bool       accept_unconverged_loop);
+    /**
+     * A step of a one-step theta-scheme (backward Euler, trapezoidal) from
+     * (u_old, w_old) to t, its balances into @p record.
+     */
+    void
+    theta_step(StepRecord<dim> &record,
+               const double     t,
+               const double     k,
+               const bool       accept_unconverged_loop);
   };
 } // namespace DynamicContact
 

@@ -6,15 +6,16 @@
 
 #include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/contact/contact_boundary.h>
-#include <dynamic_contact/laws/contact_law.h>
-#include <dynamic_contact/contact/contact_newton.h>
+#include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/contact_state.h>
+#include <dynamic_contact/contact/solver_plan.h>
+#include <dynamic_contact/laws/contact_law.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/laws/friction_law.h>
-#include <dynamic_contact/contact/solver_plan.h>
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ namespace DynamicContact
    * + f_n and u_{n-1}, find w_n. With a slip-rate dependent friction law,
    * the convexification loop freezes mu_i = mu(|w_tau,i|) of the previous
    * iterate, solves the frozen problem by semismooth Newton (a
-   * ContactNewton), and stops by the rule (85) together with
+   * ContactSolver), and stops by the rule (85) together with
    * max_i |mu_i - mu(|w_tau,i|)| <= tol. Without friction, or with a
    * constant coefficient, there is one pass and no friction work.
    */
@@ -89,7 +90,7 @@ namespace DynamicContact
 
       /** Add the work of a Newton solve; its residual is the last. */
       void
-      add_newton(const ContactNewtonResult &r)
+      add_newton(const ContactSolveResult &r)
       {
         newton_iterations += r.iterations;
         factorizations += r.factorizations;
@@ -196,9 +197,8 @@ namespace DynamicContact
     void
     memory_consumption(MemoryItems &items) const
     {
-      for (const auto &newton : newtons)
-        if (newton)
-          newton->memory_consumption(items);
+      for (const auto &[theta, solver] : solvers)
+        solver->memory_consumption(items);
     }
 
     /** True if the scene has friction (a law with a nonzero coefficient). */
@@ -244,18 +244,17 @@ namespace DynamicContact
     const double lipschitz_constant;
 
     /**
-     * The Newton solver of each kind of (sub-)step: [0] theta > 1/2
-     * (backward Euler, the composite scheme's second sub-step), [1] theta
-     * = 1/2 (trapezoidal), made when first needed. A composite scheme
-     * (Time/Scheme = bathe) alternates the two kinds, each with its own K0
-     * (at rho_inf = 1 both sub-steps are trapezoidal over k/2: one K0);
-     * one solver each keeps its factorization (and the condensed solver's
-     * compliance columns) from step to step.
+     * One contact solver per theta of the (sub-)steps, made when first
+     * needed: K0 = (rho/k) M + theta A + theta^2 k B depends on theta, and a
+     * solver keeps its factorization (and the condensed solver's compliance
+     * columns) from step to step while K0 does not change. A composite
+     * scheme (Time/Scheme = bathe) alternates two thetas (at rho_inf = 1
+     * both sub-steps are trapezoidal over k/2: one); the others use one.
      */
-    std::array<std::unique_ptr<ContactNewton<dim>>, 2> newtons;
-    /** The solver for steps of @p scheme's kind. */
-    ContactNewton<dim> &
-    newton_for(const TimeScheme &scheme);
+    std::map<double, std::unique_ptr<ContactSolver<dim>>> solvers;
+    /** The solver for steps of @p scheme's theta. */
+    ContactSolver<dim> &
+    solver_for(const TimeScheme &scheme);
     /** How the steps are solved (made by reinit()). */
     SolverPlan plan;
     /** The parameters with the plan's choices, which the solvers keep. */
@@ -276,7 +275,7 @@ namespace DynamicContact
     struct LoopArguments
     {
       const TimeScheme                  &scheme;
-      ContactNewton<dim>                &newton;
+      ContactSolver<dim>                &contact_solver;
       const Vector_t                    &rhs;
       const Vector_t                    &u_old;
       const std::vector<Tensor<1, dim>> &u_old_nodes;
@@ -316,7 +315,7 @@ namespace DynamicContact
      */
     void
     measure_uniqueness(const TimeScheme   &scheme,
-                       ContactNewton<dim> &newton,
+                       ContactSolver<dim> &solver,
                        Statistics         &statistics);
 
     /** Evaluate the owned nodes' states at the converged (w, lambda). */

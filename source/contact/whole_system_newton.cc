@@ -1,6 +1,6 @@
 #include <deal.II/base/mpi.h>
 
-#include <dynamic_contact/contact/system_newton.h>
+#include <dynamic_contact/contact/whole_system_newton.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 namespace DynamicContact
 {
   template <int dim>
-  SystemNewton<dim>::SystemNewton(const ContactProblem<dim> &problem,
-                                  const ContactStep<dim>    &step,
-                                  LinearBackend<dim>        &backend,
-                                  ContactNewtonResult       &result)
+  WholeSystemNewton<dim>::WholeSystemNewton(const ContactProblem<dim> &problem,
+                                            const ContactStep<dim>    &step,
+                                            LinearBackend<dim>        &backend,
+                                            ContactSolveResult        &result)
     : problem(problem)
     , scheme(step.scheme)
     , rhs(step.rhs)
@@ -27,9 +27,9 @@ namespace DynamicContact
 
   template <int dim>
   double
-  SystemNewton<dim>::residual_of(const Vector_t                    &w,
-                                 const std::vector<Tensor<1, dim>> &forces,
-                                 Vector_t &residual) const
+  WholeSystemNewton<dim>::residual_of(const Vector_t                    &w,
+                                      const std::vector<Tensor<1, dim>> &forces,
+                                      Vector_t &residual) const
   {
     if (residual.size() != w.size())
       problem.discretization.reinit_owned(residual);
@@ -43,7 +43,7 @@ namespace DynamicContact
 
   template <int dim>
   NewtonMeasure
-  SystemNewton<dim>::evaluate(Iterate &x) const
+  WholeSystemNewton<dim>::evaluate(Iterate &x) const
   {
     const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
@@ -94,8 +94,8 @@ namespace DynamicContact
     x.residual -= rhs;
     problem.boundary.add_nodal_forces(
       [&](const unsigned int i) { return x.forces[i]; }, 1., x.residual);
-    x.law_residual = Utilities::MPI::max(law_residual, comm);
-    x.law_squares  = Utilities::MPI::sum(law_squares, comm);
+    x.law_residual  = Utilities::MPI::max(law_residual, comm);
+    x.law_squares   = Utilities::MPI::sum(law_squares, comm);
     x.stick_squares = velocity_scale > 0 ?
                         Utilities::MPI::sum(stick_squares, comm) /
                           (velocity_scale * velocity_scale) :
@@ -124,10 +124,10 @@ namespace DynamicContact
 
   template <int dim>
   void
-  SystemNewton<dim>::combine(const Iterate &x,
-                             const Iterate &full,
-                             const double   alpha,
-                             Iterate       &trial) const
+  WholeSystemNewton<dim>::combine(const Iterate &x,
+                                  const Iterate &full,
+                                  const double   alpha,
+                                  Iterate       &trial) const
   {
     trial.w = full.w;
     trial.w.sadd(alpha, 1 - alpha, x.w);
@@ -139,16 +139,16 @@ namespace DynamicContact
 
   template <int dim>
   bool
-  SystemNewton<dim>::safeguarded(const Iterate &x) const
+  WholeSystemNewton<dim>::safeguarded(const Iterate &x) const
   {
     bool limited = false;
     for (const auto &l : x.lin)
       limited = limited || l.friction.limited;
-    return Utilities::MPI::max(limited ? 1 : 0,
-                               problem.discretization.comm) == 1;
+    return Utilities::MPI::max(limited ? 1 : 0, problem.discretization.comm) ==
+           1;
   }
 
 
-  template class SystemNewton<2>;
-  template class SystemNewton<3>;
+  template class WholeSystemNewton<2>;
+  template class WholeSystemNewton<3>;
 } // namespace DynamicContact

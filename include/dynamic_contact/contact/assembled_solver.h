@@ -1,11 +1,11 @@
-#ifndef dynamic_contact_assembled_newton_h
-#define dynamic_contact_assembled_newton_h
+#ifndef dynamic_contact_assembled_solver_h
+#define dynamic_contact_assembled_solver_h
 
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <dynamic_contact/bulk/bulk_solver.h>
-#include <dynamic_contact/contact/contact_newton.h>
-#include <dynamic_contact/contact/system_newton.h>
+#include <dynamic_contact/contact/contact_solver.h>
+#include <dynamic_contact/contact/whole_system_newton.h>
 
 #include <memory>
 
@@ -38,12 +38,12 @@ namespace DynamicContact
    * factorization reused while it does not.
    */
   template <int dim>
-  class AssembledNewton : public ContactNewton<dim>, public LinearBackend<dim>
+  class AssembledSolver : public ContactSolver<dim>, public LinearBackend<dim>
   {
   public:
-    using Result = ContactNewtonResult;
+    using Result = ContactSolveResult;
 
-    explicit AssembledNewton(const ContactProblem<dim> &problem);
+    explicit AssembledSolver(const ContactProblem<dim> &problem);
 
     void
     reinit() override;
@@ -65,10 +65,10 @@ namespace DynamicContact
     memory_consumption(MemoryItems &items) const override;
 
     void
-    newton_step(const SystemNewton<dim>  &system,
-                const SystemIterate<dim> &x,
-                SystemIterate<dim>       &full,
-                Result                   &result) override;
+    newton_step(const WholeSystemNewton<dim>  &system,
+                const WholeSystemIterate<dim> &x,
+                WholeSystemIterate<dim>       &full,
+                Result                        &result) override;
 
   private:
     const ContactProblem<dim> problem;
@@ -83,11 +83,11 @@ namespace DynamicContact
 
     /** Solve for dw (iterative, projected): see the class documentation. */
     void
-    solve_iterative(const NodalSystem        &system,
-                    const SystemNewton<dim>  &newton,
-                    const SystemIterate<dim> &x,
-                    Vector_t                 &dw,
-                    Result                   &result);
+    solve_iterative(const NodalSystem             &system,
+                    const WholeSystemNewton<dim>  &newton,
+                    const WholeSystemIterate<dim> &x,
+                    Vector_t                      &dw,
+                    Result                        &result);
 
     /**
      * The assembled Newton matrix of @p system: K0, the nodal blocks, and
@@ -99,11 +99,11 @@ namespace DynamicContact
 
     /** Solve for dw (direct, assembled): see the class documentation. */
     void
-    solve_direct(const NodalSystem        &system,
-                 const SystemNewton<dim>  &newton,
-                 const SystemIterate<dim> &x,
-                 Vector_t                 &dw,
-                 Result                   &result);
+    solve_direct(const NodalSystem             &system,
+                 const WholeSystemNewton<dim>  &newton,
+                 const WholeSystemIterate<dim> &x,
+                 Vector_t                      &dw,
+                 Result                        &result);
 
     /** y = (K0 + sum P^T B P) x, without the stick projection. */
     void

@@ -1,11 +1,12 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 
-#include <dynamic_contact/contact/largest_eigenvalue.h>
-#include <dynamic_contact/contact/assembled_newton.h>
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/contact/assembled_node_dofs.h>
+#include <dynamic_contact/contact/assembled_solver.h>
+#include <dynamic_contact/contact/largest_eigenvalue.h>
 #include <dynamic_contact/contact/weakening_limit.h>
 
 #include <algorithm>
@@ -15,67 +16,18 @@
 
 namespace DynamicContact
 {
-  namespace
-  {
-    /** The GMRES restart length of the whole-system Newton step. */
-    constexpr unsigned int gmres_restart = 100;
-
-    /** The raw (DoF) values of a node, without its constraint map. */
-    template <int dim>
-    Tensor<1, dim>
-    raw_values(const ContactNode<dim> &node, const Vector_t &v)
-    {
-      Tensor<1, dim> r;
-      for (unsigned int c = 0; c < dim; ++c)
-        r[c] = v[node.dofs[c]];
-      return r;
-    }
-
-    template <int dim>
-    void
-    set_raw_values(const ContactNode<dim> &node,
-                   const Tensor<1, dim>   &r,
-                   Vector_t               &v)
-    {
-      for (unsigned int c = 0; c < dim; ++c)
-        v(node.dofs[c]) = r[c];
-    }
-
-    /** The normal part nu (nu . v) of a nodal vector. */
-    template <int dim>
-    Tensor<1, dim>
-    normal_part(const ContactNode<dim> &node, const Tensor<1, dim> &v)
-    {
-      return (v * node.normal) * node.normal;
-    }
-
-    /**
-     * The host row of a stick node's normal equation in the assembled
-     * Newton matrix: the component with the largest normal entry; the
-     * others carry t_s . w = 0.
-     */
-    template <int dim>
-    unsigned int
-    host_component(const ContactNode<dim> &node)
-    {
-      unsigned int host = 0;
-      for (unsigned int c = 1; c < dim; ++c)
-        if (std::abs(node.normal[c]) > std::abs(node.normal[host]))
-          host = c;
-      return host;
-    }
-  } // namespace
+  using namespace AssembledNodeDofs;
 
 
   template <int dim>
-  AssembledNewton<dim>::AssembledNewton(const ContactProblem<dim> &problem)
+  AssembledSolver<dim>::AssembledSolver(const ContactProblem<dim> &problem)
     : problem(problem)
   {}
 
 
   template <int dim>
   void
-  AssembledNewton<dim>::reinit()
+  AssembledSolver<dim>::reinit()
   {
     for (auto *v : {&increment, &scratch, &scratch2, &base_residual})
       problem.discretization.reinit_owned(*v);
@@ -98,10 +50,10 @@ namespace DynamicContact
 
 
   template <int dim>
-  typename AssembledNewton<dim>::Result
-  AssembledNewton<dim>::solve(const ContactStep<dim>      &step,
-                           std::vector<Tensor<1, dim>> &lambda,
-                           Vector_t                    &w)
+  typename AssembledSolver<dim>::Result
+  AssembledSolver<dim>::solve(const ContactStep<dim>      &step,
+                              std::vector<Tensor<1, dim>> &lambda,
+                              Vector_t                    &w)
   {
     Assert(step.scheme == problem.bulk.scheme(),
            ExcMessage("K0 is not formed for the step's time scheme."));
@@ -109,12 +61,12 @@ namespace DynamicContact
     FrictionCoefficients coefficients = step.mu;
     if (step.mu.coupled())
       coefficients.weakening_limit = coupled_limits();
-    SystemNewton<dim> system(
+    WholeSystemNewton<dim> system(
       problem,
       {step.scheme, step.rhs, step.u_old, step.w_old, coefficients},
       *this,
       result);
-    SystemIterate<dim> x;
+    WholeSystemIterate<dim> x;
     x.w      = w;
     x.lambda = lambda;
     // The active sets are found here, on the whole system: full steps first
@@ -136,10 +88,10 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::newton_step(const SystemNewton<dim>  &newton,
-                                 const SystemIterate<dim> &x,
-                                 SystemIterate<dim>       &full,
-                                 Result                   &result)
+  AssembledSolver<dim>::newton_step(const WholeSystemNewton<dim>  &newton,
+                                    const WholeSystemIterate<dim> &x,
+                                    WholeSystemIterate<dim>       &full,
+                                    Result                        &result)
   {
     const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
@@ -153,7 +105,7 @@ namespace DynamicContact
       {
         const Tensor<2, dim> &P = nodes[i].constraint_map;
         system.blocks[i]        = transpose(P) * x.lin[i].block * P;
-        system.stick[i] = (x.lin[i].friction.state == FrictionState::stick);
+        system.stick[i]    = (x.lin[i].friction.state == FrictionState::stick);
         system.diagonal[i] = trace(K0[i]) / dim;
       }
 
@@ -203,9 +155,9 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::apply_jacobian(const NodalSystem &system,
-                                    const Vector_t    &x,
-                                    Vector_t          &y) const
+  AssembledSolver<dim>::apply_jacobian(const NodalSystem &system,
+                                       const Vector_t    &x,
+                                       Vector_t          &y) const
   {
     const auto     &nodes = problem.boundary.nodes();
     const IndexSet &owned = problem.discretization.locally_owned;
@@ -229,96 +181,10 @@ namespace DynamicContact
   }
 
 
-  namespace
-  {
-    /**
-     * The projection of the whole-system Newton step onto the complement of
-     * the stick nodes' tangential components (their increments are
-     * prescribed): the projected operator and preconditioner act as the
-     * identity scaled by K0's diagonal there. It acts on the owned entries
-     * directly (the stick nodes' DoFs are owned).
-     */
-    template <int dim>
-    class StickProjection
-    {
-    public:
-      StickProjection(const std::vector<ContactNode<dim>> &nodes,
-                      const std::vector<unsigned int>     &stick_nodes,
-                      const std::vector<double>           &diagonal,
-                      const IndexSet                      &locally_owned)
-      {
-        for (const unsigned int i : stick_nodes)
-          {
-            StickNode n;
-            for (unsigned int c = 0; c < dim; ++c)
-              n.local[c] = locally_owned.index_within_set(nodes[i].dofs[c]);
-            n.normal   = nodes[i].normal;
-            n.diagonal = diagonal[i];
-            sticks.push_back(n);
-          }
-      }
-
-      /** @p projected = @p v without the stick nodes' tangential parts. */
-      void
-      project(const Vector_t &v, Vector_t &projected) const
-      {
-        projected        = v;
-        double       *p  = projected.trilinos_vector()[0];
-        const double *vv = v.trilinos_vector()[0];
-        for (const auto &n : sticks)
-          {
-            const Tensor<1, dim> t = nodal(vv, n);
-            set_nodal(p, n, (t * n.normal) * n.normal);
-          }
-      }
-
-      /** y = projection of y, plus diagonal^power times v's tangential part. */
-      void
-      add_tangential(const Vector_t &v, const double power, Vector_t &y) const
-      {
-        double       *yy = y.trilinos_vector()[0];
-        const double *vv = v.trilinos_vector()[0];
-        for (const auto &n : sticks)
-          {
-            const Tensor<1, dim> vi = nodal(vv, n), yi = nodal(yy, n);
-            set_nodal(yy,
-                      n,
-                      (yi * n.normal) * n.normal +
-                        std::pow(n.diagonal, power) *
-                          (vi - (vi * n.normal) * n.normal));
-          }
-      }
-
-    private:
-      struct StickNode
-      {
-        std::array<unsigned int, dim> local; // indices into the owned entries
-        Tensor<1, dim>                normal;
-        double                        diagonal;
-      };
-      std::vector<StickNode> sticks;
-
-      static Tensor<1, dim>
-      nodal(const double *v, const StickNode &n)
-      {
-        Tensor<1, dim> t;
-        for (unsigned int c = 0; c < dim; ++c)
-          t[c] = v[n.local[c]];
-        return t;
-      }
-      static void
-      set_nodal(double *v, const StickNode &n, const Tensor<1, dim> &t)
-      {
-        for (unsigned int c = 0; c < dim; ++c)
-          v[n.local[c]] = t[c];
-      }
-    };
-  } // namespace
-
 
   template <int dim>
   const std::vector<Tensor<2, dim>> &
-  AssembledNewton<dim>::nodal_bulk_blocks()
+  AssembledSolver<dim>::nodal_bulk_blocks()
   {
     if (blocks_scheme == problem.bulk.scheme() &&
         bulk_blocks.size() == problem.boundary.nodes().size())
@@ -334,7 +200,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::prepare_preconditioner()
+  AssembledSolver<dim>::prepare_preconditioner()
   {
     if (preconditioner && preconditioner_scheme == problem.bulk.scheme())
       return;
@@ -346,14 +212,13 @@ namespace DynamicContact
     const bool stored = problem.bulk.stores_newton_matrix();
     if (problem.parameters.preconditioner !=
           Parameters::Solver::Preconditioner::amg &&
-        (problem.discretization.triangulation.n_global_levels() > 1 ||
-         !stored))
-      preconditioner = create_bulk_multigrid(problem.discretization,
-                                  problem.bulk.material_law(),
-                                  problem.bulk.scheme(),
-                                  stored ? &problem.bulk.newton_matrix() :
-                                           nullptr,
-                                  problem.bulk.cell_data());
+        (problem.discretization.triangulation.n_global_levels() > 1 || !stored))
+      preconditioner =
+        create_bulk_multigrid(problem.discretization,
+                              problem.bulk.material_law(),
+                              problem.bulk.scheme(),
+                              stored ? &problem.bulk.newton_matrix() : nullptr,
+                              problem.bulk.cell_data());
     else
       {
         auto algebraic = std::make_unique<BulkAMG>();
@@ -369,14 +234,14 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::solve_bulk(const Vector_t &b,
-                                Vector_t       &x,
-                                const double    tolerance)
+  AssembledSolver<dim>::solve_bulk(const Vector_t &b,
+                                   Vector_t       &x,
+                                   const double    tolerance)
   {
     prepare_preconditioner();
     if (x.size() != b.size())
       problem.discretization.reinit_owned(x);
-    x = 0;
+    x                 = 0;
     const double norm = b.l2_norm();
     if (norm == 0)
       return;
@@ -398,7 +263,7 @@ namespace DynamicContact
 
   template <int dim>
   const std::vector<double> &
-  AssembledNewton<dim>::coupled_limits()
+  AssembledSolver<dim>::coupled_limits()
   {
     if (limits_scheme == problem.bulk.scheme() && !weakening_limits.empty())
       return weakening_limits;
@@ -429,17 +294,20 @@ namespace DynamicContact
         }
       return j >= 0 ? WeakeningLimit::tangential_compliance(nodes[j], C) : 0.;
     };
-    weakening_limits = WeakeningLimit::limits(
-      nodes, stiffness, compliance, problem.discretization.comm);
-    limits_scheme = problem.bulk.scheme();
+    weakening_limits = WeakeningLimit::limits(nodes,
+                                              stiffness,
+                                              compliance,
+                                              problem.discretization.comm);
+    limits_scheme    = problem.bulk.scheme();
     return weakening_limits;
   }
 
 
   template <int dim>
   SpectralEstimate
-  AssembledNewton<dim>::compliance_radius(const std::vector<Tensor<2, dim>> &roots,
-                                       const bool)
+  AssembledSolver<dim>::compliance_radius(
+    const std::vector<Tensor<2, dim>> &roots,
+    const bool)
   {
     const auto        &nodes = problem.boundary.nodes();
     const unsigned int n     = nodes.size();
@@ -476,114 +344,9 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::solve_iterative(const NodalSystem        &system,
-                                     const SystemNewton<dim>  &newton,
-                                     const SystemIterate<dim> &x,
-                                     Vector_t                 &dw,
-                                     Result                   &result)
+  AssembledSolver<dim>::assemble_direct_matrix(const NodalSystem &system)
   {
     const auto  &nodes = problem.boundary.nodes();
-    const double theta = newton.scheme.effective_derivative();
-    prepare_preconditioner();
-    TimerSection t(problem.timer, "Newton: iterative solve");
-
-    // dw = dw0 + delta: dw0 holds the prescribed tangential increments of
-    // the stick nodes (t . dw = -(t . w_e)/theta), delta solves the system
-    // on the complement (the stick nodes' tangential components removed).
-    std::vector<unsigned int> stick_nodes;
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      if (system.stick[i])
-        stick_nodes.push_back(i);
-    Vector_t dw0;
-    problem.discretization.reinit_owned(dw0);
-    for (const unsigned int i : stick_nodes)
-      {
-        const Tensor<1, dim> w_e =
-          newton.effective_velocity(i, nodes[i].value(x.w));
-        set_raw_values(nodes[i], -nodes[i].tangential(w_e) / theta, dw0);
-      }
-    dw0.compress(VectorOperation::insert);
-
-    // f = -R - J dw0, projected.
-    Vector_t f;
-    problem.discretization.reinit_owned(f);
-    apply_jacobian(system, dw0, f);
-    f.sadd(-1., -1., base_residual);
-    for (const unsigned int i : stick_nodes)
-      set_raw_values(nodes[i],
-                     normal_part(nodes[i], raw_values(nodes[i], f)),
-                     f);
-    f.compress(VectorOperation::insert);
-
-    // The projected operator and preconditioner.
-    const StickProjection<dim> sticks(nodes,
-                                      stick_nodes,
-                                      system.diagonal,
-                                      problem.discretization.locally_owned);
-    Vector_t                   projected;
-    problem.discretization.reinit_owned(projected);
-    struct Operator
-    {
-      std::function<void(Vector_t &, const Vector_t &)> apply;
-      void
-      vmult(Vector_t &y, const Vector_t &v) const
-      {
-        apply(y, v);
-      }
-    };
-    const Operator A{[&](Vector_t &y, const Vector_t &v) {
-      sticks.project(v, projected);
-      apply_jacobian(system, projected, y);
-      sticks.add_tangential(v, 1., y);
-    }};
-    const Operator projected_preconditioner{[&](Vector_t &y, const Vector_t &v) {
-      sticks.project(v, projected);
-      preconditioner->vmult(y, projected);
-      sticks.add_tangential(v, -1., y);
-    }};
-
-    // Inexact Newton: the Krylov tolerance follows the Newton residual r:
-    // 1e-2 far from the solution, 0.1 r near it (superlinear convergence),
-    // but no tighter than what takes r below the Newton tolerance in one
-    // step (tol/(2 r)), nor than Solver/Linear tolerance.
-    const double r = std::max(x.relative_residual, 1e-300);
-    const double forcing =
-      std::min(1e-2,
-               std::max({problem.parameters.linear_tolerance,
-                         0.1 * r,
-                         0.5 * problem.parameters.newton_tolerance / r}));
-    SolverControl         control(problem.parameters.max_linear_iterations,
-                          forcing * f.l2_norm());
-    SolverGMRES<Vector_t> gmres(
-      control,
-      typename SolverGMRES<Vector_t>::AdditionalData(gmres_restart, true));
-    Vector_t delta;
-    problem.discretization.reinit_owned(delta);
-    try
-      {
-        gmres.solve(A, delta, f, projected_preconditioner);
-      }
-    catch (const SolverControl::NoConvergence &e)
-      {
-        throw StepFailure(
-          "GMRES did not converge in Solver/Maximum linear iterations = " +
-          std::to_string(problem.parameters.max_linear_iterations) +
-          " iterations (relative residual " +
-          scientific(e.last_residual / std::max(f.l2_norm(), 1e-300)) + ")");
-      }
-    result.linear_iterations += control.last_step();
-    largest_basis =
-      std::max(largest_basis, std::min(control.last_step(), gmres_restart) + 2);
-    dw = dw0;
-    dw += delta;
-  }
-
-
-  template <int dim>
-  void
-  AssembledNewton<dim>::assemble_direct_matrix(const NodalSystem &system)
-  {
-    const auto &nodes = problem.boundary.nodes();
     TimerSection t(problem.timer, "Newton: matrix update");
     system_matrix.copy_from(problem.bulk.newton_matrix());
     for (unsigned int i = 0; i < nodes.size(); ++i)
@@ -639,11 +402,11 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::solve_direct(const NodalSystem        &system,
-                                  const SystemNewton<dim>  &newton,
-                                  const SystemIterate<dim> &x,
-                                  Vector_t                 &dw,
-                                  Result                   &result)
+  AssembledSolver<dim>::solve_direct(const NodalSystem             &system,
+                                     const WholeSystemNewton<dim>  &newton,
+                                     const WholeSystemIterate<dim> &x,
+                                     Vector_t                      &dw,
+                                     Result                        &result)
   {
     const auto &nodes = problem.boundary.nodes();
 
@@ -673,9 +436,8 @@ namespace DynamicContact
           unsigned int s            = 0;
           for (unsigned int c = 0; c < dim; ++c)
             if (c != host)
-              scratch2(node.dofs[c]) =
-                -(node.tangents[s++] * w_e) /
-                newton.scheme.effective_derivative();
+              scratch2(node.dofs[c]) = -(node.tangents[s++] * w_e) /
+                                       newton.scheme.effective_derivative();
         }
     scratch2.compress(VectorOperation::insert);
 
@@ -702,7 +464,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledNewton<dim>::memory_consumption(MemoryItems &items) const
+  AssembledSolver<dim>::memory_consumption(MemoryItems &items) const
   {
     if (preconditioner)
       items.push_back({dynamic_cast<const BulkAMG *>(preconditioner.get()) ?
@@ -728,6 +490,6 @@ namespace DynamicContact
   }
 
 
-  template class AssembledNewton<2>;
-  template class AssembledNewton<3>;
+  template class AssembledSolver<2>;
+  template class AssembledSolver<3>;
 } // namespace DynamicContact

@@ -1,17 +1,17 @@
 #include <dynamic_contact/base/timing.h>
-#include <dynamic_contact/contact/condensed_newton.h>
+#include <dynamic_contact/contact/condensed_solver.h>
 #include <dynamic_contact/contact/newton_driver.h>
 
 #include <algorithm>
 
 namespace DynamicContact
 {
-  // Phase 1 of CondensedNewton, the iteration on Gamma_3 alone, in a file of
-  // its own (the rest of the class is in condensed_newton.cc).
+  // Phase 1 of CondensedSolver, the iteration on Gamma_3 alone, in a file of
+  // its own (the rest of the class is in condensed_solver.cc).
 
   template <int dim>
   void
-  CondensedNewton<dim>::linearize(Iterate &it) const
+  CondensedSolver<dim>::linearize(Iterate &it) const
   {
     const auto        &u_old   = u_old_all;
     const auto        &w_old   = w_old_all;
@@ -28,7 +28,7 @@ namespace DynamicContact
     it.base.resize(n);
     it.signature = 0;
     it.active.clear();
-    it.f_scale      = std::max(force_scale, 1e-300); // SystemNewton's floor
+    it.f_scale = std::max(force_scale, 1e-300); // WholeSystemNewton's floor
     it.law_residual = 0;
     it.law_squares  = 0;
     for (unsigned int i = 0; i < n; ++i)
@@ -63,19 +63,19 @@ namespace DynamicContact
 
 
   /**
-   * Phase 1 of CondensedNewton::solve() as globalized_newton() sees it: the
+   * Phase 1 of CondensedSolver::solve() as globalized_newton() sees it: the
    * iterates are the velocities and friction forces at every node of
    * Gamma_3, the equilibrium is w_i = w_free,i - sum_j C_ij g_j, the merit
    * half the sum of the squared equilibrium and law residuals (each relative
    * to its scale).
    */
   template <int dim>
-  class CondensedNewton<dim>::BoundaryProblem
+  class CondensedSolver<dim>::BoundaryProblem
   {
   public:
-    using Iterate = typename CondensedNewton<dim>::Iterate;
+    using Iterate = typename CondensedSolver<dim>::Iterate;
 
-    BoundaryProblem(CondensedNewton<dim> &solver,
+    BoundaryProblem(CondensedSolver<dim> &solver,
                     const double          w_scale,
                     Result               &result)
       : solver(solver)
@@ -190,7 +190,7 @@ namespace DynamicContact
 
   private:
     static constexpr double     far_above = 1e-3;
-    CondensedNewton<dim>       &solver;
+    CondensedSolver<dim>       &solver;
     const double                w_scale;
     Result                     &result;
     std::vector<Tensor<1, dim>> response, r, dw, new_forces, difference;
@@ -200,7 +200,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::boundary_newton(Iterate     &it,
+  CondensedSolver<dim>::boundary_newton(Iterate     &it,
                                         const double w_scale,
                                         const double tolerance,
                                         Result      &result)
@@ -234,16 +234,16 @@ namespace DynamicContact
 
 
   template void
-  CondensedNewton<2>::linearize(Iterate &) const;
+  CondensedSolver<2>::linearize(Iterate &) const;
   template void
-  CondensedNewton<3>::linearize(Iterate &) const;
+  CondensedSolver<3>::linearize(Iterate &) const;
   template void
-  CondensedNewton<2>::boundary_newton(Iterate &,
+  CondensedSolver<2>::boundary_newton(Iterate &,
                                       const double,
                                       const double,
                                       Result &);
   template void
-  CondensedNewton<3>::boundary_newton(Iterate &,
+  CondensedSolver<3>::boundary_newton(Iterate &,
                                       const double,
                                       const double,
                                       Result &);

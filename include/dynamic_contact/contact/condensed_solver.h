@@ -1,10 +1,10 @@
-#ifndef dynamic_contact_condensed_newton_h
-#define dynamic_contact_condensed_newton_h
+#ifndef dynamic_contact_condensed_solver_h
+#define dynamic_contact_condensed_solver_h
 
 #include <dynamic_contact/contact/boundary_compliance.h>
-#include <dynamic_contact/contact/contact_newton.h>
+#include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/reduced_system.h>
-#include <dynamic_contact/contact/system_newton.h>
+#include <dynamic_contact/contact/whole_system_newton.h>
 
 #include <optional>
 #include <utility>
@@ -44,12 +44,12 @@ namespace DynamicContact
    * solver_plan.h).
    */
   template <int dim>
-  class CondensedNewton : public ContactNewton<dim>, public LinearBackend<dim>
+  class CondensedSolver : public ContactSolver<dim>, public LinearBackend<dim>
   {
   public:
-    using Result = ContactNewtonResult;
+    using Result = ContactSolveResult;
 
-    explicit CondensedNewton(const ContactProblem<dim> &problem);
+    explicit CondensedSolver(const ContactProblem<dim> &problem);
 
     void
     reinit() override;
@@ -97,10 +97,10 @@ namespace DynamicContact
 
     /** The whole-system Newton step by condensation (phase 2). */
     void
-    newton_step(const SystemNewton<dim>  &system,
-                const SystemIterate<dim> &x,
-                SystemIterate<dim>       &full,
-                Result                   &result) override;
+    newton_step(const WholeSystemNewton<dim>  &system,
+                const WholeSystemIterate<dim> &x,
+                WholeSystemIterate<dim>       &full,
+                Result                        &result) override;
 
   private:
     const ContactProblem<dim> problem;
@@ -119,10 +119,10 @@ namespace DynamicContact
     Vector_t solution, right_hand_side, residual, increment, scratch;
 
     /** K0'^{-1} b for the last b (the passes of a step share it). */
-    Vector_t                    free_response, cached_rhs;
+    Vector_t free_response, cached_rhs;
     /**
      * resolvable_force() of cached_rhs: the floor of the force scale of
-     * the law residual on Gamma_3 (SystemNewton::force_scale).
+     * the law residual on Gamma_3 (WholeSystemNewton::force_scale).
      */
     double                      force_scale = 0;
     std::vector<Tensor<1, dim>> w_free_nodes;
@@ -170,6 +170,16 @@ namespace DynamicContact
     bool
     update_free_response(const Vector_t &rhs, Result &result);
 
+    /**
+     * A pending provisional pass of the same step (@p same_rhs) is the
+     * loop's last iterate: for a provisional pass, its nodal velocities are
+     * returned (the start of this pass) and its friction forces and active
+     * sets go into previous_pass. One of another step (a failed step) is
+     * stale. Clears pending and previous_pass before.
+     */
+    std::vector<Tensor<1, dim>>
+    take_pending_pass(const bool same_rhs, const bool provisional);
+
     /** solve() and solve_provisional(). */
     Result
     solve(const ContactStep<dim>      &step,
@@ -195,12 +205,12 @@ namespace DynamicContact
      * start already meets it).
      */
     void
-    polish(const Iterate                &it,
-           const ContactStep<dim>       &step,
+    polish(const Iterate               &it,
+           const ContactStep<dim>      &step,
            std::vector<Tensor<1, dim>> &lambda,
-           Vector_t                     &w,
-           Result                       &result,
-           Vector_t                     *previous = nullptr);
+           Vector_t                    &w,
+           Result                      &result,
+           Vector_t                    *previous = nullptr);
 
     /** v += factor sum_i P_i^T f_i over the owned nodes (f at every node). */
     void
@@ -214,9 +224,8 @@ namespace DynamicContact
     {
       return {gathered.gather(mu.frozen),
               mu.law,
-              mu.weakening_limit.empty() ?
-                std::vector<double>() :
-                gathered.gather(mu.weakening_limit)};
+              mu.weakening_limit.empty() ? std::vector<double>() :
+                                           gathered.gather(mu.weakening_limit)};
     }
 
     /** The nodal values of a vector at every node (collective). */

@@ -1,5 +1,5 @@
-#ifndef dynamic_contact_contact_newton_h
-#define dynamic_contact_contact_newton_h
+#ifndef dynamic_contact_contact_solver_h
+#define dynamic_contact_contact_solver_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -38,8 +38,8 @@ namespace DynamicContact
       throw StepFailure(
         "the semismooth Newton iteration did not converge in Solver/Maximum "
         "Newton iterations = " +
-        std::to_string(parameters.max_newton_iterations) +
-        " iterations (relative residual " + scientific(residual) + ")",
+          std::to_string(parameters.max_newton_iterations) +
+          " iterations (relative residual " + scientific(residual) + ")",
         iterations);
   }
 
@@ -94,7 +94,7 @@ namespace DynamicContact
 
 
   /** What one Newton solve did (summed into the step's statistics). */
-  struct ContactNewtonResult
+  struct ContactSolveResult
   {
     unsigned int iterations     = 0;
     unsigned int factorizations = 0;
@@ -122,20 +122,20 @@ namespace DynamicContact
    * friction forces lambda with K0 w + sum_i P_i^T (N_i(w) nu_i + lambda_i) =
    * b, lambda_i = P_B(0, mu_i N_i)(lambda_i + c_t w_tau,i)  at every node. Two
    * implementations share one globalized Newton driver (globalized_newton(),
-   * newton_driver.h) and differ in the linear algebra: CondensedNewton (static
+   * newton_driver.h) and differ in the linear algebra: CondensedSolver (static
    * condensation onto Gamma_3: K0 factorized once, dense systems on the active
-   * nodes; replicates Gamma_3 on every process) and AssembledNewton (the sparse
+   * nodes; replicates Gamma_3 on every process) and AssembledSolver (the sparse
    * Newton system of the whole body, by a direct factorization or by GMRES
    * preconditioned with algebraic multigrid of K0; O(N) per iteration, nothing
    * replicated).
    */
   template <int dim>
-  class ContactNewton
+  class ContactSolver
   {
   public:
-    using Result = ContactNewtonResult;
+    using Result = ContactSolveResult;
 
-    virtual ~ContactNewton() = default;
+    virtual ~ContactSolver() = default;
 
     /** The mesh (or the boundary) changed. */
     virtual void

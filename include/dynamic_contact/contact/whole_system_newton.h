@@ -1,8 +1,8 @@
-#ifndef dynamic_contact_system_newton_h
-#define dynamic_contact_system_newton_h
+#ifndef dynamic_contact_whole_system_newton_h
+#define dynamic_contact_whole_system_newton_h
 
-#include <dynamic_contact/contact/contact_newton.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
+#include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/newton_driver.h>
 
 #include <vector>
@@ -18,14 +18,14 @@ namespace DynamicContact
    * this process owns (ContactBoundary::nodes()): nothing is replicated.
    */
   template <int dim>
-  struct SystemIterate
+  struct WholeSystemIterate
   {
     /** The velocity w_n, master form. */
     Vector_t w;
     /** Friction forces lambda_i of the owned nodes. */
     std::vector<Tensor<1, dim>> lambda;
 
-    // Filled by SystemNewton::evaluate():
+    // Filled by WholeSystemNewton::evaluate():
     /** The linearization of each owned node at (w, lambda). */
     std::vector<NodeLinearization<dim>> lin;
     /** f_i = N_i nu_i + lambda_i at the iterate. */
@@ -40,23 +40,23 @@ namespace DynamicContact
     /**
      * Largest |lambda_i - P_B(...)| (all ranks), and the force it is
      * measured against: the largest nodal force, at least
-     * SystemNewton::force_scale.
+     * WholeSystemNewton::force_scale.
      */
     double law_residual = 0;
     double law_squares  = 0; // sum of the squared law residuals
     /**
      * Sum of the squared slip rates of the stick nodes relative to
-     * SystemNewton::velocity_scale (0 where that is not set).
+     * WholeSystemNewton::velocity_scale (0 where that is not set).
      */
     double stick_squares = 0;
-    double f_scale      = 1e-300;
+    double f_scale       = 1e-300;
     /** max(|b|, |K0 w|): the scale of the equilibrium residual. */
     double scale = 1e-300;
     /** |R|. */
     double residual_norm = 0;
     /**
      * max(|R|/scale, law_residual/f_scale), and if
-     * SystemNewton::velocity_scale is set the largest slip rate |w_e,tau|
+     * WholeSystemNewton::velocity_scale is set the largest slip rate |w_e,tau|
      * of a stick node (all ranks) relative to it: the stopping test's
      * measure.
      */
@@ -65,7 +65,7 @@ namespace DynamicContact
 
 
   template <int dim>
-  class SystemNewton;
+  class WholeSystemNewton;
 
   /**
    * How a Newton step of the whole system is solved: the linear algebra
@@ -84,10 +84,10 @@ namespace DynamicContact
      * new velocity; at stick nodes, the multiplier of w_tau = 0).
      */
     virtual void
-    newton_step(const SystemNewton<dim>  &system,
-                const SystemIterate<dim> &x,
-                SystemIterate<dim>       &full,
-                ContactNewtonResult      &result) = 0;
+    newton_step(const WholeSystemNewton<dim>  &system,
+                const WholeSystemIterate<dim> &x,
+                WholeSystemIterate<dim>       &full,
+                ContactSolveResult            &result) = 0;
   };
 
 
@@ -99,16 +99,16 @@ namespace DynamicContact
    * few global reductions.
    */
   template <int dim>
-  class SystemNewton
+  class WholeSystemNewton
   {
   public:
-    using Iterate = SystemIterate<dim>;
+    using Iterate = WholeSystemIterate<dim>;
 
     /** The iteration on @p step (what it refers to must outlive this). */
-    SystemNewton(const ContactProblem<dim> &problem,
-                 const ContactStep<dim>    &step,
-                 LinearBackend<dim>        &backend,
-                 ContactNewtonResult       &result);
+    WholeSystemNewton(const ContactProblem<dim> &problem,
+                      const ContactStep<dim>    &step,
+                      LinearBackend<dim>        &backend,
+                      ContactSolveResult        &result);
 
     NewtonMeasure
     evaluate(Iterate &x) const;
@@ -163,7 +163,7 @@ namespace DynamicContact
       return scheme.weighted(w_i, w_old[i]);
     }
 
-    const ContactProblem<dim>         &problem;
+    const ContactProblem<dim> &problem;
     /** The step's (k, theta); K0 is formed for it. */
     const TimeScheme                  &scheme;
     const Vector_t                    &rhs;
@@ -192,8 +192,8 @@ namespace DynamicContact
     const double force_scale;
 
   private:
-    LinearBackend<dim>  &backend;
-    ContactNewtonResult &result;
+    LinearBackend<dim> &backend;
+    ContactSolveResult &result;
   };
 } // namespace DynamicContact
 

@@ -1,5 +1,5 @@
 #include <dynamic_contact/base/timing.h>
-#include <dynamic_contact/contact/condensed_newton.h>
+#include <dynamic_contact/contact/condensed_solver.h>
 #include <dynamic_contact/contact/newton_driver.h>
 
 #include <algorithm>
@@ -7,7 +7,7 @@
 namespace DynamicContact
 {
   template <int dim>
-  CondensedNewton<dim>::CondensedNewton(const ContactProblem<dim> &problem)
+  CondensedSolver<dim>::CondensedSolver(const ContactProblem<dim> &problem)
     : problem(problem)
     , compliance(this->problem, gathered)
     , reduced(gathered, compliance)
@@ -16,7 +16,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::reinit()
+  CondensedSolver<dim>::reinit()
   {
     gathered.reinit(problem.boundary);
     compliance.reinit();
@@ -34,7 +34,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
+  CondensedSolver<dim>::add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
                                          const double factor,
                                          Vector_t    &v) const
   {
@@ -45,8 +45,8 @@ namespace DynamicContact
 
 
   template <int dim>
-  typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const ContactStep<dim>      &step,
+  typename CondensedSolver<dim>::Result
+  CondensedSolver<dim>::solve(const ContactStep<dim>      &step,
                               std::vector<Tensor<1, dim>> &lambda,
                               Vector_t                    &w)
   {
@@ -55,8 +55,8 @@ namespace DynamicContact
 
 
   template <int dim>
-  typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve_provisional(const ContactStep<dim>      &step,
+  typename CondensedSolver<dim>::Result
+  CondensedSolver<dim>::solve_provisional(const ContactStep<dim>      &step,
                                           std::vector<Tensor<1, dim>> &lambda,
                                           Vector_t                    &w,
                                           const double velocity_accuracy)
@@ -67,7 +67,7 @@ namespace DynamicContact
 
   template <int dim>
   std::vector<Tensor<1, dim>>
-  CondensedNewton<dim>::provisional_velocities() const
+  CondensedSolver<dim>::provisional_velocities() const
   {
     Assert(pending, ExcInternalError());
     return gathered.owned_part(pending->it.response);
@@ -77,7 +77,7 @@ namespace DynamicContact
 
   template <int dim>
   SpectralEstimate
-  CondensedNewton<dim>::compliance_radius(
+  CondensedSolver<dim>::compliance_radius(
     const std::vector<Tensor<2, dim>> &roots,
     const bool                         certify)
   {
@@ -86,8 +86,8 @@ namespace DynamicContact
 
 
   template <int dim>
-  typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::finalize(Vector_t                    &w,
+  typename CondensedSolver<dim>::Result
+  CondensedSolver<dim>::finalize(Vector_t                    &w,
                                  std::vector<Tensor<1, dim>> &lambda,
                                  Vector_t                    *previous)
   {
@@ -118,7 +118,7 @@ namespace DynamicContact
 
   template <int dim>
   bool
-  CondensedNewton<dim>::update_free_response(const Vector_t &rhs,
+  CondensedSolver<dim>::update_free_response(const Vector_t &rhs,
                                              Result         &result)
   {
     // The free response: the body without the foundation. The passes of a
@@ -148,25 +148,10 @@ namespace DynamicContact
 
 
   template <int dim>
-  typename CondensedNewton<dim>::Result
-  CondensedNewton<dim>::solve(const ContactStep<dim>      &step,
-                              std::vector<Tensor<1, dim>> &lambda,
-                              Vector_t                    &w,
-                              const bool                   provisional,
-                              const double                 velocity_accuracy)
+  std::vector<Tensor<1, dim>>
+  CondensedSolver<dim>::take_pending_pass(const bool same_rhs,
+                                          const bool provisional)
   {
-    Assert(step.scheme == problem.bulk.scheme(),
-           ExcMessage("K0 is not formed for the step's time scheme."));
-    const auto &[scheme, rhs, u_old, w_old, mu] = step;
-    Result      result;
-    step_scheme = scheme;
-    if (compliance.prepare(result))
-      {
-        free_response_valid = false;
-        reduced.reset();
-      }
-    const unsigned int n        = gathered.all_nodes().size();
-    const bool         same_rhs = update_free_response(rhs, result);
     // A pending provisional pass of the same step (same b) is the loop's
     // last iterate; one of another step is stale (a failed step).
     previous_pass.reset();
@@ -178,6 +163,32 @@ namespace DynamicContact
                               std::move(pending->it.active));
       }
     pending.reset();
+    return previous_velocities;
+  }
+
+
+  template <int dim>
+  typename CondensedSolver<dim>::Result
+  CondensedSolver<dim>::solve(const ContactStep<dim>      &step,
+                              std::vector<Tensor<1, dim>> &lambda,
+                              Vector_t                    &w,
+                              const bool                   provisional,
+                              const double                 velocity_accuracy)
+  {
+    Assert(step.scheme == problem.bulk.scheme(),
+           ExcMessage("K0 is not formed for the step's time scheme."));
+    const auto &[scheme, rhs, u_old, w_old, mu] = step;
+    Result result;
+    step_scheme = scheme;
+    if (compliance.prepare(result))
+      {
+        free_response_valid = false;
+        reduced.reset();
+      }
+    const unsigned int          n        = gathered.all_nodes().size();
+    const bool                  same_rhs = update_free_response(rhs, result);
+    std::vector<Tensor<1, dim>> previous_velocities =
+      take_pending_pass(same_rhs, provisional);
     if (n == 0)
       {
         w = free_response;
@@ -231,20 +242,19 @@ namespace DynamicContact
         result.provisional = true;
         return result;
       }
-    polish(
-      it, {scheme, cached_rhs, u_old, w_old, owned_mu}, lambda, w, result);
+    polish(it, {scheme, cached_rhs, u_old, w_old, owned_mu}, lambda, w, result);
     return result;
   }
 
 
   template <int dim>
   void
-  CondensedNewton<dim>::polish(const Iterate                &it,
-                               const ContactStep<dim>       &step,
+  CondensedSolver<dim>::polish(const Iterate               &it,
+                               const ContactStep<dim>      &step,
                                std::vector<Tensor<1, dim>> &lambda,
-                               Vector_t                     &w,
-                               Result                       &result,
-                               Vector_t                     *previous)
+                               Vector_t                    &w,
+                               Result                      &result,
+                               Vector_t                    *previous)
   {
     const Vector_t &rhs = step.rhs;
     // The forces into the bulk: w = K0'^{-1} (b - sum_i P_i^T g_i), i.e.
@@ -278,15 +288,15 @@ namespace DynamicContact
     //   R = K0 w - b + sum_i P_i^T f_i(w),
     // each step solved by the same condensation (newton_step()). Where
     // phase 1 converged this only checks the residual.
-    TimerSection      t(problem.timer, "Contact: refinement");
-    SystemNewton<dim> system(problem, step, *this, result);
+    TimerSection           t(problem.timer, "Contact: refinement");
+    WholeSystemNewton<dim> system(problem, step, *this, result);
     // The stick condition in velocity units too, relative to |w|; where the
     // body is at rest |w| is itself round-off, which is of order eps
     // |w_free| (w = w_free - C g cancels): 1e-6 |w_free| keeps the test
     // above it.
     system.velocity_scale =
       std::max({w.linfty_norm(), 1e-6 * free_response.linfty_norm(), 1e-300});
-    SystemIterate<dim> x;
+    WholeSystemIterate<dim> x;
     x.w      = w;
     x.lambda = gathered.owned_part(it.lambda);
     NewtonPolicy policy;
@@ -316,10 +326,10 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::newton_step(const SystemNewton<dim>  &system,
-                                    const SystemIterate<dim> &x,
-                                    SystemIterate<dim>       &full,
-                                    Result                   &result)
+  CondensedSolver<dim>::newton_step(const WholeSystemNewton<dim>  &system,
+                                    const WholeSystemIterate<dim> &x,
+                                    WholeSystemIterate<dim>       &full,
+                                    Result                        &result)
   {
     // The linearization at every node (the dense system couples them).
     Iterate it;
@@ -373,7 +383,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedNewton<dim>::memory_consumption(MemoryItems &items) const
+  CondensedSolver<dim>::memory_consumption(MemoryItems &items) const
   {
     compliance.memory_consumption(items);
     items.push_back(
@@ -381,6 +391,6 @@ namespace DynamicContact
   }
 
 
-  template class CondensedNewton<2>;
-  template class CondensedNewton<3>;
+  template class CondensedSolver<2>;
+  template class CondensedSolver<3>;
 } // namespace DynamicContact
