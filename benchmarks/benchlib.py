@@ -1,8 +1,12 @@
-"""Shared pieces of benchmarks/figure4 and benchmarks/work-precision: the
-Python with numpy/matplotlib, the executable, one timed run of a scene, the
-cached 128 x 128 reference run of the paper's scene, the machine line.
+"""Shared pieces of the benchmark scripts (benchmarks/figure4,
+benchmarks/work-precision and others): the Python with numpy/matplotlib,
+the executable, one timed run of a scene, the cached 128 x 128 reference
+run of the paper's scene, the machine line, and reading a results file's
+header back (benchmarks/performance-page, benchmarks/doc-tables).
 
-Not a command; imported by the two scripts (and usable on its own).
+Not a command; imported by the scripts (and usable on its own). Its
+imports are of the standard library only: numpy and matplotlib are
+imported by the scripts that need them, after ensure_python().
 """
 import csv
 import json
@@ -346,3 +350,65 @@ def memory_table(text):
         rows.append((m.group(1).strip(), float(m.group(2)), float(m.group(3)),
                      int(m.group(4)), bool(m.group(5))))
     return dofs, rows
+
+
+# Reading the header of a results file (benchmarks/performance-page,
+# benchmarks/doc-tables): when and where it was measured.
+
+DATE = re.compile(r"\b(\d{4}-\d{2}-\d{2})\b")
+# machine_line(): "DATE, CPU, N cores, SYSTEM"
+# (SYSTEM: platform.uname()'s system, node and release).
+MACHINE_LINE = re.compile(r"\d{4}-\d{2}-\d{2}, ([^,;()]+?), (\d+) cores"
+                          r"(?:, ([A-Za-z]+ [^\s,;()]+ [^\s,;()]+))?")
+MACHINE_BEFORE_DATE = re.compile(r"\bon ([A-Z][^,;]+), \d{4}-\d{2}-\d{2}")
+
+
+def read_lines(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read().splitlines()
+
+
+def results_header(name, lines):
+    """The lines of a results file that say when and where it was measured:
+    the leading comment lines (without '# '), else the first paragraph of a
+    report (up to 4 lines)."""
+    comments = []
+    for line in lines:
+        if not line.startswith("#"):
+            break
+        comments.append(line.lstrip("#").strip())
+    if comments:
+        return comments
+    if name.endswith(".txt"):
+        paragraph = []
+        for line in lines:
+            if not line.strip():
+                if paragraph:
+                    break
+                continue
+            paragraph.append(line.strip())
+            if len(paragraph) == 4:
+                break
+        return paragraph
+    return []
+
+
+def date_and_machine(header):
+    """(date, machine) from the header lines; None where it says none."""
+    text = " ".join(header)
+    date = DATE.search(text)
+    # One line first (a system name must not run into the next line), then
+    # the lines together (a date at the end of one, the machine on the next).
+    machine = None
+    for line in header + [text]:
+        machine = MACHINE_LINE.search(line)
+        if machine:
+            break
+    if machine:
+        machine = ", ".join(part.strip() for part in
+                            (machine.group(1), machine.group(2) + " cores",
+                             machine.group(3)) if part and part.strip())
+    else:
+        before = MACHINE_BEFORE_DATE.search(text)
+        machine = before.group(1).strip() if before else None
+    return (date.group(1) if date else None), machine
