@@ -32,6 +32,129 @@ namespace DynamicContact
   namespace
   {
     /**
+     * The lower triangle of the rows of @p A owned here, as MUMPS's
+     * distributed triplets: 1-based global row and column indices @p irn,
+     * @p jcn and the @p values.
+     */
+    void
+    owned_lower_triangle(const Epetra_CrsMatrix &A,
+                         std::vector<MUMPS_INT> &irn,
+                         std::vector<MUMPS_INT> &jcn,
+                         std::vector<double>    &values)
+    {
+      for (int i = 0; i < A.NumMyRows(); ++i)
+        {
+          int     n       = 0;
+          double *entries = nullptr;
+          int    *columns = nullptr;
+          A.ExtractMyRowView(i, n, entries, columns);
+          const auto row = TrilinosWrappers::global_row_index(A, i);
+          for (int k = 0; k < n; ++k)
+            {
+              const auto column =
+                TrilinosWrappers::global_column_index(A, columns[k]);
+              if (column <= row)
+                {
+                  irn.push_back(static_cast<MUMPS_INT>(row + 1));
+                  jcn.push_back(static_cast<MUMPS_INT>(column + 1));
+                  values.push_back(entries[k]);
+                }
+            }
+        }
+    }
+
+
+    /**
+     * The Schur complement of the matrix of order @p n given by the
+     * triplets @p irn, @p jcn, @p values at the 1-based rows @p schur_rows,
+     * into @p schur on process 0 (one triangle, column-major): a
+     * distributed MUMPS factorization whose factors are discarded. False
+     * if MUMPS fails.
+     */
+    bool
+    mumps_schur_complement(const int               n,
+                           std::vector<MUMPS_INT> &irn,
+                           std::vector<MUMPS_INT> &jcn,
+                           std::vector<double>    &values,
+                           std::vector<MUMPS_INT> &schur_rows,
+                           std::vector<double>    &schur,
+                           const MPI_Comm          comm)
+    {
+      const int      m = schur_rows.size();
+      DMUMPS_STRUC_C id{};
+      id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+      id.par          = 1; // process 0 works too
+      id.sym          = 1; // symmetric positive definite
+      id.job          = -1;
+      dmumps_c(&id);
+      id.icntl[0]  = -1; // no messages
+      id.icntl[1]  = -1;
+      id.icntl[2]  = -1;
+      id.icntl[3]  = 0;
+      id.icntl[17] = 3; // ICNTL(18): the matrix distributed as it is owned
+      id.icntl[18] = 1; // ICNTL(19): S centralized on process 0
+      id.icntl[30] = 1; // ICNTL(31): the factors are not kept
+      id.n             = n;
+      id.nnz_loc   = irn.size();
+      id.irn_loc   = irn.data();
+      id.jcn_loc   = jcn.data();
+      id.a_loc     = values.data();
+      id.size_schur    = m;
+      id.listvar_schur = schur_rows.data();
+      id.schur         = schur.data();
+      id.schur_lld     = m;
+      id.job           = 4; // analysis and factorization
+      dmumps_c(&id);
+      const bool ok = id.infog[0] >= 0;
+      id.job        = -2;
+      dmumps_c(&id);
+      return ok;
+    }
+
+
+    /**
+     * On process 0: the inverse of the symmetric positive definite
+     * @p schur of order @p m, of which MUMPS returned one triangle, into
+     * @p inverse (dense Cholesky; @p schur is overwritten by its factor).
+     * Returns LAPACK's info.
+     */
+    int
+    invert_schur_complement(std::vector<double> &schur,
+                            const int            m,
+                            std::vector<double> &inverse)
+    {
+      // For a symmetric matrix MUMPS returns one triangle.
+      const std::vector<double> raw         = schur;
+      types::blas_int           lapack_info = 0;
+      const types::blas_int     size        = m;
+      for (const bool from_upper : {true, false})
+        {
+          for (int j = 0; j < m; ++j)
+            for (int i = 0; i < m; ++i)
+              schur[i + j * std::size_t(m)] = (i <= j) == from_upper ?
+                                                raw[i + j * std::size_t(m)] :
+                                                raw[j + i * std::size_t(m)];
+          potrf("L", &size, schur.data(), &size, &lapack_info);
+          if (lapack_info == 0)
+            break;
+        }
+      inverse.assign(std::size_t(m) * m, 0.);
+      for (int j = 0; j < m; ++j)
+        inverse[j + j * std::size_t(m)] = 1;
+      if (lapack_info == 0)
+        potrs("L",
+              &size,
+              &size,
+              schur.data(),
+              &size,
+              inverse.data(),
+              &size,
+              &lapack_info);
+      return lapack_info;
+    }
+
+
+    /**
      * The inverse of the Schur complement S of the symmetric positive
      * definite @p A at the rows @p rows (global, distinct, the same list on
      * every process), column-major in @p inverse on every process: the block
@@ -52,92 +175,18 @@ namespace DynamicContact
       // The lower triangle of the owned rows, 1-based global indices.
       std::vector<MUMPS_INT> irn, jcn;
       std::vector<double>    values;
-      for (int i = 0; i < A.NumMyRows(); ++i)
-        {
-          int     n       = 0;
-          double *entries = nullptr;
-          int    *columns = nullptr;
-          A.ExtractMyRowView(i, n, entries, columns);
-          const auto row = TrilinosWrappers::global_row_index(A, i);
-          for (int k = 0; k < n; ++k)
-            {
-              const auto column =
-                TrilinosWrappers::global_column_index(A, columns[k]);
-              if (column <= row)
-                {
-                  irn.push_back(static_cast<MUMPS_INT>(row + 1));
-                  jcn.push_back(static_cast<MUMPS_INT>(column + 1));
-                  values.push_back(entries[k]);
-                }
-            }
-        }
+      owned_lower_triangle(A, irn, jcn, values);
       std::vector<MUMPS_INT> schur_rows(m);
       for (int r = 0; r < m; ++r)
         schur_rows[r] = static_cast<MUMPS_INT>(rows[r] + 1);
       std::vector<double> schur(rank == 0 ? std::size_t(m) * m : 0, 0.);
-
-      DMUMPS_STRUC_C id{};
-      id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
-      id.par          = 1; // process 0 works too
-      id.sym          = 1; // symmetric positive definite
-      id.job          = -1;
-      dmumps_c(&id);
-      id.icntl[0]  = -1; // no messages
-      id.icntl[1]  = -1;
-      id.icntl[2]  = -1;
-      id.icntl[3]  = 0;
-      id.icntl[17] = 3; // ICNTL(18): the matrix distributed as it is owned
-      id.icntl[18] = 1; // ICNTL(19): S centralized on process 0
-      id.icntl[30] = 1; // ICNTL(31): the factors are not kept
-      id.n         = A.NumGlobalRows();
-      id.nnz_loc   = irn.size();
-      id.irn_loc   = irn.data();
-      id.jcn_loc   = jcn.data();
-      id.a_loc     = values.data();
-      id.size_schur    = m;
-      id.listvar_schur = schur_rows.data();
-      id.schur         = schur.data();
-      id.schur_lld     = m;
-      id.job           = 4; // analysis and factorization
-      dmumps_c(&id);
-      const bool ok = id.infog[0] >= 0;
-      id.job        = -2;
-      dmumps_c(&id);
-      if (!ok)
+      if (!mumps_schur_complement(
+            A.NumGlobalRows(), irn, jcn, values, schur_rows, schur, comm))
         return false;
 
       int info = 0;
       if (rank == 0)
-        {
-          // For a symmetric matrix MUMPS returns one triangle.
-          const std::vector<double> raw = schur;
-          types::blas_int           lapack_info = 0;
-          const types::blas_int     size        = m;
-          for (const bool from_upper : {true, false})
-            {
-              for (int j = 0; j < m; ++j)
-                for (int i = 0; i < m; ++i)
-                  schur[i + j * std::size_t(m)] =
-                    (i <= j) == from_upper ? raw[i + j * std::size_t(m)] :
-                                             raw[j + i * std::size_t(m)];
-              potrf("L", &size, schur.data(), &size, &lapack_info);
-              if (lapack_info == 0)
-                break;
-            }
-          inverse.assign(std::size_t(m) * m, 0.);
-          for (int j = 0; j < m; ++j)
-            inverse[j + j * std::size_t(m)] = 1;
-          if (lapack_info == 0)
-            potrs("L",
-                  &size,
-                  &size,
-                  schur.data(),
-                  &size,
-                  inverse.data(),
-                  &size,
-                  &lapack_info);
-          info = lapack_info;
-        }
+        info = invert_schur_complement(schur, m, inverse);
       if (Utilities::MPI::max(std::abs(info), comm) != 0)
         return false;
       inverse.resize(std::size_t(m) * m);
@@ -534,6 +583,94 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * BulkSolver::solve_columns() with CHOLMOD: the whole columns (every
+     * process solves all of them, @p block at a time), the global index of
+     * a row is its place. @p n: the matrix's order, @p n_owned: the rows
+     * owned here.
+     */
+    void
+    solve_columns_cholmod(
+      Cholesky                                                &cholesky,
+      const std::size_t                                        n,
+      const std::size_t                                        n_owned,
+      const std::vector<BulkSolver::SparseColumn>             &columns,
+      const std::vector<types::global_dof_index>              &rows,
+      std::vector<std::vector<double>>                        &values,
+      const std::function<void(unsigned int, const double *)> &store,
+      const unsigned int                                       block)
+    {
+      std::vector<double> B, X, owned(cholesky.replicated() ? n_owned : 0);
+      for (unsigned int first = 0; first < columns.size(); first += block)
+        {
+          const unsigned int m =
+            std::min<unsigned int>(block, columns.size() - first);
+          B.assign(n * m, 0.);
+          X.resize(n * m);
+          for (unsigned int c = 0; c < m; ++c)
+            for (const auto &[row, value] : columns[first + c])
+              B[c * n + row] = value;
+          cholesky.solve(B.data(), X.data(), m);
+          for (unsigned int c = 0; c < m; ++c)
+            {
+              const double *x = X.data() + c * n;
+              for (unsigned int i = 0; i < rows.size(); ++i)
+                values[first + c][i] = x[rows[i]];
+              if (store && cholesky.replicated())
+                {
+                  cholesky.owned_part(x, owned.data());
+                  store(first + c, owned.data());
+                }
+              else if (store)
+                store(first + c, x);
+            }
+        }
+    }
+
+
+    /**
+     * BulkSolver::solve_columns() with an Amesos solver @p direct of the
+     * @p problem: @p block columns at a time, in vectors of the domain
+     * @p map.
+     */
+    void
+    solve_columns_amesos(
+      Epetra_LinearProblem                                    &problem,
+      Amesos_BaseSolver                                       &direct,
+      const Epetra_Map                                        &map,
+      const std::vector<BulkSolver::SparseColumn>             &columns,
+      const std::vector<types::global_dof_index>              &rows,
+      std::vector<std::vector<double>>                        &values,
+      const std::function<void(unsigned int, const double *)> &store,
+      const unsigned int                                       block)
+    {
+      for (unsigned int first = 0; first < columns.size(); first += block)
+        {
+          const unsigned int n =
+            std::min<unsigned int>(block, columns.size() - first);
+          Epetra_MultiVector B(map, n), X(map, n);
+          for (unsigned int c = 0; c < n; ++c)
+            for (const auto &[row, value] : columns[first + c])
+              if (map.MyGID(static_cast<int>(row)))
+                B.ReplaceGlobalValue(static_cast<int>(row), c, value);
+          problem.SetLHS(&X);
+          problem.SetRHS(&B);
+          AssertThrow(direct.Solve() == 0,
+                      ExcMessage("A solve with the bulk matrix failed."));
+          for (unsigned int c = 0; c < n; ++c)
+            {
+              for (unsigned int i = 0; i < rows.size(); ++i)
+                values[first + c][i] = X[c][map.LID(static_cast<int>(rows[i]))];
+              if (store)
+                store(first + c, X[c]);
+            }
+        }
+    }
+  } // namespace
+
+
   void
   BulkSolver::solve_columns(
     const std::vector<SparseColumn>                         &columns,
@@ -548,62 +685,17 @@ namespace DynamicContact
       return;
     const Epetra_Map &map = matrix->trilinos_matrix().DomainMap();
     if (cholesky)
-      {
-        // The whole columns (every process solves all of them), the global
-        // index of a row is its place.
-        const std::size_t   n       = matrix->m();
-        const std::size_t   n_owned = map.NumMyElements();
-        std::vector<double> B, X, owned(cholesky->replicated() ? n_owned : 0);
-        for (unsigned int first = 0; first < columns.size(); first += block)
-          {
-            const unsigned int m =
-              std::min<unsigned int>(block, columns.size() - first);
-            B.assign(n * m, 0.);
-            X.resize(n * m);
-            for (unsigned int c = 0; c < m; ++c)
-              for (const auto &[row, value] : columns[first + c])
-                B[c * n + row] = value;
-            cholesky->solve(B.data(), X.data(), m);
-            for (unsigned int c = 0; c < m; ++c)
-              {
-                const double *x = X.data() + c * n;
-                for (unsigned int i = 0; i < rows.size(); ++i)
-                  values[first + c][i] = x[rows[i]];
-                if (store && cholesky->replicated())
-                  {
-                    cholesky->owned_part(x, owned.data());
-                    store(first + c, owned.data());
-                  }
-                else if (store)
-                  store(first + c, x);
-              }
-          }
-      }
+      solve_columns_cholmod(*cholesky,
+                            matrix->m(),
+                            map.NumMyElements(),
+                            columns,
+                            rows,
+                            values,
+                            store,
+                            block);
     else if (direct)
-      {
-        for (unsigned int first = 0; first < columns.size(); first += block)
-          {
-            const unsigned int n =
-              std::min<unsigned int>(block, columns.size() - first);
-            Epetra_MultiVector B(map, n), X(map, n);
-            for (unsigned int c = 0; c < n; ++c)
-              for (const auto &[row, value] : columns[first + c])
-                if (map.MyGID(static_cast<int>(row)))
-                  B.ReplaceGlobalValue(static_cast<int>(row), c, value);
-            problem->SetLHS(&X);
-            problem->SetRHS(&B);
-            AssertThrow(direct->Solve() == 0,
-                        ExcMessage("A solve with the bulk matrix failed."));
-            for (unsigned int c = 0; c < n; ++c)
-              {
-                for (unsigned int i = 0; i < rows.size(); ++i)
-                  values[first + c][i] =
-                    X[c][map.LID(static_cast<int>(rows[i]))];
-                if (store)
-                  store(first + c, X[c]);
-              }
-          }
-      }
+      solve_columns_amesos(
+        *problem, *direct, map, columns, rows, values, store, block);
     else
       {
         Vector_t rhs, x;
