@@ -21,6 +21,101 @@ namespace DynamicContact
   {
     namespace
     {
+      /**
+       * Solver: the choice of the contact solver and the caps of the
+       * condensed one.
+       */
+      void
+      declare_contact_solver_entries(ParameterHandler &prm)
+      {
+        prm.declare_entry(
+          "Contact solver",
+          "auto",
+          Patterns::Selection("auto|condensed|assembled"),
+          "How each semismooth Newton system is solved (all give the same "
+          "iterates, to the Newton tolerance). 'condensed': static "
+          "condensation onto Gamma_3 - the bulk matrix K0 is factorized once "
+          "per mesh and time step, the compliance of the contact nodes "
+          "computed from it (from the Schur complement on Gamma_3: on one "
+          "process from the Cholesky factor, on several in 3D from a MUMPS "
+          "factorization where it agrees with the solves, else by dim "
+          "solves per node), and each iteration is a "
+          "dense solve on the active contact nodes; Gamma_3 is replicated on "
+          "every process. 'assembled': the sparse Newton system of the whole "
+          "body, per process only its own part (with Linear solver = "
+          "iterative: GMRES preconditioned by algebraic multigrid of K0, "
+          "built once per mesh and time step; with direct: the Newton matrix "
+          "factorized when it changes, as in deal.II's step-42). 'auto': "
+          "the one of the lower predicted cost for the steps one bulk "
+          "matrix serves (the steps left, or to the next mesh adaptation; "
+          "one with an adaptive time step), from a cost model of the DoFs, "
+          "the contact nodes and the processes fitted to "
+          "benchmarks/scaling; the condensed one only while dim times the "
+          "number of contact nodes is at most Condensed limit (one process) "
+          "or Condensed limit on several processes, and on meshes smaller "
+          "than the model's always; the assembled one with the iterative "
+          "linear solver. Decided per mesh; the log gives the predicted "
+          "costs (the solver plan).");
+        prm.declare_entry(
+          "Condensed limit",
+          "8200",
+          Patterns::Integer(0),
+          "Contact solver = auto on one process: the largest dim times the "
+          "number of contact nodes for which the condensed solver may be "
+          "chosen (its dense tables hold 8 bytes x (dim n_Gamma)^2 twice; "
+          "within it the cost model chooses).");
+        prm.declare_entry(
+          "Condensed limit on several processes",
+          "auto",
+          Patterns::Anything(),
+          "Contact solver = auto on more than one process where K0 is "
+          "factorized by MUMPS over the processes (Direct solver package): "
+          "the same cap, an integer >= 0 or 'auto'. In 2D the compliance "
+          "then costs dim solves per contact node, so the condensed solver "
+          "is the faster one only on small contact boundaries: 'auto' is "
+          "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "
+          "Condensed limit. Where every process factorizes the whole K0 "
+          "(a small K0, Direct solver package = auto), Condensed limit "
+          "applies as on one process. Rank 0 holds the dense tables (8 "
+          "bytes x (dim n_Gamma)^2 twice).");
+      }
+
+
+      /** Solver: the entries of the semismooth Newton iteration. */
+      void
+      declare_newton_entries(ParameterHandler &prm)
+      {
+        prm.declare_entry(
+          "Provisional passes",
+          "true",
+          Patterns::Bool(),
+          "Condensed solver with a convexification loop: a pass that does "
+          "not end the loop takes its velocity from the stored compliance "
+          "responses, without a solve with K0 (doc/algorithms.md, "
+          "'Convexification loop'); false: every pass is solved in full.");
+        prm.declare_entry(
+          "Line search",
+          "true",
+          Patterns::Bool(),
+          "Globalize the semismooth Newton iteration (condensed solver): "
+          "when the active sets cycle (return to sets seen before) or, from "
+          "the fifth iteration on, the merit function (half the squared "
+          "residual) rises above that of the last five iterates, backtrack "
+          "along the Newton step until it decreases (Armijo).");
+        prm.declare_entry("Newton tolerance",
+                          "1e-10",
+                          Patterns::Double(),
+                          "The semismooth Newton iteration stops when the "
+                          "active sets no longer change and the residual is "
+                          "below this, relative to the right-hand side.");
+        prm.declare_entry("Maximum Newton iterations",
+                          "50",
+                          Patterns::Integer(1),
+                          "Cap on the semismooth Newton iterations of one "
+                          "solve; reaching it is an error.");
+      }
+
+
       /** Solver: the entries of the linear solver. */
       void
       declare_linear_solver_entries(ParameterHandler &prm)
@@ -108,56 +203,7 @@ namespace DynamicContact
     {
       prm.enter_subsection("Solver");
       {
-        prm.declare_entry(
-          "Contact solver",
-          "auto",
-          Patterns::Selection("auto|condensed|assembled"),
-          "How each semismooth Newton system is solved (all give the same "
-          "iterates, to the Newton tolerance). 'condensed': static "
-          "condensation onto Gamma_3 - the bulk matrix K0 is factorized once "
-          "per mesh and time step, the compliance of the contact nodes "
-          "computed from it (from the Schur complement on Gamma_3: on one "
-          "process from the Cholesky factor, on several in 3D from a MUMPS "
-          "factorization where it agrees with the solves, else by dim "
-          "solves per node), and each iteration is a "
-          "dense solve on the active contact nodes; Gamma_3 is replicated on "
-          "every process. 'assembled': the sparse Newton system of the whole "
-          "body, per process only its own part (with Linear solver = "
-          "iterative: GMRES preconditioned by algebraic multigrid of K0, "
-          "built once per mesh and time step; with direct: the Newton matrix "
-          "factorized when it changes, as in deal.II's step-42). 'auto': "
-          "the one of the lower predicted cost for the steps one bulk "
-          "matrix serves (the steps left, or to the next mesh adaptation; "
-          "one with an adaptive time step), from a cost model of the DoFs, "
-          "the contact nodes and the processes fitted to "
-          "benchmarks/scaling; the condensed one only while dim times the "
-          "number of contact nodes is at most Condensed limit (one process) "
-          "or Condensed limit on several processes, and on meshes smaller "
-          "than the model's always; the assembled one with the iterative "
-          "linear solver. Decided per mesh; the log gives the predicted "
-          "costs (the solver plan).");
-        prm.declare_entry(
-          "Condensed limit",
-          "8200",
-          Patterns::Integer(0),
-          "Contact solver = auto on one process: the largest dim times the "
-          "number of contact nodes for which the condensed solver may be "
-          "chosen (its dense tables hold 8 bytes x (dim n_Gamma)^2 twice; "
-          "within it the cost model chooses).");
-        prm.declare_entry(
-          "Condensed limit on several processes",
-          "auto",
-          Patterns::Anything(),
-          "Contact solver = auto on more than one process where K0 is "
-          "factorized by MUMPS over the processes (Direct solver package): "
-          "the same cap, an integer >= 0 or 'auto'. In 2D the compliance "
-          "then costs dim solves per contact node, so the condensed solver "
-          "is the faster one only on small contact boundaries: 'auto' is "
-          "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "
-          "Condensed limit. Where every process factorizes the whole K0 "
-          "(a small K0, Direct solver package = auto), Condensed limit "
-          "applies as on one process. Rank 0 holds the dense tables (8 "
-          "bytes x (dim n_Gamma)^2 twice).");
+        declare_contact_solver_entries(prm);
         prm.declare_entry(
           "Minimum DoFs per process",
           "20000",
@@ -170,34 +216,7 @@ namespace DynamicContact
           "process adds costs more than it saves (benchmarks/processes). "
           "The log names the processes that take part. 0: every process "
           "takes part.");
-        prm.declare_entry(
-          "Provisional passes",
-          "true",
-          Patterns::Bool(),
-          "Condensed solver with a convexification loop: a pass that does "
-          "not end the loop takes its velocity from the stored compliance "
-          "responses, without a solve with K0 (doc/algorithms.md, "
-          "'Convexification loop'); false: every pass is solved in full.");
-        prm.declare_entry(
-          "Line search",
-          "true",
-          Patterns::Bool(),
-          "Globalize the semismooth Newton iteration (condensed solver): "
-          "when the active sets cycle (return to sets seen before) or, from "
-          "the fifth iteration on, the merit function (half the squared "
-          "residual) rises above that of the last five iterates, backtrack "
-          "along the Newton step until it decreases (Armijo).");
-        prm.declare_entry("Newton tolerance",
-                          "1e-10",
-                          Patterns::Double(),
-                          "The semismooth Newton iteration stops when the "
-                          "active sets no longer change and the residual is "
-                          "below this, relative to the right-hand side.");
-        prm.declare_entry("Maximum Newton iterations",
-                          "50",
-                          Patterns::Integer(1),
-                          "Cap on the semismooth Newton iterations of one "
-                          "solve; reaching it is an error.");
+        declare_newton_entries(prm);
         declare_linear_solver_entries(prm);
       }
       prm.leave_subsection();
