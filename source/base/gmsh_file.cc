@@ -294,6 +294,115 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /** How to make a mesh of quadrilaterals (@p dim 2) or hexahedra in Gmsh. */
+    std::string
+    recombine_advice(const unsigned int dim)
+    {
+      return dim == 2 ?
+               "Recombine the mesh into quadrilaterals in Gmsh: add "
+               "'Mesh.RecombineAll = 1;' (or 'Recombine Surface{...};') and "
+               "'Mesh.SubdivisionAlgorithm = 1;' (every cell a quadrilateral) "
+               "to the .geo file, or run 'gmsh -2 -setnumber Mesh.RecombineAll "
+               "1 -setnumber Mesh.SubdivisionAlgorithm 1 -format msh41 "
+               "file.geo'." :
+               "Make hexahedra in Gmsh: add 'Mesh.SubdivisionAlgorithm = 2;' "
+               "(every cell split into hexahedra) to the .geo file, or "
+               "extrude a recombined surface ('Extrude {...} { Surface{...}; "
+               "Layers{n}; Recombine; }'), or run 'gmsh -3 -setnumber "
+               "Mesh.SubdivisionAlgorithm 2 -format msh41 file.geo'.";
+    }
+
+
+    /**
+     * Fail unless the mesh's dimension @p mesh_dim (that of its
+     * highest-dimensional element) is @p dim; @p cells names the cells the
+     * program needs.
+     */
+    void
+    check_mesh_dimension(const GmshFileInfo &info,
+                         const std::string  &file,
+                         const unsigned int  dim,
+                         const int           mesh_dim,
+                         const std::string  &cells)
+    {
+      if (mesh_dim != static_cast<int>(dim))
+        {
+          std::string found;
+          for (const auto &[type, n] : info.element_types)
+            if (n > 0 && element_dimension(type) == mesh_dim)
+              found += (found.empty() ? "" : ", ") + count_of(info, type);
+          fail(where(file) + " is a mesh of dimension " +
+               std::to_string(mesh_dim) + " (" + found + "), not " +
+               std::to_string(dim) + ": set Dimension = " +
+               std::to_string(mesh_dim) + " or use a mesh of " + cells +
+               (mesh_dim == 2 && dim == 3 ?
+                  "; a 3D mesh of a 2D one: extrude it in Gmsh (with "
+                  "'Layers{n}; Recombine;')." :
+                  "."));
+        }
+    }
+
+
+    /**
+     * Fail if the mesh holds first-order simplices, prisms or pyramids of
+     * dimension @p dim or @p dim - 1 (the cells first: tetrahedra before
+     * the triangles of their faces).
+     */
+    void
+    check_no_simplices(const GmshFileInfo &info,
+                       const std::string  &file,
+                       const unsigned int  dim,
+                       const std::string  &cells)
+    {
+      int simplex = -1;
+      for (const auto &[type, n] : info.element_types)
+        if (n > 0 && is_first_order_simplex_or_wedge(type) &&
+            element_dimension(type) >= static_cast<int>(dim) - 1 &&
+            (simplex < 0 ||
+             element_dimension(type) > element_dimension(simplex)))
+          simplex = type;
+      if (simplex >= 0)
+        {
+          const int type = simplex;
+          fail(where(file) + " holds " + count_of(info, type) +
+               ": this program needs a mesh of " + cells + " in " +
+               std::to_string(dim) + "D (deal.II's distributed meshes). " +
+               recombine_advice(dim));
+        }
+    }
+
+
+    /**
+     * Fail if the mesh holds elements other than first-order hypercubes
+     * (unknown ones or second-order ones).
+     */
+    void
+    check_first_order_hypercubes(const GmshFileInfo &info,
+                                 const std::string  &file,
+                                 const std::string  &cells)
+    {
+      for (const auto &[type, n] : info.element_types)
+        if (n > 0 && !is_first_order_hypercube(type))
+          {
+            if (element_dimension(type) < 0)
+              fail(where(file) + " holds " + count_of(info, type) +
+                   ", which this program does not read; it needs a mesh of "
+                   "first-order " +
+                   cells + ".");
+            fail(where(file) + " holds " + count_of(info, type) +
+                 ": second-order elements. The program needs "
+                 "first-order " +
+                 cells +
+                 " (Gmsh: Mesh.ElementOrder = 1, the default; Finite "
+                 "element/Polynomial degree sets the degree of the finite "
+                 "elements).");
+          }
+    }
+  } // namespace
+
+
   void
   check_gmsh_cells(const GmshFileInfo &info,
                    const std::string  &file,
@@ -313,70 +422,12 @@ namespace DynamicContact
         mesh_dim = std::max(mesh_dim, element_dimension(type));
     if (mesh_dim < 0)
       fail(where(file) + " holds no elements.");
-
-    const std::string recombine =
-      dim == 2 ?
-        "Recombine the mesh into quadrilaterals in Gmsh: add "
-        "'Mesh.RecombineAll = 1;' (or 'Recombine Surface{...};') and "
-        "'Mesh.SubdivisionAlgorithm = 1;' (every cell a quadrilateral) to "
-        "the .geo file, or run 'gmsh -2 -setnumber Mesh.RecombineAll 1 "
-        "-setnumber Mesh.SubdivisionAlgorithm 1 -format msh41 file.geo'." :
-        "Make hexahedra in Gmsh: add 'Mesh.SubdivisionAlgorithm = 2;' "
-        "(every cell split into hexahedra) to the .geo file, or extrude a "
-        "recombined surface ('Extrude {...} { Surface{...}; Layers{n}; "
-        "Recombine; }'), or run 'gmsh -3 -setnumber Mesh.SubdivisionAlgorithm "
-        "2 -format msh41 file.geo'.";
-
-    if (mesh_dim != static_cast<int>(dim))
-      {
-        std::string found;
-        for (const auto &[type, n] : info.element_types)
-          if (n > 0 && element_dimension(type) == mesh_dim)
-            found += (found.empty() ? "" : ", ") + count_of(info, type);
-        fail(where(file) + " is a mesh of dimension " +
-             std::to_string(mesh_dim) + " (" + found + "), not " +
-             std::to_string(dim) + ": set Dimension = " +
-             std::to_string(mesh_dim) + " or use a mesh of " + cells +
-             (mesh_dim == 2 && dim == 3 ?
-                "; a 3D mesh of a 2D one: extrude it in Gmsh (with "
-                "'Layers{n}; Recombine;')." :
-                "."));
-      }
+    check_mesh_dimension(info, file, dim, mesh_dim, cells);
 
     // Then simplices, prisms and pyramids: the common mistake (Gmsh's
     // default mesh is of triangles or tetrahedra).
-    // The cells first (tetrahedra before the triangles of their faces).
-    int simplex = -1;
-    for (const auto &[type, n] : info.element_types)
-      if (n > 0 && is_first_order_simplex_or_wedge(type) &&
-          element_dimension(type) >= static_cast<int>(dim) - 1 &&
-          (simplex < 0 || element_dimension(type) > element_dimension(simplex)))
-        simplex = type;
-    if (simplex >= 0)
-      {
-        const int type = simplex;
-        fail(where(file) + " holds " + count_of(info, type) +
-             ": this program needs a mesh of " + cells + " in " +
-             std::to_string(dim) + "D (deal.II's distributed meshes). " +
-             recombine);
-      }
-
-    for (const auto &[type, n] : info.element_types)
-      if (n > 0 && !is_first_order_hypercube(type))
-        {
-          if (element_dimension(type) < 0)
-            fail(where(file) + " holds " + count_of(info, type) +
-                 ", which this program does not read; it needs a mesh of "
-                 "first-order " +
-                 cells + ".");
-          fail(where(file) + " holds " + count_of(info, type) +
-               ": second-order elements. The program needs "
-               "first-order " +
-               cells +
-               " (Gmsh: Mesh.ElementOrder = 1, the default; Finite "
-               "element/Polynomial degree sets the degree of the finite "
-               "elements).");
-        }
+    check_no_simplices(info, file, dim, cells);
+    check_first_order_hypercubes(info, file, cells);
   }
 
 

@@ -365,68 +365,10 @@ namespace DynamicContact
         transfers.resize(0, top);
 
         const BulkKernel<dim> kernel(scheme, material);
-
-        for (unsigned int level = 0; level <= top; ++level)
-          {
-            const bool finest = (level == top);
-            if (!finest)
-              {
-                dof_handlers[level] =
-                  std::make_unique<DoFHandler<dim>>(*triangulations[level]);
-                dof_handlers[level]->distribute_dofs(discretization.fe);
-                auto &c = constraints[level];
-                c.reinit(
-                  DoFTools::extract_locally_relevant_dofs(*dof_handlers[level]));
-                DoFTools::make_hanging_node_constraints(*dof_handlers[level],
-                                                        c);
-                discretization.add_boundary_constraints(*dof_handlers[level],
-                                                        c);
-                c.close();
-              }
-            operators[level] = std::make_unique<Operator>(
-              discretization,
-              dofs(level),
-              level_constraints(level),
-              kernel,
-              finest ? finest_matrix : nullptr,
-              finest ? finest_cell_data : nullptr);
-          }
-        for (unsigned int level = 0; level < top; ++level)
-          transfers[level + 1].reinit_geometric_transfer(
-            dofs(level + 1),
-            dofs(level),
-            level_constraints(level + 1),
-            level_constraints(level));
-        transfer = std::make_unique<Transfer>(
-          transfers, [this](const unsigned int level, LevelVector &v) {
-            operators[level]->initialize_dof_vector(v);
-          });
-
-        MGLevelObject<typename Smoother::AdditionalData> data(0, top);
-        for (unsigned int level = 0; level <= top; ++level)
-          {
-            data[level].preconditioner      = operators[level]->inverse_diagonal();
-            data[level].smoothing_range     = 20.;
-            data[level].degree              = 2;
-            data[level].eig_cg_n_iterations = 20;
-          }
-        smoother.initialize(operators, data);
-        level_matrices.initialize(operators);
-
-        // A mesh that cannot be coarsened is its own coarsest level: then
-        // the stored K0 serves (if there is one).
-        std::unique_ptr<Matrix_t> coarse_matrix;
-        if (top > 0 || finest_matrix == nullptr)
-          {
-            coarse_matrix = std::make_unique<Matrix_t>();
-            operators[0]->assemble(*coarse_matrix);
-          }
-        const Matrix_t &coarsest =
-          coarse_matrix ? *coarse_matrix : *finest_matrix;
-        coarse = std::make_unique<CoarseSolve>(coarsest,
-                                               std::move(coarse_matrix),
-                                               discretization.mapping,
-                                               dofs(0));
+        make_level_operators(kernel, finest_matrix, finest_cell_data);
+        make_transfer();
+        make_smoother();
+        make_coarse_solve(finest_matrix);
 
         multigrid = std::make_unique<Multigrid<LevelVector>>(
           level_matrices, *coarse, *transfer, smoother, smoother, 0, top);
@@ -460,13 +402,13 @@ namespace DynamicContact
       }
 
     private:
-      const Discretization<dim> &discretization;
-      std::vector<std::shared_ptr<const Triangulation<dim>>> triangulations;
-      MGLevelObject<std::unique_ptr<DoFHandler<dim>>>        dof_handlers;
-      MGLevelObject<AffineConstraints<double>>               constraints;
-      MGLevelObject<std::unique_ptr<Operator>>               operators;
-      MGLevelObject<MGTwoLevelTransfer<dim, LevelVector>>    transfers;
-      std::unique_ptr<Transfer>                              transfer;
+      const Discretization<dim>                              &discretization;
+      std::vector<std::shared_ptr<const Triangulation<dim>>>  triangulations;
+      MGLevelObject<std::unique_ptr<DoFHandler<dim>>>         dof_handlers;
+      MGLevelObject<AffineConstraints<double>>                constraints;
+      MGLevelObject<std::unique_ptr<Operator>>                operators;
+      MGLevelObject<MGTwoLevelTransfer<dim, LevelVector>>     transfers;
+      std::unique_ptr<Transfer>                               transfer;
       MGSmootherPrecondition<Operator, Smoother, LevelVector> smoother;
       mg::Matrix<LevelVector>                                 level_matrices;
       std::unique_ptr<CoarseSolve>                            coarse;
@@ -475,6 +417,102 @@ namespace DynamicContact
                           preconditioner;
       mutable LevelVector src_work, dst_work;
       double              held = 0;
+
+      /**
+       * On each level, the DoFs and constraints (those of the
+       * discretization on the finest) and K0 with @p kernel (on the finest
+       * from @p finest_matrix or @p finest_cell_data where given).
+       */
+      void
+      make_level_operators(const BulkKernel<dim>         &kernel,
+                           const Matrix_t                *finest_matrix,
+                           const MatrixFree<dim, double> *finest_cell_data)
+      {
+        const unsigned int top = triangulations.size() - 1;
+        for (unsigned int level = 0; level <= top; ++level)
+          {
+            const bool finest = (level == top);
+            if (!finest)
+              {
+                dof_handlers[level] =
+                  std::make_unique<DoFHandler<dim>>(*triangulations[level]);
+                dof_handlers[level]->distribute_dofs(discretization.fe);
+                auto &c = constraints[level];
+                c.reinit(
+                  DoFTools::extract_locally_relevant_dofs(*dof_handlers[level]));
+                DoFTools::make_hanging_node_constraints(*dof_handlers[level],
+                                                        c);
+                discretization.add_boundary_constraints(*dof_handlers[level],
+                                                        c);
+                c.close();
+              }
+            operators[level] = std::make_unique<Operator>(
+              discretization,
+              dofs(level),
+              level_constraints(level),
+              kernel,
+              finest ? finest_matrix : nullptr,
+              finest ? finest_cell_data : nullptr);
+          }
+      }
+
+      /** The geometric transfers between consecutive levels. */
+      void
+      make_transfer()
+      {
+        const unsigned int top = triangulations.size() - 1;
+        for (unsigned int level = 0; level < top; ++level)
+          transfers[level + 1].reinit_geometric_transfer(
+            dofs(level + 1),
+            dofs(level),
+            level_constraints(level + 1),
+            level_constraints(level));
+        transfer = std::make_unique<Transfer>(
+          transfers, [this](const unsigned int level, LevelVector &v) {
+            operators[level]->initialize_dof_vector(v);
+          });
+      }
+
+      /** Chebyshev smoothers (degree 2) with each level's diagonal. */
+      void
+      make_smoother()
+      {
+        const unsigned int top = triangulations.size() - 1;
+        MGLevelObject<typename Smoother::AdditionalData> data(0, top);
+        for (unsigned int level = 0; level <= top; ++level)
+          {
+            data[level].preconditioner      = operators[level]->inverse_diagonal();
+            data[level].smoothing_range     = 20.;
+            data[level].degree              = 2;
+            data[level].eig_cg_n_iterations = 20;
+          }
+        smoother.initialize(operators, data);
+        level_matrices.initialize(operators);
+      }
+
+      /**
+       * The solver of the coarsest level: K0 assembled there, or the
+       * stored @p finest_matrix where the mesh is its own coarsest level.
+       */
+      void
+      make_coarse_solve(const Matrix_t *finest_matrix)
+      {
+        const unsigned int top = triangulations.size() - 1;
+        // A mesh that cannot be coarsened is its own coarsest level: then
+        // the stored K0 serves (if there is one).
+        std::unique_ptr<Matrix_t> coarse_matrix;
+        if (top > 0 || finest_matrix == nullptr)
+          {
+            coarse_matrix = std::make_unique<Matrix_t>();
+            operators[0]->assemble(*coarse_matrix);
+          }
+        const Matrix_t &coarsest =
+          coarse_matrix ? *coarse_matrix : *finest_matrix;
+        coarse = std::make_unique<CoarseSolve>(coarsest,
+                                               std::move(coarse_matrix),
+                                               discretization.mapping,
+                                               dofs(0));
+      }
 
       const DoFHandler<dim> &
       dofs(const unsigned int level) const

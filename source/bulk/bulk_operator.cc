@@ -300,54 +300,75 @@ namespace DynamicContact
   }
 
 
-  template <int dim>
-  std::vector<Tensor<2, dim>>
-  BulkOperator<dim>::newton_blocks(
-    const std::vector<std::array<types::global_dof_index, dim>> &nodes) const
+  namespace
   {
-    std::vector<Tensor<2, dim>> blocks(nodes.size());
-    if (newton_stored)
-      {
-        for (unsigned int p = 0; p < nodes.size(); ++p)
-          for (unsigned int a = 0; a < dim; ++a)
-            for (unsigned int b = 0; b < dim; ++b)
-              blocks[p][a][b] = bulk_matrix.el(nodes[p][a], nodes[p][b]);
-        return blocks;
-      }
+    /**
+     * Every process's @p nodes, in the order of the processes; @p first is
+     * set to where this process's own nodes begin.
+     */
+    template <int dim>
+    std::vector<std::array<types::global_dof_index, dim>>
+    all_processes_nodes(
+      const MPI_Comm                                               comm,
+      const std::vector<std::array<types::global_dof_index, dim>> &nodes,
+      unsigned int                                                &first)
+    {
+      const auto per_process = Utilities::MPI::all_gather(comm, nodes);
+      std::vector<std::array<types::global_dof_index, dim>> all;
+      first = 0;
+      for (unsigned int r = 0; r < per_process.size(); ++r)
+        {
+          if (r == Utilities::MPI::this_mpi_process(comm))
+            first = all.size();
+          all.insert(all.end(), per_process[r].begin(), per_process[r].end());
+        }
+      return all;
+    }
 
-    // Every process's nodes: each process sums what its own cells give to
-    // any of them (a cell whose hanging node hangs on a node need not be
-    // a ghost of the node's owner), then the sums are added up.
-    const MPI_Comm comm = discretization.comm;
-    const auto     per_process = Utilities::MPI::all_gather(comm, nodes);
-    std::vector<std::array<types::global_dof_index, dim>> all;
-    unsigned int first = 0;
-    for (unsigned int r = 0; r < per_process.size(); ++r)
-      {
-        if (r == Utilities::MPI::this_mpi_process(comm))
-          first = all.size();
-        all.insert(all.end(), per_process[r].begin(), per_process[r].end());
-      }
-    // Which node and component each DoF of the nodes is.
+
+    /** Which node and component each DoF of the @p nodes is. */
+    template <int dim>
     std::unordered_map<types::global_dof_index,
                        std::pair<unsigned int, unsigned int>>
-      node_of;
-    for (unsigned int p = 0; p < all.size(); ++p)
-      for (unsigned int a = 0; a < dim; ++a)
-        node_of[all[p][a]] = {p, a};
-    const auto &constraints = discretization.constraints;
-    // A local DoF resolved into the nodes' DoFs: (node, component,
-    // coefficient), as condensation resolves it.
-    struct Part
+    node_and_component_of(
+      const std::vector<std::array<types::global_dof_index, dim>> &nodes)
+    {
+      std::unordered_map<types::global_dof_index,
+                         std::pair<unsigned int, unsigned int>>
+        node_of;
+      for (unsigned int p = 0; p < nodes.size(); ++p)
+        for (unsigned int a = 0; a < dim; ++a)
+          node_of[nodes[p][a]] = {p, a};
+      return node_of;
+    }
+
+
+    /**
+     * A local DoF resolved into the nodes' DoFs: (node, component,
+     * coefficient), as condensation resolves it.
+     */
+    struct NodePart
     {
       unsigned int node, component;
       double       coefficient;
     };
-    const unsigned int n = discretization.fe.n_dofs_per_cell();
-    std::vector<std::vector<Part>>       parts(n);
-    std::vector<types::global_dof_index> cell_dofs(n);
-    const auto resolve = [&](const std::vector<types::global_dof_index> &dofs) {
-      bool any = false;
+
+
+    /**
+     * Resolve each of a cell's @p dofs into the nodes' DoFs (@p node_of),
+     * through @p constraints, into @p parts. Returns whether any of them
+     * touches a node.
+     */
+    bool
+    resolve_into_nodes(
+      const std::vector<types::global_dof_index> &dofs,
+      const AffineConstraints<double>            &constraints,
+      const std::unordered_map<types::global_dof_index,
+                               std::pair<unsigned int, unsigned int>> &node_of,
+      std::vector<std::vector<NodePart>>                              &parts)
+    {
+      const unsigned int n   = parts.size();
+      bool               any = false;
       for (unsigned int i = 0; i < n; ++i)
         {
           parts[i].clear();
@@ -367,8 +388,69 @@ namespace DynamicContact
           any = any || !parts[i].empty();
         }
       return any;
-    };
-    std::vector<double> sums(all.size() * dim * dim, 0.);
+    }
+
+
+    /**
+     * A constrained DoF's row and column are the stored K0's stand-in:
+     * only its diagonal, here the mean of the node's other diagonal entries.
+     */
+    template <int dim>
+    void
+    stand_in_for_constrained_dofs(
+      const std::vector<std::array<types::global_dof_index, dim>> &nodes,
+      const AffineConstraints<double>                             &constraints,
+      std::vector<Tensor<2, dim>>                                 &blocks)
+    {
+      for (unsigned int p = 0; p < nodes.size(); ++p)
+        {
+          double       sum  = 0;
+          unsigned int free = 0;
+          for (unsigned int a = 0; a < dim; ++a)
+            if (!constraints.is_constrained(nodes[p][a]))
+              {
+                sum += blocks[p][a][a];
+                ++free;
+              }
+          for (unsigned int a = 0; a < dim; ++a)
+            if (constraints.is_constrained(nodes[p][a]))
+              {
+                for (unsigned int b = 0; b < dim; ++b)
+                  blocks[p][a][b] = blocks[p][b][a] = 0;
+                blocks[p][a][a] = free > 0 ? sum / free : 1.;
+              }
+        }
+    }
+  } // namespace
+
+
+  template <int dim>
+  std::vector<Tensor<2, dim>>
+  BulkOperator<dim>::newton_blocks(
+    const std::vector<std::array<types::global_dof_index, dim>> &nodes) const
+  {
+    std::vector<Tensor<2, dim>> blocks(nodes.size());
+    if (newton_stored)
+      {
+        for (unsigned int p = 0; p < nodes.size(); ++p)
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = 0; b < dim; ++b)
+              blocks[p][a][b] = bulk_matrix.el(nodes[p][a], nodes[p][b]);
+        return blocks;
+      }
+
+    // Every process's nodes: each process sums what its own cells give to
+    // any of them (a cell whose hanging node hangs on a node need not be
+    // a ghost of the node's owner), then the sums are added up.
+    const MPI_Comm     comm    = discretization.comm;
+    unsigned int       first   = 0;
+    const auto         all     = all_processes_nodes<dim>(comm, nodes, first);
+    const auto         node_of = node_and_component_of<dim>(all);
+    const auto        &constraints = discretization.constraints;
+    const unsigned int n           = discretization.fe.n_dofs_per_cell();
+    std::vector<std::vector<NodePart>>   parts(n);
+    std::vector<types::global_dof_index> cell_dofs(n);
+    std::vector<double>                  sums(all.size() * dim * dim, 0.);
     for_each_cell_matrix(
       kernel,
       std::function<bool(
@@ -377,14 +459,14 @@ namespace DynamicContact
           if (!cell->is_locally_owned())
             return false;
           cell->get_dof_indices(cell_dofs);
-          return resolve(cell_dofs);
+          return resolve_into_nodes(cell_dofs, constraints, node_of, parts);
         }),
       [&](const FullMatrix<double> &local,
           const std::vector<types::global_dof_index> &) {
         for (unsigned int i = 0; i < n; ++i)
-          for (const Part &r : parts[i])
+          for (const NodePart &r : parts[i])
             for (unsigned int j = 0; j < n; ++j)
-              for (const Part &c : parts[j])
+              for (const NodePart &c : parts[j])
                 if (c.node == r.node)
                   sums[(r.node * dim + r.component) * dim + c.component] +=
                     r.coefficient * local(i, j) * c.coefficient;
@@ -394,26 +476,7 @@ namespace DynamicContact
       for (unsigned int a = 0; a < dim; ++a)
         for (unsigned int b = 0; b < dim; ++b)
           blocks[p][a][b] = sums[((first + p) * dim + a) * dim + b];
-    // A constrained DoF's row and column are the stored K0's stand-in:
-    // only its diagonal, here the mean of the node's other diagonal entries.
-    for (unsigned int p = 0; p < nodes.size(); ++p)
-      {
-        double       sum = 0;
-        unsigned int free = 0;
-        for (unsigned int a = 0; a < dim; ++a)
-          if (!constraints.is_constrained(nodes[p][a]))
-            {
-              sum += blocks[p][a][a];
-              ++free;
-            }
-        for (unsigned int a = 0; a < dim; ++a)
-          if (constraints.is_constrained(nodes[p][a]))
-            {
-              for (unsigned int b = 0; b < dim; ++b)
-                blocks[p][a][b] = blocks[p][b][a] = 0;
-              blocks[p][a][a] = free > 0 ? sum / free : 1.;
-            }
-      }
+    stand_in_for_constrained_dofs<dim>(nodes, constraints, blocks);
     return blocks;
   }
 

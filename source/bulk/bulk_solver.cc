@@ -32,6 +32,129 @@ namespace DynamicContact
   namespace
   {
     /**
+     * The lower triangle of the rows of @p A owned here, as MUMPS's
+     * distributed triplets: 1-based global row and column indices @p irn,
+     * @p jcn and the @p values.
+     */
+    void
+    owned_lower_triangle(const Epetra_CrsMatrix &A,
+                         std::vector<MUMPS_INT> &irn,
+                         std::vector<MUMPS_INT> &jcn,
+                         std::vector<double>    &values)
+    {
+      for (int i = 0; i < A.NumMyRows(); ++i)
+        {
+          int     n       = 0;
+          double *entries = nullptr;
+          int    *columns = nullptr;
+          A.ExtractMyRowView(i, n, entries, columns);
+          const auto row = TrilinosWrappers::global_row_index(A, i);
+          for (int k = 0; k < n; ++k)
+            {
+              const auto column =
+                TrilinosWrappers::global_column_index(A, columns[k]);
+              if (column <= row)
+                {
+                  irn.push_back(static_cast<MUMPS_INT>(row + 1));
+                  jcn.push_back(static_cast<MUMPS_INT>(column + 1));
+                  values.push_back(entries[k]);
+                }
+            }
+        }
+    }
+
+
+    /**
+     * The Schur complement of the matrix of order @p n given by the
+     * triplets @p irn, @p jcn, @p values at the 1-based rows @p schur_rows,
+     * into @p schur on process 0 (one triangle, column-major): a
+     * distributed MUMPS factorization whose factors are discarded. False
+     * if MUMPS fails.
+     */
+    bool
+    mumps_schur_complement(const int               n,
+                           std::vector<MUMPS_INT> &irn,
+                           std::vector<MUMPS_INT> &jcn,
+                           std::vector<double>    &values,
+                           std::vector<MUMPS_INT> &schur_rows,
+                           std::vector<double>    &schur,
+                           const MPI_Comm          comm)
+    {
+      const int      m = schur_rows.size();
+      DMUMPS_STRUC_C id{};
+      id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+      id.par          = 1; // process 0 works too
+      id.sym          = 1; // symmetric positive definite
+      id.job          = -1;
+      dmumps_c(&id);
+      id.icntl[0]  = -1; // no messages
+      id.icntl[1]  = -1;
+      id.icntl[2]  = -1;
+      id.icntl[3]  = 0;
+      id.icntl[17] = 3; // ICNTL(18): the matrix distributed as it is owned
+      id.icntl[18] = 1; // ICNTL(19): S centralized on process 0
+      id.icntl[30] = 1; // ICNTL(31): the factors are not kept
+      id.n             = n;
+      id.nnz_loc   = irn.size();
+      id.irn_loc   = irn.data();
+      id.jcn_loc   = jcn.data();
+      id.a_loc     = values.data();
+      id.size_schur    = m;
+      id.listvar_schur = schur_rows.data();
+      id.schur         = schur.data();
+      id.schur_lld     = m;
+      id.job           = 4; // analysis and factorization
+      dmumps_c(&id);
+      const bool ok = id.infog[0] >= 0;
+      id.job        = -2;
+      dmumps_c(&id);
+      return ok;
+    }
+
+
+    /**
+     * On process 0: the inverse of the symmetric positive definite
+     * @p schur of order @p m, of which MUMPS returned one triangle, into
+     * @p inverse (dense Cholesky; @p schur is overwritten by its factor).
+     * Returns LAPACK's info.
+     */
+    int
+    invert_schur_complement(std::vector<double> &schur,
+                            const int            m,
+                            std::vector<double> &inverse)
+    {
+      // For a symmetric matrix MUMPS returns one triangle.
+      const std::vector<double> raw         = schur;
+      types::blas_int           lapack_info = 0;
+      const types::blas_int     size        = m;
+      for (const bool from_upper : {true, false})
+        {
+          for (int j = 0; j < m; ++j)
+            for (int i = 0; i < m; ++i)
+              schur[i + j * std::size_t(m)] = (i <= j) == from_upper ?
+                                                raw[i + j * std::size_t(m)] :
+                                                raw[j + i * std::size_t(m)];
+          potrf("L", &size, schur.data(), &size, &lapack_info);
+          if (lapack_info == 0)
+            break;
+        }
+      inverse.assign(std::size_t(m) * m, 0.);
+      for (int j = 0; j < m; ++j)
+        inverse[j + j * std::size_t(m)] = 1;
+      if (lapack_info == 0)
+        potrs("L",
+              &size,
+              &size,
+              schur.data(),
+              &size,
+              inverse.data(),
+              &size,
+              &lapack_info);
+      return lapack_info;
+    }
+
+
+    /**
      * The inverse of the Schur complement S of the symmetric positive
      * definite @p A at the rows @p rows (global, distinct, the same list on
      * every process), column-major in @p inverse on every process: the block
@@ -52,92 +175,18 @@ namespace DynamicContact
       // The lower triangle of the owned rows, 1-based global indices.
       std::vector<MUMPS_INT> irn, jcn;
       std::vector<double>    values;
-      for (int i = 0; i < A.NumMyRows(); ++i)
-        {
-          int     n       = 0;
-          double *entries = nullptr;
-          int    *columns = nullptr;
-          A.ExtractMyRowView(i, n, entries, columns);
-          const auto row = TrilinosWrappers::global_row_index(A, i);
-          for (int k = 0; k < n; ++k)
-            {
-              const auto column =
-                TrilinosWrappers::global_column_index(A, columns[k]);
-              if (column <= row)
-                {
-                  irn.push_back(static_cast<MUMPS_INT>(row + 1));
-                  jcn.push_back(static_cast<MUMPS_INT>(column + 1));
-                  values.push_back(entries[k]);
-                }
-            }
-        }
+      owned_lower_triangle(A, irn, jcn, values);
       std::vector<MUMPS_INT> schur_rows(m);
       for (int r = 0; r < m; ++r)
         schur_rows[r] = static_cast<MUMPS_INT>(rows[r] + 1);
       std::vector<double> schur(rank == 0 ? std::size_t(m) * m : 0, 0.);
-
-      DMUMPS_STRUC_C id{};
-      id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
-      id.par          = 1; // process 0 works too
-      id.sym          = 1; // symmetric positive definite
-      id.job          = -1;
-      dmumps_c(&id);
-      id.icntl[0]  = -1; // no messages
-      id.icntl[1]  = -1;
-      id.icntl[2]  = -1;
-      id.icntl[3]  = 0;
-      id.icntl[17] = 3; // ICNTL(18): the matrix distributed as it is owned
-      id.icntl[18] = 1; // ICNTL(19): S centralized on process 0
-      id.icntl[30] = 1; // ICNTL(31): the factors are not kept
-      id.n         = A.NumGlobalRows();
-      id.nnz_loc   = irn.size();
-      id.irn_loc   = irn.data();
-      id.jcn_loc   = jcn.data();
-      id.a_loc     = values.data();
-      id.size_schur    = m;
-      id.listvar_schur = schur_rows.data();
-      id.schur         = schur.data();
-      id.schur_lld     = m;
-      id.job           = 4; // analysis and factorization
-      dmumps_c(&id);
-      const bool ok = id.infog[0] >= 0;
-      id.job        = -2;
-      dmumps_c(&id);
-      if (!ok)
+      if (!mumps_schur_complement(
+            A.NumGlobalRows(), irn, jcn, values, schur_rows, schur, comm))
         return false;
 
       int info = 0;
       if (rank == 0)
-        {
-          // For a symmetric matrix MUMPS returns one triangle.
-          const std::vector<double> raw = schur;
-          types::blas_int           lapack_info = 0;
-          const types::blas_int     size        = m;
-          for (const bool from_upper : {true, false})
-            {
-              for (int j = 0; j < m; ++j)
-                for (int i = 0; i < m; ++i)
-                  schur[i + j * std::size_t(m)] =
-                    (i <= j) == from_upper ? raw[i + j * std::size_t(m)] :
-                                             raw[j + i * std::size_t(m)];
-              potrf("L", &size, schur.data(), &size, &lapack_info);
-              if (lapack_info == 0)
-                break;
-            }
-          inverse.assign(std::size_t(m) * m, 0.);
-          for (int j = 0; j < m; ++j)
-            inverse[j + j * std::size_t(m)] = 1;
-          if (lapack_info == 0)
-            potrs("L",
-                  &size,
-                  &size,
-                  schur.data(),
-                  &size,
-                  inverse.data(),
-                  &size,
-                  &lapack_info);
-          info = lapack_info;
-        }
+        info = invert_schur_complement(schur, m, inverse);
       if (Utilities::MPI::max(std::abs(info), comm) != 0)
         return false;
       inverse.resize(std::size_t(m) * m);
@@ -145,155 +194,6 @@ namespace DynamicContact
       return true;
     }
   } // namespace
-
-
-  template <int dim>
-  std::vector<double>
-  rigid_body_modes(const Discretization<dim> &discretization,
-                   std::vector<double>       *coordinates)
-  {
-    return rigid_body_modes(discretization.mapping,
-                            discretization.dof_handler,
-                            coordinates);
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  rigid_body_modes(const Mapping<dim>     &mapping,
-                   const DoFHandler<dim> &dof_handler,
-                   std::vector<double>   *coordinates)
-  {
-    // From each owned DoF's component and support point (every owned DoF
-    // lies on an owned cell).
-    const IndexSet      owned   = dof_handler.locally_owned_dofs();
-    const unsigned int  n       = owned.n_elements();
-    const unsigned int  n_modes = (dim == 2 ? 3 : 6);
-    std::vector<double> modes(n_modes * n, 0.);
-    if (coordinates != nullptr)
-      coordinates->assign(n, 0.);
-    const auto                          &fe = dof_handler.get_fe();
-    FEValues<dim>                        fe_values(mapping,
-                            fe,
-                            Quadrature<dim>(fe.get_unit_support_points()),
-                            update_quadrature_points);
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (owned.is_element(dofs[i]))
-              {
-                const unsigned int r = owned.index_within_set(dofs[i]);
-                const unsigned int c = fe.system_to_component_index(i).first;
-                const Point<dim>  &x = fe_values.quadrature_point(i);
-                modes[c * n + r]     = 1;
-                if (coordinates != nullptr)
-                  (*coordinates)[r] = x[c];
-                if constexpr (dim == 2)
-                  modes[2 * n + r] = (c == 0 ? -x[1] : x[0]);
-                else
-                  {
-                    // Rotations about the x, y and z axes.
-                    modes[3 * n + r] = (c == 1 ? -x[2] : c == 2 ? x[1] : 0);
-                    modes[4 * n + r] = (c == 0 ? x[2] : c == 2 ? -x[0] : 0);
-                    modes[5 * n + r] = (c == 0 ? -x[1] : c == 1 ? x[0] : 0);
-                  }
-              }
-        }
-    return modes;
-  }
-
-
-  template <int dim>
-  void
-  BulkAMG::initialize(const Matrix_t            &matrix,
-                      const Discretization<dim> &discretization,
-                      const bool                 with_rotations,
-                      const bool                 smoothed)
-  {
-    initialize(matrix,
-               discretization.mapping,
-               discretization.dof_handler,
-               with_rotations,
-               smoothed);
-  }
-
-
-  template <int dim>
-  void
-  BulkAMG::initialize(const Matrix_t        &matrix,
-                      const Mapping<dim>    &mapping,
-                      const DoFHandler<dim> &dof_handler,
-                      const bool             with_rotations,
-                      const bool             smoothed)
-  {
-    modes = rigid_body_modes(mapping, dof_handler);
-    // The translations are the first dim columns.
-    const unsigned int n_modes = (with_rotations ? (dim == 2 ? 3 : 6) : dim);
-    const auto        &fe      = dof_handler.get_fe();
-
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    data.elliptic              = true;
-    data.higher_order_elements = fe.degree > 1;
-    data.smoother_sweeps       = 2;
-    data.aggregation_threshold = 0.;
-    Teuchos::ParameterList              list;
-    std::unique_ptr<Epetra_MultiVector> unused;
-    data.set_parameters(list, unused, matrix);
-    list.set("null space: type", "pre-computed");
-    list.set("null space: dimension", static_cast<int>(n_modes));
-    list.set("null space: vectors", modes.data());
-    // Plain aggregation: the tentative prolongator of the aggregates, not
-    // smoothed by a Jacobi step with the matrix (whose products with the
-    // matrix make smoothed aggregation's hierarchy large).
-    if (!smoothed)
-      list.set("aggregation: damping factor", 0.);
-    const HeapGrowth growth;
-    amg.initialize(matrix, list);
-    hierarchy_bytes = growth.measured();
-    return_free_memory();
-  }
-
-
-  template std::vector<double>
-  rigid_body_modes(const Mapping<2> &,
-                   const DoFHandler<2> &,
-                   std::vector<double> *);
-  template std::vector<double>
-  rigid_body_modes(const Mapping<3> &,
-                   const DoFHandler<3> &,
-                   std::vector<double> *);
-  template void
-  BulkAMG::initialize(const Matrix_t &,
-                      const Mapping<2> &,
-                      const DoFHandler<2> &,
-                      bool,
-                      bool);
-  template void
-  BulkAMG::initialize(const Matrix_t &,
-                      const Mapping<3> &,
-                      const DoFHandler<3> &,
-                      bool,
-                      bool);
-  template std::vector<double>
-  rigid_body_modes(const Discretization<2> &, std::vector<double> *);
-  template std::vector<double>
-  rigid_body_modes(const Discretization<3> &, std::vector<double> *);
-  template void
-  BulkAMG::initialize(const Matrix_t &,
-                      const Discretization<2> &,
-                      bool,
-                      bool);
-  template void
-  BulkAMG::initialize(const Matrix_t &,
-                      const Discretization<3> &,
-                      bool,
-                      bool);
-
-
 
 
   void
@@ -534,6 +434,94 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * BulkSolver::solve_columns() with CHOLMOD: the whole columns (every
+     * process solves all of them, @p block at a time), the global index of
+     * a row is its place. @p n: the matrix's order, @p n_owned: the rows
+     * owned here.
+     */
+    void
+    solve_columns_cholmod(
+      Cholesky                                                &cholesky,
+      const std::size_t                                        n,
+      const std::size_t                                        n_owned,
+      const std::vector<BulkSolver::SparseColumn>             &columns,
+      const std::vector<types::global_dof_index>              &rows,
+      std::vector<std::vector<double>>                        &values,
+      const std::function<void(unsigned int, const double *)> &store,
+      const unsigned int                                       block)
+    {
+      std::vector<double> B, X, owned(cholesky.replicated() ? n_owned : 0);
+      for (unsigned int first = 0; first < columns.size(); first += block)
+        {
+          const unsigned int m =
+            std::min<unsigned int>(block, columns.size() - first);
+          B.assign(n * m, 0.);
+          X.resize(n * m);
+          for (unsigned int c = 0; c < m; ++c)
+            for (const auto &[row, value] : columns[first + c])
+              B[c * n + row] = value;
+          cholesky.solve(B.data(), X.data(), m);
+          for (unsigned int c = 0; c < m; ++c)
+            {
+              const double *x = X.data() + c * n;
+              for (unsigned int i = 0; i < rows.size(); ++i)
+                values[first + c][i] = x[rows[i]];
+              if (store && cholesky.replicated())
+                {
+                  cholesky.owned_part(x, owned.data());
+                  store(first + c, owned.data());
+                }
+              else if (store)
+                store(first + c, x);
+            }
+        }
+    }
+
+
+    /**
+     * BulkSolver::solve_columns() with an Amesos solver @p direct of the
+     * @p problem: @p block columns at a time, in vectors of the domain
+     * @p map.
+     */
+    void
+    solve_columns_amesos(
+      Epetra_LinearProblem                                    &problem,
+      Amesos_BaseSolver                                       &direct,
+      const Epetra_Map                                        &map,
+      const std::vector<BulkSolver::SparseColumn>             &columns,
+      const std::vector<types::global_dof_index>              &rows,
+      std::vector<std::vector<double>>                        &values,
+      const std::function<void(unsigned int, const double *)> &store,
+      const unsigned int                                       block)
+    {
+      for (unsigned int first = 0; first < columns.size(); first += block)
+        {
+          const unsigned int n =
+            std::min<unsigned int>(block, columns.size() - first);
+          Epetra_MultiVector B(map, n), X(map, n);
+          for (unsigned int c = 0; c < n; ++c)
+            for (const auto &[row, value] : columns[first + c])
+              if (map.MyGID(static_cast<int>(row)))
+                B.ReplaceGlobalValue(static_cast<int>(row), c, value);
+          problem.SetLHS(&X);
+          problem.SetRHS(&B);
+          AssertThrow(direct.Solve() == 0,
+                      ExcMessage("A solve with the bulk matrix failed."));
+          for (unsigned int c = 0; c < n; ++c)
+            {
+              for (unsigned int i = 0; i < rows.size(); ++i)
+                values[first + c][i] = X[c][map.LID(static_cast<int>(rows[i]))];
+              if (store)
+                store(first + c, X[c]);
+            }
+        }
+    }
+  } // namespace
+
+
   void
   BulkSolver::solve_columns(
     const std::vector<SparseColumn>                         &columns,
@@ -548,62 +536,17 @@ namespace DynamicContact
       return;
     const Epetra_Map &map = matrix->trilinos_matrix().DomainMap();
     if (cholesky)
-      {
-        // The whole columns (every process solves all of them), the global
-        // index of a row is its place.
-        const std::size_t   n       = matrix->m();
-        const std::size_t   n_owned = map.NumMyElements();
-        std::vector<double> B, X, owned(cholesky->replicated() ? n_owned : 0);
-        for (unsigned int first = 0; first < columns.size(); first += block)
-          {
-            const unsigned int m =
-              std::min<unsigned int>(block, columns.size() - first);
-            B.assign(n * m, 0.);
-            X.resize(n * m);
-            for (unsigned int c = 0; c < m; ++c)
-              for (const auto &[row, value] : columns[first + c])
-                B[c * n + row] = value;
-            cholesky->solve(B.data(), X.data(), m);
-            for (unsigned int c = 0; c < m; ++c)
-              {
-                const double *x = X.data() + c * n;
-                for (unsigned int i = 0; i < rows.size(); ++i)
-                  values[first + c][i] = x[rows[i]];
-                if (store && cholesky->replicated())
-                  {
-                    cholesky->owned_part(x, owned.data());
-                    store(first + c, owned.data());
-                  }
-                else if (store)
-                  store(first + c, x);
-              }
-          }
-      }
+      solve_columns_cholmod(*cholesky,
+                            matrix->m(),
+                            map.NumMyElements(),
+                            columns,
+                            rows,
+                            values,
+                            store,
+                            block);
     else if (direct)
-      {
-        for (unsigned int first = 0; first < columns.size(); first += block)
-          {
-            const unsigned int n =
-              std::min<unsigned int>(block, columns.size() - first);
-            Epetra_MultiVector B(map, n), X(map, n);
-            for (unsigned int c = 0; c < n; ++c)
-              for (const auto &[row, value] : columns[first + c])
-                if (map.MyGID(static_cast<int>(row)))
-                  B.ReplaceGlobalValue(static_cast<int>(row), c, value);
-            problem->SetLHS(&X);
-            problem->SetRHS(&B);
-            AssertThrow(direct->Solve() == 0,
-                        ExcMessage("A solve with the bulk matrix failed."));
-            for (unsigned int c = 0; c < n; ++c)
-              {
-                for (unsigned int i = 0; i < rows.size(); ++i)
-                  values[first + c][i] =
-                    X[c][map.LID(static_cast<int>(rows[i]))];
-                if (store)
-                  store(first + c, X[c]);
-              }
-          }
-      }
+      solve_columns_amesos(
+        *problem, *direct, map, columns, rows, values, store, block);
     else
       {
         Vector_t rhs, x;

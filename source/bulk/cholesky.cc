@@ -31,6 +31,101 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * The upper triangle of the symmetric @p A, packed for the exchange:
+     * row r read as column r, its entries with index <= r; for each owned
+     * row the global row, the count, the columns and the values.
+     */
+    std::vector<double>
+    packed_owned_rows(const Epetra_CrsMatrix &A)
+    {
+      std::vector<double> packed;
+      packed.reserve(A.NumMyNonzeros() + 2 * A.NumMyRows());
+      std::vector<std::pair<SuiteSparse_long, double>> row;
+      for (int r = 0; r < A.NumMyRows(); ++r)
+        {
+          const SuiteSparse_long global_row = A.GRID(r);
+          int                    count;
+          double                *values;
+          int                   *indices;
+          A.ExtractMyRowView(r, count, values, indices);
+          row.clear();
+          for (int k = 0; k < count; ++k)
+            {
+              const SuiteSparse_long c = A.GCID(indices[k]);
+              if (c <= global_row)
+                row.emplace_back(c, values[k]);
+            }
+          std::sort(row.begin(), row.end());
+          packed.push_back(global_row);
+          packed.push_back(row.size());
+          for (const auto &entry : row)
+            packed.push_back(entry.first);
+          for (const auto &entry : row)
+            packed.push_back(entry.second);
+        }
+      return packed;
+    }
+
+
+    /**
+     * Unpack every process's packed rows (@p parts): where each row's data
+     * begins (@p row_data, by global row), the global rows in the order
+     * received (@p gathered_rows) and how many each process sent
+     * (@p counts, @p displacements).
+     */
+    void
+    unpack_gathered_rows(const std::vector<std::vector<double>> &parts,
+                         std::vector<const double *>            &row_data,
+                         std::vector<SuiteSparse_long>          &gathered_rows,
+                         std::vector<int>                       &counts,
+                         std::vector<int>                       &displacements)
+    {
+      for (unsigned int p = 0; p < parts.size(); ++p)
+        {
+          displacements[p] = gathered_rows.size();
+          for (std::size_t k = 0; k < parts[p].size();
+               k += 2 + 2 * static_cast<std::size_t>(parts[p][k + 1]))
+            {
+              gathered_rows.push_back(parts[p][k]);
+              row_data[gathered_rows.back()] = &parts[p][k];
+            }
+          counts[p] = gathered_rows.size() - displacements[p];
+        }
+    }
+
+
+    /**
+     * The compressed columns of the upper triangle from the unpacked rows
+     * @p row_data of the @p n rows: column starts @p start, row indices
+     * @p index and @p value (reserving @p capacity entries).
+     */
+    void
+    upper_triangle_columns(const std::vector<const double *> &row_data,
+                           const SuiteSparse_long             n,
+                           const std::size_t                  capacity,
+                           std::vector<SuiteSparse_long>     &start,
+                           std::vector<SuiteSparse_long>     &index,
+                           std::vector<double>               &value)
+    {
+      index.reserve(capacity);
+      value.reserve(capacity);
+      for (SuiteSparse_long r = 0; r < n; ++r)
+        {
+          const std::size_t count = row_data[r][1];
+          for (std::size_t k = 0; k < count; ++k)
+            {
+              index.push_back(row_data[r][2 + k]);
+              value.push_back(row_data[r][2 + count + k]);
+            }
+          start.push_back(index.size());
+        }
+    }
+  } // namespace
+
+
   void
   Cholesky::factorize(const Epetra_CrsMatrix              &A,
                       const std::vector<SuiteSparse_long> &trailing)
@@ -39,65 +134,20 @@ namespace DynamicContact
     // matrix read as column r, its entries with index <= r; each process
     // packs its rows (global row, count, columns, values), every process
     // gets every row.
-    std::vector<double> packed;
-    packed.reserve(A.NumMyNonzeros() + 2 * A.NumMyRows());
-    std::vector<std::pair<SuiteSparse_long, double>> row;
-    for (int r = 0; r < A.NumMyRows(); ++r)
-      {
-        const SuiteSparse_long global_row = A.GRID(r);
-        int                    count;
-        double                *values;
-        int                   *indices;
-        A.ExtractMyRowView(r, count, values, indices);
-        row.clear();
-        for (int k = 0; k < count; ++k)
-          {
-            const SuiteSparse_long c = A.GCID(indices[k]);
-            if (c <= global_row)
-              row.emplace_back(c, values[k]);
-          }
-        std::sort(row.begin(), row.end());
-        packed.push_back(global_row);
-        packed.push_back(row.size());
-        for (const auto &entry : row)
-          packed.push_back(entry.first);
-        for (const auto &entry : row)
-          packed.push_back(entry.second);
-      }
-    const SuiteSparse_long n = A.NumGlobalRows();
+    const std::vector<double>   packed = packed_owned_rows(A);
+    const SuiteSparse_long      n      = A.NumGlobalRows();
     std::vector<const double *> row_data(n, nullptr);
     const auto                  parts = all_gather_values(comm, packed);
     gathered_rows.clear();
     counts.assign(n_processes, 0);
     displacements.assign(n_processes, 0);
-    for (unsigned int p = 0; p < parts.size(); ++p)
-      {
-        displacements[p] = gathered_rows.size();
-        for (std::size_t k = 0; k < parts[p].size();
-             k += 2 + 2 * static_cast<std::size_t>(parts[p][k + 1]))
-          {
-            gathered_rows.push_back(parts[p][k]);
-            row_data[gathered_rows.back()] = &parts[p][k];
-          }
-        counts[p] = gathered_rows.size() - displacements[p];
-      }
+    unpack_gathered_rows(parts, row_data, gathered_rows, counts, displacements);
     in_order = true;
     for (SuiteSparse_long k = 0; k < n; ++k)
       in_order = in_order && gathered_rows[k] == k;
     std::vector<SuiteSparse_long> start(1, 0), index;
     std::vector<double>           value;
-    index.reserve(packed.size());
-    value.reserve(packed.size());
-    for (SuiteSparse_long r = 0; r < n; ++r)
-      {
-        const std::size_t count = row_data[r][1];
-        for (std::size_t k = 0; k < count; ++k)
-          {
-            index.push_back(row_data[r][2 + k]);
-            value.push_back(row_data[r][2 + count + k]);
-          }
-        start.push_back(index.size());
-      }
+    upper_triangle_columns(row_data, n, packed.size(), start, index, value);
     const bool same_pattern = factor != nullptr && start == pattern_start &&
                               index == pattern_index &&
                               trailing == trailing_rows;
@@ -263,13 +313,103 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * Two orders of the @p S with the @p trailing_rows last, in the order
+     * given: the fill-reducing order @p fill_order of the analysis with
+     * these rows moved to the end, and a constrained minimum degree order
+     * (CAMD, the trailing rows as the set ordered last) where CAMD succeeds.
+     */
+    std::vector<std::vector<SuiteSparse_long>>
+    orders_with_trailing_last(
+      cholmod_sparse                      &S,
+      const SuiteSparse_long              *fill_order,
+      const std::vector<SuiteSparse_long> &trailing_rows,
+      cholmod_common                      &common)
+    {
+      const SuiteSparse_long n = S.nrow;
+      std::vector<char>      trailing(n, 0);
+      for (const SuiteSparse_long r : trailing_rows)
+        trailing[r] = 1;
+      const auto with_trailing_last = [&](const SuiteSparse_long *base) {
+        std::vector<SuiteSparse_long> order;
+        order.reserve(n);
+        for (SuiteSparse_long k = 0; k < n; ++k)
+          if (!trailing[base[k]])
+            order.push_back(base[k]);
+        order.insert(order.end(), trailing_rows.begin(), trailing_rows.end());
+        return order;
+      };
+      std::vector<std::vector<SuiteSparse_long>> orders;
+      orders.push_back(with_trailing_last(fill_order));
+      {
+        std::vector<SuiteSparse_long> member(trailing.begin(), trailing.end()),
+          camd_order(n);
+        if (cholmod_l_camd(
+              &S, nullptr, 0, member.data(), camd_order.data(), &common))
+          orders.push_back(with_trailing_last(camd_order.data()));
+      }
+      return orders;
+    }
+
+
+    /**
+     * The analysis of @p S in each of the given @p orders (supernodal, not
+     * postordered); the one with the fewest factor entries is returned,
+     * with its entries in common.lnz. The other settings of @p common are
+     * restored.
+     */
+    cholmod_factor *
+    smallest_given_order_analysis(
+      cholmod_sparse                             &S,
+      std::vector<std::vector<SuiteSparse_long>> &orders,
+      cholmod_common                             &common)
+    {
+      const int nmethods            = common.nmethods;
+      const int ordering            = common.method[0].ordering;
+      const int postorder           = common.postorder;
+      const int supernodal          = common.supernodal;
+      common.nmethods               = 1;
+      common.method[0].ordering     = CHOLMOD_GIVEN;
+      common.postorder              = false;
+      common.supernodal             = CHOLMOD_SUPERNODAL;
+      cholmod_factor *with_trailing = nullptr;
+      double          entries       = 0;
+      for (auto &order : orders)
+        {
+          cholmod_factor *candidate =
+            cholmod_l_analyze_p(&S, order.data(), nullptr, 0, &common);
+          AssertThrow(candidate != nullptr && common.status == CHOLMOD_OK &&
+                        std::equal(order.begin(),
+                                   order.end(),
+                                   static_cast<SuiteSparse_long *>(
+                                     candidate->Perm)),
+                      ExcMessage("The analysis of the bulk matrix for its "
+                                 "factorization (CHOLMOD) failed."));
+          if (with_trailing == nullptr || common.lnz < entries)
+            {
+              if (with_trailing != nullptr)
+                cholmod_l_free_factor(&with_trailing, &common);
+              with_trailing = candidate;
+              entries       = common.lnz;
+            }
+          else
+            cholmod_l_free_factor(&candidate, &common);
+        }
+      common.lnz                = entries;
+      common.nmethods           = nmethods;
+      common.method[0].ordering = ordering;
+      common.postorder          = postorder;
+      common.supernodal         = supernodal;
+      return with_trailing;
+    }
+  } // namespace
+
+
   void
   Cholesky::analyze_with_trailing_rows(cholmod_sparse &S)
   {
-    const SuiteSparse_long n = S.nrow;
-    std::vector<char>      trailing(n, 0);
-    for (const SuiteSparse_long r : trailing_rows)
-      trailing[r] = 1;
     const double fill_entries = common.lnz;
     // Two orders with the trailing rows last, in the order given: the
     // fill-reducing order of the analysis with these rows moved to the
@@ -277,63 +417,10 @@ namespace DynamicContact
     // rows as the set ordered last), which is often much better where
     // the moved rows would leave a large separator behind; the one with
     // the smaller factor is kept.
-    const auto with_trailing_last = [&](const SuiteSparse_long *base) {
-      std::vector<SuiteSparse_long> order;
-      order.reserve(n);
-      for (SuiteSparse_long k = 0; k < n; ++k)
-        if (!trailing[base[k]])
-          order.push_back(base[k]);
-      order.insert(order.end(), trailing_rows.begin(), trailing_rows.end());
-      return order;
-    };
-    std::vector<std::vector<SuiteSparse_long>> orders;
-    orders.push_back(
-      with_trailing_last(static_cast<SuiteSparse_long *>(factor->Perm)));
-    {
-      std::vector<SuiteSparse_long> member(trailing.begin(),
-                                           trailing.end()),
-        camd_order(n);
-      if (cholmod_l_camd(
-            &S, nullptr, 0, member.data(), camd_order.data(), &common))
-        orders.push_back(with_trailing_last(camd_order.data()));
-    }
-
-    const int nmethods        = common.nmethods;
-    const int ordering        = common.method[0].ordering;
-    const int postorder       = common.postorder;
-    const int supernodal      = common.supernodal;
-    common.nmethods           = 1;
-    common.method[0].ordering = CHOLMOD_GIVEN;
-    common.postorder          = false;
-    common.supernodal         = CHOLMOD_SUPERNODAL;
-    cholmod_factor *with_trailing = nullptr;
-    double          entries       = 0;
-    for (auto &order : orders)
-      {
-        cholmod_factor *candidate =
-          cholmod_l_analyze_p(&S, order.data(), nullptr, 0, &common);
-        AssertThrow(candidate != nullptr && common.status == CHOLMOD_OK &&
-                      std::equal(order.begin(),
-                                 order.end(),
-                                 static_cast<SuiteSparse_long *>(
-                                   candidate->Perm)),
-                    ExcMessage("The analysis of the bulk matrix for its "
-                               "factorization (CHOLMOD) failed."));
-        if (with_trailing == nullptr || common.lnz < entries)
-          {
-            if (with_trailing != nullptr)
-              cholmod_l_free_factor(&with_trailing, &common);
-            with_trailing = candidate;
-            entries       = common.lnz;
-          }
-        else
-          cholmod_l_free_factor(&candidate, &common);
-      }
-    common.lnz                = entries;
-    common.nmethods           = nmethods;
-    common.method[0].ordering = ordering;
-    common.postorder          = postorder;
-    common.supernodal         = supernodal;
+    auto orders = orders_with_trailing_last(
+      S, static_cast<SuiteSparse_long *>(factor->Perm), trailing_rows, common);
+    cholmod_factor *with_trailing =
+      smallest_given_order_analysis(S, orders, common);
     // The dense trailing block makes every solve dearer: taken while it
     // at most doubles the factor. Below that (the paper's scene, the 3D
     // rail 80 x 8 x 8) a solve costs a little more and the compliance

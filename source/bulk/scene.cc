@@ -118,41 +118,64 @@ namespace DynamicContact
   }
 
 
-  template <int dim>
-  std::string
-  Scene<dim>::non_finite_value(const Triangulation<dim>  &tria,
-                               const std::vector<double> &times,
-                               const bool                 initial) const
+  namespace
   {
-    std::set<unsigned int>  body_seen, traction_seen, contact_seen;
-    std::vector<Point<dim>> body, on_traction, on_contact;
-    for (const auto &cell : tria.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          for (const unsigned int v : cell->vertex_indices())
-            if (body_seen.insert(cell->vertex_index(v)).second)
-              body.push_back(cell->vertex(v));
-          for (const auto &face : cell->face_iterators())
-            if (face->at_boundary())
-              {
-                const bool traction = traction_ids.count(face->boundary_id());
-                const bool contact  = contact_ids.count(face->boundary_id());
-                for (const unsigned int v : face->vertex_indices())
-                  {
-                    if (traction &&
-                        traction_seen.insert(face->vertex_index(v)).second)
-                      on_traction.push_back(face->vertex(v));
-                    if (contact &&
-                        contact_seen.insert(face->vertex_index(v)).second)
-                      on_contact.push_back(face->vertex(v));
-                  }
-              }
-        }
+    /**
+     * The vertices of the locally owned cells of @p tria, each once: all of
+     * them (@p body), those on the traction boundaries (@p on_traction) and
+     * those on the contact boundaries (@p on_contact).
+     */
+    template <int dim>
+    void
+    owned_vertices(const Triangulation<dim>           &tria,
+                   const std::set<types::boundary_id> &traction_ids,
+                   const std::set<types::boundary_id> &contact_ids,
+                   std::vector<Point<dim>>            &body,
+                   std::vector<Point<dim>>            &on_traction,
+                   std::vector<Point<dim>>            &on_contact)
+    {
+      std::set<unsigned int> body_seen, traction_seen, contact_seen;
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            for (const unsigned int v : cell->vertex_indices())
+              if (body_seen.insert(cell->vertex_index(v)).second)
+                body.push_back(cell->vertex(v));
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary())
+                {
+                  const bool traction = traction_ids.count(face->boundary_id());
+                  const bool contact  = contact_ids.count(face->boundary_id());
+                  for (const unsigned int v : face->vertex_indices())
+                    {
+                      if (traction &&
+                          traction_seen.insert(face->vertex_index(v)).second)
+                        on_traction.push_back(face->vertex(v));
+                      if (contact &&
+                          contact_seen.insert(face->vertex_index(v)).second)
+                        on_contact.push_back(face->vertex(v));
+                    }
+                }
+          }
+    }
 
-    const auto check = [&](Function<dim>                 &f,
-                           const std::vector<Point<dim>> &points,
-                           const std::vector<double>     &at,
-                           const bool                     time_dependent) {
+
+    /**
+     * The message for the first value of @p f at the @p points and the
+     * times @p at that is not finite (naming @p f by its entry in
+     * @p expressions, and the time if @p time_dependent), or an empty
+     * string. Leaves @p f at time 0.
+     */
+    template <int dim>
+    std::string
+    first_non_finite_value(
+      Function<dim>                 &f,
+      const std::vector<Point<dim>> &points,
+      const std::vector<double>     &at,
+      const bool                     time_dependent,
+      const std::map<const Function<dim> *, std::pair<std::string, std::string>>
+        &expressions)
+    {
       Vector<double> values(f.n_components);
       for (const double t : at)
         {
@@ -187,7 +210,19 @@ namespace DynamicContact
         }
       f.set_time(0);
       return std::string();
-    };
+    }
+  } // namespace
+
+
+  template <int dim>
+  std::string
+  Scene<dim>::non_finite_value(const Triangulation<dim>  &tria,
+                               const std::vector<double> &times,
+                               const bool                 initial) const
+  {
+    std::vector<Point<dim>> body, on_traction, on_contact;
+    owned_vertices(
+      tria, traction_ids, contact_ids, body, on_traction, on_contact);
 
     std::string               problem;
     const std::vector<double> zero = {0.};
@@ -196,7 +231,8 @@ namespace DynamicContact
                          const std::vector<double>     &at,
                          const bool                     time_dependent) {
       if (problem.empty())
-        problem = check(f, points, at, time_dependent);
+        problem =
+          first_non_finite_value(f, points, at, time_dependent, expressions);
     };
     run(*traction_function, on_traction, times, true);
     run(*contact_source_function, on_contact, times, true);

@@ -91,6 +91,74 @@ namespace DynamicContact
   }
 
 
+  namespace
+  {
+    /**
+     * The part of d g / d w that comes from mu = mu(|w_tau|) of the
+     * iterate: mu'(s) m (p + q) theta w_tau/s (t at s = 0), its slope
+     * capped at -@p weakening_limit (then r.limited is set).
+     */
+    template <int dim>
+    Tensor<1, dim>
+    weakening_gradient(const ContactNode<dim> &node,
+                       const NormalResponse   &normal,
+                       const Tensor<1, dim>   &lambda_tau,
+                       const Tensor<1, dim>   &w_tau,
+                       const double            c_node,
+                       const double            effective_derivative,
+                       const double            dmu_ds,
+                       const double            weakening_limit,
+                       FrictionResponse<dim>  &r)
+    {
+      // d|w_tau|/dw_tau = w_tau/|w_tau|; where the slip velocity does
+      // not matter in z (round-off at the onset of slip, as for the
+      // reversal rule above) the slip force's direction t stands for it.
+      const double slip = w_tau.norm();
+      const bool   slipping =
+        c_node * slip > 1e-6 * std::max(r.threshold, lambda_tau.norm());
+      double slope =
+        dmu_ds * node.weight * normal.pressure * effective_derivative;
+      if (-slope > weakening_limit)
+        {
+          slope     = -weakening_limit;
+          r.limited = true;
+        }
+      return slope * (slipping ? w_tau / slip : r.direction);
+    }
+
+
+    /**
+     * In 3D, the change of the slip direction t = z/|z| (@p norm = |z|)
+     * with lambda and w_tau, added to the slip response @p r.
+     */
+    template <int dim>
+    void
+    add_direction_change(const ContactNode<dim> &node,
+                         const Tensor<1, dim>   &lambda_tau,
+                         const double            norm,
+                         const double            c_node,
+                         const double            effective_derivative,
+                         FrictionResponse<dim>  &r)
+    {
+      // The direction t = z/|z| changes with lambda and w_tau. Solving
+      // the linearized slip condition for the new lambda gives, with
+      // alpha = g/|z| < 1 and P the projection in the tangent plane
+      // orthogonal to t:
+      //   lambda' = t (g + dg.dw) + beta P dw_tau - alpha/(1-alpha) P lambda,
+      //   beta = alpha c m_i/(1-alpha).
+      const double   alpha = r.threshold / norm;
+      const double   beta = effective_derivative * alpha * c_node / (1 - alpha);
+      Tensor<2, dim> P    = unit_symmetric_tensor<dim>();
+      P -= outer_product(node.normal, node.normal);
+      P -= outer_product(r.direction, r.direction);
+      r.value -= (alpha / (1 - alpha)) * (P * lambda_tau);
+      Tensor<2, dim> tangential_projection = unit_symmetric_tensor<dim>();
+      tangential_projection -= outer_product(node.normal, node.normal);
+      r.jacobian += beta * P * tangential_projection;
+    }
+  } // namespace
+
+
   template <int dim>
   FrictionResponse<dim>
   friction_response(const ContactNode<dim> &node,
@@ -138,42 +206,20 @@ namespace DynamicContact
     // iterate also mu'(s) m (p + q) theta w_tau/s (t at s = 0).
     Tensor<1, dim> dg = (mu * node.weight * normal.dpressure_dw) * node.normal;
     if (dmu_ds != 0)
-      {
-        // d|w_tau|/dw_tau = w_tau/|w_tau|; where the slip velocity does
-        // not matter in z (round-off at the onset of slip, as for the
-        // reversal rule above) the slip force's direction t stands for it.
-        const double slip     = w_tau.norm();
-        const bool   slipping = c_node * slip >
-                              1e-6 * std::max(r.threshold, lambda_tau.norm());
-        double slope =
-          dmu_ds * node.weight * normal.pressure * effective_derivative;
-        if (-slope > weakening_limit)
-          {
-            slope     = -weakening_limit;
-            r.limited = true;
-          }
-        dg += slope * (slipping ? w_tau / slip : r.direction);
-      }
+      dg += weakening_gradient(node,
+                               normal,
+                               lambda_tau,
+                               w_tau,
+                               c_node,
+                               effective_derivative,
+                               dmu_ds,
+                               weakening_limit,
+                               r);
     r.value    = r.threshold * r.direction;
     r.jacobian = outer_product(r.direction, dg);
     if (dim == 3)
-      {
-        // The direction t = z/|z| changes with lambda and w_tau. Solving
-        // the linearized slip condition for the new lambda gives, with
-        // alpha = g/|z| < 1 and P the projection in the tangent plane
-        // orthogonal to t:
-        //   lambda' = t (g + dg.dw) + beta P dw_tau - alpha/(1-alpha) P lambda,
-        //   beta = alpha c m_i/(1-alpha).
-        const double alpha = r.threshold / norm;
-        const double beta = effective_derivative * alpha * c_node / (1 - alpha);
-        Tensor<2, dim> P  = unit_symmetric_tensor<dim>();
-        P -= outer_product(node.normal, node.normal);
-        P -= outer_product(r.direction, r.direction);
-        r.value -= (alpha / (1 - alpha)) * (P * lambda_tau);
-        Tensor<2, dim> tangential_projection = unit_symmetric_tensor<dim>();
-        tangential_projection -= outer_product(node.normal, node.normal);
-        r.jacobian += beta * P * tangential_projection;
-      }
+      add_direction_change(
+        node, lambda_tau, norm, c_node, effective_derivative, r);
     return r;
   }
 

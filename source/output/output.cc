@@ -98,59 +98,71 @@ namespace DynamicContact
 
 
   // ----------------------------------------------------------- contact csv
-  template <int dim>
-  void
-  write_contact_csv(OutputDirectory                          &directory,
-                    const std::string                        &name,
-                    const double                              time,
-                    const ContactBoundary<dim>               &boundary,
-                    const std::vector<ContactNodeState<dim>> &states,
-                    const Vector_t                           &u,
-                    const Vector_t                           &w,
-                    const bool                                friction,
-                    const MPI_Comm                            comm)
+  namespace
   {
-    // One row of doubles per node, all of one width (the state last, as a
-    // number), gathered to rank 0 as one flat list per process.
-    const unsigned int width =
-      2 * dim + 3 + (friction ? 2 * (dim - 1) + 2 : 0);
-    const auto         &nodes = boundary.nodes();
-    std::vector<double> rows;
-    rows.reserve(nodes.size() * width);
-    for (unsigned int i = 0; i < nodes.size(); ++i)
-      {
-        const auto &node = nodes[i];
-        const auto &s    = states[i];
-        for (unsigned int d = 0; d < dim; ++d)
-          rows.push_back(node.position[d]);
-        rows.push_back(s.normal.u_nu);
-        rows.push_back(s.normal.w_nu);
-        rows.push_back(s.normal.pressure);
-        if (friction)
-          {
-            const Tensor<1, dim> w_tau = node.tangential(node.value(w));
-            for (unsigned int j = 0; j < dim - 1; ++j)
-              rows.push_back(w_tau * node.tangents[j]);
-            // The traction the foundation exerts against the slip:
-            // -lambda_i / m_i, in the tangent basis.
-            for (unsigned int j = 0; j < dim - 1; ++j)
-              rows.push_back(-(s.friction_force * node.tangents[j]) /
-                             node.weight);
-            rows.push_back(s.mu);
-          }
-        const Tensor<1, dim> displacement = node.value(u);
-        for (unsigned int d = 0; d < dim; ++d)
-          rows.push_back(displacement[d]);
-        if (friction)
-          rows.push_back(static_cast<double>(s.state)); // last: printed as text
-        Assert(rows.size() == (i + 1) * width, ExcInternalError());
-      }
+    /**
+     * One row of doubles per node of @p boundary, all of one @p width (the
+     * state last, as a number), as one flat list: position, u_nu, w_nu,
+     * pressure, with @p friction the tangential slip velocity and traction
+     * and mu, then the displacement (and the state).
+     */
+    template <int dim>
+    std::vector<double>
+    contact_rows(const ContactBoundary<dim>               &boundary,
+                 const std::vector<ContactNodeState<dim>> &states,
+                 const Vector_t                           &u,
+                 const Vector_t                           &w,
+                 const bool                                friction,
+                 const unsigned int                        width)
+    {
+      const auto         &nodes = boundary.nodes();
+      std::vector<double> rows;
+      rows.reserve(nodes.size() * width);
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          const auto &node = nodes[i];
+          const auto &s    = states[i];
+          for (unsigned int d = 0; d < dim; ++d)
+            rows.push_back(node.position[d]);
+          rows.push_back(s.normal.u_nu);
+          rows.push_back(s.normal.w_nu);
+          rows.push_back(s.normal.pressure);
+          if (friction)
+            {
+              const Tensor<1, dim> w_tau = node.tangential(node.value(w));
+              for (unsigned int j = 0; j < dim - 1; ++j)
+                rows.push_back(w_tau * node.tangents[j]);
+              // The traction the foundation exerts against the slip:
+              // -lambda_i / m_i, in the tangent basis.
+              for (unsigned int j = 0; j < dim - 1; ++j)
+                rows.push_back(-(s.friction_force * node.tangents[j]) /
+                               node.weight);
+              rows.push_back(s.mu);
+            }
+          const Tensor<1, dim> displacement = node.value(u);
+          for (unsigned int d = 0; d < dim; ++d)
+            rows.push_back(displacement[d]);
+          if (friction)
+            rows.push_back(
+              static_cast<double>(s.state)); // last: printed as text
+          Assert(rows.size() == (i + 1) * width, ExcInternalError());
+        }
+      return rows;
+    }
 
-    const auto gathered = gather_values(comm, rows, 0);
-    collectively(comm, [&]() {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
 
+    /**
+     * The text of the contact csv file at @p time: the header and every
+     * process's rows (@p gathered, each @p width long), sorted by
+     * position.
+     */
+    template <int dim>
+    std::string
+    contact_csv_text(const std::vector<std::vector<double>> &gathered,
+                     const unsigned int                      width,
+                     const double                            time,
+                     const bool                              friction)
+    {
       std::vector<std::vector<double>> all;
       for (const auto &part : gathered)
         for (std::size_t pos = 0; pos < part.size(); pos += width)
@@ -188,6 +200,36 @@ namespace DynamicContact
                                    static_cast<unsigned char>(row.back())));
           out += '\n';
         }
+      return out;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  write_contact_csv(OutputDirectory                          &directory,
+                    const std::string                        &name,
+                    const double                              time,
+                    const ContactBoundary<dim>               &boundary,
+                    const std::vector<ContactNodeState<dim>> &states,
+                    const Vector_t                           &u,
+                    const Vector_t                           &w,
+                    const bool                                friction,
+                    const MPI_Comm                            comm)
+  {
+    // One row of doubles per node, all of one width (the state last, as a
+    // number), gathered to rank 0 as one flat list per process.
+    const unsigned int width = 2 * dim + 3 + (friction ? 2 * (dim - 1) + 2 : 0);
+    const std::vector<double> rows =
+      contact_rows(boundary, states, u, w, friction, width);
+
+    const auto gathered = gather_values(comm, rows, 0);
+    collectively(comm, [&]() {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+
+      const std::string out =
+        contact_csv_text<dim>(gathered, width, time, friction);
       directory.claim(name);
       write_file(directory.file(name), out);
     });

@@ -455,6 +455,78 @@ namespace DynamicContact
 
 
     /**
+     * The nodal fields of the volume (solution files): displacement,
+     * velocity, the contact fields, and with @p friction the friction
+     * coefficient and slip rate.
+     */
+    template <int dim>
+    void
+    add_volume_nodal_fields(
+      FieldsOut<dim>                                            &data_out,
+      const Discretization<dim>                                 &d,
+      const Vector_t                                            &u_ghosted,
+      const Vector_t                                            &w_ghosted,
+      const std::array<Vector_t, n_vectorial>                   &vectorial,
+      const std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar,
+      const bool                                                 friction)
+    {
+      add_vector_field(data_out, d.dof_handler, u_ghosted, "displacement");
+      add_vector_field(data_out, d.dof_handler, w_ghosted, "velocity");
+      add_vector_field(data_out,
+                       d.dof_handler,
+                       vectorial[v_traction],
+                       "contact_traction");
+      data_out.add_data_vector(d.scalar_dof_handler,
+                               scalar[s_pressure],
+                               "contact_pressure");
+      data_out.add_data_vector(d.scalar_dof_handler,
+                               scalar[s_state],
+                               "contact_state");
+      if (friction)
+        {
+          data_out.add_data_vector(d.scalar_dof_handler,
+                                   scalar[s_mu],
+                                   "friction_coefficient");
+          data_out.add_data_vector(d.scalar_dof_handler,
+                                   scalar[s_slip_rate],
+                                   "slip_rate");
+        }
+    }
+
+
+    /**
+     * The stress fields of the volume: the cellwise stress tensor, the von
+     * Mises stress, in 2D the out-of-plane stress_zz, and the subdomain.
+     */
+    template <int dim>
+    void
+    add_stress_fields(FieldsOut<dim>                      &data_out,
+                      const DoFHandler<dim>               &stress_dofs,
+                      const TrilinosWrappers::MPI::Vector &stress,
+                      const Vector<float>                 &von_mises,
+                      const Vector<float>                 &stress_zz,
+                      const Vector<float>                 &subdomain)
+    {
+      data_out.add_data_vector(
+        stress_dofs,
+        stress,
+        std::vector<std::string>(dim * dim, "stress"),
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+          dim * dim, DataComponentInterpretation::component_is_part_of_tensor));
+      data_out.add_data_vector(von_mises,
+                               "von_mises_stress",
+                               DataOut<dim>::type_cell_data);
+      if (dim == 2)
+        data_out.add_data_vector(stress_zz,
+                                 "stress_zz",
+                                 DataOut<dim>::type_cell_data);
+      data_out.add_data_vector(subdomain,
+                               "subdomain",
+                               DataOut<dim>::type_cell_data);
+    }
+
+
+    /**
      * Collective: the pieces of each process and the records of rank 0 (the
      * names of DataOut::write_vtu_with_pvtu_record) of the volume and the
      * surface output of @p step, each write checked; returns the name of
@@ -559,43 +631,10 @@ namespace DynamicContact
     FieldsOut<dim> data_out;
     data_out.set_flags(flags);
     data_out.attach_triangulation(d.triangulation);
-    add_vector_field(data_out, d.dof_handler, u_ghosted, "displacement");
-    add_vector_field(data_out, d.dof_handler, w_ghosted, "velocity");
-    add_vector_field(data_out,
-                     d.dof_handler,
-                     vectorial[v_traction],
-                     "contact_traction");
-    data_out.add_data_vector(d.scalar_dof_handler,
-                             scalar[s_pressure],
-                             "contact_pressure");
-    data_out.add_data_vector(d.scalar_dof_handler,
-                             scalar[s_state],
-                             "contact_state");
-    if (friction)
-      {
-        data_out.add_data_vector(d.scalar_dof_handler,
-                                 scalar[s_mu],
-                                 "friction_coefficient");
-        data_out.add_data_vector(d.scalar_dof_handler,
-                                 scalar[s_slip_rate],
-                                 "slip_rate");
-      }
-    data_out.add_data_vector(
-      stress_dofs,
-      stress,
-      std::vector<std::string>(dim * dim, "stress"),
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        dim * dim, DataComponentInterpretation::component_is_part_of_tensor));
-    data_out.add_data_vector(von_mises,
-                             "von_mises_stress",
-                             DataOut<dim>::type_cell_data);
-    if (dim == 2)
-      data_out.add_data_vector(stress_zz,
-                               "stress_zz",
-                               DataOut<dim>::type_cell_data);
-    data_out.add_data_vector(subdomain,
-                             "subdomain",
-                             DataOut<dim>::type_cell_data);
+    add_volume_nodal_fields(
+      data_out, d, u_ghosted, w_ghosted, vectorial, scalar, friction);
+    add_stress_fields(
+      data_out, stress_dofs, stress, von_mises, stress_zz, subdomain);
     const unsigned int n_subdivisions =
       subdivisions > 0 ? subdivisions : d.fe.degree;
     data_out.build_patches(d.mapping, n_subdivisions);

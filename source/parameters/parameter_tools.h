@@ -3,7 +3,9 @@
 
 // Helpers shared by the translation units that declare and parse the
 // sections of a parameter file (source/parameters/parameters.cc,
-// source/parameters/run_parameters.cc); internal to the library.
+// source/parameters/run_parameters.cc,
+// source/parameters/solver_parameters.cc); internal to the library. Defined
+// in source/parameters/parameter_tools.cc.
 
 #include <deal.II/base/parameter_handler.h>
 

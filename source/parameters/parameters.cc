@@ -27,120 +27,6 @@
 
 namespace DynamicContact
 {
-  namespace ParameterTools
-  {
-    std::string
-    zeros(const unsigned int n)
-    {
-      std::string s = "0";
-      for (unsigned int i = 1; i < n; ++i)
-        s += "; 0";
-      return s;
-    }
-
-    std::vector<types::boundary_id>
-    parse_ids(const std::string          &text,
-              const std::string          &list,
-              const Parameters::Geometry &geometry,
-              const unsigned int          dim,
-              std::optional<std::map<std::string, types::boundary_id>> &names)
-    {
-      std::vector<types::boundary_id> ids;
-      for (const auto &item : Utilities::split_string_list(text))
-        {
-          const std::string entry = "Boundary conditions/" + list;
-          if (!item.empty() &&
-              item.find_first_not_of("0123456789") == std::string::npos)
-            {
-              const long id = item.size() > 3 ? 256 : std::stol(item);
-              require(id <= 255,
-                      entry + ": boundary id " + item +
-                        " is out of range (0 to 255).");
-              ids.push_back(static_cast<types::boundary_id>(id));
-              continue;
-            }
-          require(!item.empty(),
-                  entry + " = '" + text + "': an empty item in the list.");
-          require(geometry.type == Parameters::Geometry::Type::gmsh,
-                  entry + ": '" + item +
-                    "' is not a boundary id (a number from 0 to 255); names "
-                    "of physical groups need Geometry/Type = gmsh (the "
-                    "rectangle's ids are 0/1 at x = min/max, 2/3 at y = "
-                    "min/max, 4/5 at z = min/max).");
-          if (!names)
-            {
-              // A mesh the program cannot use is the first thing to say.
-              const GmshFileInfo info = scan_gmsh_file(geometry.mesh_file);
-              check_gmsh_cells(info, geometry.mesh_file, dim);
-              names = gmsh_boundary_names(info, dim);
-            }
-          const auto found = names->find(item);
-          if (found == names->end())
-            {
-              std::string known;
-              for (const auto &[name, id] : *names)
-                known += (known.empty() ? "" : ", ") + ("'" + name + "'") +
-                         " (" + std::to_string(id) + ")";
-              require(false,
-                      entry + ": '" + item +
-                        "' is neither a boundary id nor the name of a "
-                        "physical group of dimension " +
-                        std::to_string(dim - 1) + " in Geometry/Mesh file '" +
-                        geometry.mesh_file + "' (" +
-                        (known.empty() ? std::string("it names none") :
-                                         "its names: " + known) +
-                        ").");
-            }
-          ids.push_back(found->second);
-        }
-      return ids;
-    }
-
-    void
-    require(const bool condition, const std::string &message)
-    {
-      AssertThrow(condition, ExcMessage(message));
-    }
-
-    /**
-     * Declare a subsection @p name holding a function of space and time in
-     * the format of Functions::ParsedFunction (entries "Function constants",
-     * "Function expression", "Variable names").
-     */
-    void
-    declare_function(ParameterHandler  &prm,
-                     const std::string &name,
-                     const unsigned int dim,
-                     const std::string &default_expression,
-                     const std::string &documentation)
-    {
-      prm.enter_subsection(name);
-      prm.declare_entry("Function constants",
-                        "",
-                        Patterns::Anything(),
-                        "Constants used in the expression, as name=value "
-                        "pairs separated by commas, e.g. 'F=1e10, c=2'.");
-      prm.declare_entry("Function expression",
-                        default_expression,
-                        Patterns::Anything(),
-                        documentation);
-      prm.declare_entry("Variable names",
-                        dim == 2 ? "x,y,t" : "x,y,z,t",
-                        Patterns::Anything(),
-                        "Names of the space coordinates and of time in the "
-                        "expression.");
-      prm.leave_subsection();
-    }
-
-    std::string
-    str(const double x)
-    {
-      std::ostringstream s;
-      s << x;
-      return s.str();
-    }
-  } // namespace ParameterTools
-
   using namespace ParameterTools;
 
   namespace Parameters
@@ -476,24 +362,15 @@ namespace DynamicContact
     }
 
     // ------------------------------------------------------------ Friction
-    void
-    Friction::declare_parameters(ParameterHandler &prm)
+    namespace
     {
-      prm.enter_subsection("Friction");
+      /**
+       * Friction: the stopping rule, relaxation and cap of the
+       * convexification loop.
+       */
+      void
+      declare_convexification_loop(ParameterHandler &prm)
       {
-        FrictionLaw::declare_parameters(prm);
-        prm.declare_entry(
-          "Maximum slip rate",
-          "auto",
-          Patterns::Anything(),
-          "The largest slip rate (m/s) of the window [0, Maximum slip rate] "
-          "on which mu(s) is checked at start-up (finite, >= 0, not "
-          "increasing unless Velocity strengthening = allow) and its "
-          "one-sided Lipschitz constant is sampled; the run also checks every "
-          "value it uses. 'auto': the P-wave speed of the body, sqrt((lambda "
-          "+ 2 mu)/rho), which the velocities of a linearly elastic body stay "
-          "far below (its strains are about v/c), so that the window scales "
-          "with the scene in any consistent units.");
         prm.declare_entry("Convexification tolerance",
                           "1e-6",
                           Patterns::Double(),
@@ -519,6 +396,16 @@ namespace DynamicContact
                           "the time step (see Time/Minimum time step). At "
                           "the minimum time step it is kept, with a warning "
                           "and convexification_converged = 0.");
+      }
+
+
+      /**
+       * Friction: how a slip-rate dependent coefficient enters the Newton
+       * iteration, and the diagnostics of the uniqueness of its solutions.
+       */
+      void
+      declare_slip_rate_dependence(ParameterHandler &prm)
+      {
         prm.declare_entry(
           "Linearization",
           "frozen",
@@ -567,6 +454,30 @@ namespace DynamicContact
           "time_series.csv). A count of 1 says the starts agree, not that "
           "the solution is unique; 2 or more proves several. The run's "
           "answers are those of its own loop, unchanged.");
+      }
+    } // namespace
+
+
+    void
+    Friction::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Friction");
+      {
+        FrictionLaw::declare_parameters(prm);
+        prm.declare_entry(
+          "Maximum slip rate",
+          "auto",
+          Patterns::Anything(),
+          "The largest slip rate (m/s) of the window [0, Maximum slip rate] "
+          "on which mu(s) is checked at start-up (finite, >= 0, not "
+          "increasing unless Velocity strengthening = allow) and its "
+          "one-sided Lipschitz constant is sampled; the run also checks every "
+          "value it uses. 'auto': the P-wave speed of the body, sqrt((lambda "
+          "+ 2 mu)/rho), which the velocities of a linearly elastic body stay "
+          "far below (its strains are about v/c), so that the window scales "
+          "with the scene in any consistent units.");
+        declare_convexification_loop(prm);
+        declare_slip_rate_dependence(prm);
         prm.declare_entry(
           "Complementarity constant",
           "0",

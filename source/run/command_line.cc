@@ -6,6 +6,74 @@
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /**
+     * --print-parameters=FORMAT (@p arg): print the parameters in FORMAT
+     * (md stands for markdown). False, with c.error set, if FORMAT is not
+     * known.
+     */
+    bool
+    read_print_format(const std::string &arg, CommandLine &c)
+    {
+      c.print_parameters = true;
+      c.print_format     = arg.substr(19);
+      if (c.print_format == "md")
+        c.print_format = "markdown";
+      if (c.print_format != "prm" && c.print_format != "json" &&
+          c.print_format != "xml" && c.print_format != "markdown" &&
+          c.print_format != "moved")
+        {
+          c.error = "--print-parameters: unknown format '" + c.print_format +
+                    "' (prm, json, xml, markdown or moved).";
+          return false;
+        }
+      return true;
+    }
+
+
+    /**
+     * Check the options read into @p c together: the form of each --set,
+     * options that exclude each other, and a parameter file where one is
+     * needed. Sets c.error at the first problem.
+     */
+    void
+    check_combination(CommandLine &c)
+    {
+      for (const auto &o : c.overrides)
+        if (o.find('=') == std::string::npos)
+          {
+            c.error = "--set '" + o + "': expected 'Section/Entry=value'.";
+            return;
+          }
+      if (c.resume && c.resume_auto)
+        {
+          c.error = "--resume and --resume=auto exclude each other.";
+          return;
+        }
+      if (c.print_parameters &&
+          (c.print_format == "markdown" || c.print_format == "moved") &&
+          (!c.parameter_file.empty() || !c.overrides.empty()))
+        {
+          c.error = "--print-parameters=" + c.print_format +
+                    " lists the declarations: it takes no parameter file and "
+                    "no --set.";
+          return;
+        }
+      if (c.validate && (c.resume || c.resume_auto || c.print_parameters))
+        {
+          c.error = std::string("--validate and ") +
+                    (c.print_parameters ? "--print-parameters" : "--resume") +
+                    " exclude each other.";
+          return;
+        }
+      if (!c.help && !c.version && !c.print_parameters &&
+          c.parameter_file.empty())
+        c.error = "no parameter file given.";
+    }
+  } // namespace
+
+
   CommandLine
   CommandLine::parse(const int argc, const char *const *argv)
   {
@@ -19,19 +87,8 @@ namespace DynamicContact
           c.print_parameters = true;
         else if (arg.rfind("--print-parameters=", 0) == 0)
           {
-            c.print_parameters = true;
-            c.print_format     = arg.substr(19);
-            if (c.print_format == "md")
-              c.print_format = "markdown";
-            if (c.print_format != "prm" && c.print_format != "json" &&
-                c.print_format != "xml" && c.print_format != "markdown" &&
-                c.print_format != "moved")
-              {
-                c.error = "--print-parameters: unknown format '" +
-                          c.print_format +
-                          "' (prm, json, xml, markdown or moved).";
-                return c;
-              }
+            if (!read_print_format(arg, c))
+              return c;
           }
         else if (arg == "--validate")
           c.validate = true;
@@ -71,36 +128,7 @@ namespace DynamicContact
             return c;
           }
       }
-    for (const auto &o : c.overrides)
-      if (o.find('=') == std::string::npos)
-        {
-          c.error = "--set '" + o + "': expected 'Section/Entry=value'.";
-          return c;
-        }
-    if (c.resume && c.resume_auto)
-      {
-        c.error = "--resume and --resume=auto exclude each other.";
-        return c;
-      }
-    if (c.print_parameters &&
-        (c.print_format == "markdown" || c.print_format == "moved") &&
-        (!c.parameter_file.empty() || !c.overrides.empty()))
-      {
-        c.error = "--print-parameters=" + c.print_format +
-                  " lists the declarations: it takes no parameter file and "
-                  "no --set.";
-        return c;
-      }
-    if (c.validate && (c.resume || c.resume_auto || c.print_parameters))
-      {
-        c.error = std::string("--validate and ") +
-                  (c.print_parameters ? "--print-parameters" : "--resume") +
-                  " exclude each other.";
-        return c;
-      }
-    if (!c.help && !c.version && !c.print_parameters &&
-        c.parameter_file.empty())
-      c.error = "no parameter file given.";
+    check_combination(c);
     return c;
   }
 

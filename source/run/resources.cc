@@ -16,6 +16,85 @@
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /**
+     * A lower bound of the memory of a scene of @p dofs DoFs (elements of
+     * @p degree): a third of what the memory model predicts with the
+     * preconditioner of least memory that Solver/Preconditioner = @p given
+     * allows.
+     */
+    double
+    least_memory_bound(const Parameters::Solver::Preconditioner given,
+                       const unsigned int                       dim,
+                       const unsigned int                       degree,
+                       const double                             dofs)
+    {
+      using P      = Parameters::Solver::Preconditioner;
+      double bytes = std::numeric_limits<double>::infinity();
+      for (const P candidate : preconditioner_candidates(given, degree))
+        bytes = std::min(bytes,
+                         predicted_memory(candidate,
+                                          dim,
+                                          degree,
+                                          static_cast<types::global_dof_index>(
+                                            std::min(dofs, 4294967295.)),
+                                          1,
+                                          0.) /
+                           3);
+      return bytes;
+    }
+
+
+    /**
+     * The memory available on this host, in bytes: MemAvailable of
+     * /proc/meminfo, else the available physical pages.
+     */
+    double
+    memory_available_here()
+    {
+      double        available = 0;
+      std::ifstream meminfo("/proc/meminfo");
+      std::string   key;
+      double        kb = 0;
+      std::string   unit;
+      while (meminfo >> key >> kb >> unit)
+        if (key == "MemAvailable:")
+          {
+            available = kb * 1024;
+            break;
+          }
+      if (available == 0)
+        available = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) *
+                    static_cast<double>(sysconf(_SC_PAGESIZE));
+      return available;
+    }
+
+
+    /**
+     * Per host of the run (by processor name): the most memory
+     * @p available that one of its processes reported, and the number of
+     * the run's processes on it.
+     */
+    std::map<std::string, std::pair<double, unsigned int>>
+    memory_per_host(const double available, const MPI_Comm comm)
+    {
+      char host[MPI_MAX_PROCESSOR_NAME] = {};
+      int  length                       = 0;
+      MPI_Get_processor_name(host, &length);
+      std::map<std::string, std::pair<double, unsigned int>> hosts;
+      for (const auto &[name, a] : Utilities::MPI::all_gather(
+             comm, std::make_pair(std::string(host, length), available)))
+        {
+          auto &[most, processes] = hosts[name];
+          most                    = std::max(most, a);
+          ++processes;
+        }
+      return hosts;
+    }
+  } // namespace
+
+
   double
   check_resources(const RunParameters &parameters,
                   const unsigned int   dim,
@@ -35,49 +114,12 @@ namespace DynamicContact
     const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
     using P           = Parameters::Solver::Preconditioner;
     const P given     = parameters.solver.preconditioner;
-    double  bytes     = std::numeric_limits<double>::infinity();
-    for (const P candidate :
-         preconditioner_candidates(given, parameters.finite_element.degree))
-      bytes = std::min(bytes,
-                       predicted_memory(candidate,
-                                        dim,
-                                        parameters.finite_element.degree,
-                                        static_cast<types::global_dof_index>(
-                                          std::min(dofs, 4294967295.)),
-                                        1,
-                                        0.) /
-                         3);
+    const double bytes =
+      least_memory_bound(given, dim, parameters.finite_element.degree, dofs);
 
     // The memory available: MemAvailable of every host of the run, once.
-    double available = 0;
-    {
-      std::ifstream meminfo("/proc/meminfo");
-      std::string   key;
-      double        kb = 0;
-      std::string   unit;
-      while (meminfo >> key >> kb >> unit)
-        if (key == "MemAvailable:")
-          {
-            available = kb * 1024;
-            break;
-          }
-      if (available == 0)
-        available = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) *
-                    static_cast<double>(sysconf(_SC_PAGESIZE));
-    }
-    char host[MPI_MAX_PROCESSOR_NAME] = {};
-    int  length                       = 0;
-    MPI_Get_processor_name(host, &length);
-    // Per host: what it has available and the processes of the run on it.
-    std::map<std::string, std::pair<double, unsigned int>> hosts;
-    for (const auto &[name, a] : Utilities::MPI::all_gather(
-           comm, std::make_pair(std::string(host, length), available)))
-      {
-        auto &[most, processes] = hosts[name];
-        most                    = std::max(most, a);
-        ++processes;
-      }
-    double total = 0, per_process = std::numeric_limits<double>::infinity();
+    const auto hosts = memory_per_host(memory_available_here(), comm);
+    double     total = 0, per_process = std::numeric_limits<double>::infinity();
     for (const auto &h : hosts)
       {
         total += h.second.first;

@@ -11,6 +11,73 @@
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /**
+     * On process 0 (@p rank): the scene is valid (with the @p summary of
+     * its validation), and the report on its well-posedness.
+     */
+    template <int dim>
+    void
+    report_valid_scene(const RunParameters &parameters,
+                       const std::string   &summary,
+                       const unsigned int   rank)
+    {
+      if (rank == 0)
+        std::cout << "dynamic-contact: the scene '" << parameters.parameter_file
+                  << "' is valid (" << summary << "); Output/Directory '"
+                  << parameters.output.directory << "' is not looked at."
+                  << std::endl
+                  << well_posedness_report<dim>(parameters) << std::flush;
+    }
+
+
+    /**
+     * Run the @p simulator, on the first processes only where the scene is
+     * small (Solver/Minimum DoFs per process): then the @p simulator is
+     * made anew on the communicator @p group of the @p taking_part first
+     * processes, and the others (where it is left empty) wait. Returns the
+     * run's exit code (0 where it did not run).
+     */
+    template <int dim>
+    int
+    run_on_processes_taking_part(std::unique_ptr<TimeLoop<dim>> &simulator,
+                                 const RunParameters            &parameters,
+                                 ParameterHandler               &prm,
+                                 const MPI_Comm                  comm,
+                                 const bool                      resume,
+                                 unsigned int                   &taking_part,
+                                 MPI_Comm                       &group)
+    {
+      const unsigned int n_processes = Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int rank        = Utilities::MPI::this_mpi_process(comm);
+      int                exit_code   = 0;
+      // A small scene runs on the first processes only
+      // (Solver/Minimum DoFs per process); the others wait.
+      std::string note;
+      taking_part = simulator->processes_taking_part(note);
+      if (taking_part < n_processes)
+        {
+          simulator.reset();
+          MPI_Comm_split(comm,
+                         rank < taking_part ? 0 : MPI_UNDEFINED,
+                         rank,
+                         &group);
+          if (rank < taking_part)
+            {
+              restrict_error_handling(group);
+              simulator =
+                std::make_unique<TimeLoop<dim>>(parameters, prm, group);
+              simulator->set_process_note(note);
+            }
+        }
+      if (simulator)
+        exit_code = simulator->run(resume);
+      return exit_code;
+    }
+  } // namespace
+
+
   template <int dim>
   int
   run_dimension(const RunParameters &parameters,
@@ -32,41 +99,10 @@ namespace DynamicContact
       try
         {
           if (validate)
-            {
-              const std::string summary = simulator->validate();
-              if (rank == 0)
-                std::cout << "dynamic-contact: the scene '"
-                          << parameters.parameter_file << "' is valid ("
-                          << summary << "); Output/Directory '"
-                          << parameters.output.directory
-                          << "' is not looked at." << std::endl
-                          << well_posedness_report<dim>(parameters)
-                          << std::flush;
-            }
+            report_valid_scene<dim>(parameters, simulator->validate(), rank);
           else
-            {
-              // A small scene runs on the first processes only
-              // (Solver/Minimum DoFs per process); the others wait.
-              std::string note;
-              taking_part = simulator->processes_taking_part(note);
-              if (taking_part < n_processes)
-                {
-                  simulator.reset();
-                  MPI_Comm_split(comm,
-                                 rank < taking_part ? 0 : MPI_UNDEFINED,
-                                 rank,
-                                 &group);
-                  if (rank < taking_part)
-                    {
-                      restrict_error_handling(group);
-                      simulator =
-                        std::make_unique<TimeLoop<dim>>(parameters, prm, group);
-                      simulator->set_process_note(note);
-                    }
-                }
-              if (simulator)
-                exit_code = simulator->run(resume);
-            }
+            exit_code = run_on_processes_taking_part(
+              simulator, parameters, prm, comm, resume, taking_part, group);
         }
       catch (const std::exception &e)
         {

@@ -27,6 +27,74 @@ namespace DynamicContact
       if (shown < steps.size())
         pcout << " ...";
     }
+
+
+    /**
+     * The line on the energy balance: whether its largest relative defect
+     * is below 1e-8 (@p balance) and every dissipation term is at least 0
+     * (@p dissipation).
+     */
+    void
+    print_energy_balance(const ConditionalOStream &pcout,
+                         const RunState           &state,
+                         const RunParameters      &parameters,
+                         const bool                balance,
+                         const bool                dissipation)
+    {
+      pcout << "  energy balance: max relative defect "
+            << (balance ?
+                  "below 1e-8" :
+                  "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
+            << ", every dissipation term >= 0"
+            << (parameters.time.scheme == Parameters::Time::Scheme::sdirk ?
+                  " (the compliance term left out: not sign-definite with "
+                  "sdirk)" :
+                  "")
+            << ": "
+            << (dissipation ?
+                  "yes" :
+                  "NO (" + sig6(state.min_dissipation) + " of the energy)")
+            << std::endl;
+    }
+
+
+    /**
+     * The run's status, "completed" or "completed with warnings: ..."
+     * (unconverged steps, the energy balance, the dissipation), and the
+     * warning printed where there are any.
+     */
+    std::string
+    final_status(const ConditionalOStream &pcout,
+                 const RunState           &state,
+                 const bool                balance,
+                 const bool                dissipation)
+    {
+      std::vector<std::string> warnings;
+      if (state.unconverged_steps > 0)
+        warnings.push_back(
+          std::to_string(state.unconverged_steps) + " step" +
+          (state.unconverged_steps > 1 ? "s" : "") +
+          " kept with an unconverged convexification loop (max |mu_i - "
+          "mu(|w_tau,i|)| = " +
+          sig6(state.worst_unconverged) + " > Friction/Coefficient tolerance)");
+      if (!balance)
+        warnings.push_back("energy balance defect " +
+                           sig6(state.max_relative_defect) + " > 1e-8");
+      if (!dissipation)
+        warnings.push_back("a dissipation term below zero (" +
+                           sig6(state.min_dissipation) + " of the energy)");
+      std::string status = "completed";
+      if (!warnings.empty())
+        {
+          status += " with warnings: ";
+          for (unsigned int i = 0; i < warnings.size(); ++i)
+            status += (i ? "; " : "") + warnings[i];
+          pcout << "Warning: the run " << status
+                << ". The results do not meet the tolerances there."
+                << std::endl;
+        }
+      return status;
+    }
   } // namespace
 
 
@@ -161,19 +229,7 @@ namespace DynamicContact
     const bool balance = state.max_relative_defect < 1e-8;
     const bool dissipation =
       state.min_dissipation >= -EnergyBalanceTerms::roundoff;
-    pcout << "  energy balance: max relative defect "
-          << (balance ? "below 1e-8" :
-                        "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
-          << ", every dissipation term >= 0"
-          << (parameters.time.scheme == Parameters::Time::Scheme::sdirk ?
-                " (the compliance term left out: not sign-definite with "
-                "sdirk)" :
-                "")
-          << ": "
-          << (dissipation ?
-                "yes" :
-                "NO (" + sig6(state.min_dissipation) + " of the energy)")
-          << std::endl;
+    print_energy_balance(pcout, state, parameters, balance, dissipation);
     // The summary: what a user checks before trusting the results.
     pcout << "Summary: results in " << parameters.output.directory << "/\n"
           << "  time step cut-backs: " << cutbacks
@@ -209,29 +265,6 @@ namespace DynamicContact
       print_solution_count(pcout);
 
     // An honest ending: completed, or completed with what did not hold.
-    std::vector<std::string> warnings;
-    if (state.unconverged_steps > 0)
-      warnings.push_back(
-        std::to_string(state.unconverged_steps) + " step" +
-        (state.unconverged_steps > 1 ? "s" : "") +
-        " kept with an unconverged convexification loop (max |mu_i - "
-        "mu(|w_tau,i|)| = " +
-        sig6(state.worst_unconverged) + " > Friction/Coefficient tolerance)");
-    if (!balance)
-      warnings.push_back("energy balance defect " +
-                         sig6(state.max_relative_defect) + " > 1e-8");
-    if (!dissipation)
-      warnings.push_back("a dissipation term below zero (" +
-                         sig6(state.min_dissipation) + " of the energy)");
-    std::string status = "completed";
-    if (!warnings.empty())
-      {
-        status += " with warnings: ";
-        for (unsigned int i = 0; i < warnings.size(); ++i)
-          status += (i ? "; " : "") + warnings[i];
-        pcout << "Warning: the run " << status
-              << ". The results do not meet the tolerances there." << std::endl;
-      }
-    return status;
+    return final_status(pcout, state, balance, dissipation);
   }
 } // namespace DynamicContact
