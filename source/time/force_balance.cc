@@ -209,8 +209,7 @@ namespace DynamicContact
     std::vector<types::global_dof_index> dofs(n);
     Vector<double>                       value(dim), residual(n);
     const bool                           body_force = scene.has_body_force();
-    // value = the step's load g at x (Scene::step_load), and its part of
-    // the applied force.
+    // value = the step's load g at x, and its part of the applied force.
     const auto load_at =
       [&](Function<dim> &g, const Point<dim> &x, const double JxW) {
         scene.step_load(g, x, t, scheme, value, value_old);

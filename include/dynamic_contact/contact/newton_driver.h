@@ -178,11 +178,10 @@ namespace DynamicContact
                     const ConditionalOStream  &details,
                     Result                    &result)
   {
-    using Iterate         = typename Problem::Iterate;
     const double tol      = parameters.newton_tolerance;
     const double stop_tol = std::max(tol, policy.tolerance);
 
-    Iterate                    full;
+    typename Problem::Iterate  full;
     NewtonMeasure              current = problem.evaluate(x);
     std::vector<std::uint64_t> history; // active sets of the past iterates
     std::vector<double>        residuals; // and their residuals
