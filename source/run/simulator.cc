@@ -56,6 +56,20 @@ namespace DynamicContact
                      comm)
     , force_balance(discretization, material, scene)
     , mesh_adaptation(parameters.mesh_refinement, scene, discretization, prm)
+    , integrator(StepOperators<dim>{parameters.time,
+                                    comm,
+                                    timer,
+                                    scene,
+                                    material,
+                                    discretization,
+                                    contact_boundary,
+                                    contact_state,
+                                    bulk,
+                                    step_solver,
+                                    energy_balance,
+                                    force_balance})
+    , u(integrator.u)
+    , w(integrator.w)
   {}
 
 
@@ -68,8 +82,7 @@ namespace DynamicContact
     contact_boundary.reinit(discretization,
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
-    for (auto *v : step_vectors(*this))
-      discretization.reinit_owned(*v);
+    integrator.reinit();
     energy_of_state.reset();
   }
 
@@ -373,6 +386,56 @@ namespace DynamicContact
 
 
   template <int dim>
+  StepRecord<dim>
+  Simulator<dim>::do_time_step(const unsigned int n,
+                               const double       t,
+                               const double       k,
+                               const double       remesh_energy_change,
+                               const unsigned int cutbacks,
+                               const unsigned int rejected,
+                               const bool         accept_unconverged_loop)
+  {
+    StepRecord<dim> record;
+    record.step      = n;
+    record.time      = t;
+    record.time_step = k;
+    // The energy change of a mesh transfer before this step has its own
+    // column: E_{n-1} below is that of the transferred fields.
+    record.remesh_energy_change = remesh_energy_change;
+    record.cutbacks             = cutbacks;
+    record.previous_energy      = energy_now(); // of (u, w) before the step
+    integrator.step(record, t, k, accept_unconverged_loop);
+    if (parameters.time.adaptive)
+      {
+        record.adaptive_time = true;
+        record.rejected      = rejected;
+      }
+    record.uniqueness_monitor = uniqueness_columns();
+    record.solution_count     = solution_count_columns();
+    record_errors(record, t);
+    record.dofs     = discretization.dof_handler.n_dofs();
+    record.cells    = discretization.triangulation.n_global_active_cells();
+    energy_of_state = record.terms.energy.total(); // the step succeeded
+    return record;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::record_errors(StepRecord<dim> &record, const double t)
+  {
+    if (!scene.has_exact_solution())
+      return;
+    TimerSection   scope(timer, "Step: energy and force balance");
+    const Vector_t u_ghosted = discretization.expanded(u),
+                   w_ghosted = discretization.expanded(w);
+    record.has_errors        = true;
+    record.errors =
+      compute_errors(discretization, material, scene, t, u_ghosted, w_ghosted);
+  }
+
+
+  template <int dim>
   std::string
   Simulator<dim>::memory_table() const
   {
@@ -380,10 +443,9 @@ namespace DynamicContact
     discretization.memory_consumption(items);
     bulk.memory_consumption(items);
     step_solver.memory_consumption(items);
-    double fields = 0;
-    for (const auto *v : step_vectors(*this))
-      fields += v->locally_owned_size() * sizeof(double);
-    items.push_back({"the step's fields and work vectors", fields, false});
+    items.push_back({"the step's fields and work vectors",
+                     integrator.memory_consumption(),
+                     false});
     return DynamicContact::memory_table(items,
                                         discretization.dof_handler.n_dofs(),
                                         comm);

@@ -20,6 +20,7 @@
 #include <dynamic_contact/parameters/parameters.h>
 #include <dynamic_contact/time/energy_balance.h>
 #include <dynamic_contact/time/force_balance.h>
+#include <dynamic_contact/time/step_integrator.h>
 #include <dynamic_contact/time/step_record.h>
 #include <dynamic_contact/time/step_solver.h>
 
@@ -35,25 +36,14 @@
 namespace DynamicContact
 {
   /**
-   * A value that is not finite where a step needs it (collective): not a
-   * failure of the solver (no cut-back); the run stops with the last good
-   * state.
-   */
-  class NonFiniteValue : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
-
-  /**
    * The discrete problem and its algorithm, step-42 style: owns the scene
-   * and its laws, the mesh, the DoFs, the fields u and w, the solution on
-   * Gamma_3 (ContactState), the operators and the solver, and does the
-   * steps of the scheme in functions named after them: set up the mesh and
-   * the initial state, adapt the mesh, assemble the step's right-hand side
-   * and solve the step (do_time_step: solve_substep, one or two per step),
-   * compute the balances, write the fields.
+   * and its laws, the mesh, the DoFs, the solution on Gamma_3
+   * (ContactState), the operators and the solver, and the StepIntegrator
+   * that holds the fields u and w and does the scheme's solves; it calls
+   * the steps in functions named after them: set up the mesh and the
+   * initial state, adapt the mesh, do a time step (do_time_step: the
+   * integrator's step, the errors of a manufactured solution, the row's
+   * columns), write the fields.
    *
    * When and how often these happen, what is kept after a failure, and
    * where the results go is the TimeLoop's business (time_loop.h): it owns
@@ -189,7 +179,7 @@ namespace DynamicContact
     double
     newton_residual() const
     {
-      return last_newton_residual;
+      return integrator.newton_residual();
     }
 
     /**
@@ -326,29 +316,13 @@ namespace DynamicContact
     ForceBalanceEvaluator<dim> force_balance;
     MeshAdaptation<dim>        mesh_adaptation;
 
-    // Fields in master form (constrained entries zero). u_old, w_old: the
-    // state at the start of the step; u_bar, w_bar: the start of the Bathe
-    // scheme's second sub-step or of the SDIRK scheme's second stage;
-    // u_stage, w_stage: the SDIRK scheme's first stage.
-    Vector_t u, w, u_old, w_old, u_bar, w_bar, u_stage, w_stage, load, rhs,
-      scratch;
-    /** Pointers to all of them (of a const Simulator: const pointers). */
-    template <typename Self>
-    static auto
-    step_vectors(Self &self)
-    {
-      return std::array<decltype(&self.u), 11>{{&self.u,
-                                                 &self.w,
-                                                 &self.u_old,
-                                                 &self.w_old,
-                                                 &self.u_bar,
-                                                 &self.w_bar,
-                                                 &self.u_stage,
-                                                 &self.w_stage,
-                                                 &self.load,
-                                                 &self.rhs,
-                                                 &self.scratch}};
-    }
+    /**
+     * The time step: the scheme's solves and measures, and the fields (the
+     * state u, w and the vectors of a step in progress).
+     */
+    StepIntegrator<dim> integrator;
+    /** The state, in master form (constrained entries zero): integrator's. */
+    Vector_t &u, &w;
 
     /**
      * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
@@ -363,15 +337,6 @@ namespace DynamicContact
     double memory_per_process = std::numeric_limits<double>::infinity();
     double
     energy_now();
-
-    double last_newton_residual = 0;
-
-    /**
-     * The displacement's local error estimate of the step just solved,
-     * relative to the energy of the state (doc/theory.md 2.5).
-     */
-    double
-    time_error_estimate(const double k) const;
 
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
@@ -399,94 +364,9 @@ namespace DynamicContact
     std::vector<Point<dim>>
     penetrating_nodes() const;
 
-    /**
-     * One (sub-)step of the theta-scheme @p scheme that ends at @p t, from
-     * (@p u_start, @p w_start) whose energy is @p start_energy: assemble the
-     * right-hand side, solve for w, set u; the solver's statistics and the
-     * energy balance terms of the (sub-)step.
-     */
-    void
-    solve_substep(const TimeScheme                     &scheme,
-                  const double                          t,
-                  const Vector_t                       &u_start,
-                  const Vector_t                       &w_start,
-                  const double                          start_energy,
-                  const bool                            accept_unconverged_loop,
-                  typename StepSolver<dim>::Statistics &statistics,
-                  EnergyBalanceTerms                   &terms);
-    /**
-     * b = (rho/k) M w_start - (1 - theta) A w_start
-     *     - B (u_start + theta (1 - theta) k w_start) + f_theta
-     * of the (sub-)step @p scheme ending at @p t, into rhs (and f_theta
-     * into load).
-     */
-    void
-    assemble_rhs(const TimeScheme &scheme,
-                 const double      t,
-                 const Vector_t   &u_start,
-                 const Vector_t   &w_start);
-    /**
-     * The second (sub-)step of a two-solve scheme (bathe, sdirk): from
-     * (u_bar, w_bar), whose energy is @p start_energy, to @p t; the step's
-     * statistics (the first (sub-)step's @p first_statistics added) into
-     * @p record, the (sub-)step's balance terms into @p terms.
-     */
-    void
-    solve_second_substep(
-      const TimeScheme                           &scheme,
-      const double                                t,
-      const double                                start_energy,
-      const bool                                  accept_unconverged_loop,
-      const typename StepSolver<dim>::Statistics &first_statistics,
-      StepRecord<dim>                            &record,
-      EnergyBalanceTerms                         &terms);
-    /**
-     * After the last solve of a step, while (u, w) are its solution, into
-     * @p record: the local error estimate (Time/Adaptive), the contact force
-     * sums and the force balance of that (sub-)step @p last from
-     * (@p u_start, @p w_start) to @p t_last.
-     */
-    void
-    measure_last_solve(StepRecord<dim>  &record,
-                       const TimeScheme &last,
-                       const Vector_t   &u_start,
-                       const Vector_t   &w_start,
-                       const double      t_last,
-                       const double      k);
     /** The errors of a manufactured solution at @p t, of (u, w). */
     void
     record_errors(StepRecord<dim> &record, const double t);
-    /**
-     * A step of Time/Scheme = sdirk from (u_old, w_old) to t (doc/theory.md
-     * section 2.6): the two stages, the balances of the second, the
-     * contact force sums extrapolated to t, (u, w) = y_n and the step's
-     * energy balance into @p record.
-     */
-    void
-    sdirk_step(StepRecord<dim> &record,
-               const double     t,
-               const double     k,
-               const bool       accept_unconverged_loop);
-    /**
-     * A step of Time/Scheme = bathe from (u_old, w_old) to t (doc/theory.md
-     * section 2.4): the trapezoidal sub-step to t - k/2, the second
-     * sub-step from the extrapolated state, and the step's energy balance
-     * into @p record.
-     */
-    void
-    bathe_step(StepRecord<dim> &record,
-               const double     t,
-               const double     k,
-               const bool       accept_unconverged_loop);
-    /**
-     * A step of a one-step theta-scheme (backward Euler, trapezoidal) from
-     * (u_old, w_old) to t, its balances into @p record.
-     */
-    void
-    theta_step(StepRecord<dim> &record,
-               const double     t,
-               const double     k,
-               const bool       accept_unconverged_loop);
   };
 } // namespace DynamicContact
 

@@ -26,9 +26,10 @@ namespace DynamicContact
 
   /**
    * Everything a row of time_series.csv says about a step (doc/output.md),
-   * as typed values: it travels from the step (Simulator::do_time_step) to
-   * the time loop, the progress line, the end summary, the tests, and the
-   * CSV writer, the only place where it becomes text (row()).
+   * as typed values: it travels from the step (Simulator::do_time_step,
+   * StepIntegrator::step) to the time loop, the progress line, the end summary,
+   * the tests, and the CSV writer, the only place where it becomes text
+   * (row()).
    */
   template <int dim>
   struct StepRecord
