@@ -16,46 +16,10 @@ namespace DynamicContact
 
 
   template <int dim>
-  std::array<Vector_t *, 11>
-  StepIntegrator<dim>::fields()
-  {
-    return {{&u,
-             &w,
-             &u_old,
-             &w_old,
-             &u_bar,
-             &w_bar,
-             &u_stage,
-             &w_stage,
-             &load,
-             &rhs,
-             &scratch}};
-  }
-
-
-  template <int dim>
-  std::array<const Vector_t *, 11>
-  StepIntegrator<dim>::fields() const
-  {
-    return {{&u,
-             &w,
-             &u_old,
-             &w_old,
-             &u_bar,
-             &w_bar,
-             &u_stage,
-             &w_stage,
-             &load,
-             &rhs,
-             &scratch}};
-  }
-
-
-  template <int dim>
   void
   StepIntegrator<dim>::reinit()
   {
-    for (Vector_t *v : fields())
+    for (Vector_t *v : fields(*this))
       ops.discretization.reinit_owned(*v);
   }
 
@@ -65,7 +29,7 @@ namespace DynamicContact
   StepIntegrator<dim>::memory_consumption() const
   {
     double bytes = 0;
-    for (const Vector_t *v : fields())
+    for (const Vector_t *v : fields(*this))
       bytes += v->locally_owned_size() * sizeof(double);
     return bytes;
   }

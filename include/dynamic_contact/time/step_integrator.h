@@ -119,11 +119,23 @@ namespace DynamicContact
     // start of the Bathe scheme's second sub-step or of the SDIRK scheme's
     // second stage; u_stage, w_stage: the SDIRK scheme's first stage.
     Vector_t u_old, w_old, u_bar, w_bar, u_stage, w_stage, load, rhs, scratch;
-    /** All the fields, u and w first. */
-    std::array<Vector_t *, 11>
-    fields();
-    std::array<const Vector_t *, 11>
-    fields() const;
+    /** Pointers to all the fields (of a const integrator: const pointers). */
+    template <typename Self>
+    static auto
+    fields(Self &self)
+    {
+      return std::array<decltype(&self.u), 11>{{&self.u,
+                                                &self.w,
+                                                &self.u_old,
+                                                &self.w_old,
+                                                &self.u_bar,
+                                                &self.w_bar,
+                                                &self.u_stage,
+                                                &self.w_stage,
+                                                &self.load,
+                                                &self.rhs,
+                                                &self.scratch}};
+    }
 
     double last_newton_residual = 0;
 
