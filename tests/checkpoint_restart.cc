@@ -13,7 +13,10 @@
 //   two_processes   adaptive: run, killed and resumed on 2 processes;
 //   one_to_two      adaptive: killed on 1 process, resumed on 2;
 //   bathe           uniform with Time/Scheme = bathe (two sub-steps a step):
-//                   killed after step 25, resumed.
+//                   killed after step 25, resumed;
+//   slip_length     adaptive with Friction/Slip length (a coefficient state
+//                   per node, which the checkpoint carries): killed after
+//                   step 25 on 1 process, resumed on 2.
 // Every interrupted-and-resumed run must end "completed" with the results of
 // the uninterrupted run: time_series.csv with each step once, every
 // contact_NNNNN.csv, solution.pvd and the VTU files.
@@ -60,14 +63,15 @@ namespace
   const unsigned int             n_steps  = 48;
 
   /**
-   * Run the uniform or the adaptive scene into @p directory (with the Bathe
-   * scheme if @p bathe).
+   * Run the uniform or the adaptive scene into @p directory, as it is
+   * (@p variant "") or with the Bathe scheme ("bathe") or a slip length
+   * ("slip_length").
    */
   std::vector<std::string>
   arguments(const bool         adaptive,
             const std::string &directory,
-            const bool         resume = false,
-            const bool         bathe  = false)
+            const bool         resume  = false,
+            const std::string &variant = "")
   {
     std::vector<std::string> a = {
       test_tools::scene(adaptive ? "barboteu_danan_2016_adaptive_small.prm" :
@@ -77,10 +81,17 @@ namespace
     a.insert(a.end(), settings.begin(), settings.end());
     a.push_back("--set");
     a.push_back("Output/Directory=" + directory);
-    if (bathe)
+    const std::vector<std::string> extra =
+      variant == "bathe" ?
+        std::vector<std::string>{"Time/Scheme=bathe"} :
+      variant == "slip_length" ?
+        std::vector<std::string>{"Friction/Slip length=0.01",
+                                 "Friction/Reference slip rate=0.001"} :
+        std::vector<std::string>{};
+    for (const auto &e : extra)
       {
         a.push_back("--set");
-        a.push_back("Time/Scheme=bathe");
+        a.push_back(e);
       }
     return a;
   }
@@ -325,7 +336,7 @@ main()
     std::string  checkpoints_left;
     unsigned int last_row;
     Outcome      killed;
-    bool         bathe = false;
+    std::string  variant = "";
   };
   const std::string two   = "checkpoint_00010 checkpoint_00020";
   std::vector<Case> cases = {
@@ -341,17 +352,21 @@ main()
     {"adaptive", true, "after-step 25", 0, 0, two, 25, {}},
     {"two_processes", true, "after-step 25", 2, 2, two, 25, {}},
     {"one_to_two", true, "after-step 25", 0, 2, two, 25, {}},
-    {"bathe", false, "after-step 25", 0, 0, two, 25, {}, true}};
+    {"bathe", false, "after-step 25", 0, 0, two, 25, {}, "bathe"},
+    {"slip_length", true, "after-step 25", 0, 2, two, 25, {}, "slip_length"}};
 
-  for (const std::string d :
-       {"full_uniform", "full_adaptive", "full_bathe", "never_checkpointed"})
+  for (const std::string d : {"full_uniform",
+                              "full_adaptive",
+                              "full_bathe",
+                              "full_slip_length",
+                              "never_checkpointed"})
     fs::remove_all(d);
   for (const auto &c : cases)
     fs::remove_all(c.directory);
 
   // The uninterrupted runs and the first (killed) part of each case; runs
   // on one process side by side (most of a short run is start-up).
-  Outcome full_uniform, full_adaptive, full_bathe;
+  Outcome full_uniform, full_adaptive, full_bathe, full_slip_length;
   {
     std::vector<std::thread> threads;
     threads.emplace_back([&]() {
@@ -362,13 +377,19 @@ main()
     });
     threads.emplace_back([&]() {
       full_bathe =
-        run("full_bathe", arguments(false, "full_bathe", false, true), 0);
+        run("full_bathe", arguments(false, "full_bathe", false, "bathe"), 0);
+    });
+    threads.emplace_back([&]() {
+      full_slip_length =
+        run("full_slip_length",
+            arguments(true, "full_slip_length", false, "slip_length"),
+            0);
     });
     for (auto &c : cases)
       if (c.processes_first == 0)
         threads.emplace_back([&c]() {
           c.killed = run(c.directory + ".1",
-                         arguments(c.adaptive, c.directory, false, c.bathe),
+                         arguments(c.adaptive, c.directory, false, c.variant),
                          0,
                          c.kill);
         });
@@ -377,14 +398,16 @@ main()
     for (auto &c : cases)
       if (c.processes_first > 0)
         c.killed = run(c.directory + ".1",
-                       arguments(c.adaptive, c.directory, false, c.bathe),
+                       arguments(c.adaptive, c.directory, false, c.variant),
                        c.processes_first,
                        c.kill);
   }
 
-  for (const auto &[name, o] : {std::make_pair("full_uniform", &full_uniform),
-                                std::make_pair("full_adaptive", &full_adaptive),
-                                std::make_pair("full_bathe", &full_bathe)})
+  for (const auto &[name, o] :
+       {std::make_pair("full_uniform", &full_uniform),
+        std::make_pair("full_adaptive", &full_adaptive),
+        std::make_pair("full_bathe", &full_bathe),
+        std::make_pair("full_slip_length", &full_slip_length)})
     {
       out << name << " (uninterrupted): exit code " << o->code << ", "
           << status_of(name) << ", " << steps_of(name).size() - 1 << " steps"
@@ -422,14 +445,14 @@ main()
   for (const auto &c : cases)
     {
       const Outcome     o       = run(c.directory + ".2",
-                            arguments(c.adaptive, c.directory, true, c.bathe),
+                            arguments(c.adaptive, c.directory, true, c.variant),
                             c.processes_resumed);
       const bool        said_so = o.out.find("resumed from " + c.directory +
                                       "/checkpoint_00020") != std::string::npos;
       const bool        exact   = !c.adaptive;
-      const std::string full    = c.adaptive ? "full_adaptive" :
-                                  c.bathe    ? "full_bathe" :
-                                               "full_uniform";
+      const std::string full    = !c.variant.empty() ? "full_" + c.variant :
+                                  c.adaptive         ? "full_adaptive" :
+                                                       "full_uniform";
       const auto        steps   = steps_of(c.directory);
       const auto        diff    = compare(full, c.directory, exact);
       out << c.directory << ", resumed on " << std::max(c.processes_resumed, 1u)

@@ -2,7 +2,8 @@
 // eq. (90)): constant, exponential (a - b) exp(-alpha s) + b, and a
 // muparser expression in s; values by hand, derivatives against central
 // differences, is_constant, the one-sided Lipschitz constant
-// max(0, -min mu'), check_nonnegative, FrictionLaw::create and its errors.
+// max(0, -min mu'), check_nonnegative, FrictionLaw::create and its errors;
+// the slip length's state law (SlipLength).
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/laws/friction_law.h>
@@ -288,6 +289,90 @@ namespace
                 "constants\"");
       }
   }
+
+
+  /**
+   * SlipLength (doc/theory.md section 1.6): L = 0 is the law; the state's
+   * update is the exact solution at a constant slip rate (one step of k
+   * equals eight of k/8); theta = 1/2 acts with the mean of the state over
+   * the step; mu_e lies between m and mu(s) at any k; d mu_e/ds against
+   * central differences; -d mu_e/ds below step_lipschitz_constant().
+   */
+  void
+  test_slip_length()
+  {
+    out() << "--- slip length L = 0.01, v* = 0.001, exponential a = 1, "
+             "b = 0.5, alpha = 2000"
+          << std::endl;
+    const ExponentialFriction law(1., 0.5, 2000.);
+    const SlipLength          none, slip(0.01, 0.001);
+    const TimeScheme          euler(1e-3, 1.), half(1e-3, 0.5);
+    check(!none.active() && slip.active(), "active() only for L > 0");
+    const auto plain = none.step_coefficient(law, 0.7, 2e-4, euler);
+    check(plain.first == law.value(2e-4) &&
+            plain.second == law.derivative(2e-4) &&
+            none.end_state(law, 0.7, 2e-4, euler) == law.value(2e-4),
+          "L = 0: mu_e = mu(s), its derivative mu'(s), the state mu(s)");
+
+    const double s = 2e-3, m0 = 1., mu_s = law.value(s);
+    const double exact =
+      mu_s + (m0 - mu_s) * std::exp(-1e-3 * (s + 0.001) / 0.01);
+    double m = m0;
+    for (unsigned int i = 0; i < 8; ++i)
+      m = slip.end_state(law, m, s, TimeScheme(1e-3 / 8, 1.));
+    out() << "state after k = 1e-3 at s = 2e-3 from 1: "
+          << digits(slip.end_state(law, m0, s, euler), 12) << ", closed form "
+          << digits(exact, 12) << std::endl;
+    check(close(slip.end_state(law, m0, s, euler), exact, 1e-14) &&
+            close(m, exact, 1e-13),
+          "the update is exact at a constant slip rate: one step of k "
+          "equals the closed form and eight steps of k/8 (1e-13)");
+    check(close(slip.step_coefficient(law, m0, s, half).first,
+                0.5 * (m0 + exact),
+                1e-14),
+          "theta = 1/2 acts with the mean of the state at both ends");
+
+    bool   between          = true;
+    double worst_derivative = 0, worst_bound = 0;
+    for (const double k : {1e-9, 1e-6, 1e-3, 1., 1e3})
+      for (const double theta : {0.5, 0.75, 1.})
+        for (const double start : {0.5, 0.8, 1.})
+          for (const double rate : {0., 1e-5, 2e-4, 1e-3, 0.1, 10.})
+            {
+              const TimeScheme scheme(k, theta);
+              const auto   e  = slip.step_coefficient(law, start, rate, scheme);
+              const double lo = std::min(start, law.value(rate)),
+                           hi = std::max(start, law.value(rate));
+              between =
+                between && e.first >= lo - 1e-15 && e.first <= hi + 1e-15;
+              if (rate > 0)
+                {
+                  const double h = 1e-4 * rate;
+                  const double fd =
+                    (slip.step_coefficient(law, start, rate + h, scheme).first -
+                     slip.step_coefficient(law, start, rate - h, scheme)
+                       .first) /
+                    (2 * h);
+                  worst_derivative =
+                    std::max(worst_derivative,
+                             std::abs(fd - e.second) /
+                               std::max(1., std::abs(e.second)));
+                }
+              const double bound =
+                slip.step_lipschitz_constant(law.one_sided_lipschitz_constant(
+                                               10.),
+                                             law.largest_value(10.),
+                                             scheme);
+              worst_bound = std::max(worst_bound, -e.second / bound);
+            }
+    check(between, "mu_e lies between m and mu(s) at k from 1e-9 to 1e3");
+    check(worst_derivative <= 1e-6,
+          "d mu_e/ds against central differences (largest difference "
+          "below 1e-6 max(1, |d mu_e/ds|))");
+    check(worst_bound <= 1,
+          "-d mu_e/ds <= step_lipschitz_constant() at every sample");
+    out() << slip.description() << std::endl;
+  }
 } // namespace
 
 
@@ -299,4 +384,5 @@ main(int argc, char *argv[])
   test_exponential();
   test_expression();
   test_create_and_errors();
+  test_slip_length();
 }

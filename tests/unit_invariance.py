@@ -39,6 +39,8 @@ SCENES = {
     "paper": ("prm/barboteu_danan_2016_small.prm", []),
     "rail": ("prm/rail_3d_small.prm", []),
     "braking_block": ("prm/braking_block.prm", []),
+    "slip_length": ("prm/barboteu_danan_2016_slip_length.prm",
+                    ["Time/End time=0.5"]),
     "braking_block_3d": ("prm/braking_block_3d.prm", ["Time/Time step=4e-6"]),
     "tiny_time_step": ("prm/stress/tiny_time_step.prm",
                        ["Geometry/Repetitions=32, 8"]),

@@ -16,7 +16,10 @@ viscosity against the weakening (the paper's Remark 8). Checks:
 2. the paper's scenes (those with its slip-weakening law on its rail,
    PAPER below) are flagged: radiation damping fails, no viscosity;
 3. the scenes built to be covered (COVERED below,
-   prm/barboteu_danan_2016_well_posed.prm) hold on both lines.
+   prm/barboteu_danan_2016_well_posed.prm) hold on both lines;
+4. the scenes with a slip length (SLIP_LENGTH below) are flagged as the
+   paper's, their radiation line says it concerns the steady-sliding law,
+   and they alone print the report's slip-length line.
 
 Prints one line per scene (its two verdicts), then the checks. Takes a few
 seconds (each --validate builds the mesh, and stops).
@@ -38,6 +41,10 @@ PAPER = ["prm/barboteu_danan_2016.prm", "prm/barboteu_danan_2016_small.prm",
          "prm/rail_3d.prm", "prm/rail_3d_small.prm", "prm/rail_3d_fast.prm"]
 # Scenes whose data were chosen so that both conditions hold.
 COVERED = ["prm/barboteu_danan_2016_well_posed.prm"]
+# Scenes with a slip length (Friction/Slip length > 0): the paper's data,
+# flagged like the paper's scenes, and the report's slip-length line,
+# which no other scene prints.
+SLIP_LENGTH = ["prm/barboteu_danan_2016_slip_length.prm"]
 
 
 def report(program, source, prm):
@@ -100,6 +107,16 @@ def main():
         check(verdict(rad) == "fails" and verdict(vis) == "no viscosity",
               "%s (the paper's scene) is flagged: radiation damping fails, "
               "no viscosity" % s)
+    for s in SLIP_LENGTH:
+        code, rad, vis, out = results.get(s, (1, None, None, ""))
+        check(verdict(rad) == "fails" and verdict(vis) == "no viscosity"
+              and "the steady-sliding law outruns" in (rad or ""),
+              "%s (the paper's data with a slip length) is flagged for its "
+              "steady-sliding law" % s)
+    printed = sorted(s for s in scenes if "    slip length (" in results[s][3])
+    check(printed == SLIP_LENGTH,
+          "the slip-length line only where a scene sets a slip length (%s)"
+          % (", ".join(printed) or "none"))
     for s in COVERED:
         code, rad, vis, _ = results.get(s, (1, None, None, ""))
         check(verdict(rad) == "holds" and verdict(vis) == "holds",

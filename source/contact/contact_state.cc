@@ -11,6 +11,7 @@ namespace DynamicContact
     mu.assign(n, initial_mu);
     lambda.assign(n, Tensor<1, dim>());
     nodes.assign(n, ContactNodeState<dim>());
+    coefficient_state.assign(n, initial_mu);
   }
 
 
@@ -32,10 +33,11 @@ namespace DynamicContact
 
 
   template <int dim>
+  template <typename NodalValue>
   Vector_t
-  ContactState<dim>::friction_field(const Discretization<dim>  &discretization,
-                                    const ContactBoundary<dim> &boundary,
-                                    const bool per_weight) const
+  ContactState<dim>::nodal_field(const Discretization<dim>  &discretization,
+                                 const ContactBoundary<dim> &boundary,
+                                 const NodalValue           &value)
   {
     Vector_t field;
     discretization.reinit_owned(field);
@@ -46,14 +48,57 @@ namespace DynamicContact
       for (unsigned int c = 0; c < dim; ++c)
         {
           indices.push_back(boundary_nodes[i].dofs[c]);
-          values.push_back(i < lambda.size() ?
-                             lambda[i][c] /
-                               (per_weight ? boundary_nodes[i].weight : 1.) :
-                             0.);
+          values.push_back(value(i, c));
         }
     field.set(indices, values);
     field.compress(VectorOperation::insert);
     return field;
+  }
+
+
+  template <int dim>
+  Vector_t
+  ContactState<dim>::friction_field(const Discretization<dim>  &discretization,
+                                    const ContactBoundary<dim> &boundary,
+                                    const bool per_weight) const
+  {
+    const auto &boundary_nodes = boundary.nodes();
+    return nodal_field(discretization,
+                       boundary,
+                       [&](const unsigned int i, const unsigned int c) {
+                         return i < lambda.size() ?
+                                  lambda[i][c] / (per_weight ?
+                                                    boundary_nodes[i].weight :
+                                                    1.) :
+                                  0.;
+                       });
+  }
+
+
+  template <int dim>
+  Vector_t
+  ContactState<dim>::state_field(const Discretization<dim>  &discretization,
+                                 const ContactBoundary<dim> &boundary) const
+  {
+    return nodal_field(discretization,
+                       boundary,
+                       [&](const unsigned int i, const unsigned int c) {
+                         return c == 0 && i < coefficient_state.size() ?
+                                  coefficient_state[i] :
+                                  0.;
+                       });
+  }
+
+
+  template <int dim>
+  void
+  ContactState<dim>::set_state_from_field(const ContactBoundary<dim> &boundary,
+                                          const Vector_t             &field)
+  {
+    const auto &boundary_nodes = boundary.nodes();
+    coefficient_state.resize(boundary_nodes.size());
+    for (unsigned int i = 0; i < boundary_nodes.size(); ++i)
+      coefficient_state[i] = field[boundary_nodes[i].dofs[0]];
   }
 
 

@@ -357,4 +357,53 @@ namespace DynamicContact
   {
     return "mu(s) = " + expression;
   }
+
+
+  double
+  SlipLength::end_state(const FrictionLaw &law,
+                        const double       m,
+                        const double       s,
+                        const TimeScheme  &scheme) const
+  {
+    const double mu = law.value(s);
+    if (!active())
+      return mu;
+    return mu + (m - mu) * std::exp(-scheme.time_step() * (s + v_ref) / L);
+  }
+
+  std::pair<double, double>
+  SlipLength::step_coefficient(const FrictionLaw &law,
+                               const double       m,
+                               const double       s,
+                               const TimeScheme  &scheme) const
+  {
+    const double mu = law.value(s), dmu = law.derivative(s);
+    if (!active())
+      return {mu, dmu};
+    const double k  = scheme.time_step();
+    const double E  = std::exp(-k * (s + v_ref) / L);
+    const double th = scheme.effective_derivative();
+    return {scheme.weighted(mu + (m - mu) * E, m),
+            th * ((1 - E) * dmu - (m - mu) * E * k / L)};
+  }
+
+  double
+  SlipLength::step_lipschitz_constant(const double      lipschitz,
+                                      const double      mu_max,
+                                      const TimeScheme &scheme) const
+  {
+    // d mu_e/ds >= -theta ((1 - E) lipschitz + E mu_max k/L), a convex
+    // combination (m - mu(s) <= mu_max: 0 <= mu <= mu_max, m the same).
+    if (!active())
+      return lipschitz;
+    return std::max(lipschitz, mu_max * scheme.time_step() / L);
+  }
+
+  std::string
+  SlipLength::description() const
+  {
+    std::ostringstream s;
+    s << "slip length L = " << L << ", reference slip rate v* = " << v_ref;
+    return s.str();
+  }
 } // namespace DynamicContact

@@ -108,6 +108,10 @@ namespace DynamicContact
     if (r < 1)
       return line + "the body's radiation damping outweighs the weakening, "
                     "steady sliding is stable\n";
+    if (data.slip_length)
+      return line + "the steady-sliding law outruns the body's radiation "
+                    "damping; with the slip length the coefficient does not "
+                    "weaken at once (last line)\n";
     if (data.viscous_coercivity == 0)
       return line + "with an elastic body the problem is ill-posed, friction "
                     "quantities will not converge under refinement\n";

@@ -22,7 +22,15 @@ namespace DynamicContact
     data.shear_wave_speed   = parameters.material.shear_wave_speed();
     data.viscous_coercivity = material.viscous_coercivity();
     data.end_time           = parameters.time.end_time;
-    return WellPosedness(data).report();
+    data.slip_length        = friction.slip_length.active();
+    std::string report      = WellPosedness(data).report();
+    if (friction.slip_length.active())
+      report += "    slip length (Friction/Slip length): the coefficient "
+                "follows mu(s) over a slip, not at once; its instantaneous "
+                "weakening is 0, so condition (a) does not forbid "
+                "convergence, and the theorems do not cover the state law "
+                "(doc/theory.md section 1.6)\n";
+    return report;
   }
 
 

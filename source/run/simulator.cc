@@ -191,12 +191,18 @@ namespace DynamicContact
                                   const std::function<void()> &before_commit)
   {
     // The friction forces exactly, as a field of nodal forces saved with the
-    // mesh (any number of processes can load it).
+    // mesh (any number of processes can load it), and with a slip length the
+    // coefficient states.
     Vector_t friction =
       contact_state.friction_field(discretization, contact_boundary, false);
+    Vector_t states =
+      contact_state.state_field(discretization, contact_boundary);
+    std::vector<Vector_t *> fields{&u, &w, &friction};
+    if (parameters.friction.slip_length.active())
+      fields.push_back(&states);
     write_checkpoint(directory,
                      discretization,
-                     {&u, &w, &friction},
+                     fields,
                      state,
                      parameters_of_run,
                      keep,
@@ -208,13 +214,18 @@ namespace DynamicContact
   void
   Simulator<dim>::load_checkpoint(const std::string &path, const double t)
   {
-    Vector_t friction;
+    Vector_t                friction, states;
+    std::vector<Vector_t *> fields{&u, &w, &friction};
+    if (parameters.friction.slip_length.active())
+      fields.push_back(&states);
     DynamicContact::load_checkpoint<dim>(path,
                                          discretization,
-                                         {&u, &w, &friction},
+                                         fields,
                                          [this]() { setup_dofs(); });
     setup_operators(t);
     contact_state.set_friction_from_field(contact_boundary, friction, false);
+    if (parameters.friction.slip_length.active())
+      contact_state.set_state_from_field(contact_boundary, states);
   }
 
 
@@ -263,12 +274,17 @@ namespace DynamicContact
         // friction forces as a traction at the nodes of Gamma_3.
         Vector_t traction =
           contact_state.friction_field(discretization, contact_boundary, true);
+        Vector_t states =
+          contact_state.state_field(discretization, contact_boundary);
+        std::vector<Vector_t *> fields{&u, &w, &traction};
+        if (parameters.friction.slip_length.active())
+          fields.push_back(&states);
         const auto before = mesh_adaptation.fingerprint();
-        refine_and_transfer(discretization, {&u, &w, &traction}, [this]() {
-          setup_dofs();
-        });
+        refine_and_transfer(discretization, fields, [this]() { setup_dofs(); });
         // on the new nodes
         contact_state.set_friction_from_field(contact_boundary, traction, true);
+        if (parameters.friction.slip_length.active())
+          contact_state.set_state_from_field(contact_boundary, states);
         changed = true;
         if (mesh_adaptation.fingerprint() == before)
           break;
@@ -277,8 +293,10 @@ namespace DynamicContact
       {
         // setup_operators() resets the step solver; the nodes stay.
         const auto lambda = contact_state.lambda;
+        const auto states = contact_state.coefficient_state;
         setup_operators(t0);
-        contact_state.lambda = lambda;
+        contact_state.lambda            = lambda;
+        contact_state.coefficient_state = states;
       }
     return energy_now() - energy_before;
   }
@@ -340,6 +358,7 @@ namespace DynamicContact
       refine_initial_mesh();
     setup_operators(0.);
     set_initial_conditions();
+    step_solver.start_coefficient_states(w);
     const double norm = u.l2_norm() + w.l2_norm();
     if (!std::isfinite(norm))
       throw CollectiveError("Initial conditions: the interpolated initial "
@@ -483,6 +502,9 @@ namespace DynamicContact
             << sig6(friction_law->one_sided_lipschitz_constant(
                  parameters.friction.maximum_slip_rate))
             << (friction_law->is_constant() ? " (constant: one pass)" : "");
+    if (step_solver.has_friction() && parameters.friction.slip_length.active())
+      pcout << "; the coefficient a state of each node with "
+            << parameters.friction.slip_length.description();
     pcout << '\n';
     pcout << well_posedness_report<dim>(parameters);
   }

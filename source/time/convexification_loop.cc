@@ -58,6 +58,8 @@ namespace DynamicContact
                    const ContactBoundary<dim>        &boundary,
                    const Foundation                  &foundation,
                    const FrictionLaw                 *friction_law,
+                   const SlipLength                  &slip_length,
+                   const std::vector<double>         &state,
                    const BulkOperator<dim>           &bulk,
                    const TimeScheme                  &scheme,
                    const std::vector<Tensor<1, dim>> &u_old_nodes,
@@ -69,6 +71,8 @@ namespace DynamicContact
         , boundary(boundary)
         , foundation(foundation)
         , friction_law(friction_law)
+        , slip_length(slip_length)
+        , state(state)
         , bulk(bulk)
         , scheme(scheme)
         , u_old_nodes(u_old_nodes)
@@ -113,7 +117,22 @@ namespace DynamicContact
       coefficients_of(const NodalIterate &n, std::vector<double> &mu) const
       {
         for (unsigned int i = 0; i < all.size(); ++i)
-          mu[i] = checked_coefficient(*friction_law, n.slip_rate[i]);
+          mu[i] = coefficient(i, n.slip_rate[i]);
+      }
+
+      /**
+       * The coefficient of node @p i at the slip rate @p s: mu(s), or with
+       * a slip length the step's mu_e from the node's state (SlipLength).
+       */
+      double
+      coefficient(const unsigned int i, const double s) const
+      {
+        const double mu = checked_coefficient(*friction_law, s);
+        return slip_length.active() ?
+                 slip_length
+                   .step_coefficient(*friction_law, state[i], s, scheme)
+                   .first :
+                 mu;
       }
 
       /** Before a pass: u^(m) = u_old + k w of the last iterate. */
@@ -133,8 +152,7 @@ namespace DynamicContact
       {
         for (unsigned int i = 0; i < all.size(); ++i)
           if (!(m.iterate.pressure[i] > 0))
-            m.mu_new[i] =
-              checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+            m.mu_new[i] = coefficient(i, m.iterate.slip_rate[i]);
       }
 
       NodalIterate
@@ -226,8 +244,7 @@ namespace DynamicContact
         for (unsigned int i = 0; i < all.size(); ++i)
           if (m.iterate.pressure[i] > 0)
             {
-              m.mu_new[i] =
-                checked_coefficient(*friction_law, m.iterate.slip_rate[i]);
+              m.mu_new[i] = coefficient(i, m.iterate.slip_rate[i]);
               m.coefficient_residual =
                 std::max(m.coefficient_residual, std::abs(mu[i] - m.mu_new[i]));
             }
@@ -251,6 +268,8 @@ namespace DynamicContact
       const ContactBoundary<dim>          &boundary;
       const Foundation                    &foundation;
       const FrictionLaw                   *friction_law;
+      const SlipLength                    &slip_length;
+      const std::vector<double>           &state;
       const BulkOperator<dim>             &bulk;
       const TimeScheme                    &scheme;
       const std::vector<Tensor<1, dim>>   &u_old_nodes;
@@ -320,6 +339,8 @@ namespace DynamicContact
                  solver.contact_boundary,
                  solver.foundation,
                  solver.friction_law,
+                 solver.friction_parameters.slip_length,
+                 solver.contact_state.coefficient_state,
                  solver.bulk,
                  scheme,
                  u_old_nodes,
@@ -462,6 +483,11 @@ namespace DynamicContact
         0.;
     coefficients.frozen = mu;
     coefficients.law    = coupled ? solver.friction_law : nullptr;
+    if (coupled && solver.friction_parameters.slip_length.active())
+      {
+        coefficients.state       = solver.contact_state.coefficient_state;
+        coefficients.slip_length = solver.friction_parameters.slip_length;
+      }
     const ContactStep<dim> step{
       scheme, rhs, u_old_nodes, w_old_nodes, coefficients};
     try
@@ -638,6 +664,8 @@ namespace DynamicContact
       measure_uniqueness(scheme, contact_solver, statistics);
     if (count)
       count_solutions(arguments, w_old, start_state, statistics);
+    if (loop_active && friction_parameters.slip_length.active())
+      advance_coefficient_states(scheme);
     return statistics;
   }
 

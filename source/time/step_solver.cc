@@ -162,6 +162,31 @@ namespace DynamicContact
 
   template <int dim>
   void
+  StepSolver<dim>::start_coefficient_states(const Vector_t &w0)
+  {
+    if (!friction)
+      return;
+    const auto  values = contact_boundary.values(w0);
+    const auto &nodes  = contact_boundary.nodes();
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      contact_state.coefficient_state[i] =
+        friction_law->value(nodes[i].tangential(values[i]).norm());
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::advance_coefficient_states(const TimeScheme &scheme)
+  {
+    auto &state = contact_state.coefficient_state;
+    for (unsigned int i = 0; i < state.size(); ++i)
+      state[i] = friction_parameters.slip_length.end_state(
+        *friction_law, state[i], contact_state.nodes[i].slip_rate, scheme);
+  }
+
+
+  template <int dim>
+  void
   StepSolver<dim>::measure_uniqueness(const TimeScheme   &scheme,
                                       ContactSolver<dim> &solver,
                                       Statistics         &statistics)
@@ -185,7 +210,11 @@ namespace DynamicContact
                                              theta);
     const double mu_max =
       friction_law->largest_value(friction_parameters.maximum_slip_rate);
-    const bool with_bound = lipschitz_constant > 0 && std::isfinite(kappa);
+    // With a slip length, the law of the step is mu_e (SlipLength).
+    const SlipLength &slip_length = friction_parameters.slip_length;
+    const double      lipschitz =
+      slip_length.step_lipschitz_constant(lipschitz_constant, mu_max, scheme);
+    const bool with_bound = lipschitz > 0 && std::isfinite(kappa);
     std::vector<Tensor<2, dim>> bound(n), contraction(n);
     bool                        any_bound = false, any_contraction = false;
     for (unsigned int i = 0; i < n; ++i)
@@ -199,7 +228,7 @@ namespace DynamicContact
           {
             Tensor<2, dim> P = unit_symmetric_tensor<dim>();
             P -= outer_product(node.normal, node.normal);
-            const double weight = theta * lipschitz_constant * std::max(N, 0.) +
+            const double weight = theta * lipschitz * std::max(N, 0.) +
                                   mu_max * mu_max * node.weight * kappa / 4;
             bound[i]  = std::sqrt(weight) * P;
             any_bound = any_bound || weight > 0;
@@ -208,7 +237,13 @@ namespace DynamicContact
           continue;
         const double weakening =
           state.state == FrictionState::slip && state.slip_rate > 0 ?
-            -friction_law->derivative(state.slip_rate) * N * theta :
+            -slip_length
+                .step_coefficient(*friction_law,
+                                  contact_state.coefficient_state[i],
+                                  state.slip_rate,
+                                  scheme)
+                .second *
+              N * theta :
             0.;
         if (weakening > 0)
           {

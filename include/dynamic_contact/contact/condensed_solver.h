@@ -222,10 +222,15 @@ namespace DynamicContact
     FrictionCoefficients
     gather_coefficients(const FrictionCoefficients &mu) const
     {
+      // (The states: decided by the same value on every process.)
       return {gathered.gather(mu.frozen),
               mu.law,
               mu.weakening_limit.empty() ? std::vector<double>() :
-                                           gathered.gather(mu.weakening_limit)};
+                                           gathered.gather(mu.weakening_limit),
+              mu.coupled() && mu.slip_length.active() ?
+                gathered.gather(mu.state) :
+                std::vector<double>(),
+              mu.slip_length};
     }
 
     /** The nodal values of a vector at every node (collective). */

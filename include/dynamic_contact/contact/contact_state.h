@@ -45,6 +45,12 @@ namespace DynamicContact
     std::vector<Tensor<1, dim>> lambda;
     /** The node states of the last solve. */
     std::vector<ContactNodeState<dim>> nodes;
+    /**
+     * With a slip length (SlipLength): the state mu~_i of each node at the
+     * end of the last solve, where the next one starts (initial_mu after
+     * reinit()).
+     */
+    std::vector<double> coefficient_state;
 
     /**
      * The total normal force sum_i N_i and the sum of |lambda_i| over
@@ -69,6 +75,30 @@ namespace DynamicContact
     set_friction_from_field(const ContactBoundary<dim> &boundary,
                             const Vector_t             &field,
                             const bool                  per_weight);
+
+    /**
+     * The states mu~_i as a finite element field (the first component at
+     * the nodes of Gamma_3, zero elsewhere), and back: a coefficient, which
+     * a change of the mesh interpolates along Gamma_3 and a checkpoint
+     * stores exactly.
+     */
+    Vector_t
+    state_field(const Discretization<dim>  &discretization,
+                const ContactBoundary<dim> &boundary) const;
+    void
+    set_state_from_field(const ContactBoundary<dim> &boundary,
+                         const Vector_t             &field);
+
+  private:
+    /**
+     * The field with @p value(i, c) at component c of node i of Gamma_3
+     * and zero elsewhere.
+     */
+    template <typename NodalValue>
+    static Vector_t
+    nodal_field(const Discretization<dim>  &discretization,
+                const ContactBoundary<dim> &boundary,
+                const NodalValue           &value);
   };
 } // namespace DynamicContact
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 namespace DynamicContact
@@ -352,8 +353,7 @@ namespace DynamicContact
     if (problem.friction && mu.coupled())
       {
         const double s = node.tangential(scheme.weighted(w, w_old)).norm();
-        mu_i           = mu.law->value(s);
-        dmu_ds         = mu.law->derivative(s);
+        std::tie(mu_i, dmu_ds) = mu.coupled_coefficient(i, s, scheme);
       }
     else if (problem.friction && !mu.frozen.empty())
       mu_i = mu.frozen[i];

@@ -211,7 +211,8 @@ namespace DynamicContact
    * order of the solver's node vectors). Coupled (@p law set): mu_i =
    * mu(|w_e,tau,i|) of the iterate itself, whose derivative enters the
    * Newton linearization, so that one solve lands on the fixed point of
-   * the loop; frozen is then not used.
+   * the loop; frozen is then not used. With a slip length, the coupled
+   * coefficient is the step's mu_e of the node's state (SlipLength).
    */
   struct FrictionCoefficients
   {
@@ -222,11 +223,27 @@ namespace DynamicContact
      * velocity) the linearization takes at node i, empty for no limit.
      */
     std::vector<double> weakening_limit;
+    /** Coupled with a slip length: the states mu~_i at the step's start. */
+    std::vector<double> state;
+    SlipLength          slip_length;
 
     bool
     coupled() const
     {
       return law != nullptr;
+    }
+
+    /** Coupled: the coefficient of node @p i at the slip rate @p s, and its
+     * derivative in s. */
+    std::pair<double, double>
+    coupled_coefficient(const unsigned int i,
+                        const double       s,
+                        const TimeScheme  &scheme) const
+    {
+      return slip_length.step_coefficient(*law,
+                                          slip_length.active() ? state[i] : 0.,
+                                          s,
+                                          scheme);
     }
   };
 

@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <dynamic_contact/base/plugins.h>
+#include <dynamic_contact/laws/slip_length.h>
 
 #include <algorithm>
 #include <memory>
@@ -240,6 +241,7 @@ namespace DynamicContact
     /** s_law of derivative() (1 before set_slip_rate_window()). */
     double velocity_scale = 1;
   };
+
 } // namespace DynamicContact
 
 #endif

@@ -45,6 +45,11 @@ namespace DynamicContact
       double viscous_coercivity;
       /** T. */
       double end_time;
+      /**
+       * The coefficient is a state over a slip length (SlipLength): L is
+       * the weakening of the steady-sliding law, not an instantaneous one.
+       */
+      bool slip_length = false;
     };
 
     explicit WellPosedness(const Data &data)

@@ -6,6 +6,7 @@
 
 #include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/laws/material.h>
+#include <dynamic_contact/laws/slip_length.h>
 
 #include <map>
 #include <memory>
@@ -136,6 +137,12 @@ namespace DynamicContact
        * entry, or for 'auto' the P-wave speed of the material).
        */
       double maximum_slip_rate;
+      /**
+       * Friction/Slip length and Reference slip rate: the coefficient a
+       * state that relaxes towards mu(s) over a slip length (inactive for
+       * L = 0, the default: the law of eq. (18) itself).
+       */
+      SlipLength slip_length;
 
       // Convexification loop (doc/theory.md section 4).
       double       convexification_tolerance; // epsilon_conv, eq. (85)

@@ -221,6 +221,13 @@ namespace DynamicContact
       return law != nullptr && !law->is_constant();
     }
 
+    /**
+     * The states mu~_i at the start of the run: mu(s) of the slip rate of
+     * the initial velocity @p w0 at each node (steady sliding).
+     */
+    void
+    start_coefficient_states(const Vector_t &w0);
+
   private:
     const Discretization<dim>  &discretization;
     const BulkOperator<dim>    &bulk;
@@ -325,6 +332,14 @@ namespace DynamicContact
                   const std::vector<Tensor<1, dim>> &w_old_nodes,
                   const Vector_t                    &w,
                   Statistics                        &statistics);
+
+    /**
+     * With a slip length: the states mu~_i at the end of the solved step
+     * (SlipLength::end_state() of the slip rates of update_states()), where
+     * the next solve starts.
+     */
+    void
+    advance_coefficient_states(const TimeScheme &scheme);
   };
 } // namespace DynamicContact
 
