@@ -371,6 +371,17 @@ main(int argc, char **argv)
             "Time/Spectral radius at infinity=1.5"}),
       1,
       {"Time/Spectral radius at infinity"});
+  add("slip_length_with_sdirk",
+      scene,
+      with(
+        {"--set", "Time/Scheme=sdirk", "--set", "Friction/Slip length=0.01"}),
+      1,
+      {"Friction/Slip length", "Time/Scheme"});
+  add("slip_length_negative",
+      scene,
+      with({"--set", "Friction/Slip length=-1"}),
+      1,
+      {"Friction/Slip length"});
 
   // Boundary conditions against the mesh (ids 0..3 of the rectangle).
   add("boundary_id_twice",

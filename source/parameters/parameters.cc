@@ -482,7 +482,7 @@ namespace DynamicContact
         prm.declare_entry(
           "Slip length",
           "0",
-          Patterns::Double(0),
+          Patterns::Double(),
           "L (m): the friction coefficient becomes a state mu~ of each node "
           "of Gamma_3 that follows the law mu(s) over the slip L, d mu~/dt "
           "= -((s + v*)/L)(mu~ - mu(s)) (a regularization of the slip-rate "
@@ -491,12 +491,13 @@ namespace DynamicContact
           "paper's small scene the friction force then converges as k and h "
           "fall, where with the law itself it does not in k (measured: "
           "doc/accuracy.md section 6). The state is carried from step to "
-          "step, through remeshing and in checkpoints. 0: no state, mu = "
-          "mu(s) (the paper's law).");
+          "step, through remeshing and in checkpoints; with Time/Scheme = "
+          "backward Euler or trapezoidal. 0: no state, mu = mu(s) (the "
+          "paper's law).");
         prm.declare_entry(
           "Reference slip rate",
           "0",
-          Patterns::Double(0),
+          Patterns::Double(),
           "v* (m/s) of Slip length: the state relaxes at the rate (s + "
           "v*)/L, so that with v* > 0 it also returns to mu(0) while a node "
           "sticks; 0: it stays as it is while the node sticks.");
@@ -547,9 +548,14 @@ namespace DynamicContact
         law                       = std::move(new_law);
         const double L            = prm.get_double("Slip length");
         const double v_ref        = prm.get_double("Reference slip rate");
-        require(std::isfinite(L) && std::isfinite(v_ref),
-                "Friction/Slip length and Reference slip rate must be "
-                "finite numbers >= 0.");
+        require(std::isfinite(L) && L >= 0,
+                "Friction/Slip length must be a finite number >= 0 (0: no "
+                "slip length), got " +
+                  str(L) + ".");
+        require(std::isfinite(v_ref) && v_ref >= 0,
+                "Friction/Reference slip rate must be a finite number >= 0, "
+                "got " +
+                  str(v_ref) + ".");
         slip_length               = SlipLength(L, v_ref);
         convexification_tolerance = prm.get_double("Convexification tolerance");
         coefficient_tolerance     = prm.get_double("Coefficient tolerance");

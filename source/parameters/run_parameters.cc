@@ -441,6 +441,17 @@ namespace DynamicContact
             "Solver/Preconditioner = GMG is made for elements of degree 1 "
             "and 2 (Finite element/Polynomial degree = " +
               std::to_string(finite_element.degree) + ").");
+    // The slip length's state advances with each solve over its own
+    // (sub-)step: right for the theta-schemes, whose solve is the step; the
+    // composite schemes combine their sub-steps' states differently
+    // (doc/theory.md section 1.6).
+    require(!friction.slip_length.active() ||
+              time.scheme == Parameters::Time::Scheme::backward_euler ||
+              time.scheme == Parameters::Time::Scheme::trapezoidal,
+            "Friction/Slip length > 0 is implemented for Time/Scheme = "
+            "backward Euler and trapezoidal only (a composite scheme, bathe "
+            "or sdirk, would advance the coefficient state over its "
+            "sub-steps, not over the step).");
     // The cut-back for uniqueness needs the measures at every step.
     if (time.cut_back_where_not_unique)
       {
