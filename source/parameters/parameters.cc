@@ -408,14 +408,11 @@ namespace DynamicContact
       {
         prm.declare_entry(
           "Linearization",
-          "auto",
-          Patterns::Selection("auto|frozen|coupled"),
+          "frozen",
+          Patterns::Selection("frozen|coupled"),
           "How a slip-rate dependent coefficient mu(|w_tau|) enters the "
           "semismooth Newton iteration of the convexification loop "
-          "(doc/theory.md sections 4 and 5.1). 'auto': 'coupled' where the "
-          "coefficient is a state (Slip length > 0: there the coupled pass "
-          "was measured to end at the frozen loop's solution, "
-          "doc/algorithms.md), 'frozen' otherwise. 'frozen': every pass freezes "
+          "(doc/theory.md sections 4 and 5.1). 'frozen': every pass freezes "
           "mu_i (the paper's algorithm). 'coupled': the first pass takes "
           "mu(|w_tau|) of the iterate itself and its derivative into the "
           "Newton linearization (the weakening limited to half the "
@@ -562,10 +559,7 @@ namespace DynamicContact
         relaxation                = prm.get_double("Relaxation");
         max_convexification_iterations =
           prm.get_integer("Maximum convexification iterations");
-        const std::string linearization = prm.get("Linearization");
-        coupled_linearization =
-          linearization == "coupled" ||
-          (linearization == "auto" && slip_length.active());
+        coupled_linearization     = prm.get("Linearization") == "coupled";
         const std::string monitor = prm.get("Uniqueness monitor");
         uniqueness_monitor =
           monitor == "always" ? Monitor::always :
