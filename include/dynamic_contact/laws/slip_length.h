@@ -41,18 +41,6 @@ namespace DynamicContact
       return L > 0;
     }
 
-    double
-    length() const
-    {
-      return L;
-    }
-
-    double
-    reference_rate() const
-    {
-      return v_ref;
-    }
-
     /** The state mu~_n at the end of the step (mu(s) without a length). */
     double
     end_state(const FrictionLaw &law,
