@@ -7,6 +7,7 @@ script's folder first on its path)."""
 import argparse
 import csv
 import os
+import shlex
 import subprocess
 import sys
 
@@ -46,22 +47,29 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def run_scene(program, scene, out, overrides=()):
+def run_scene(program, scene, out, overrides=(), processes=1,
+              mpiexec="mpiexec"):
     """Run @p program on @p scene into the directory @p out (no timings,
     no progress lines, one thread) with the entries @p overrides
-    ("Section/Name=value"); whether it exited 0 with run_status
-    'completed'."""
+    ("Section/Name=value"), on @p processes MPI processes (started by
+    @p mpiexec) if more than one; whether it exited 0 with run_status
+    'completed' (if not, the end of its output goes to stderr)."""
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-    command = [program, "--set", "Output/Directory=" + out,
-               "--set", "Output/Print timings=false",
-               "--set", "Output/Progress every=0"]
+    command = shlex.split(mpiexec) + ["-np", str(processes)] \
+        if processes > 1 else []
+    command += [program, "--set", "Output/Directory=" + out,
+                "--set", "Output/Print timings=false",
+                "--set", "Output/Progress every=0"]
     for o in overrides:
         command += ["--set", o]
     result = subprocess.run(command + [scene], env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            universal_newlines=True)
     status = ""
     if os.path.exists(os.path.join(out, "run_status")):
         with open(os.path.join(out, "run_status")) as f:
             status = f.read().strip()
+    if result.returncode != 0 or status != "completed":
+        sys.stderr.write(result.stdout[-3000:])
     return result.returncode == 0 and status == "completed"

@@ -44,11 +44,9 @@ Prints one line per check; exit code 1 if one failed.
 import glob
 import math
 import os
-import shlex
-import subprocess
-import sys
 
-from script_checks import check, finish, program_arguments, read_csv
+from script_checks import (check, finish, program_arguments, read_csv,
+                           run_scene)
 
 # The braking block's data (prm/braking_block.prm).
 RHO, H, P = 1000., 0.2, 1e6
@@ -60,7 +58,6 @@ STEPS = [8e-6, 4e-6, 2e-6]
 PAPER = (1., 0.5, 2000.)
 SCENE_L, SCENE_VSTAR = 1e-2, 1e-3
 
-QUIET = ["Output/Print timings=false", "Output/Progress every=0"]
 PHYSICAL = ["normal_force", "tangential_force", "total_energy",
             "kinetic_energy", "friction_dissipation", "load_work"]
 
@@ -91,24 +88,8 @@ def ode_stop(L, mu, dt):
 
 
 def run(args, processes, scene, out, overrides):
-    command = []
-    if processes > 1:
-        command = shlex.split(args.mpiexec) + ["-np", str(processes)]
-    command += [args.program, "--set", "Output/Directory=" + out]
-    for o in QUIET + overrides:
-        command += ["--set", o]
-    command.append(os.path.join(args.source_dir, scene))
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-    result = subprocess.run(command, env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, universal_newlines=True)
-    status = ""
-    if os.path.exists(os.path.join(out, "run_status")):
-        with open(os.path.join(out, "run_status")) as f:
-            status = f.read().strip()
-    if result.returncode != 0 or status != "completed":
-        sys.stderr.write(result.stdout[-3000:])
-    return result.returncode == 0 and status == "completed"
+    return run_scene(args.program, os.path.join(args.source_dir, scene), out,
+                     overrides, processes, args.mpiexec)
 
 
 def block_stop(out):
