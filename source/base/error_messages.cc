@@ -86,6 +86,15 @@ namespace DynamicContact
 
 
   std::string
+  str(const double x)
+  {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  }
+
+
+  std::string
   scientific(const double x, const unsigned int decimals)
   {
     char buffer[48];

@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
+#include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/laws/foundation.h>
 
 #include <cmath>
@@ -9,14 +10,6 @@ namespace DynamicContact
 {
   namespace
   {
-    std::string
-    str(const double x)
-    {
-      std::ostringstream s;
-      s << x;
-      return s.str();
-    }
-
     /** Declare a capped ramp's slope entry @p slope and its cap. */
     void
     declare_ramp(ParameterHandler  &prm,

@@ -85,13 +85,6 @@ namespace DynamicContact
   {
     using FrictionLaws = PluginRegistry<FrictionLaw>;
 
-    std::string
-    str(const double x)
-    {
-      std::ostringstream s;
-      s << x;
-      return s.str();
-    }
   } // namespace
 
 

@@ -584,7 +584,11 @@ namespace DynamicContact
       {"Mesh refinement/Look-ahead steps",
        "the load is sampled until the next adaptation ('Refine every' "
        "steps), as its default did; delete the line, and widen the refined "
-       "zone with Mesh refinement/Load following/Window"}};
+       "zone with Mesh refinement/Load following/Window"},
+      {"Time/Spectral radius at infinity",
+       "each time scheme has a subsection of its own: set "
+       "Time/Bathe/Spectral radius at infinity or Time/Sdirk/Spectral "
+       "radius at infinity, for the scheme Time/Scheme names"}};
     return removed;
   }
 

@@ -122,12 +122,5 @@ namespace DynamicContact
       prm.leave_subsection();
     }
 
-    std::string
-    str(const double x)
-    {
-      std::ostringstream s;
-      s << x;
-      return s.str();
-    }
   } // namespace ParameterTools
 } // namespace DynamicContact

@@ -9,6 +9,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/parameters/parameters.h>
 
 #include <functional>
@@ -82,10 +83,6 @@ namespace DynamicContact
       return value;
     }
 
-
-    /** A number as the parameter file would write it. */
-    std::string
-    str(const double x);
   } // namespace ParameterTools
 } // namespace DynamicContact
 

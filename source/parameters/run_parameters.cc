@@ -112,49 +112,7 @@ namespace DynamicContact
         "step grows back (doubling after three good steps) to Time step. A "
         "step that fails even at the minimum stops the run, the last good "
         "state written. Set it equal to Time step for no cut-back.");
-      prm.declare_entry(
-        "Scheme",
-        "backward Euler",
-        Patterns::Selection("backward Euler|trapezoidal|bathe|sdirk"),
-        "'backward Euler': the paper's scheme (eqs. (52)-(54)), first order. "
-        "'trapezoidal': second order, u_n = u_{n-1} + k (w_n + w_{n-1})/2, "
-        "the equation of motion at the midpoint, the compliance force the "
-        "discrete gradient (Pi(u_n) - Pi(u_{n-1}))/(u_n - u_{n-1}), damping "
-        "and friction on (w_n + w_{n-1})/2: energy-consistent (no numerical "
-        "dissipation; the balance of doc/theory.md section 6 still holds "
-        "exactly, with only the physical dissipation). "
-        "'bathe': the Bathe composite scheme, second order with strong "
-        "high-frequency dissipation (spectral radius 0 at infinity, like "
-        "backward Euler, but little dissipation of the resolved modes): a "
-        "trapezoidal sub-step over k/2, then the three-point backward "
-        "difference, which is a backward-Euler step of k/3 from the "
-        "extrapolated state (4 x_{n-1/2} - x_{n-1})/3; two solves per step "
-        "(doc/theory.md section 2); its high-frequency dissipation is set "
-        "by Spectral radius at infinity. "
-        "'sdirk': a two-stage diagonally implicit Runge-Kutta scheme, second "
-        "order, with the same control of the high-frequency dissipation "
-        "(Spectral radius at infinity) and a numerical dissipation that is "
-        ">= 0 at every step whatever the load (algebraically stable): two "
-        "backward-Euler stages of gamma k (gamma = 1 - 1/sqrt(2) at "
-        "rho_inf = 0), the second from an extrapolated state, and the end "
-        "state a combination of the stages; two solves per step, one "
-        "matrix (doc/theory.md section 2.6).");
-      prm.declare_entry(
-        "Spectral radius at infinity",
-        "0",
-        Patterns::Double(),
-        "rho_inf in [0, 1] of Time/Scheme = bathe or sdirk: the "
-        "amplification of a mode far beyond the resolution (omega k -> "
-        "infinity) in one step. "
-        "0 (default): the Bathe scheme as above, such modes are removed in "
-        "a step; 1: no high-frequency dissipation (two trapezoidal half "
-        "steps). In between, the step is a trapezoidal sub-step over k/2, "
-        "the linear extrapolation of u and w to t_{n-1} + s k and a "
-        "theta-step of (1 - s) k, s and theta chosen for second order and "
-        "this rho_inf (doc/theory.md section 2.4); for sdirk it sets the "
-        "stages' gamma (section 2.6). The other schemes have "
-        "their own (backward Euler 0, trapezoidal 1): a value other than "
-        "0 needs Time/Scheme = bathe or sdirk.");
+      declare_step_schemes(prm);
       declare_adaptive_entries(prm);
       prm.leave_subsection();
     }
@@ -168,13 +126,8 @@ namespace DynamicContact
       minimum_time_step = prm.get_double("Minimum time step");
       if (minimum_time_step == 0)
         minimum_time_step = time_step / 1024;
-      const std::string scheme_name = prm.get("Scheme");
-      scheme = (scheme_name == "trapezoidal" ? Scheme::trapezoidal :
-                scheme_name == "bathe"       ? Scheme::bathe :
-                scheme_name == "sdirk"       ? Scheme::sdirk :
-                                               Scheme::backward_euler);
-      const double spectral_radius =
-        prm.get_double("Spectral radius at infinity");
+      scheme_name = prm.get("Scheme");
+      scheme = PluginRegistry<StepScheme>::instance().create(scheme_name, prm);
       adaptive           = prm.get_bool("Adaptive");
       adaptive_tolerance = prm.get_double("Adaptive tolerance");
       maximum_time_step  = prm.get_double("Maximum time step");
@@ -188,21 +141,10 @@ namespace DynamicContact
               "Time/Time step must be positive, got " + str(time_step) + ".");
       require(minimum_time_step <= time_step,
               "Time/Minimum time step must not exceed Time/Time step.");
-      require(spectral_radius >= 0 && spectral_radius <= 1,
-              "Time/Spectral radius at infinity must lie in [0, 1], got " +
-                str(spectral_radius) + ".");
-      require(
-        spectral_radius == 0 || scheme == Scheme::bathe ||
-          scheme == Scheme::sdirk,
-        "Time/Spectral radius at infinity = " + str(spectral_radius) +
-          " needs Time/Scheme = bathe or sdirk (backward Euler has 0, the "
-          "trapezoidal rule 1, and neither has a parameter).");
-      composite = CompositeScheme(spectral_radius);
-      sdirk     = SdirkScheme(spectral_radius);
-      require(!adaptive || scheme != Scheme::trapezoidal,
-              "Time/Adaptive = true needs Time/Scheme = bathe, sdirk or "
-              "backward Euler (the trapezoidal rule has no error estimate "
-              "here).");
+      require(!adaptive || scheme->local_error_order() > 0,
+              "Time/Adaptive = true needs a Time/Scheme with a local error "
+              "estimate; Time/Scheme = " +
+                scheme_name + " has none.");
       require(!adaptive || adaptive_tolerance > 0,
               "Time/Adaptive tolerance must be positive, got " +
                 str(adaptive_tolerance) + ".");
@@ -425,15 +367,14 @@ namespace DynamicContact
     solver.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
-    require(solver.preconditioner !=
-                Parameters::Solver::Preconditioner::matrix_free_gmg ||
-              (solver.linear_solver !=
-                 Parameters::Solver::LinearSolver::direct &&
-               solver.contact_solver !=
-                 Parameters::Solver::ContactSolver::condensed),
-            "Solver/Preconditioner = matrix-free GMG stores no K0: it needs "
-            "Solver/Contact solver = assembled (or auto) and Solver/Linear "
-            "solver = iterative (or auto).");
+    require(
+      solver.preconditioner !=
+          Parameters::Solver::Preconditioner::matrix_free_gmg ||
+        (solver.linear_solver != Parameters::Solver::LinearSolver::direct &&
+         solver.contact_solver != Parameters::Solver::ContactSolver::condensed),
+      "Solver/Preconditioner = matrix-free GMG stores no K0: it needs "
+      "Solver/Contact solver = assembled (or auto) and Solver/Linear "
+      "solver = iterative (or auto).");
     require(solver.preconditioner == Parameters::Solver::Preconditioner::amg ||
               solver.preconditioner ==
                 Parameters::Solver::Preconditioner::automatic ||
@@ -446,12 +387,13 @@ namespace DynamicContact
     // composite schemes combine their sub-steps' states differently
     // (doc/theory.md section 1.6).
     require(!friction.slip_length.active() ||
-              time.scheme == Parameters::Time::Scheme::backward_euler ||
-              time.scheme == Parameters::Time::Scheme::trapezoidal,
-            "Friction/Slip length > 0 is implemented for Time/Scheme = "
-            "backward Euler and trapezoidal only (a composite scheme, bathe "
-            "or sdirk, would advance the coefficient state over its "
-            "sub-steps, not over the step).");
+              time.scheme->solves_per_step() == 1,
+            "Friction/Slip length > 0 needs a Time/Scheme of one solve per "
+            "step; Time/Scheme = " +
+              time.scheme_name + " has " +
+              std::to_string(time.scheme->solves_per_step()) +
+              " (the coefficient state would advance over its sub-steps, "
+              "not over the step).");
     // The cut-back for uniqueness needs the measures at every step.
     if (time.cut_back_where_not_unique)
       {

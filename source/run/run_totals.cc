@@ -1,6 +1,6 @@
-#include <dynamic_contact/time/energy_balance.h>
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/run/run_totals.h>
+#include <dynamic_contact/time/energy_balance.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -46,10 +46,10 @@ namespace DynamicContact
                   "below 1e-8" :
                   "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
             << ", every dissipation term >= 0"
-            << (parameters.time.scheme == Parameters::Time::Scheme::sdirk ?
-                  " (the compliance term left out: not sign-definite with "
-                  "sdirk)" :
-                  "")
+            << (parameters.time.scheme->compliance_dissipation_is_signed() ?
+                  std::string() :
+                  " (the compliance term left out: not sign-definite with " +
+                    parameters.time.scheme_name + ")")
             << ": "
             << (dissipation ?
                   "yes" :
@@ -257,8 +257,7 @@ namespace DynamicContact
         !parameters.friction.law->is_constant())
       pcout << "  coupled linearization: fell back to the frozen loop in "
             << coupled_fallbacks << " step"
-            << (coupled_fallbacks == 1 ? "" : "s")
-            << std::endl;
+            << (coupled_fallbacks == 1 ? "" : "s") << std::endl;
     if (friction && (bound_steps > 0 || max_contraction >= 0))
       print_uniqueness(pcout);
     if (counted_steps > 0)

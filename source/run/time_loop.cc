@@ -287,7 +287,7 @@ namespace DynamicContact
   {
     // The usual controller: the local error of a scheme of order p scales
     // like k^(p+1).
-    const double order = parameters.time.local_error_order();
+    const double order = parameters.time.scheme->local_error_order();
     const double factor =
       error > 0 ?
         std::min(2., std::max(0.2, 0.9 * std::pow(error, -1. / order))) :

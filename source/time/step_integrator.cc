@@ -142,30 +142,14 @@ namespace DynamicContact
   double
   StepIntegrator<dim>::time_error_estimate(const double k) const
   {
-    // The displacement's local error, from the step just solved (u, w from
-    // u_old, w_old; for the Bathe scheme w_{n-1/2} = (3 w_bar + w_old)/4
-    // at rho_inf = 0, CompositeScheme::local_error for any rho_inf):
-    //   backward Euler: e = u_n - (u_{n-1} + k (w_{n-1} + w_n)/2)
-    //                     = (k/2) (w_n - w_{n-1}),
-    //   Bathe:          e = u_n - (u_{n-1} + k (w_{n-1} + 4 w_{n-1/2}
-    //                     + w_n)/6) = (k/6) (w_{n-1} - 2 w_{n-1/2} + w_n),
-    // the difference to a solution of higher order (the trapezoidal rule,
-    // Simpson's rule) of the velocities the step computed. Its energy norm
+    // The displacement's local error of the step just solved (the
+    // scheme's, StepScheme::local_error(): the difference to a solution of
+    // higher order of the velocities the step computed). Its energy norm
     // a_E(e, e)^(1/2), relative to the larger of |(u, w)|_E at the two
     // ends, |(u, w)|_E^2 = rho |w|^2 + a_E(u, u).
     Vector_t e;
     e.reinit(u, true);
-    if (ops.time.scheme == Parameters::Time::Scheme::bathe)
-      ops.time.composite.local_error(e, w, w_bar, w_old, k);
-    else if (ops.time.scheme == Parameters::Time::Scheme::sdirk)
-      // With w = W2, before the stages are combined (measure_last_solve).
-      ops.time.sdirk.local_error(e, w, w_stage, w_old, k);
-    else
-      {
-        e = w;
-        e -= w_old;
-        e *= k / 2;
-      }
+    ops.time.scheme->local_error(*this, e, k);
     const double density = ops.material.density();
     const double scale =
       std::max(density * ops.bulk.mass_product(w, w) +
@@ -186,84 +170,7 @@ namespace DynamicContact
   {
     u_old = u;
     w_old = w;
-    if (ops.time.scheme == Parameters::Time::Scheme::bathe)
-      bathe_step(record, t, k, accept_unconverged_loop);
-    else if (ops.time.scheme == Parameters::Time::Scheme::sdirk)
-      sdirk_step(record, t, k, accept_unconverged_loop);
-    else
-      theta_step(record, t, k, accept_unconverged_loop);
-  }
-
-
-  template <int dim>
-  void
-  StepIntegrator<dim>::bathe_step(StepRecord<dim> &record,
-                                  const double     t,
-                                  const double     k,
-                                  const bool       accept_unconverged_loop)
-  {
-    // The Bathe composite scheme (doc/theory.md section 2.4). Sub-step
-    // 1: the trapezoidal rule from t - k to t - k/2.
-    const CompositeScheme               &composite = ops.time.composite;
-    const TimeScheme                     first     = composite.first_substep(k);
-    typename StepSolver<dim>::Statistics first_statistics;
-    EnergyBalanceTerms                   first_terms;
-    solve_substep(first,
-                  t - k / 2,
-                  u_old,
-                  w_old,
-                  record.previous_energy,
-                  accept_unconverged_loop,
-                  first_statistics,
-                  first_terms);
-    // Sub-step 2: a theta-step from the extrapolated state x_bar =
-    // (1 + a) x_{n-1/2} - a x_{n-1} to t (at rho_inf = 0 the three-point
-    // backward difference: backward Euler over k/3 from
-    // (4 x_{n-1/2} - x_{n-1})/3).
-    composite.extrapolate(u_bar, u, u_old);
-    composite.extrapolate(w_bar, w, w_old);
-    const Energy       bar_energy = ops.energy_balance.energy(u_bar, w_bar);
-    const TimeScheme   last       = composite.second_substep(k);
-    EnergyBalanceTerms second_terms;
-    solve_second_substep(last,
-                         t,
-                         bar_energy.total(),
-                         accept_unconverged_loop,
-                         first_statistics,
-                         record,
-                         second_terms);
-    // (f, u_bar - u_{n-1/2}) = a/(1 + a) (f, u_bar - u_{n-1}) with the
-    // second sub-step's load f (f_n at rho_inf = 0).
-    scratch = u_bar;
-    scratch -= u_old;
-    const double extrapolation_work =
-      composite.extrapolation_share() * (load * scratch);
-    record.terms = bathe_terms(first_terms,
-                               bar_energy,
-                               second_terms,
-                               extrapolation_work,
-                               record.previous_energy);
-    measure_last_solve(record, last, u_bar, w_bar, t, k);
-  }
-
-
-  template <int dim>
-  void
-  StepIntegrator<dim>::theta_step(StepRecord<dim> &record,
-                                  const double     t,
-                                  const double     k,
-                                  const bool       accept_unconverged_loop)
-  {
-    const TimeScheme scheme(k, ops.time.theta());
-    solve_substep(scheme,
-                  t,
-                  u_old,
-                  w_old,
-                  record.previous_energy,
-                  accept_unconverged_loop,
-                  record.statistics,
-                  record.terms);
-    measure_last_solve(record, scheme, u_old, w_old, t, k);
+    ops.time.scheme->step(*this, record, t, k, accept_unconverged_loop);
   }
 
 
@@ -326,84 +233,6 @@ namespace DynamicContact
       std::max(first_statistics.residual, record.statistics.residual);
   }
 
-
-
-  template <int dim>
-  void
-  StepIntegrator<dim>::sdirk_step(StepRecord<dim> &record,
-                                  const double     t,
-                                  const double     k,
-                                  const bool       accept_unconverged_loop)
-  {
-    // The two-stage SDIRK scheme (doc/theory.md section 2.6). Stage 1:
-    // backward Euler over gamma k from y_{n-1}.
-    const SdirkScheme                   &sdirk = ops.time.sdirk;
-    const TimeScheme                     stage = sdirk.stage(k);
-    const double                         t0    = t - k;
-    typename StepSolver<dim>::Statistics first_statistics;
-    EnergyBalanceTerms                   first_terms;
-    const double old_foundation = ops.energy_balance.foundation_energy(u_old);
-    solve_substep(stage,
-                  t0 + sdirk.first_stage_time() * k,
-                  u_old,
-                  w_old,
-                  record.previous_energy,
-                  accept_unconverged_loop,
-                  first_statistics,
-                  first_terms);
-    u_stage = u;
-    w_stage = w;
-    const auto first_forces =
-      ops.contact_state.force_sums(ops.contact_boundary, ops.comm);
-
-    // Stage 2: backward Euler over gamma k from y_hat = y_{n-1} +
-    // alpha (Y1 - y_{n-1}), to t_{n-1} + (1 - gamma) k.
-    sdirk.second_stage_start(u_bar, u_stage, u_old);
-    sdirk.second_stage_start(w_bar, w_stage, w_old);
-    const Energy       hat_energy = ops.energy_balance.energy(u_bar, w_bar);
-    EnergyBalanceTerms second_terms;
-    const double       t2 = t0 + sdirk.second_stage_time() * k;
-    solve_second_substep(stage,
-                         t2,
-                         hat_energy.total(),
-                         accept_unconverged_loop,
-                         first_statistics,
-                         record,
-                         second_terms);
-
-    // The error estimate (with w = W2) and the force balance of stage 2's
-    // equation; the contact force sums extrapolated from the stages to t_n.
-    measure_last_solve(record, stage, u_bar, w_bar, t2, k);
-    record.normal_force =
-      sdirk.value_at_end(first_forces.first, record.normal_force);
-    record.tangential_force =
-      sdirk.value_at_end(first_forces.second, record.tangential_force);
-
-    // The numerical dissipation from the stage increments,
-    // d = (Y1 - y_{n-1}) - (Y2 - y_hat), before u, w become y_n.
-    const double density = ops.material.density();
-    scratch              = u_stage;
-    scratch -= u_old;
-    scratch -= u;
-    scratch += u_bar;
-    double d2 = ops.bulk.elastic_product(scratch, scratch);
-    scratch   = w_stage;
-    scratch -= w_old;
-    scratch -= w;
-    scratch += w_bar;
-    d2 += density * ops.bulk.mass_product(scratch, scratch);
-
-    sdirk.combine(u, u_stage, u_bar, u_old);
-    sdirk.combine(w, w_stage, w_bar, w_old);
-    record.terms = sdirk_terms(first_terms,
-                               second_terms,
-                               record.previous_energy,
-                               old_foundation,
-                               hat_energy,
-                               ops.energy_balance.energy(u, w),
-                               sdirk.numerical_dissipation_factor() * d2,
-                               sdirk.stage_weight());
-  }
 
 
   template class StepIntegrator<2>;

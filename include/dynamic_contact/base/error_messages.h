@@ -42,6 +42,13 @@ namespace DynamicContact
   std::string
   scientific(const double x, const unsigned int decimals = 3);
 
+  /**
+   * A number as a parameter file would write it (the stream's default
+   * format): a parameter's value quoted in an error message.
+   */
+  std::string
+  str(const double x);
+
   /** Six significant digits: what regression output compares. */
   inline std::string
   sig6(const double x)

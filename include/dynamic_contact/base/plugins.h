@@ -8,6 +8,8 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 namespace DynamicContact
 {
@@ -50,7 +52,8 @@ namespace DynamicContact
    *   static void declare_parameters(ParameterHandler &prm);
    *   void parse_parameters(ParameterHandler &prm);   // may throw ExcMessage
    * and a default constructor; both functions are called inside the
-   * implementation's subsection.
+   * implementation's subsection. A Class without declare_parameters() has
+   * no entries and no subsection (a time scheme without parameters).
    *
    * @p Role tells apart two registries of one interface (e.g. the
    * compliance and the damped response of the foundation).
@@ -154,6 +157,8 @@ namespace DynamicContact
       AssertThrow(found != plugins.end(),
                   ExcMessage("'" + name + "' is not one of " + names(", ") +
                              "."));
+      if (!found->second.declare) // no subsection of its own
+        return found->second.create(prm);
       const ScopedSubsection section(prm, subsection(name));
       return found->second.create(prm);
     }
@@ -173,16 +178,32 @@ namespace DynamicContact
   {
     RegisterPlugin(const std::string &name, const std::string &description)
     {
-      PluginRegistry<Interface, Role>::instance().add(
-        name,
-        {description,
-         [](ParameterHandler &prm) { Class::declare_parameters(prm); },
-         [](ParameterHandler &prm) -> std::unique_ptr<Interface> {
-           auto object = std::make_unique<Class>();
-           object->parse_parameters(prm);
-           return object;
-         }});
+      typename PluginRegistry<Interface, Role>::Plugin plugin;
+      plugin.description = description;
+      plugin.create = [](ParameterHandler &prm) -> std::unique_ptr<Interface> {
+        auto object = std::make_unique<Class>();
+        if constexpr (has_parameters)
+          object->parse_parameters(prm);
+        return object;
+      };
+      if constexpr (has_parameters)
+        plugin.declare = [](ParameterHandler &prm) {
+          Class::declare_parameters(prm);
+        };
+      PluginRegistry<Interface, Role>::instance().add(name, std::move(plugin));
     }
+
+  private:
+    /** Whether Class has entries of its own (declare_parameters()). */
+    template <class C, class = void>
+    struct Declares : std::false_type
+    {};
+    template <class C>
+    struct Declares<C,
+                    std::void_t<decltype(C::declare_parameters(
+                      std::declval<ParameterHandler &>()))>> : std::true_type
+    {};
+    static constexpr bool has_parameters = Declares<Class>::value;
   };
 } // namespace DynamicContact
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
+#include <dynamic_contact/base/step_scheme.h>
 #include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/laws/slip_length.h>
@@ -222,17 +223,16 @@ namespace DynamicContact
 
     struct Time
     {
-      enum class Scheme
-      {
-        backward_euler,
-        trapezoidal,
-        bathe,
-        sdirk
-      };
       double end_time;
       double time_step;
       double minimum_time_step;
-      Scheme scheme;
+      /**
+       * The scheme Time/Scheme names, with the parameters of its own
+       * subsection (step_scheme.h; the implementations in
+       * source/time/step_schemes.cc), and that name.
+       */
+      std::shared_ptr<const StepScheme> scheme;
+      std::string                       scheme_name;
       /**
        * Adaptive time stepping from a local error estimate (doc/theory.md
        * section 2.5): the tolerance, and the largest step (the smallest is
@@ -247,41 +247,6 @@ namespace DynamicContact
        * section 5.2).
        */
       bool cut_back_where_not_unique;
-      /**
-       * The composite scheme of Time/Scheme = bathe, with its spectral
-       * radius at infinity (Time/Spectral radius at infinity).
-       */
-      CompositeScheme composite;
-      /**
-       * The two-stage SDIRK scheme of Time/Scheme = sdirk, with the same
-       * spectral radius at infinity.
-       */
-      SdirkScheme sdirk;
-
-      /**
-       * The theta of the one-step schemes: 1 for backward Euler, 1/2 for
-       * the trapezoidal scheme. (The Bathe scheme's sub-steps have their
-       * own: 1/2, then composite.theta(); the stages of sdirk are
-       * backward-Euler steps of gamma k.)
-       */
-      double
-      theta() const
-      {
-        return (scheme == Scheme::backward_euler || scheme == Scheme::sdirk) ?
-                 1. :
-                 0.5;
-      }
-
-      /**
-       * The power of k in the local error estimate of a step (Time/Adaptive):
-       * 3 for the second-order schemes with an estimate (bathe, sdirk), 2
-       * for backward Euler.
-       */
-      double
-      local_error_order() const
-      {
-        return (scheme == Scheme::bathe || scheme == Scheme::sdirk) ? 3 : 2;
-      }
 
       static void
       declare_parameters(ParameterHandler &prm);

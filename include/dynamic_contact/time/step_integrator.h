@@ -59,13 +59,14 @@ namespace DynamicContact
   /**
    * One time step of Time/Scheme (doc/theory.md section 2) and the fields
    * it works on: the state (u, w) and the vectors of a step in progress.
-   * A step of a one-step theta-scheme (backward Euler, trapezoidal) is one
-   * solve (solve_substep()); the Bathe scheme's and the SDIRK scheme's
-   * are two, from a start computed between them. Each assembles its
-   * right-hand side, solves for w with the step's contact solver, sets u,
-   * and books the energy balance; after the last solve the step measures
-   * the contact force sums, the force balance and (Time/Adaptive) its
-   * local error.
+   * The scheme (a StepScheme plugin, source/time/step_schemes.cc) takes
+   * the step with the primitives below: a step of a one-step theta-scheme
+   * (backward Euler, trapezoidal) is one solve (solve_substep()); the
+   * Bathe scheme's and the SDIRK scheme's are two, from a start computed
+   * between them. Each assembles its right-hand side, solves for w with the
+   * step's contact solver, sets u, and books the energy balance; after the
+   * last solve the step measures the contact force sums, the force balance
+   * and (Time/Adaptive) its local error.
    *
    * The Simulator owns this object and calls step(); what happens around a
    * step (the mesh, the errors of a manufactured solution, the columns of
@@ -112,59 +113,21 @@ namespace DynamicContact
     /** The state: displacement and velocity, in master form. */
     Vector_t u, w;
 
-  private:
-    const StepOperators<dim> ops;
+    // For the schemes (step_schemes.cc): the fields of a step in progress
+    // and the primitives a step is made of.
 
     // u_old, w_old: the state at the start of the step; u_bar, w_bar: the
-    // start of the Bathe scheme's second sub-step or of the SDIRK scheme's
-    // second stage; u_stage, w_stage: the SDIRK scheme's first stage.
-    Vector_t u_old, w_old, u_bar, w_bar, u_stage, w_stage, load, rhs, scratch;
-    /** Pointers to all the fields (of a const integrator: const pointers). */
-    template <typename Self>
-    static auto
-    fields(Self &self)
+    // start of a second sub-step or stage; u_stage, w_stage: a first stage
+    // kept while the second is solved; load: f_theta of the last solve;
+    // scratch: a work vector.
+    Vector_t u_old, w_old, u_bar, w_bar, u_stage, w_stage, load, scratch;
+
+    /** What a step works with. */
+    const StepOperators<dim> &
+    operators() const
     {
-      return std::array<decltype(&self.u), 11>{{&self.u,
-                                                &self.w,
-                                                &self.u_old,
-                                                &self.w_old,
-                                                &self.u_bar,
-                                                &self.w_bar,
-                                                &self.u_stage,
-                                                &self.w_stage,
-                                                &self.load,
-                                                &self.rhs,
-                                                &self.scratch}};
+      return ops;
     }
-
-    double last_newton_residual = 0;
-
-    /** A step of a one-step theta-scheme (backward Euler, trapezoidal). */
-    void
-    theta_step(StepRecord<dim> &record,
-               const double     t,
-               const double     k,
-               const bool       accept_unconverged_loop);
-    /**
-     * A step of Time/Scheme = bathe (doc/theory.md section 2.4): the
-     * trapezoidal sub-step to t - k/2, the second sub-step from the
-     * extrapolated state, and the step's energy balance.
-     */
-    void
-    bathe_step(StepRecord<dim> &record,
-               const double     t,
-               const double     k,
-               const bool       accept_unconverged_loop);
-    /**
-     * A step of Time/Scheme = sdirk (doc/theory.md section 2.6): the two
-     * stages, the balances of the second, the contact force sums
-     * extrapolated to t, (u, w) = y_n and the step's energy balance.
-     */
-    void
-    sdirk_step(StepRecord<dim> &record,
-               const double     t,
-               const double     k,
-               const bool       accept_unconverged_loop);
 
     /**
      * One (sub-)step of the theta-scheme @p scheme that ends at @p t, from
@@ -181,17 +144,6 @@ namespace DynamicContact
                   const bool                            accept_unconverged_loop,
                   typename StepSolver<dim>::Statistics &statistics,
                   EnergyBalanceTerms                   &terms);
-    /**
-     * b = (rho/k) M w_start - (1 - theta) A w_start
-     *     - B (u_start + theta (1 - theta) k w_start) + f_theta
-     * of the (sub-)step @p scheme ending at @p t, into rhs (and f_theta
-     * into load).
-     */
-    void
-    assemble_rhs(const TimeScheme &scheme,
-                 const double      t,
-                 const Vector_t   &u_start,
-                 const Vector_t   &w_start);
     /**
      * The second (sub-)step of a two-solve scheme (bathe, sdirk): from
      * (u_bar, w_bar), whose energy is @p start_energy, to @p t; the step's
@@ -220,6 +172,43 @@ namespace DynamicContact
                        const Vector_t   &w_start,
                        const double      t_last,
                        const double      k);
+
+  private:
+    const StepOperators<dim> ops;
+
+    // rhs: the right-hand side of the solve in progress.
+    Vector_t rhs;
+    /** Pointers to all the fields (of a const integrator: const pointers). */
+    template <typename Self>
+    static auto
+    fields(Self &self)
+    {
+      return std::array<decltype(&self.u), 11>{{&self.u,
+                                                &self.w,
+                                                &self.u_old,
+                                                &self.w_old,
+                                                &self.u_bar,
+                                                &self.w_bar,
+                                                &self.u_stage,
+                                                &self.w_stage,
+                                                &self.load,
+                                                &self.rhs,
+                                                &self.scratch}};
+    }
+
+    double last_newton_residual = 0;
+
+    /**
+     * b = (rho/k) M w_start - (1 - theta) A w_start
+     *     - B (u_start + theta (1 - theta) k w_start) + f_theta
+     * of the (sub-)step @p scheme ending at @p t, into rhs (and f_theta
+     * into load).
+     */
+    void
+    assemble_rhs(const TimeScheme &scheme,
+                 const double      t,
+                 const Vector_t   &u_start,
+                 const Vector_t   &w_start);
     /**
      * The displacement's local error estimate of the step just solved,
      * relative to the energy of the state (doc/theory.md 2.5).
