@@ -32,7 +32,7 @@
 // Two misuses give one clear error and leave the results alone: --resume
 // where no checkpoint was written, and --resume with another mesh.
 
-#include "program_tools.h"
+#include "run_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,20 +47,17 @@ namespace fs = std::filesystem;
 namespace
 {
   using namespace program_tools;
+  using namespace run_checks;
 
   /** Steps run and the checkpoint interval (see the header). */
-  const std::vector<std::string> settings = with({"--set",
-                                                  "Time/End time=0.375",
-                                                  "--set",
-                                                  "Checkpoint/Every=10",
-                                                  "--set",
-                                                  "Checkpoint/Keep=2",
-                                                  "--set",
-                                                  "Output/Write VTU=true",
-                                                  "--set",
-                                                  "Output/VTU every=8"},
-                                                 quiet);
-  const unsigned int             n_steps  = 48;
+  const std::vector<std::string> settings =
+    with(overrides({"Time/End time=0.375",
+                    "Checkpoint/Every=10",
+                    "Checkpoint/Keep=2",
+                    "Output/Write VTU=true",
+                    "Output/VTU every=8"}),
+         quiet);
+  const unsigned int n_steps = 48;
 
   /**
    * Run the uniform or the adaptive scene into @p directory, as it is
@@ -81,19 +78,14 @@ namespace
     a.insert(a.end(), settings.begin(), settings.end());
     a.push_back("--set");
     a.push_back("Output/Directory=" + directory);
-    const std::vector<std::string> extra =
-      variant == "bathe" ?
-        std::vector<std::string>{"Time/Scheme=bathe"} :
-      variant == "slip_length" ?
-        std::vector<std::string>{"Friction/Slip length=0.01",
-                                 "Friction/Reference slip rate=0.001"} :
-        std::vector<std::string>{};
-    for (const auto &e : extra)
-      {
-        a.push_back("--set");
-        a.push_back(e);
-      }
-    return a;
+    return with(a,
+                overrides(variant == "bathe" ?
+                            std::vector<std::string>{"Time/Scheme=bathe"} :
+                          variant == "slip_length" ?
+                            std::vector<std::string>{
+                              "Friction/Slip length=0.01",
+                              "Friction/Reference slip rate=0.001"} :
+                            std::vector<std::string>{}));
   }
 
   Outcome
@@ -102,18 +94,13 @@ namespace
       const unsigned int              processes,
       const std::string              &kill = "")
   {
-    Launch launch;
-    launch.name      = name;
-    launch.processes = processes;
-    if (!kill.empty())
-      launch.environment.push_back("DYNAMIC_CONTACT_KILL=" + kill);
-    return execute(args, launch);
-  }
-
-  std::string
-  status_of(const std::string &directory)
-  {
-    return trim(read_text(fs::path(directory) / "run_status"));
+    return execute(args,
+                   launch_of(name,
+                             processes,
+                             0,
+                             kill.empty() ? std::vector<std::string>{} :
+                                            std::vector<std::string>{
+                                              "DYNAMIC_CONTACT_KILL=" + kill}));
   }
 
   /** The names of the complete checkpoints and of the temporary ones. */
@@ -176,60 +163,6 @@ namespace
     return true;
   }
 
-  /**
-   * Compare two CSV files of the same shape. Columns in @p skipped are not
-   * compared. With tolerance 0 the other entries must be equal as text;
-   * otherwise numbers may differ by tolerance times the largest magnitude in
-   * their column (text entries must be equal). Returns the columns that
-   * differ ("shape" if the header or the number of rows differs).
-   */
-  std::set<std::string>
-  differing_columns(const fs::path              &a_file,
-                    const fs::path              &b_file,
-                    const double                 tolerance,
-                    const std::set<std::string> &skipped = {})
-  {
-    const auto a = read_csv(a_file), b = read_csv(b_file);
-    if (a.empty() || a.size() != b.size() || a[0] != b[0])
-      return {"shape"};
-    const auto           &header = a[0];
-    std::set<std::string> differ;
-    for (unsigned int c = 0; c < header.size(); ++c)
-      {
-        if (skipped.count(header[c]) > 0)
-          continue;
-        double scale = 0;
-        for (unsigned int r = 1; r < a.size(); ++r)
-          {
-            if (a[r].size() != header.size() || b[r].size() != header.size())
-              return {"shape"};
-            try
-              {
-                scale = std::max(scale, std::abs(std::stod(a[r][c])));
-              }
-            catch (const std::exception &)
-              {}
-          }
-        for (unsigned int r = 1; r < a.size(); ++r)
-          {
-            if (a[r][c] == b[r][c])
-              continue;
-            bool close = false;
-            if (tolerance > 0)
-              try
-                {
-                  close = std::abs(std::stod(a[r][c]) - std::stod(b[r][c])) <=
-                          tolerance * scale;
-                }
-              catch (const std::exception &)
-                {}
-            if (!close)
-              differ.insert(header[c]);
-          }
-      }
-    return differ;
-  }
-
   bool
   ends_with(const std::string &s, const std::string &end)
   {
@@ -275,10 +208,10 @@ namespace
     const double                tolerance    = exact ? 0 : 1e-8;
     Comparison                  result;
     result.time_series =
-      differing_columns(fs::path(full) / "time_series.csv",
-                        fs::path(resumed) / "time_series.csv",
-                        tolerance,
-                        exact ? std::set<std::string>{} : not_physical);
+      differing_csv_columns(fs::path(full) / "time_series.csv",
+                            fs::path(resumed) / "time_series.csv",
+                            tolerance,
+                            exact ? std::set<std::string>{} : not_physical);
     // Unless exact, the VTU files (on 2 processes even their pieces
     // NAME.0.vtu, NAME.1.vtu, ...) are not compared: the fields are, in the
     // contact files and the time series.
@@ -297,8 +230,9 @@ namespace
         const fs::path a = fs::path(full) / n, b = fs::path(resumed) / n;
         if (n == "time_series.csv" || !fs::exists(b))
           continue;
-        if (ends_with(n, ".csv") ? !differing_columns(a, b, tolerance).empty() :
-                                   without_date(a) != without_date(b))
+        if (ends_with(n, ".csv") ?
+              !differing_csv_columns(a, b, tolerance).empty() :
+              without_date(a) != without_date(b))
           result.files.insert(n);
       }
     return result;
@@ -309,23 +243,23 @@ namespace
   max_relative_defect(const std::string &directory)
   {
     const auto rows = read_csv(fs::path(directory) / "time_series.csv");
-    const auto column =
-      std::find(rows[0].begin(), rows[0].end(), "relative_energy_defect") -
-      rows[0].begin();
-    double max = 0;
+    const auto c    = column(rows[0], "relative_energy_defect");
+    double     max  = 0;
     for (unsigned int r = 1; r < rows.size(); ++r)
-      max = std::max(max, std::abs(std::stod(rows[r][column])));
+      max = std::max(max, std::abs(std::stod(rows[r][c])));
     return max;
   }
-} // namespace
 
+  /** An uninterrupted run, the reference of the cases of its scene. */
+  struct Full
+  {
+    std::string name;
+    bool        adaptive;
+    std::string variant;
+    Outcome     o = {};
+  };
 
-int
-main()
-{
-  std::ostream &out = test_tools::out();
-  Checks        checks;
-
+  /** A run killed, then resumed. */
   struct Case
   {
     std::string  directory;
@@ -338,53 +272,40 @@ main()
     Outcome      killed;
     std::string  variant = "";
   };
-  const std::string two   = "checkpoint_00010 checkpoint_00020";
-  std::vector<Case> cases = {
-    {"after_step", false, "after-step 25", 0, 0, two, 25, {}},
-    {"in_checkpoint",
-     false,
-     "in-checkpoint 30",
-     0,
-     0,
-     two + " checkpoint_00030.tmp",
-     30,
-     {}},
-    {"adaptive", true, "after-step 25", 0, 0, two, 25, {}},
-    {"two_processes", true, "after-step 25", 2, 2, two, 25, {}},
-    {"one_to_two", true, "after-step 25", 0, 2, two, 25, {}},
-    {"bathe", false, "after-step 25", 0, 0, two, 25, {}, "bathe"},
-    {"slip_length", true, "after-step 25", 0, 2, two, 25, {}, "slip_length"}};
 
-  for (const std::string d : {"full_uniform",
-                              "full_adaptive",
-                              "full_bathe",
-                              "full_slip_length",
-                              "never_checkpointed"})
-    fs::remove_all(d);
-  for (const auto &c : cases)
-    fs::remove_all(c.directory);
+  std::vector<Case>
+  cases()
+  {
+    const std::string two = "checkpoint_00010 checkpoint_00020";
+    return {
+      {"after_step", false, "after-step 25", 0, 0, two, 25, {}},
+      {"in_checkpoint",
+       false,
+       "in-checkpoint 30",
+       0,
+       0,
+       two + " checkpoint_00030.tmp",
+       30,
+       {}},
+      {"adaptive", true, "after-step 25", 0, 0, two, 25, {}},
+      {"two_processes", true, "after-step 25", 2, 2, two, 25, {}},
+      {"one_to_two", true, "after-step 25", 0, 2, two, 25, {}},
+      {"bathe", false, "after-step 25", 0, 0, two, 25, {}, "bathe"},
+      {"slip_length", true, "after-step 25", 0, 2, two, 25, {}, "slip_length"}};
+  }
 
-  // The uninterrupted runs and the first (killed) part of each case; runs
-  // on one process side by side (most of a short run is start-up).
-  Outcome full_uniform, full_adaptive, full_bathe, full_slip_length;
+  /**
+   * The uninterrupted runs and the first (killed) part of each case; runs
+   * on one process side by side (most of a short run is start-up).
+   */
+  void
+  run_first_parts(std::vector<Full> &fulls, std::vector<Case> &cases)
   {
     std::vector<std::thread> threads;
-    threads.emplace_back([&]() {
-      full_uniform = run("full_uniform", arguments(false, "full_uniform"), 0);
-    });
-    threads.emplace_back([&]() {
-      full_adaptive = run("full_adaptive", arguments(true, "full_adaptive"), 0);
-    });
-    threads.emplace_back([&]() {
-      full_bathe =
-        run("full_bathe", arguments(false, "full_bathe", false, "bathe"), 0);
-    });
-    threads.emplace_back([&]() {
-      full_slip_length =
-        run("full_slip_length",
-            arguments(true, "full_slip_length", false, "slip_length"),
-            0);
-    });
+    for (auto &f : fulls)
+      threads.emplace_back([&f]() {
+        f.o = run(f.name, arguments(f.adaptive, f.name, false, f.variant), 0);
+      });
     for (auto &c : cases)
       if (c.processes_first == 0)
         threads.emplace_back([&c]() {
@@ -403,158 +324,190 @@ main()
                        c.kill);
   }
 
-  for (const auto &[name, o] :
-       {std::make_pair("full_uniform", &full_uniform),
-        std::make_pair("full_adaptive", &full_adaptive),
-        std::make_pair("full_bathe", &full_bathe),
-        std::make_pair("full_slip_length", &full_slip_length)})
-    {
-      out << name << " (uninterrupted): exit code " << o->code << ", "
-          << status_of(name) << ", " << steps_of(name).size() - 1 << " steps"
-          << std::endl;
-      checks.add(o->succeeded() && status_of(name) == "completed" &&
-                   each_step_once(steps_of(name)),
-                 std::string(name) + ": the uninterrupted run completes all " +
-                   std::to_string(n_steps) + " steps");
-    }
-
-  // What the kills left behind.
-  for (const auto &c : cases)
-    {
-      const bool ended_by_kill =
-        c.killed.signal == 9 || (c.killed.exited && c.killed.code != 0);
-      const auto steps = steps_of(c.directory);
-      out << c.directory << ", killed (" << c.kill << ") on "
-          << std::max(c.processes_first, 1u) << " process"
-          << (c.processes_first > 1 ? "es" : "")
-          << ": ended abnormally: " << yes_no(ended_by_kill)
-          << ", run_status: " << status_of(c.directory) << ", last row: step "
-          << (steps.empty() ? 0 : steps.back())
-          << ", checkpoints: " << checkpoints_in(c.directory) << std::endl;
-      checks.add(ended_by_kill && status_of(c.directory) == "running",
-                 c.directory + ": the killed run ended abnormally and its "
-                               "status is not 'completed'");
-      checks.add(!steps.empty() && steps.back() == c.last_row,
-                 c.directory + ": the killed run wrote rows up to step " +
-                   std::to_string(c.last_row));
-      checks.add(checkpoints_in(c.directory) == c.checkpoints_left,
-                 c.directory + ": checkpoints left: " + c.checkpoints_left);
-    }
-
-  // Resume each.
-  for (const auto &c : cases)
-    {
-      const Outcome     o       = run(c.directory + ".2",
-                            arguments(c.adaptive, c.directory, true, c.variant),
-                            c.processes_resumed);
-      const bool        said_so = o.out.find("resumed from " + c.directory +
-                                      "/checkpoint_00020") != std::string::npos;
-      const bool        exact   = !c.adaptive;
-      const std::string full    = !c.variant.empty() ? "full_" + c.variant :
-                                  c.adaptive         ? "full_adaptive" :
-                                                       "full_uniform";
-      const auto        steps   = steps_of(c.directory);
-      const auto        diff    = compare(full, c.directory, exact);
-      out << c.directory << ", resumed on " << std::max(c.processes_resumed, 1u)
-          << " process" << (c.processes_resumed > 1 ? "es" : "")
-          << ": exit code " << o.code << ", " << status_of(c.directory)
-          << ", from checkpoint_00020: " << yes_no(said_so)
-          << ", each step once: " << yes_no(each_step_once(steps))
-          << ", checkpoints: " << checkpoints_in(c.directory) << std::endl;
-      out << "  vs the uninterrupted run"
-          << (exact ? " (as printed)" : " (to 1e-8, physical columns)")
-          << ": time series columns differing: " << join(diff.time_series)
-          << "; other files differing: " << join(diff.files) << std::endl;
-      const double defect = max_relative_defect(c.directory);
-      out << "  max relative energy defect below 1e-10: "
-          << yes_no(defect < 1e-10) << std::endl;
-
-      checks.add(o.succeeded() && o.err.empty() &&
-                   status_of(c.directory) == "completed",
-                 c.directory +
-                   ": the resumed run completes, nothing on stderr");
-      checks.add(said_so,
-                 c.directory + ": resumed from the newest complete "
-                               "checkpoint (step 20)");
-      checks.add(each_step_once(steps),
-                 c.directory + ": time_series.csv holds each step once");
-      checks.add(checkpoints_in(c.directory) ==
-                   "checkpoint_00030 checkpoint_00040",
-                 c.directory + ": the newest two checkpoints are kept, no "
-                               "temporary one is left");
-      if (exact)
-        checks.add(diff.time_series ==
-                       std::set<std::string>{"factorizations"} &&
-                     diff.files.empty(),
-                   c.directory + ": the results are those of the "
-                                 "uninterrupted run, except the "
-                                 "factorization count");
-      else
-        checks.add(diff.time_series.empty() && diff.files.empty(),
-                   c.directory + ": the results agree with the uninterrupted "
-                                 "run to 1e-8");
-      checks.add(defect < 1e-10,
-                 c.directory + ": the energy balance holds across the restart");
-    }
-
-  // Misuse 1: --resume where the run wrote no checkpoint. The results must
-  // stay as they are.
+  void
+  check_uninterrupted(const Full &f, Checks &checks)
   {
-    std::vector<std::string> args = arguments(false, "never_checkpointed");
-    args.push_back("--set");
-    args.push_back("Checkpoint/Every=0");
-    args.push_back("--set");
-    args.push_back("Time/End time=0.03125");
+    test_tools::out() << f.name << " (uninterrupted): exit code " << f.o.code
+                      << ", " << run_status(f.name) << ", "
+                      << steps_of(f.name).size() - 1 << " steps" << std::endl;
+    checks.add(f.o.succeeded() && run_status(f.name) == "completed" &&
+                 each_step_once(steps_of(f.name)),
+               f.name + ": the uninterrupted run completes all " +
+                 std::to_string(n_steps) + " steps");
+  }
+
+  /** What the kill left behind. */
+  void
+  check_killed(const Case &c, Checks &checks)
+  {
+    const bool ended_by_kill =
+      c.killed.signal == 9 || (c.killed.exited && c.killed.code != 0);
+    const auto steps = steps_of(c.directory);
+    test_tools::out() << c.directory << ", killed (" << c.kill << ") on "
+                      << processes_text(c.processes_first)
+                      << ": ended abnormally: " << yes_no(ended_by_kill)
+                      << ", run_status: " << run_status(c.directory)
+                      << ", last row: step "
+                      << (steps.empty() ? 0 : steps.back())
+                      << ", checkpoints: " << checkpoints_in(c.directory)
+                      << std::endl;
+    checks.add(ended_by_kill && run_status(c.directory) == "running",
+               c.directory + ": the killed run ended abnormally and its "
+                             "status is not 'completed'");
+    checks.add(!steps.empty() && steps.back() == c.last_row,
+               c.directory + ": the killed run wrote rows up to step " +
+                 std::to_string(c.last_row));
+    checks.add(checkpoints_in(c.directory) == c.checkpoints_left,
+               c.directory + ": checkpoints left: " + c.checkpoints_left);
+  }
+
+  void
+  check_resumed(const Case &c, Checks &checks)
+  {
+    const Outcome     o       = run(c.directory + ".2",
+                          arguments(c.adaptive, c.directory, true, c.variant),
+                          c.processes_resumed);
+    const bool        said_so = o.out.find("resumed from " + c.directory +
+                                    "/checkpoint_00020") != std::string::npos;
+    const bool        exact   = !c.adaptive;
+    const std::string full    = !c.variant.empty() ? "full_" + c.variant :
+                                c.adaptive         ? "full_adaptive" :
+                                                     "full_uniform";
+    const auto        steps   = steps_of(c.directory);
+    const auto        diff    = compare(full, c.directory, exact);
+    const double      defect  = max_relative_defect(c.directory);
+    test_tools::out()
+      << c.directory << ", resumed on " << processes_text(c.processes_resumed)
+      << ": exit code " << o.code << ", " << run_status(c.directory)
+      << ", from checkpoint_00020: " << yes_no(said_so)
+      << ", each step once: " << yes_no(each_step_once(steps))
+      << ", checkpoints: " << checkpoints_in(c.directory) << std::endl
+      << "  vs the uninterrupted run"
+      << (exact ? " (as printed)" : " (to 1e-8, physical columns)")
+      << ": time series columns differing: " << join(diff.time_series)
+      << "; other files differing: " << join(diff.files) << std::endl
+      << "  max relative energy defect below 1e-10: " << yes_no(defect < 1e-10)
+      << std::endl;
+
+    checks.add(o.succeeded() && o.err.empty() &&
+                 run_status(c.directory) == "completed",
+               c.directory + ": the resumed run completes, nothing on stderr");
+    checks.add(said_so,
+               c.directory + ": resumed from the newest complete "
+                             "checkpoint (step 20)");
+    checks.add(each_step_once(steps),
+               c.directory + ": time_series.csv holds each step once");
+    checks.add(checkpoints_in(c.directory) ==
+                 "checkpoint_00030 checkpoint_00040",
+               c.directory + ": the newest two checkpoints are kept, no "
+                             "temporary one is left");
+    if (exact)
+      checks.add(diff.time_series == std::set<std::string>{"factorizations"} &&
+                   diff.files.empty(),
+                 c.directory + ": the results are those of the "
+                               "uninterrupted run, except the "
+                               "factorization count");
+    else
+      checks.add(diff.time_series.empty() && diff.files.empty(),
+                 c.directory + ": the results agree with the uninterrupted "
+                               "run to 1e-8");
+    checks.add(defect < 1e-10,
+               c.directory + ": the energy balance holds across the restart");
+  }
+
+  /**
+   * A misuse @p what of --resume: exit code 1 and a stderr of one error line
+   * naming each of @p words (@p naming in words), the results @p untouched.
+   */
+  void
+  check_misuse(const std::string              &what,
+               const Outcome                  &o,
+               const std::string              &naming,
+               const std::vector<std::string> &words,
+               const bool                      untouched,
+               Checks                         &checks)
+  {
+    const bool names =
+      lines_of(o.err).size() == 1 && one_line_naming(error_lines(o), words);
+    test_tools::out() << what << ": exit code " << o.code
+                      << ", one error line naming " << naming << ": "
+                      << yes_no(names)
+                      << ", results untouched: " << yes_no(untouched)
+                      << std::endl;
+    checks.add(o.exited && o.code == 1 && names,
+               what + ": exit code 1 and one error line that names " + naming);
+    checks.add(untouched, what + " leaves the results alone");
+  }
+
+  /**
+   * Misuse 1: --resume where the run wrote no checkpoint. The results must
+   * stay as they are.
+   */
+  void
+  check_resume_without_checkpoint(Checks &checks)
+  {
+    std::vector<std::string> args =
+      with(arguments(false, "never_checkpointed"),
+           overrides({"Checkpoint/Every=0", "Time/End time=0.03125"}));
     const Outcome first = run("never_checkpointed.1", args, 0);
     args.insert(args.begin(), "--resume");
     const Outcome second = run("never_checkpointed.2", args, 0);
-    const auto    lines  = lines_of(second.err);
-    const bool    one_error =
-      lines.size() == 1 && lines[0].rfind("dynamic-contact: error:", 0) == 0;
-    const bool names = one_error &&
-                       lines[0].find("Output/Directory") != std::string::npos &&
-                       lines[0].find("Checkpoint/Every") != std::string::npos;
-    out << "--resume without a checkpoint: exit code " << second.code
-        << ", one error line naming Output/Directory and Checkpoint/Every: "
-        << yes_no(names) << ", results untouched: "
-        << yes_no(status_of("never_checkpointed") == "completed" &&
-                  steps_of("never_checkpointed").size() == 5)
-        << std::endl;
     checks.add(first.succeeded(), "the run without checkpoints completes");
-    checks.add(second.exited && second.code == 1 && names,
-               "--resume without a checkpoint: exit code 1 and one error "
-               "line that names Output/Directory and Checkpoint/Every");
-    checks.add(status_of("never_checkpointed") == "completed" &&
-                 steps_of("never_checkpointed").size() == 5,
-               "--resume without a checkpoint leaves the results alone");
+    check_misuse("--resume without a checkpoint",
+                 second,
+                 "Output/Directory and Checkpoint/Every",
+                 {"Output/Directory", "Checkpoint/Every"},
+                 run_status("never_checkpointed") == "completed" &&
+                   steps_of("never_checkpointed").size() == 5,
+                 checks);
   }
 
-  // Misuse 2: --resume with another mesh than the checkpoint's.
+  /** Misuse 2: --resume with another mesh than the checkpoint's. */
+  void
+  check_resume_other_mesh(Checks &checks)
   {
-    const std::string        before = read_text("full_uniform/time_series.csv");
-    std::vector<std::string> args   = arguments(false, "full_uniform", true);
-    args.push_back("--set");
-    args.push_back("Geometry/Repetitions=16, 4");
-    const Outcome o     = run("other_mesh", args, 0);
-    const auto    lines = lines_of(o.err);
-    const bool    one_error =
-      lines.size() == 1 && lines[0].rfind("dynamic-contact: error:", 0) == 0;
-    const bool names = one_error &&
-                       lines[0].find("checkpoint_00040") != std::string::npos &&
-                       lines[0].find("Geometry") != std::string::npos;
-    out << "--resume with another mesh: exit code " << o.code
-        << ", one error line naming the checkpoint and Geometry: "
-        << yes_no(names) << ", results untouched: "
-        << yes_no(read_text("full_uniform/time_series.csv") == before &&
-                  status_of("full_uniform") == "completed")
-        << std::endl;
-    checks.add(o.exited && o.code == 1 && names,
-               "--resume with another mesh: exit code 1 and one error line "
-               "that names the checkpoint and Geometry");
-    checks.add(read_text("full_uniform/time_series.csv") == before &&
-                 status_of("full_uniform") == "completed",
-               "--resume with another mesh leaves the results alone");
+    const std::string before = read_text("full_uniform/time_series.csv");
+    const Outcome     o      = run("other_mesh",
+                          with(arguments(false, "full_uniform", true),
+                               overrides({"Geometry/Repetitions=16, 4"})),
+                          0);
+    check_misuse("--resume with another mesh",
+                 o,
+                 "the checkpoint and Geometry",
+                 {"checkpoint_00040", "Geometry"},
+                 read_text("full_uniform/time_series.csv") == before &&
+                   run_status("full_uniform") == "completed",
+                 checks);
   }
+} // namespace
+
+
+int
+main()
+{
+  Checks            checks;
+  std::vector<Full> fulls = {{"full_uniform", false, ""},
+                             {"full_adaptive", true, ""},
+                             {"full_bathe", false, "bathe"},
+                             {"full_slip_length", true, "slip_length"}};
+  std::vector<Case> all   = cases();
+  for (const auto &f : fulls)
+    fs::remove_all(f.name);
+  fs::remove_all("never_checkpointed");
+  for (const auto &c : all)
+    fs::remove_all(c.directory);
+
+  run_first_parts(fulls, all);
+  for (const auto &f : fulls)
+    check_uninterrupted(f, checks);
+  for (const auto &c : all)
+    check_killed(c, checks);
+  // Resume each.
+  for (const auto &c : all)
+    check_resumed(c, checks);
+
+  check_resume_without_checkpoint(checks);
+  check_resume_other_mesh(checks);
 
   checks.assert_all();
 }

@@ -98,73 +98,20 @@ namespace
     }
   };
 
-} // namespace
-
-
-int
-main(int argc, char **argv)
-{
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  std::ostream                            &out = test_tools::out();
-
-
   const std::string scene = test_tools::scene("pressed_block.prm");
-  fs::remove_all("run");
-  fs::remove_all("output-pressed-block");
-  fs::remove_all("auto");
 
-  std::vector<Run> runs = {
-    {{"--help"}, "help"},
-    {{"-h"}, "h"},
-    {{"--print-parameters"}, "print_defaults"},
-    {{"--print-parameters", "--set", "Dimension=3"}, "print_3d"},
-    {{"--print-parameters", scene, "--set", "Material/Density=2000"},
-     "print_scene"},
-    {{scene, "--set", "Output/Directory=run", "--set", "Time/End time=2"},
-     "run"},
-    {{"--version"}, "version"},
-  };
-  // Most of a run is MPI's start-up, spent waiting: run them side by side.
+  /** Print "  ENTRY = [VALUE]" of @p listing. */
+  void
+  print_entry(const Listing &listing, const std::string &entry)
   {
-    std::vector<Run *> all;
-    for (auto &r : runs)
-      all.push_back(&r);
-    execute_all(all);
+    test_tools::out() << "  " << entry << " = [" << listing.get(entry) << "]"
+                      << std::endl;
   }
-  // --resume=auto twice in one directory with checkpoints: a new run to
-  // t = 2, then (a later end time) a resumed one to t = 4.
-  const std::vector<std::string> auto_run = {scene,
-                                             "--resume=auto",
-                                             "--set",
-                                             "Output/Directory=auto",
-                                             "--set",
-                                             "Checkpoint/Every=1"};
-  Run                            auto_new(auto_run, "resume_auto_new");
-  auto_new.arguments.insert(auto_new.arguments.end(),
-                            {"--set", "Time/End time=2"});
-  execute_all({&auto_new});
-  Run auto_resumed(auto_run, "resume_auto_resumed");
-  auto_resumed.arguments.insert(auto_resumed.arguments.end(),
-                                {"--set", "Time/End time=4"});
-  execute_all({&auto_resumed});
-  runs.push_back(auto_new);
-  runs.push_back(auto_resumed);
-  const Run &help = runs[0], &h = runs[1], &print_defaults = runs[2],
-            &print_3d = runs[3], &print_scene = runs[4], &version = runs[6];
 
-  Checks checks;
-  for (const auto &r : runs)
-    {
-      checks.add(r.succeeded(),
-                 r.name + ": exits normally with code 0" +
-                   (r.succeeded() ?
-                      "" :
-                      " [status " + std::to_string(r.status) + "]"));
-      checks.add(r.err.empty(), r.name + ": nothing on stderr");
-    }
-
-  // ------------------------------------------------------------ --help
+  void
+  check_help(Checks &checks, const Run &help, const Run &h)
   {
+    std::ostream &out = test_tools::out();
     out << "--help:" << std::endl;
     for (const std::string word :
          {"Usage:", "--set", "--print-parameters", "--resume", "--validate"})
@@ -177,9 +124,11 @@ main(int argc, char **argv)
     checks.add(h.out == help.out, "-h prints the same text as --help");
   }
 
-  // ------------------------------------------------ --print-parameters
+  /** --print-parameters: every part is there. */
+  void
+  check_print_defaults(Checks &checks, const Listing &listing)
   {
-    const Listing listing(print_defaults.out);
+    std::ostream &out = test_tools::out();
     out << "--print-parameters:" << std::endl;
     out << "  subsections:";
     for (const auto &s : listing.top_level_subsections)
@@ -224,11 +173,19 @@ main(int argc, char **argv)
           "Initial conditions/Displacement/Function expression",
           "Initial conditions/Velocity/Function expression"})
       {
-        const bool found = listing.values.count(e) == 1;
-        out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
-        checks.add(found, "--print-parameters: prints entry " + e);
+        print_entry(listing, e);
+        checks.add(listing.values.count(e) == 1,
+                   "--print-parameters: prints entry " + e);
       }
+  }
 
+  /** --print-parameters: every entry documented, the 2D defaults. */
+  void
+  check_documentation(Checks            &checks,
+                      const Listing     &listing,
+                      const std::string &text)
+  {
+    std::ostream            &out = test_tools::out();
     std::vector<std::string> undocumented;
     for (const auto &[name, documented] : listing.documented)
       if (!documented)
@@ -242,7 +199,7 @@ main(int argc, char **argv)
                "--print-parameters: prints more than 40 entries");
     checks.add(undocumented.empty(),
                "--print-parameters: every entry has a documentation comment");
-    checks.add(print_defaults.out.find("Mass density rho") != std::string::npos,
+    checks.add(text.find("Mass density rho") != std::string::npos,
                "--print-parameters: documents Material/Density");
 
     // The 2D defaults, for comparison with the 3D ones.
@@ -251,17 +208,18 @@ main(int argc, char **argv)
                "by default (2D)");
   }
 
-  // ------------------------------ --print-parameters --set Dimension=3
+  /** --print-parameters --set Dimension=3: the 3D defaults. */
+  void
+  check_print_3d(Checks &checks, const Listing &listing)
   {
-    const Listing listing(print_3d.out);
-    out << "--print-parameters --set 'Dimension=3':" << std::endl;
+    test_tools::out() << "--print-parameters --set 'Dimension=3':" << std::endl;
     for (const std::string e : {"Dimension",
                                 "Geometry/Lower left",
                                 "Geometry/Upper right",
                                 "Geometry/Repetitions",
                                 "Body force/Function expression",
                                 "Body force/Variable names"})
-      out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
+      print_entry(listing, e);
     checks.add(listing.get("Dimension") == "3",
                "--set 'Dimension=3': Dimension = 3");
     for (const std::string e : {"Geometry/Lower left",
@@ -276,12 +234,15 @@ main(int argc, char **argv)
                "--set 'Dimension=3': the variables are x,y,z,t");
   }
 
-  // ------- --print-parameters pressed_block.prm --set Material/Density=2000
+  /** --print-parameters pressed_block.prm --set Material/Density=2000: the
+   *  scene's values and the override, without running anything. */
+  void
+  check_print_scene(Checks &checks, const Run &print_scene)
   {
     const Listing listing(print_scene.out);
-    out << "--print-parameters pressed_block.prm --set "
-           "'Material/Density=2000':"
-        << std::endl;
+    test_tools::out() << "--print-parameters pressed_block.prm --set "
+                         "'Material/Density=2000':"
+                      << std::endl;
     const std::vector<std::pair<std::string, std::string>> expected = {
       {"Material/Density", "2000"},
       {"Material/Young modulus", "1e9"},
@@ -292,7 +253,7 @@ main(int argc, char **argv)
       {"Boundary conditions/Traction function/Function expression", "0; -P"}};
     for (const auto &[e, value] : expected)
       {
-        out << "  " << e << " = [" << listing.get(e) << "]" << std::endl;
+        print_entry(listing, e);
         checks.add(listing.get(e) == value,
                    "--print-parameters pressed_block.prm: " + e + " = " +
                      value);
@@ -305,8 +266,11 @@ main(int argc, char **argv)
                "directory)");
   }
 
-  // ----------------------------------------------------- a short run
+  /** A short run: run_status and time_series.csv. */
+  void
+  check_time_series(Checks &checks)
   {
+    std::ostream &out = test_tools::out();
     out << "pressed_block.prm --set 'Output/Directory=run' --set 'Time/End "
            "time=2':"
         << std::endl;
@@ -361,14 +325,18 @@ main(int argc, char **argv)
                "run: every row of time_series.csv has a field per column");
     checks.add(steps_match && n_rows == 3,
                "run: the rows are the steps 0, 1, 2 at times 0, 1, 2");
+  }
 
+  /** A short run: the contact file of its last step. */
+  void
+  check_contact_file(Checks &checks)
+  {
     const auto        contact = read_csv("run/contact_00002.csv");
-    const std::string contact_header =
-      lines_of(read_text("run/contact_00002.csv")).empty() ?
-        "<missing>" :
-        lines_of(read_text("run/contact_00002.csv"))[0];
-    out << "  contact_00002.csv: " << contact_header << ", "
-        << (contact.empty() ? 0 : contact.size() - 1) << " rows" << std::endl;
+    const auto        lines   = lines_of(read_text("run/contact_00002.csv"));
+    const std::string contact_header = lines.empty() ? "<missing>" : lines[0];
+    test_tools::out() << "  contact_00002.csv: " << contact_header << ", "
+                      << (contact.empty() ? 0 : contact.size() - 1) << " rows"
+                      << std::endl;
     checks.add(contact_header.rfind("time,x,y,u_nu,w_nu,normal_pressure", 0) ==
                  0,
                "run: contact_00002.csv has the columns "
@@ -383,30 +351,33 @@ main(int argc, char **argv)
                "run: contact_00002.csv has a row per contact node (5)");
   }
 
-  // ------------------------------------------------------------ --version
+  void
+  check_version(Checks &checks, const Run &version)
   {
     const bool names = version.out.rfind("dynamic-contact ", 0) == 0 &&
                        version.out.find("(git ") != std::string::npos &&
                        version.out.find("deal.II 9.") != std::string::npos;
-    out << "--version: names dynamic-contact, its git revision and deal.II: "
-        << yes_no(names) << std::endl;
+    test_tools::out()
+      << "--version: names dynamic-contact, its git revision and deal.II: "
+      << yes_no(names) << std::endl;
     checks.add(names,
                "--version: 'dynamic-contact X (git R), deal.II 9.x'" +
                  (names ? std::string() : " [" + trim(version.out) + "]"));
   }
 
-  // ------------------------------------------------------- --resume=auto
+  void
+  check_resume_auto(Checks &checks, const Run &auto_new, const Run &resumed_run)
   {
     const bool new_run =
       auto_new.out.find("--resume=auto: no checkpoint") != std::string::npos;
     const bool resumed =
-      auto_resumed.out.find("resumed from") != std::string::npos;
+      resumed_run.out.find("resumed from") != std::string::npos;
     const auto        series = read_csv("auto/time_series.csv");
     const std::string status = trim(read_text("auto/run_status"));
-    out << "--resume=auto: first a new run: " << yes_no(new_run)
-        << ", then a resumed one: " << yes_no(resumed)
-        << "; time_series.csv rows: " << series.size()
-        << ", run_status: " << status << std::endl;
+    test_tools::out() << "--resume=auto: first a new run: " << yes_no(new_run)
+                      << ", then a resumed one: " << yes_no(resumed)
+                      << "; time_series.csv rows: " << series.size()
+                      << ", run_status: " << status << std::endl;
     checks.add(new_run, "--resume=auto without a checkpoint: a new run");
     checks.add(resumed, "--resume=auto with a checkpoint: resumed");
     checks.add(series.size() == 6 && status == "completed",
@@ -414,7 +385,91 @@ main(int argc, char **argv)
                "steps 0 to 4), completed");
   }
 
-  out << std::endl;
+  /**
+   * Every run of the program: most of a run is MPI's start-up, spent
+   * waiting, so the independent ones run side by side; then --resume=auto
+   * twice in one directory with checkpoints: a new run to t = 2, then (a
+   * later end time) a resumed one to t = 4.
+   */
+  std::vector<Run>
+  run_all()
+  {
+    fs::remove_all("run");
+    fs::remove_all("output-pressed-block");
+    fs::remove_all("auto");
+    std::vector<Run> runs = {
+      {{"--help"}, "help"},
+      {{"-h"}, "h"},
+      {{"--print-parameters"}, "print_defaults"},
+      {{"--print-parameters", "--set", "Dimension=3"}, "print_3d"},
+      {{"--print-parameters", scene, "--set", "Material/Density=2000"},
+       "print_scene"},
+      {{scene, "--set", "Output/Directory=run", "--set", "Time/End time=2"},
+       "run"},
+      {{"--version"}, "version"},
+    };
+    execute_all(runs);
+
+    const std::vector<std::string> auto_run = {scene,
+                                               "--resume=auto",
+                                               "--set",
+                                               "Output/Directory=auto",
+                                               "--set",
+                                               "Checkpoint/Every=1"};
+    for (const auto &[name, end] : {std::make_pair("resume_auto_new", "2"),
+                                    std::make_pair("resume_auto_resumed", "4")})
+      {
+        Run r(with(auto_run, {"--set", std::string("Time/End time=") + end}),
+              name);
+        execute_all({&r});
+        runs.push_back(r);
+      }
+    return runs;
+  }
+
+  /** The run of @p runs called @p name. */
+  const Run &
+  named(const std::vector<Run> &runs, const std::string &name)
+  {
+    return *std::find_if(runs.begin(), runs.end(), [&](const Run &r) {
+      return r.name == name;
+    });
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  const std::vector<Run> runs = run_all();
+  Checks                 checks;
+  for (const auto &r : runs)
+    {
+      checks.add(r.succeeded(),
+                 r.name + ": exits normally with code 0" +
+                   (r.succeeded() ?
+                      "" :
+                      " [status " + std::to_string(r.status) + "]"));
+      checks.add(r.err.empty(), r.name + ": nothing on stderr");
+    }
+
+  check_help(checks, named(runs, "help"), named(runs, "h"));
+  const Run    &print_defaults = named(runs, "print_defaults");
+  const Listing defaults(print_defaults.out);
+  check_print_defaults(checks, defaults);
+  check_documentation(checks, defaults, print_defaults.out);
+  check_print_3d(checks, Listing(named(runs, "print_3d").out));
+  check_print_scene(checks, named(runs, "print_scene"));
+  check_time_series(checks);
+  check_contact_file(checks);
+  check_version(checks, named(runs, "version"));
+  check_resume_auto(checks,
+                    named(runs, "resume_auto_new"),
+                    named(runs, "resume_auto_resumed"));
+
+  test_tools::out() << std::endl;
   checks.assert_all();
   return 0;
 }

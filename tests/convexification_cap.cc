@@ -17,28 +17,31 @@
 
 #include "test_tools.h"
 
+#include <algorithm>
 #include <fstream>
+#include <string>
+#include <vector>
 
 using namespace DynamicContact;
 
-int
-main(int argc, char *argv[])
+namespace
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::string scene = test_tools::scene("barboteu_danan_2016_small.prm");
-  const double      tolerance = 1e-6; // Friction/Coefficient tolerance
-  const std::vector<std::string> common = {
-    "Friction/Maximum convexification iterations=3",
-    "Friction/Coefficient tolerance=1e-6",
-    "Time/End time=0.25",
-    "Output/Output every=0"};
+  const double tolerance = 1e-6; // Friction/Coefficient tolerance
 
+  /** The steps of a run, and how the convexification loop ended in them. */
   struct Counts
   {
     unsigned int rows = 0, cutbacks = 0, unconverged = 0;
     double       worst_converged = 0, worst_unconverged = 0;
   };
-  const auto count = [](const auto &simulator) {
+
+  /** Run the small paper scene with @p settings and count its steps. */
+  Counts
+  run(const std::vector<std::string> &settings)
+  {
+    const auto simulator =
+      test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
+                         settings);
     Counts c;
     for (const auto &row : simulator->time_series())
       {
@@ -56,83 +59,111 @@ main(int argc, char *argv[])
           c.worst_converged = std::max(c.worst_converged, residual);
       }
     return c;
-  };
+  }
 
-  auto with_cut_back = common;
-  with_cut_back.push_back("Output/Directory=output-cut-back");
-  const Counts a = count(test_tools::run<2>(scene, with_cut_back));
+  /** @p a followed by @p more. */
+  std::vector<std::string>
+  with(std::vector<std::string> a, const std::vector<std::string> &more)
+  {
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  }
 
-  auto without = common;
-  without.push_back("Output/Directory=output-kept");
-  without.push_back("Time/Minimum time step=0.0078125");
-  const Counts b = count(test_tools::run<2>(scene, without));
-
-  test_tools::check(a.cutbacks > 0,
-                    "cut-back: steps whose loop reached the cap were retried");
-  test_tools::check(a.unconverged == 0 && a.worst_converged <= tolerance,
-                    "cut-back: every kept step converged, mu_i = mu(|w_tau|) "
-                    "to the coefficient tolerance");
-  test_tools::check(a.rows > 32, "cut-back: more steps than the 32 nominal");
-  test_tools::check(b.rows == 32 && b.cutbacks == 0,
-                    "no cut-back: the 32 nominal steps");
-  test_tools::check(b.unconverged > 0,
-                    "no cut-back: steps at the cap are kept and reported "
-                    "(convexification_converged = 0)");
-  test_tools::check(b.worst_unconverged > tolerance,
-                    "no cut-back: their coefficient_residual shows the miss");
-  test_tools::check(b.worst_converged <= tolerance,
-                    "no cut-back: the other steps converged");
-
-  const auto status = [](const std::string &directory) {
+  std::string
+  status(const std::string &directory)
+  {
     std::ifstream in(directory + "/run_status");
     std::string   line;
     std::getline(in, line);
     return line;
-  };
-  test_tools::check(status("output-cut-back") == "completed",
-                    "cut-back: run_status 'completed'");
-  const std::string kept =
-    "completed with warnings: " + std::to_string(b.unconverged) +
-    " steps kept with an unconverged "
-    "convexification loop";
-  test_tools::check(status("output-kept").rfind(kept, 0) == 0,
-                    "no cut-back: run_status 'completed with warnings: N "
-                    "steps kept with an unconverged convexification loop "
-                    "...', N the steps reported");
+  }
 
-  // Velocity strengthening: refused, unless allowed.
-  const std::vector<std::string> strengthening = {
-    "Friction/Law=expression",
-    "Friction/Expression/Function expression=1 - 0.5*exp(-2000*s)",
-    "Time/End time=0.0625",
-    "Time/Minimum time step=0.0078125",
-    "Output/Output every=0"};
-  std::string refusal;
-  try
-    {
-      auto o = strengthening;
-      o.push_back("Output/Directory=output-strengthening-refused");
-      test_tools::run<2>(scene, o);
-    }
-  catch (const std::exception &e)
-    {
-      refusal = e.what();
-    }
-  test_tools::check(refusal.find("increases with the slip rate") !=
-                        std::string::npos &&
-                      refusal.find("Friction/Velocity strengthening") !=
-                        std::string::npos,
-                    "velocity strengthening: refused before the run, "
-                    "naming Friction/Velocity strengthening");
-  auto allowed = strengthening;
-  allowed.push_back("Friction/Velocity strengthening=allow");
-  allowed.push_back("Output/Directory=output-strengthening");
-  const Counts c = count(test_tools::run<2>(scene, allowed));
-  test_tools::check(c.unconverged > 0 && c.worst_unconverged > tolerance,
-                    "velocity strengthening allowed: steps kept with an "
-                    "unconverged loop, reported");
-  test_tools::check(
-    status("output-strengthening").rfind("completed with warnings: ", 0) == 0,
-    "velocity strengthening allowed: run_status 'completed "
-    "with warnings: ...'");
+  /** The cap of 3 passes, with and without cut-backs. */
+  void
+  check_cap()
+  {
+    const std::vector<std::string> common = {
+      "Friction/Maximum convexification iterations=3",
+      "Friction/Coefficient tolerance=1e-6",
+      "Time/End time=0.25",
+      "Output/Output every=0"};
+    const Counts a = run(with(common, {"Output/Directory=output-cut-back"}));
+    const Counts b = run(with(common,
+                              {"Output/Directory=output-kept",
+                               "Time/Minimum time step=0.0078125"}));
+
+    test_tools::check(
+      a.cutbacks > 0,
+      "cut-back: steps whose loop reached the cap were retried");
+    test_tools::check(a.unconverged == 0 && a.worst_converged <= tolerance,
+                      "cut-back: every kept step converged, mu_i = "
+                      "mu(|w_tau|) to the coefficient tolerance");
+    test_tools::check(a.rows > 32, "cut-back: more steps than the 32 nominal");
+    test_tools::check(b.rows == 32 && b.cutbacks == 0,
+                      "no cut-back: the 32 nominal steps");
+    test_tools::check(b.unconverged > 0,
+                      "no cut-back: steps at the cap are kept and reported "
+                      "(convexification_converged = 0)");
+    test_tools::check(b.worst_unconverged > tolerance,
+                      "no cut-back: their coefficient_residual shows the miss");
+    test_tools::check(b.worst_converged <= tolerance,
+                      "no cut-back: the other steps converged");
+
+    test_tools::check(status("output-cut-back") == "completed",
+                      "cut-back: run_status 'completed'");
+    const std::string kept =
+      "completed with warnings: " + std::to_string(b.unconverged) +
+      " steps kept with an unconverged "
+      "convexification loop";
+    test_tools::check(status("output-kept").rfind(kept, 0) == 0,
+                      "no cut-back: run_status 'completed with warnings: N "
+                      "steps kept with an unconverged convexification loop "
+                      "...', N the steps reported");
+  }
+
+  /** Velocity strengthening: refused, unless allowed. */
+  void
+  check_velocity_strengthening()
+  {
+    const std::vector<std::string> strengthening = {
+      "Friction/Law=expression",
+      "Friction/Expression/Function expression=1 - 0.5*exp(-2000*s)",
+      "Time/End time=0.0625",
+      "Time/Minimum time step=0.0078125",
+      "Output/Output every=0"};
+    std::string refusal;
+    try
+      {
+        run(with(strengthening,
+                 {"Output/Directory=output-strengthening-refused"}));
+      }
+    catch (const std::exception &e)
+      {
+        refusal = e.what();
+      }
+    test_tools::check(refusal.find("increases with the slip rate") !=
+                          std::string::npos &&
+                        refusal.find("Friction/Velocity strengthening") !=
+                          std::string::npos,
+                      "velocity strengthening: refused before the run, "
+                      "naming Friction/Velocity strengthening");
+    const Counts c = run(with(strengthening,
+                              {"Friction/Velocity strengthening=allow",
+                               "Output/Directory=output-strengthening"}));
+    test_tools::check(c.unconverged > 0 && c.worst_unconverged > tolerance,
+                      "velocity strengthening allowed: steps kept with an "
+                      "unconverged loop, reported");
+    test_tools::check(
+      status("output-strengthening").rfind("completed with warnings: ", 0) == 0,
+      "velocity strengthening allowed: run_status 'completed "
+      "with warnings: ...'");
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check_cap();
+  check_velocity_strengthening();
 }

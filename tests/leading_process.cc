@@ -13,6 +13,12 @@
 
 #include "test_tools.h"
 
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 using namespace DynamicContact;
 
 namespace
@@ -26,32 +32,56 @@ namespace
     for (unsigned int r = 0; r < lines.size(); ++r)
       test_tools::out() << "  rank " << r << ": " << lines[r] << '\n';
   }
-} // namespace
 
-int
-main(int argc, char *argv[])
-{
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   comm = MPI_COMM_WORLD;
-
+  /** The requests served on this process, as "( 1 2 )( )...". */
   std::vector<std::string> served;
-  LeadingProcess           lead(comm, [&](const std::vector<unsigned int> &l) {
+
+  /** The requests served since the last call; forgets them. */
+  std::string
+  served_text()
+  {
+    std::string s;
+    for (const auto &x : served)
+      s += x;
+    served.clear();
+    return s;
+  }
+
+  /** Serve a request: note it; fail on a request that starts with 99. */
+  void
+  serve(const std::vector<unsigned int> &l)
+  {
     std::string s = "(";
     for (const unsigned int i : l)
       s += " " + std::to_string(i);
     served.push_back(s + " )");
     if (!l.empty() && l[0] == 99)
       throw std::runtime_error("serving failed");
-  });
-  const auto served_text = [&]() {
-    std::string s;
-    for (const auto &x : served)
-      s += x;
-    served.clear();
-    return s;
-  };
+  }
 
-  // 1. Requests in order, then the leader's values on every process.
+  /** How lead.run(@p work) ended on this process. */
+  std::string
+  outcome_of(LeadingProcess &lead, const std::function<void()> &work)
+  {
+    try
+      {
+        lead.run(work);
+        return "no exception";
+      }
+    catch (const StepFailure &e)
+      {
+        return std::string("StepFailure '") + e.what() + "', " +
+               std::to_string(e.newton_iterations) + " iterations";
+      }
+    catch (const std::exception &e)
+      {
+        return std::string("error '") + e.what() + "'";
+      }
+  }
+
+  /** 1. Requests in order, then the leader's values on every process. */
+  void
+  requests_and_shared_values(LeadingProcess &lead)
   {
     unsigned int worked = 0;
     lead.run([&]() {
@@ -82,63 +112,36 @@ main(int argc, char *argv[])
     s << ", record " << record.n << ' ' << record.x << ' ' << record.b;
     report("requests and shared values", s.str());
   }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  LeadingProcess                   lead(MPI_COMM_WORLD, serve);
+
+  requests_and_shared_values(lead);
 
   // 2. A StepFailure of the work after a request.
-  {
-    std::string line;
-    try
-      {
-        lead.run([&]() {
-          lead.request({3});
-          throw StepFailure("the Newton iteration did not converge", 7);
-        });
-        line = "no exception";
-      }
-    catch (const StepFailure &e)
-      {
-        line = std::string("StepFailure '") + e.what() + "', " +
-               std::to_string(e.newton_iterations) + " iterations";
-      }
-    report("a StepFailure of the work", line + ", served " + served_text());
-  }
+  const std::string step_failure = outcome_of(lead, [&]() {
+    lead.request({3});
+    throw StepFailure("the Newton iteration did not converge", 7);
+  });
+  report("a StepFailure of the work",
+         step_failure + ", served " + served_text());
 
   // 3. Another error of the work.
-  {
-    std::string line;
-    try
-      {
-        lead.run([&]() { throw std::logic_error("a bad table"); });
-        line = "no exception";
-      }
-    catch (const StepFailure &)
-      {
-        line = "StepFailure";
-      }
-    catch (const std::exception &e)
-      {
-        line = std::string("error '") + e.what() + "'";
-      }
-    report("another error of the work", line);
-  }
+  report("another error of the work",
+         outcome_of(lead, []() { throw std::logic_error("a bad table"); }));
 
   // 4. The serving function fails on every process; then a normal run.
-  {
-    std::string line;
-    try
-      {
-        lead.run([&]() {
-          lead.request({99});
-          lead.request({4}); // not reached
-        });
-        line = "no exception";
-      }
-    catch (const std::exception &e)
-      {
-        line = std::string("error '") + e.what() + "'";
-      }
-    line += ", served " + served_text();
-    lead.run([&]() { lead.request({6}); });
-    report("a failure of the serving function, then a normal run",
-           line + "; then served " + served_text());
-  }
+  const std::string serving_failure = outcome_of(lead, [&]() {
+    lead.request({99});
+    lead.request({4}); // not reached
+  });
+  const std::string served_then     = served_text();
+  lead.run([&]() { lead.request({6}); });
+  report("a failure of the serving function, then a normal run",
+         serving_failure + ", served " + served_then + "; then served " +
+           served_text());
 }

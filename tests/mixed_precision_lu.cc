@@ -77,44 +77,21 @@ namespace
       v[i] = u(random);
     return v;
   }
-} // namespace
 
-int
-main()
-{
-  std::mt19937                           random(42);
-  std::uniform_real_distribution<double> u(-1, 1);
+  using Uniform = std::uniform_real_distribution<double>;
 
+  /**
+   * (e) The factorization @p lu of @p A kept for a nearby matrix (the next
+   * Newton iteration's: every entry off by up to 1e-3 relative) ...
+   */
+  void
+  check_reuse(MixedPrecisionLU               &lu,
+              const LAPACKFullMatrix<double> &A,
+              const Vector<double>           &b,
+              std::mt19937                   &random,
+              Uniform                        &u)
   {
-    // (a) A nonsymmetric system like the reduced Newton systems: identity
-    // plus a coupling, the first 9 rows 1e7 times larger.
-    const unsigned int       n = 600;
-    LAPACKFullMatrix<double> A =
-      matrix_of(n, [&](const unsigned int i, const unsigned int j) {
-        return (i == j ? 1. : 0.) + 0.5 * u(random) / std::sqrt(double(n));
-      });
-    for (unsigned int i = 0; i < 9; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        A(i, j) *= 1e7;
-    const Vector<double> b = random_vector(n, random);
-    MixedPrecisionLU     lu(A);
-    Vector<double>       x = b;
-    lu.solve(x);
-    check(!lu.in_double_precision(),
-          "600 x 600 with rows of 1e7: solved in single precision with "
-          "refinement");
-    check(relative_difference(x, double_solve(A, b)) < 1e-12,
-          "600 x 600 with rows of 1e7: agrees with LAPACK's double LU to "
-          "1e-12");
-    // A second right-hand side with the same factorization.
-    const Vector<double> b2 = random_vector(n, random);
-    Vector<double>       x2 = b2;
-    lu.solve(x2);
-    check(relative_difference(x2, double_solve(A, b2)) < 1e-12,
-          "a second right-hand side: agrees to 1e-12");
-
-    // (e) The factorization of A kept for a nearby matrix (the next Newton
-    // iteration's: every entry off by up to 1e-3 relative) ...
+    const unsigned int       n    = A.m();
     LAPACKFullMatrix<double> near = A;
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
@@ -142,9 +119,47 @@ main()
           "1e-12");
   }
 
+  /**
+   * (a) A nonsymmetric system like the reduced Newton systems: identity
+   * plus a coupling, the first 9 rows 1e7 times larger; then (e).
+   */
+  void
+  check_scaled_rows(std::mt19937 &random, Uniform &u)
   {
-    // (b) Ones plus 1e-9 on the diagonal: 1 + 1e-9 is 1 in single
-    // precision, so the float factorization cannot resolve the matrix.
+    const unsigned int       n = 600;
+    LAPACKFullMatrix<double> A =
+      matrix_of(n, [&](const unsigned int i, const unsigned int j) {
+        return (i == j ? 1. : 0.) + 0.5 * u(random) / std::sqrt(double(n));
+      });
+    for (unsigned int i = 0; i < 9; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) *= 1e7;
+    const Vector<double> b = random_vector(n, random);
+    MixedPrecisionLU     lu(A);
+    Vector<double>       x = b;
+    lu.solve(x);
+    check(!lu.in_double_precision(),
+          "600 x 600 with rows of 1e7: solved in single precision with "
+          "refinement");
+    check(relative_difference(x, double_solve(A, b)) < 1e-12,
+          "600 x 600 with rows of 1e7: agrees with LAPACK's double LU to "
+          "1e-12");
+    // A second right-hand side with the same factorization.
+    const Vector<double> b2 = random_vector(n, random);
+    Vector<double>       x2 = b2;
+    lu.solve(x2);
+    check(relative_difference(x2, double_solve(A, b2)) < 1e-12,
+          "a second right-hand side: agrees to 1e-12");
+    check_reuse(lu, A, b, random, u);
+  }
+
+  /**
+   * (b) Ones plus 1e-9 on the diagonal: 1 + 1e-9 is 1 in single precision,
+   * so the float factorization cannot resolve the matrix.
+   */
+  void
+  check_unresolved(std::mt19937 &random)
+  {
     const unsigned int             n = 600;
     const LAPACKFullMatrix<double> A =
       matrix_of(n, [](const unsigned int i, const unsigned int j) {
@@ -158,8 +173,10 @@ main()
           "ones + 1e-9 I: agrees with LAPACK's double LU to 1e-12");
   }
 
+  /** (c) Below the size where single precision pays. */
+  void
+  check_small(std::mt19937 &random, Uniform &u)
   {
-    // (c) Below the size where single precision pays.
     const unsigned int             n = 100;
     const LAPACKFullMatrix<double> A =
       matrix_of(n, [&](const unsigned int i, const unsigned int j) {
@@ -173,12 +190,25 @@ main()
           "100 x 100: the same answer as LAPACK's double LU");
   }
 
+  /** (d) No unknowns (no active node). */
+  void
+  check_empty()
   {
-    // (d) No unknowns (no active node).
     LAPACKFullMatrix<double> A(0, 0);
     MixedPrecisionLU         lu(A);
     Vector<double>           x;
     lu.solve(x);
     check(x.size() == 0, "0 x 0: nothing to solve");
   }
+} // namespace
+
+int
+main()
+{
+  std::mt19937                           random(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  check_scaled_rows(random, u);
+  check_unresolved(random);
+  check_small(random, u);
+  check_empty();
 }

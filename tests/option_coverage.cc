@@ -40,11 +40,14 @@ using namespace DynamicContact;
 
 namespace
 {
+  using test_tools::check;
+  using Series = std::vector<StepRecord<2>>;
+
   const std::string scene = test_tools::scene("barboteu_danan_2016_small.prm");
   const std::string adaptive_scene =
     test_tools::scene("barboteu_danan_2016_adaptive_small.prm");
 
-  std::vector<StepRecord<2>>
+  Series
   series(const std::string              &name,
          const std::vector<std::string> &overrides,
          const std::string              &file = scene)
@@ -57,7 +60,7 @@ namespace
 
   template <typename F>
   unsigned int
-  sum(const std::vector<StepRecord<2>> &s, const F &f)
+  sum(const Series &s, const F &f)
   {
     unsigned int total = 0;
     for (const auto &row : s)
@@ -65,19 +68,28 @@ namespace
     return total;
   }
 
+  using Statistics = StepSolver<2>::Statistics;
+  // The counters of the solvers' work that the options change.
+  constexpr auto passes = &Statistics::convexification_iterations;
+  constexpr auto solves = &Statistics::bulk_solves; // with K0
+  constexpr auto krylov = &Statistics::linear_iterations;
+
+  /** The sum of the counter @p counter over the steps of @p s. */
   unsigned int
-  passes(const std::vector<StepRecord<2>> &s)
+  total(const Series &s, unsigned int Statistics::*counter)
   {
-    return sum(s, [](const StepRecord<2> &r) {
-      return r.statistics.convexification_iterations;
+    return sum(s, [counter](const StepRecord<2> &r) {
+      return r.statistics.*counter;
     });
   }
 
+  /** The number of steps that measured the uniqueness bound. */
   unsigned int
-  solves(const std::vector<StepRecord<2>> &s)
+  measured_bounds(const Series &s)
   {
-    return sum(s,
-               [](const StepRecord<2> &r) { return r.statistics.bulk_solves; });
+    return sum(s, [](const StepRecord<2> &r) {
+      return r.statistics.uniqueness_bound >= 0 ? 1u : 0u;
+    });
   }
 
   /** The message of the error a run stops with ("" if none). */
@@ -94,17 +106,23 @@ namespace
       }
     return "";
   }
-} // namespace
 
+  /** Whether log.txt of the run @p name contains @p text. */
+  bool
+  log_says(const std::string &name, const std::string &text)
+  {
+    return test_tools::read_text("output-" + name + "/log.txt").find(text) !=
+           std::string::npos;
+  }
 
-int
-main(int argc, char *argv[])
-{
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  using test_tools::check;
-  const auto reference = series("reference", {});
+  // The assembled contact solver with the iterative linear solver.
+  const std::vector<std::string> iterative_solver = {
+    "Solver/Contact solver=assembled",
+    "Solver/Linear solver=iterative",
+    "Solver/Linear tolerance=1e-12"};
 
-  // Function constants and variable names.
+  void
+  check_function_constants(const Series &reference)
   {
     const auto literal =
       series("literal",
@@ -118,8 +136,7 @@ main(int argc, char *argv[])
              {"Initial conditions/Velocity/Variable names=X,Y,T",
               "Initial conditions/Velocity/Function expression=0.01*X; 0"});
     const auto kinetic = test_tools::quantity<2>("kinetic_energy");
-    check(kinetic.of(literal.front()) > 0 &&
-            kinetic.of(reference.front()) == 0,
+    check(kinetic.of(literal.front()) > 0 && kinetic.of(reference.front()) == 0,
           "the initial velocity is set (kinetic energy at t = 0)");
     check(test_tools::largest_difference(with_constant, literal) == 0,
           "Function constants: the same series as the literal expression");
@@ -127,70 +144,71 @@ main(int argc, char *argv[])
           "Variable names: the same series as with x, y, t");
   }
 
-  // Solver path options: the same solution.
+  /** Options that change the path of the solvers: the same solution. */
+  void
+  check_solver_paths(const Series &reference)
   {
+    using test_tools::largest_difference;
     const auto c_t =
       series("complementarity", {"Friction/Complementarity constant=1e14"});
-    check(test_tools::largest_difference(c_t, reference) < 1e-8,
+    check(largest_difference(c_t, reference) < 1e-8,
           "Friction/Complementarity constant: the same solution to 1e-8");
     const auto relaxed = series("relaxed", {"Friction/Relaxation=0.7"});
     // Both loops stop within Friction/Convexification tolerance and
     // Coefficient tolerance (1e-6) of the same fixed point.
-    check(test_tools::largest_difference(relaxed, reference) < 1e-6,
+    check(largest_difference(relaxed, reference) < 1e-6,
           "Friction/Relaxation = 0.7: the same solution to the loop's "
           "tolerance, 1e-6");
-    check(passes(relaxed) > passes(reference),
+    check(total(relaxed, passes) > total(reference, passes),
           "Friction/Relaxation = 0.7: more convexification passes");
     const auto whole = series("whole", {"Solver/Provisional passes=false"});
-    check(test_tools::largest_difference(whole, reference) < 1e-8,
+    check(largest_difference(whole, reference) < 1e-8,
           "Solver/Provisional passes = false: the same solution to 1e-8");
-    check(solves(whole) > solves(reference),
+    check(total(whole, solves) > total(reference, solves),
           "Solver/Provisional passes = false: more solves with K0");
     const auto assembled = series("limit", {"Solver/Condensed limit=0"});
-    check(test_tools::largest_difference(assembled, reference) < 1e-8,
+    check(largest_difference(assembled, reference) < 1e-8,
           "Solver/Condensed limit = 0: the same solution to 1e-8");
-    check(test_tools::read_text("output-limit/log.txt")
-              .find("solver plan: assembled") != std::string::npos,
+    check(log_says("limit", "solver plan: assembled"),
           "Solver/Condensed limit = 0: the plan assembles");
-    const auto iterative = series("iterative",
-                                  {"Solver/Contact solver=assembled",
-                                   "Solver/Linear solver=iterative",
-                                   "Solver/Linear tolerance=1e-12"});
-    check(test_tools::largest_difference(iterative, reference) < 1e-8,
+    const auto iterative = series("iterative", iterative_solver);
+    check(largest_difference(iterative, reference) < 1e-8,
           "Solver/Linear solver = iterative: the same solution to 1e-8");
-    check(sum(iterative,
-              [](const StepRecord<2> &r) {
-                return r.statistics.linear_iterations;
-              }) > 0,
+    check(total(iterative, krylov) > 0,
           "Solver/Linear solver = iterative: Krylov iterations counted");
+  }
 
-    const auto krylov = [](const std::vector<StepRecord<2>> &s) {
-      return sum(s, [](const StepRecord<2> &r) {
-        return r.statistics.linear_iterations;
-      });
-    };
-    std::vector<std::vector<StepRecord<2>>> aggregations;
+  /** Plain aggregation: the same solution, more Krylov iterations (on a
+   *  mesh refined twice: the multigrid has coarse levels there). */
+  void
+  check_amg_aggregation()
+  {
+    std::vector<Series> aggregations;
     for (const std::string aggregation : {"smoothed", "plain"})
-      aggregations.push_back(
-        series("aggregation-" + aggregation,
-               {"Geometry/Global refinements=2",
-                "Solver/Contact solver=assembled",
-                "Solver/Linear solver=iterative",
-                "Solver/Linear tolerance=1e-12",
-                "Solver/AMG aggregation=" + aggregation}));
+      {
+        std::vector<std::string> overrides = {"Geometry/Global refinements=2"};
+        overrides.insert(overrides.end(),
+                         iterative_solver.begin(),
+                         iterative_solver.end());
+        overrides.push_back("Solver/AMG aggregation=" + aggregation);
+        aggregations.push_back(series("aggregation-" + aggregation, overrides));
+      }
     check(test_tools::largest_difference(aggregations[1], aggregations[0]) <
             1e-8,
           "Solver/AMG aggregation = plain: the same solution to 1e-8");
-    check(krylov(aggregations[1]) > krylov(aggregations[0]),
+    check(total(aggregations[1], krylov) > total(aggregations[0], krylov),
           "Solver/AMG aggregation = plain: more Krylov iterations");
-    check(test_tools::read_text("output-aggregation-plain/log.txt")
-              .find("plain aggregation") != std::string::npos,
+    check(log_says("aggregation-plain", "plain aggregation"),
           "Solver/AMG aggregation = plain: the solver plan says so");
   }
 
-  // The linear solver's cap: CG on K0 (the condensed solver with the
-  // iterative linear solver) that cannot converge in 2 iterations fails
-  // the step, and at the smallest time step the run stops naming the cap.
+  /**
+   * The linear solver's cap: CG on K0 (the condensed solver with the
+   * iterative linear solver) that cannot converge in 2 iterations fails
+   * the step, and at the smallest time step the run stops naming the cap.
+   */
+  void
+  check_linear_cap()
   {
     const std::string error =
       error_of("linear-cap",
@@ -204,28 +222,25 @@ main(int argc, char *argv[])
           "Solver/Maximum linear iterations = 2: the run stops naming it");
   }
 
-  // The uniqueness monitor.
+  void
+  check_uniqueness_monitor()
   {
     const auto always = series("monitor-always",
                                {"Solver/Contact solver=assembled",
                                 "Friction/Uniqueness monitor=always"});
     const auto never =
       series("monitor-never", {"Friction/Uniqueness monitor=never"});
-    check(sum(always,
-              [](const StepRecord<2> &r) {
-                return r.statistics.uniqueness_bound >= 0 ? 1u : 0u;
-              }) > 0,
+    check(measured_bounds(always) > 0,
           "Uniqueness monitor = always: measured with the assembled solver");
-    check(sum(never,
-              [](const StepRecord<2> &r) {
-                return r.statistics.uniqueness_bound >= 0 ? 1u : 0u;
-              }) == 0 &&
+    check(measured_bounds(never) == 0 &&
             test_tools::read_text("output-monitor-never/time_series.csv")
                 .find("uniqueness_bound") == std::string::npos,
           "Uniqueness monitor = never: nothing measured, no column");
   }
 
-  // The slip-rate range of the law's start-up check.
+  /** The slip-rate range of the law's start-up check. */
+  void
+  check_slip_rate_range()
   {
     const std::vector<std::string> law = {
       "Friction/Law=expression",
@@ -240,51 +255,52 @@ main(int argc, char *argv[])
           "Friction/Maximum slip rate = 10: the same law runs");
   }
 
-  // Damping only in contact: with true, damping acts only at penetrating
-  // nodes; with false (eq. (17) as written) also at nodes that approach
-  // the foundation without touching it.
-  for (const bool only : {true, false})
-    {
-      const std::string flag = only ? "true" : "false";
-      auto              loop = test_tools::make<2>(
-        scene,
-        {"Time/End time=0.25",
-         "Foundation/Normal damping/Only in contact=" + flag,
-         "Output/Directory=output-only-in-contact-" + flag});
-      loop->initialize();
-      unsigned int damping_alone = 0;
-      do
-        for (const auto &state : loop->simulator().node_states())
-          if (state.normal.damping_active && !state.normal.compliance_active)
-            ++damping_alone;
-      while (loop->advance());
-      loop->finish();
-      damping_alone = Utilities::MPI::sum(damping_alone, MPI_COMM_WORLD);
-      double worst_defect = 0;
-      for (const auto &row : loop->time_series())
-        worst_defect = std::max(worst_defect, row.relative_energy_defect());
-      check(only ? damping_alone == 0 : damping_alone > 0,
-            "Only in contact = " + flag + ": damping " +
-              (only ? "never" : "also") + " acts without penetration");
-      check(worst_defect < 1e-8,
-            "Only in contact = " + flag +
-              ": the energy balance closes to 1e-8");
-    }
-
-  // Adaptive time steps bounded by Maximum time step.
+  /**
+   * Damping only in contact: with true, damping acts only at penetrating
+   * nodes; with false (eq. (17) as written) also at nodes that approach
+   * the foundation without touching it.
+   */
+  void
+  check_damping_only_in_contact(const bool only)
   {
-    const auto bounded = series("maximum-step",
-                                {"Time/Scheme=bathe",
-                                 "Time/Adaptive=true",
-                                 "Time/Adaptive tolerance=0.1",
-                                 "Time/Time step=0.00390625",
-                                 "Time/Maximum time step=0.0078125"});
-    const auto free = series("free-step",
-                             {"Time/Scheme=bathe",
-                              "Time/Adaptive=true",
-                              "Time/Adaptive tolerance=0.1",
-                              "Time/Time step=0.00390625"});
-    const auto largest = [](const std::vector<StepRecord<2>> &s) {
+    const std::string flag = only ? "true" : "false";
+    auto              loop =
+      test_tools::make<2>(scene,
+                          {"Time/End time=0.25",
+                           "Foundation/Normal damping/Only in contact=" + flag,
+                           "Output/Directory=output-only-in-contact-" + flag});
+    loop->initialize();
+    unsigned int damping_alone = 0;
+    do
+      for (const auto &state : loop->simulator().node_states())
+        if (state.normal.damping_active && !state.normal.compliance_active)
+          ++damping_alone;
+    while (loop->advance());
+    loop->finish();
+    damping_alone       = Utilities::MPI::sum(damping_alone, MPI_COMM_WORLD);
+    double worst_defect = 0;
+    for (const auto &row : loop->time_series())
+      worst_defect = std::max(worst_defect, row.relative_energy_defect());
+    check(only ? damping_alone == 0 : damping_alone > 0,
+          "Only in contact = " + flag + ": damping " +
+            (only ? "never" : "also") + " acts without penetration");
+    check(worst_defect < 1e-8,
+          "Only in contact = " + flag + ": the energy balance closes to 1e-8");
+  }
+
+  /** Adaptive time steps bounded by Maximum time step. */
+  void
+  check_maximum_time_step()
+  {
+    const std::vector<std::string> adaptive          = {"Time/Scheme=bathe",
+                                                        "Time/Adaptive=true",
+                                                        "Time/Adaptive tolerance=0.1",
+                                                        "Time/Time step=0.00390625"};
+    auto                           bounded_overrides = adaptive;
+    bounded_overrides.push_back("Time/Maximum time step=0.0078125");
+    const auto bounded = series("maximum-step", bounded_overrides);
+    const auto free    = series("free-step", adaptive);
+    const auto largest = [](const Series &s) {
       double k = 0;
       for (const auto &row : s)
         k = std::max(k, row.time_step);
@@ -296,7 +312,9 @@ main(int argc, char *argv[])
           "Time/Maximum time step = 0.0078125: no longer step");
   }
 
-  // Mesh refinement: the cell budget and the error indicator.
+  /** Mesh refinement: the cell budget, and the plan of an adapted mesh. */
+  void
+  check_cell_budget()
   {
     const auto budget =
       series("budget", {"Mesh refinement/Cell budget=256"}, adaptive_scene);
@@ -318,55 +336,83 @@ main(int argc, char *argv[])
             std::regex(R"((^|\n)  solver plan from step [0-9]+ \(mesh )"
                        R"(adapted at t = [^)]+\): assembled \(iterative\))")),
           "a plan changed by remeshing: log.txt has the new one");
-    check(test_tools::read_text("output-budget/log.txt")
-              .find("solver plan from step") == std::string::npos,
+    check(!log_says("budget", "solver plan from step"),
           "a plan unchanged by remeshing: log.txt has no new one");
-    const auto frozen = series("indicator-frozen",
-                               {"Mesh refinement/Strategy=error indicator",
-                                "Mesh refinement/Error indicator/"
-                                "Refine fraction=0",
-                                "Mesh refinement/Error indicator/"
-                                "Coarsen fraction=0"},
-                               adaptive_scene);
-    const auto refining = series("indicator-refining",
-                                 {"Mesh refinement/Strategy=error indicator",
-                                  "Mesh refinement/Error indicator/"
-                                  "Refine fraction=0.3",
-                                  "Mesh refinement/Error indicator/"
-                                  "Coarsen fraction=0"},
-                                 adaptive_scene);
-    bool   unchanged = true;
-    double most      = 0;
+  }
+
+  /** The error indicator with Refine fraction @p refine, no coarsening. */
+  Series
+  error_indicator(const std::string &name, const std::string &refine)
+  {
+    return series(name,
+                  {"Mesh refinement/Strategy=error indicator",
+                   "Mesh refinement/Error indicator/Refine fraction=" + refine,
+                   "Mesh refinement/Error indicator/Coarsen fraction=0"},
+                  adaptive_scene);
+  }
+
+  /**
+   * Contact following: the finest level (2) within Window of the
+   * penetrating nodes, under the load at x = c t; the top of the body
+   * (0.1 m above the contact boundary) only with a window that reaches it.
+   */
+  void
+  check_contact_following(const double window)
+  {
+    const std::string w = test_tools::digits(window, 1);
+    auto              loop =
+      test_tools::make<2>(adaptive_scene,
+                          {"Time/End time=0.25",
+                           "Mesh refinement/Strategy=contact following",
+                           "Mesh refinement/Contact following/Window=" + w,
+                           "Output/Directory=output-contact-following-" + w});
+    loop->run();
+    const double x = 2. * loop->time();
+    check(test_tools::level_at(loop->simulator(), Point<2>(x, 0.001)) == 2,
+          "Contact following, Window = " + w +
+            ": the finest level at the contact under the load");
+    check(test_tools::level_at(loop->simulator(), Point<2>(x, 0.099)) ==
+            (window > 0.1 ? 2 : 1),
+          "Contact following, Window = " + w + ": the top " +
+            (window > 0.1 ? "refined too" : "at the minimum level"));
+  }
+
+  /** The error indicator with both fractions 0 leaves the mesh as it is,
+   *  with a refine fraction it refines; contact following in between. */
+  void
+  check_refinement_strategies()
+  {
+    const auto frozen    = error_indicator("indicator-frozen", "0");
+    const auto refining  = error_indicator("indicator-refining", "0.3");
+    bool       unchanged = true;
+    double     most      = 0;
     for (const auto &row : frozen)
       unchanged = unchanged && row.cells == frozen.front().cells;
     for (const auto &row : refining)
       most = std::max(most, static_cast<double>(row.cells));
     check(unchanged, "Error indicator with both fractions 0: mesh unchanged");
-
-    // Contact following: the finest level (2) within Window of the
-    // penetrating nodes, under the load at x = c t; the top of the body
-    // (0.1 m above the contact boundary) only with a window that reaches
-    // it.
     for (const double window : {0.01, 0.2})
-      {
-        const std::string w    = test_tools::digits(window, 1);
-        auto              loop = test_tools::make<2>(
-          adaptive_scene,
-          {"Time/End time=0.25",
-           "Mesh refinement/Strategy=contact following",
-           "Mesh refinement/Contact following/Window=" + w,
-           "Output/Directory=output-contact-following-" + w});
-        loop->run();
-        const double x = 2. * loop->time();
-        check(test_tools::level_at(loop->simulator(), Point<2>(x, 0.001)) == 2,
-              "Contact following, Window = " + w +
-                ": the finest level at the contact under the load");
-        check(test_tools::level_at(loop->simulator(), Point<2>(x, 0.099)) ==
-                (window > 0.1 ? 2 : 1),
-              "Contact following, Window = " + w + ": the top " +
-                (window > 0.1 ? "refined too" : "at the minimum level"));
-      }
+      check_contact_following(window);
     check(most > frozen.front().cells,
           "Error indicator, Refine fraction = 0.3: the mesh is refined");
   }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const auto                       reference = series("reference", {});
+  check_function_constants(reference);
+  check_solver_paths(reference);
+  check_amg_aggregation();
+  check_linear_cap();
+  check_uniqueness_monitor();
+  check_slip_rate_range();
+  for (const bool only : {true, false})
+    check_damping_only_in_contact(only);
+  check_maximum_time_step();
+  check_cell_budget();
+  check_refinement_strategies();
 }

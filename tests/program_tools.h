@@ -2,9 +2,10 @@
 #define dynamic_contact_tests_program_tools_h
 
 // Shared helpers of the tests that run the dynamic-contact executable as a
-// user does (bad_input, command_line, checkpoint_restart): text and CSV
-// files, a shell command line, the outcome of one run of the program (with
-// or without mpiexec), and a list of checks made after every run has
+// user does (bad_input, command_line, provenance, checkpoint_restart, ...):
+// text and CSV files, a shell command line, the outcome of one run of the
+// program (with or without mpiexec), runs side by side, error lines as they
+// read on every machine, and a list of checks made after every run has
 // printed what it found.
 
 #include "test_tools.h"
@@ -12,11 +13,13 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -166,22 +169,47 @@ namespace program_tools
   };
 
   /**
+   * Call @p f(i) for i = 0, ..., @p n - 1 on @p workers threads, each taking
+   * the next i as soon as it is done with one.
+   */
+  template <typename F>
+  inline void
+  in_parallel(const unsigned int n, const unsigned int workers, const F &f)
+  {
+    std::atomic<unsigned int> next(0);
+    std::vector<std::thread>  threads;
+    for (unsigned int w = 0; w < workers; ++w)
+      threads.emplace_back([&]() {
+        for (unsigned int i = next++; i < n; i = next++)
+          f(i);
+      });
+    for (auto &t : threads)
+      t.join();
+  }
+
+  /**
    * Execute @p runs side by side, in the current directory (most of a run
    * is MPI's start-up, spent waiting), each ended after @p timeout seconds.
    */
   inline void
   execute_all(const std::vector<Run *> &runs, const unsigned int timeout = 300)
   {
-    std::vector<std::thread> threads;
-    for (Run *r : runs)
-      threads.emplace_back([r, timeout]() {
-        Launch launch;
-        launch.name                = r->name;
-        launch.timeout             = timeout;
-        static_cast<Outcome &>(*r) = execute(r->arguments, launch);
-      });
-    for (auto &t : threads)
-      t.join();
+    in_parallel(runs.size(), runs.size(), [&](const unsigned int i) {
+      Launch launch;
+      launch.name                      = runs[i]->name;
+      launch.timeout                   = timeout;
+      static_cast<Outcome &>(*runs[i]) = execute(runs[i]->arguments, launch);
+    });
+  }
+
+  /** The same for every run of @p runs. */
+  inline void
+  execute_all(std::vector<Run> &runs, const unsigned int timeout = 300)
+  {
+    std::vector<Run *> all;
+    for (auto &r : runs)
+      all.push_back(&r);
+    execute_all(all, timeout);
   }
 
   /**
@@ -195,10 +223,10 @@ namespace program_tools
                        const std::string              &name)
   {
     Launch launch;
-    launch.name        = name;
-    launch.program     = "python3";
-    launch.environment = {std::string("DYNAMIC_CONTACT=") +
-                          DYNAMIC_CONTACT_EXECUTABLE};
+    launch.name                      = name;
+    launch.program                   = "python3";
+    launch.environment               = {std::string("DYNAMIC_CONTACT=") +
+                                        DYNAMIC_CONTACT_EXECUTABLE};
     std::vector<std::string> command = {std::string(SOURCE_DIR) +
                                         "/../benchmarks/" + script};
     command.insert(command.end(), arguments.begin(), arguments.end());
@@ -251,6 +279,17 @@ namespace program_tools
   {
     a.insert(a.end(), more.begin(), more.end());
     return a;
+  }
+
+  /**
+   * @p text without the directories of its absolute paths: an error line as
+   * it reads on every machine.
+   */
+  inline std::string
+  without_directories(const std::string &text)
+  {
+    static const std::regex path(R"((^|[\s'"<(])/(?:[^\s'"<>()]*/)?)");
+    return std::regex_replace(text, path, "$1");
   }
 
   /** The error lines of a run's stderr. */

@@ -33,86 +33,52 @@ namespace
 {
   using namespace program_tools;
 
-  /** An error line without the directories of absolute paths. */
-  std::string
-  without_paths(const std::string &text)
-  {
-    static const std::regex path(R"((^|[\s'"<(])/(?:[^\s'"<>()]*/)?)");
-    return std::regex_replace(text, path, "$1");
-  }
-
   std::string
   first_error(const Outcome &o)
   {
     const auto lines = error_lines(o);
-    return lines.empty() ? "<none>" : without_paths(lines[0]);
+    return lines.empty() ? "<none>" : without_directories(lines[0]);
   }
 
   const std::regex provenance_line(
     R"(  dynamic-contact [0-9][^ ]* \(git [^ )]+\), deal\.II [0-9.]+, 1 MPI process, started [0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z)");
-} // namespace
+  const std::regex plan_line(R"(  solver plan: (condensed|assembled).*)");
 
-
-int
-main(int argc, char **argv)
-{
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  std::ostream                            &out = test_tools::out();
+  /** @p text with every line ended by a newline. */
+  std::string
+  ended_lines(const std::string &text)
+  {
+    std::string ended;
+    for (const auto &line : lines_of(text))
+      ended += line + "\n";
+    return ended;
+  }
 
   const std::string scene = test_tools::scene("pressed_block.prm");
-  // The directories of an earlier run of this test.
-  for (const std::string d : {"original",
-                              "again_prm",
-                              "again_json",
-                              "from_json",
-                              "from_xml",
-                              "from_short_json",
-                              "resumed",
-                              "bad",
-                              "validate_good",
-                              "validate_unassigned_id",
-                              "run_unassigned_id",
-                              "validate_broken_expression",
-                              "run_broken_expression",
-                              "validate_missing_mesh",
-                              "run_missing_mesh",
-                              "validate_nan_initial",
-                              "run_nan_initial"})
-    fs::remove_all(d);
-  for (const std::string f : {"scene.json", "scene.xml", "short.json"})
-    fs::remove(f);
 
-  // The scene of every comparison: pressed_block.prm with overrides.
-  const std::vector<std::string> overrides = {
-    "--set",
-    "Time/End time=3",
-    "--set",
-    "Material/Density=2000",
-    "--set",
-    "Output/Print timings=false",
-    "--set",
-    "Output/Print iteration counts=false"};
-  const auto with = [&](std::vector<std::string> arguments,
-                        const std::string       &directory) {
-    arguments.insert(arguments.end(), overrides.begin(), overrides.end());
-    arguments.insert(arguments.end(),
-                     {"--set", "Output/Directory=" + directory});
-    return arguments;
-  };
+  /**
+   * The scene of every comparison: @p arguments with the overrides of
+   * pressed_block.prm, its results in @p directory.
+   */
+  std::vector<std::string>
+  compared(const std::vector<std::string> &arguments,
+           const std::string              &directory)
+  {
+    return with(arguments,
+                {"--set",
+                 "Time/End time=3",
+                 "--set",
+                 "Material/Density=2000",
+                 "--set",
+                 "Output/Print timings=false",
+                 "--set",
+                 "Output/Print iteration counts=false",
+                 "--set",
+                 "Output/Directory=" + directory});
+  }
 
-  // ---------------------------------------------------------------- runs
-  Run original(with({scene}, "original"), "original");
-  Run print_json(with({"--print-parameters=json", scene}, "from_json"),
-                 "print_json");
-  Run print_xml(with({"--print-parameters=xml", scene}, "from_xml"),
-                "print_xml");
-  Run markdown({"--print-parameters=markdown"}, "markdown");
-  execute_all({&original, &print_json, &print_xml, &markdown});
-  write_text("scene.json", print_json.out);
-  write_text("scene.xml", print_xml.out);
   // A JSON scene written by hand: the values only (pressed_block.prm).
-  write_text("short.json",
-             R"({
+  const std::string short_json = R"({
   "Dimension": "2",
   "Geometry": {"Lower left": "0, 0", "Upper right": "1, 0.5",
                "Repetitions": "4, 2"},
@@ -130,36 +96,9 @@ main(int argc, char **argv)
              "Print timings": "false",
              "Print iteration counts": "false"}
 }
-)");
+)";
 
-  Run again_prm({"original/parameters.prm",
-                 "--set",
-                 "Output/Directory=again_prm"},
-                "again_prm");
-  Run again_json({"original/parameters.json",
-                  "--set",
-                  "Output/Directory=again_json"},
-                 "again_json");
-  Run from_json({"scene.json"}, "from_json");
-  Run from_xml({"scene.xml"}, "from_xml");
-  Run from_short_json({"short.json"}, "from_short_json");
-  // A run with checkpoints to t = 2, resumed to t = 3.
-  Run first_part(with({scene}, "resumed"), "first_part");
-  first_part.arguments.insert(
-    first_part.arguments.end(),
-    {"--set", "Checkpoint/Every=1", "--set", "Time/End time=2"});
-  execute_all({&again_prm,
-               &again_json,
-               &from_json,
-               &from_xml,
-               &from_short_json,
-               &first_part});
-  Run second_part(with({scene, "--resume"}, "resumed"), "second_part");
-  second_part.arguments.insert(second_part.arguments.end(),
-                               {"--set", "Checkpoint/Every=1"});
-  execute_all({&second_part});
-
-  // Bad JSON and XML files.
+  /** Bad JSON and XML files: bad/FILE holds CONTENT (json_missing: none). */
   struct BadFile
   {
     std::string name, file, content, must_contain;
@@ -186,16 +125,8 @@ main(int argc, char **argv)
      "</ParameterHandler>\n",
      "Materiall"},
     {"json_missing", "missing.json", "", "Cannot open the parameter file"}};
-  std::vector<Run> bad_runs;
-  fs::create_directories("bad");
-  for (const auto &b : bad_files)
-    {
-      if (b.name != "json_missing")
-        write_text(fs::path("bad") / b.file, b.content);
-      bad_runs.emplace_back(std::vector<std::string>{"bad/" + b.file}, b.name);
-    }
 
-  // --validate, and the run itself, on good and bad scenes.
+  /** --validate, and the run itself, on good and bad scenes. */
   struct Validation
   {
     std::string              name;
@@ -214,34 +145,114 @@ main(int argc, char **argv)
     {"nan_initial",
      {"Initial conditions/Velocity/Function expression=0; sqrt(-1-x)"},
      "Initial conditions"}};
-  std::vector<Run> validate_runs, plain_runs;
-  for (const auto &v : validations)
-    {
-      std::vector<std::string> arguments = {scene};
-      for (const auto &s : v.sets)
-        arguments.insert(arguments.end(), {"--set", s});
-      arguments.insert(arguments.end(),
-                       {"--set", "Output/Directory=validate_" + v.name});
-      std::vector<std::string> validate = arguments;
-      validate.insert(validate.begin(), "--validate");
-      validate_runs.emplace_back(validate, "validate_" + v.name);
-      arguments.back() = "Output/Directory=run_" + v.name;
-      plain_runs.emplace_back(arguments, "run_" + v.name);
-    }
+
+  /** The directories and files of an earlier run of this test. */
+  void
+  remove_earlier_results()
   {
+    for (const std::string d : {"original",
+                                "again_prm",
+                                "again_json",
+                                "from_json",
+                                "from_xml",
+                                "from_short_json",
+                                "resumed",
+                                "bad"})
+      fs::remove_all(d);
+    for (const auto &v : validations)
+      {
+        fs::remove_all("validate_" + v.name);
+        fs::remove_all("run_" + v.name);
+      }
+    for (const std::string f : {"scene.json", "scene.xml", "short.json"})
+      fs::remove(f);
+  }
+
+  /** Every run of the test; a later one may read what earlier ones wrote. */
+  struct Runs
+  {
+    Run original{compared({scene}, "original"), "original"};
+    Run print_json{compared({"--print-parameters=json", scene}, "from_json"),
+                   "print_json"};
+    Run print_xml{compared({"--print-parameters=xml", scene}, "from_xml"),
+                  "print_xml"};
+    Run markdown{{"--print-parameters=markdown"}, "markdown"};
+    Run again_prm{{"original/parameters.prm",
+                   "--set",
+                   "Output/Directory=again_prm"},
+                  "again_prm"};
+    Run again_json{{"original/parameters.json",
+                    "--set",
+                    "Output/Directory=again_json"},
+                   "again_json"};
+    Run from_json{{"scene.json"}, "from_json"};
+    Run from_xml{{"scene.xml"}, "from_xml"};
+    Run from_short_json{{"short.json"}, "from_short_json"};
+    // A run with checkpoints to t = 2, resumed to t = 3.
+    Run first_part{
+      with(compared({scene}, "resumed"),
+           {"--set", "Checkpoint/Every=1", "--set", "Time/End time=2"}),
+      "first_part"};
+    Run second_part{with(compared({scene, "--resume"}, "resumed"),
+                         {"--set", "Checkpoint/Every=1"}),
+                    "second_part"};
+
+    // The bad files, --validate, and the runs --validate is compared with.
+    std::vector<Run> bad, validate, plain;
+
+    void
+    execute();
+  };
+
+  void
+  Runs::execute()
+  {
+    execute_all({&original, &print_json, &print_xml, &markdown});
+    write_text("scene.json", print_json.out);
+    write_text("scene.xml", print_xml.out);
+    write_text("short.json", short_json);
+    execute_all({&again_prm,
+                 &again_json,
+                 &from_json,
+                 &from_xml,
+                 &from_short_json,
+                 &first_part});
+    execute_all({&second_part});
+
+    fs::create_directories("bad");
+    for (const auto &b : bad_files)
+      {
+        if (b.name != "json_missing")
+          write_text(fs::path("bad") / b.file, b.content);
+        bad.emplace_back(std::vector<std::string>{"bad/" + b.file}, b.name);
+      }
+    for (const auto &v : validations)
+      {
+        std::vector<std::string> arguments = {scene};
+        for (const auto &s : v.sets)
+          arguments.insert(arguments.end(), {"--set", s});
+        arguments.insert(arguments.end(),
+                         {"--set", "Output/Directory=validate_" + v.name});
+        validate.emplace_back(with({"--validate"}, arguments),
+                              "validate_" + v.name);
+        arguments.back() = "Output/Directory=run_" + v.name;
+        plain.emplace_back(arguments, "run_" + v.name);
+      }
     std::vector<Run *> all;
-    for (auto &r : bad_runs)
+    for (auto &r : bad)
       all.push_back(&r);
-    for (auto &r : validate_runs)
+    for (auto &r : validate)
       all.push_back(&r);
-    for (unsigned int i = 1; i < plain_runs.size(); ++i)
-      all.push_back(&plain_runs[i]);
+    for (unsigned int i = 1; i < plain.size(); ++i)
+      all.push_back(&plain[i]);
     execute_all(all);
   }
 
-  Checks checks;
-  // ----------------------------------------------------------- provenance
+  /** parameters.prm, parameters.json and log.txt, in the manifest. */
+  void
+  check_provenance_files(Checks &checks)
   {
+    std::ostream &out = test_tools::out();
     out << "provenance files:" << std::endl;
     const auto names = manifest("original");
     for (const std::string f : {"parameters.prm", "parameters.json", "log.txt"})
@@ -259,11 +270,16 @@ main(int argc, char **argv)
     out << "  parameters.prm has the --set values: " << yes_no(has_overrides)
         << std::endl;
     checks.add(has_overrides, "parameters.prm holds the --set values");
+  }
 
-    // log.txt: the screen output, one provenance line, the solver plan
-    // (which contact solver, which factorization, why) and, at the end, the
-    // memory table (what the run holds, part by part).
-    const std::regex plan_line(R"(  solver plan: (condensed|assembled).*)");
+  /**
+   * log.txt: the screen output, one provenance line, the solver plan (which
+   * contact solver, which factorization, why) and, at the end, the memory
+   * table (what the run holds, part by part).
+   */
+  void
+  check_log(Checks &checks, const Run &original)
+  {
     const std::regex memory_header(
       R"(  memory \([0-9]+ DoFs on 1 processes\): MB in all, .*)");
     const std::regex memory_row(
@@ -271,7 +287,7 @@ main(int argc, char **argv)
     std::string  rest;
     unsigned int provenance_lines = 0, plan_lines = 0, memory_tables = 0,
                  memory_rows = 0;
-    bool         in_memory_table = false;
+    bool in_memory_table     = false;
     for (const auto &line : lines_of(read_text("original/log.txt")))
       if (std::regex_match(line, provenance_line))
         ++provenance_lines;
@@ -289,13 +305,12 @@ main(int argc, char **argv)
           in_memory_table = false;
           rest += line + "\n";
         }
-    std::string screen;
-    for (const auto &line : lines_of(original.out))
-      screen += line + "\n";
-    out << "  log.txt: " << provenance_lines << " provenance line(s), "
-        << plan_lines << " solver plan line(s), " << memory_tables
-        << " memory table(s); the rest is the screen output: "
-        << yes_no(rest == screen) << std::endl;
+    const std::string screen = ended_lines(original.out);
+    test_tools::out() << "  log.txt: " << provenance_lines
+                      << " provenance line(s), " << plan_lines
+                      << " solver plan line(s), " << memory_tables
+                      << " memory table(s); the rest is the screen output: "
+                      << yes_no(rest == screen) << std::endl;
     checks.add(original.succeeded(), "original: exit code 0");
     checks.add(provenance_lines == 1, "log.txt has one provenance line");
     checks.add(plan_lines == 1, "log.txt has the solver plan");
@@ -307,29 +322,40 @@ main(int argc, char **argv)
                "log.txt is a copy of the screen output");
     checks.add(!std::regex_search(original.out, std::regex("started [0-9]")),
                "with Print timings = false the screen has no start time");
+  }
 
-    // Run again from the files written.
+  /**
+   * Whether each of @p runs wrote the time_series.csv of the original run:
+   * printed ("  NAME: exit CODE, PRINTED: yes") and checked (exit code 0 and
+   * the same series: "NAME: WHAT").
+   */
+  void
+  check_same_series(Checks                         &checks,
+                    const std::vector<const Run *> &runs,
+                    const std::string              &printed,
+                    const std::string              &what)
+  {
     const std::string series = read_text("original/time_series.csv");
-    checks.add(!series.empty(), "original: time_series.csv written");
-    for (const Run *r : {&again_prm, &again_json})
+    for (const Run *r : runs)
       {
         const bool same =
           read_text(fs::path(r->name) / "time_series.csv") == series;
-        out << "  " << r->name << ": exit " << r->code
-            << ", the same time_series.csv: " << yes_no(same) << std::endl;
-        checks.add(r->succeeded() && same,
-                   r->name + ": the run again gives the same time series");
+        test_tools::out() << "  " << r->name << ": exit " << r->code << ", "
+                          << printed << ": " << yes_no(same) << std::endl;
+        checks.add(r->succeeded() && same, r->name + ": " + what);
       }
+  }
 
-    // --resume: log.txt goes on.
-    const std::string first = read_text("first_part.stdout");
-    const std::string log   = read_text("resumed/log.txt");
-    std::string       first_screen;
-    for (const auto &line : lines_of(first))
-      first_screen += line + "\n";
-    std::string  log_without;
-    unsigned int resume_marks = 0;
-    for (const auto &line : lines_of(log))
+  /** After --resume, log.txt goes on (a new section), the first part kept. */
+  void
+  check_resumed_log(Checks    &checks,
+                    const Run &first_part,
+                    const Run &second_part)
+  {
+    const std::string first_screen = ended_lines(first_part.out);
+    std::string       log_without;
+    unsigned int      resume_marks = 0;
+    for (const auto &line : lines_of(read_text("resumed/log.txt")))
       {
         resume_marks += (line == "==== --resume ====");
         if (!std::regex_match(line, provenance_line) &&
@@ -338,101 +364,139 @@ main(int argc, char **argv)
       }
     const bool kept    = log_without.rfind(first_screen, 0) == 0;
     const bool goes_on = log_without.find(second_part.out) != std::string::npos;
-    out << "  --resume: log.txt keeps the first part " << yes_no(kept)
-        << ", one section mark " << yes_no(resume_marks == 1)
-        << ", then the resumed run's screen output " << yes_no(goes_on)
-        << std::endl;
+    test_tools::out() << "  --resume: log.txt keeps the first part "
+                      << yes_no(kept) << ", one section mark "
+                      << yes_no(resume_marks == 1)
+                      << ", then the resumed run's screen output "
+                      << yes_no(goes_on) << std::endl;
     checks.add(first_part.succeeded() && second_part.succeeded(),
                "first_part and second_part exit with code 0");
     checks.add(kept && resume_marks == 1 && goes_on,
                "after --resume log.txt is continued, not overwritten");
   }
 
-  // ------------------------------------------------------- input formats
+  void
+  check_provenance(Checks &checks, const Runs &runs)
   {
-    out << "input formats:" << std::endl;
-    const std::string series = read_text("original/time_series.csv");
-    checks.add(print_json.succeeded() && print_xml.succeeded(),
+    check_provenance_files(checks);
+    check_log(checks, runs.original);
+    // Run again from the files written.
+    checks.add(!read_text("original/time_series.csv").empty(),
+               "original: time_series.csv written");
+    check_same_series(checks,
+                      {&runs.again_prm, &runs.again_json},
+                      "the same time_series.csv",
+                      "the run again gives the same time series");
+    check_resumed_log(checks, runs.first_part, runs.second_part);
+  }
+
+  void
+  check_input_formats(Checks &checks, const Runs &runs)
+  {
+    test_tools::out() << "input formats:" << std::endl;
+    checks.add(runs.print_json.succeeded() && runs.print_xml.succeeded(),
                "--print-parameters=json|xml exit with code 0");
-    for (const Run *r : {&from_json, &from_xml, &from_short_json})
-      {
-        const bool same =
-          read_text(fs::path(r->name) / "time_series.csv") == series;
-        out << "  " << r->name << ": exit " << r->code
-            << ", the time_series.csv of the PRM scene: " << yes_no(same)
-            << std::endl;
-        checks.add(r->succeeded() && same,
-                   r->name + ": the same time series as the PRM scene");
-      }
+    check_same_series(checks,
+                      {&runs.from_json, &runs.from_xml, &runs.from_short_json},
+                      "the time_series.csv of the PRM scene",
+                      "the same time series as the PRM scene");
     for (unsigned int i = 0; i < bad_files.size(); ++i)
       {
-        const Run &r     = bad_runs[i];
+        const Run &r     = runs.bad[i];
         const auto lines = error_lines(r);
         const bool ok =
           r.code == 1 && lines.size() == 1 &&
           lines[0].find(bad_files[i].file) != std::string::npos &&
           lines[0].find(bad_files[i].must_contain) != std::string::npos;
-        out << "  " << r.name << ": exit " << r.code << ": " << first_error(r)
-            << std::endl;
+        test_tools::out() << "  " << r.name << ": exit " << r.code << ": "
+                          << first_error(r) << std::endl;
         checks.add(ok,
                    r.name + ": exit 1 and one error naming the file and '" +
                      bad_files[i].must_contain + "'");
       }
   }
 
-  // ----------------------------------------------------------- --validate
+  /** --validate of the good scene: exit 0, it says so, nothing written. */
+  void
+  check_valid(Checks &checks, const Validation &v, const Run &validate)
   {
-    out << "--validate:" << std::endl;
-    for (unsigned int i = 0; i < validations.size(); ++i)
-      {
-        const auto &v        = validations[i];
-        const Run  &validate = validate_runs[i];
-        const bool  nothing  = !fs::exists("validate_" + v.name);
-        if (v.must_contain.empty())
-          {
-            const bool said =
-              validate.out.find("is valid") != std::string::npos;
-            out << "  " << v.name << ": exit " << validate.code
-                << ", says it is valid " << yes_no(said) << ", nothing written "
-                << yes_no(nothing) << std::endl;
-            checks.add(validate.succeeded() && said && nothing &&
-                         validate.err.empty(),
-                       "--validate " + v.name + ": exit 0, nothing written");
-            continue;
-          }
-        const Run &run        = plain_runs[i];
-        const auto validate_e = error_lines(validate);
-        const auto run_e      = error_lines(run);
-        const bool same       = validate_e == run_e && validate_e.size() == 1;
-        out << "  " << v.name << ": exit " << validate.code
-            << " (the run: " << run.code << "), the error of the run "
-            << yes_no(same) << ", nothing written " << yes_no(nothing) << ": "
-            << first_error(validate) << std::endl;
-        checks.add(validate.code == 1 && run.code == 1,
-                   "--validate " + v.name + ": exit 1 like the run");
-        checks.add(same,
-                   "--validate " + v.name +
-                     ": exactly the error line of the run");
-        checks.add(validate_e.size() == 1 &&
-                     validate_e[0].find(v.must_contain) != std::string::npos,
-                   "--validate " + v.name + ": the error names '" +
-                     v.must_contain + "'");
-        checks.add(nothing, "--validate " + v.name + ": nothing written");
-      }
+    const bool nothing = !fs::exists("validate_" + v.name);
+    const bool said    = validate.out.find("is valid") != std::string::npos;
+    test_tools::out() << "  " << v.name << ": exit " << validate.code
+                      << ", says it is valid " << yes_no(said)
+                      << ", nothing written " << yes_no(nothing) << std::endl;
+    checks.add(validate.succeeded() && said && nothing && validate.err.empty(),
+               "--validate " + v.name + ": exit 0, nothing written");
   }
 
-  // ---------------------------------------------------- doc/parameters.md
+  /** --validate of a bad scene: the error the run stops with. */
+  void
+  check_invalid(Checks           &checks,
+                const Validation &v,
+                const Run        &validate,
+                const Run        &run)
+  {
+    const bool nothing    = !fs::exists("validate_" + v.name);
+    const auto validate_e = error_lines(validate);
+    const auto run_e      = error_lines(run);
+    const bool same       = validate_e == run_e && validate_e.size() == 1;
+    test_tools::out() << "  " << v.name << ": exit " << validate.code
+                      << " (the run: " << run.code << "), the error of the run "
+                      << yes_no(same) << ", nothing written " << yes_no(nothing)
+                      << ": " << first_error(validate) << std::endl;
+    checks.add(validate.code == 1 && run.code == 1,
+               "--validate " + v.name + ": exit 1 like the run");
+    checks.add(same,
+               "--validate " + v.name + ": exactly the error line of the run");
+    checks.add(validate_e.size() == 1 &&
+                 validate_e[0].find(v.must_contain) != std::string::npos,
+               "--validate " + v.name + ": the error names '" + v.must_contain +
+                 "'");
+    checks.add(nothing, "--validate " + v.name + ": nothing written");
+  }
+
+  void
+  check_validate(Checks &checks, const Runs &runs)
+  {
+    test_tools::out() << "--validate:" << std::endl;
+    for (unsigned int i = 0; i < validations.size(); ++i)
+      if (validations[i].must_contain.empty())
+        check_valid(checks, validations[i], runs.validate[i]);
+      else
+        check_invalid(checks, validations[i], runs.validate[i], runs.plain[i]);
+  }
+
+  /** doc/parameters.md is what --print-parameters=markdown prints. */
+  void
+  check_parameter_page(Checks &checks, const Run &markdown)
   {
     const fs::path doc = fs::path(SOURCE_DIR) / ".." / "doc" / "parameters.md";
     const bool fresh   = markdown.succeeded() && read_text(doc) == markdown.out;
-    out << "doc/parameters.md is what --print-parameters=markdown prints: "
-        << yes_no(fresh) << std::endl;
+    test_tools::out()
+      << "doc/parameters.md is what --print-parameters=markdown prints: "
+      << yes_no(fresh) << std::endl;
     checks.add(fresh,
                "doc/parameters.md is up to date (if not, regenerate it: "
                "build/dynamic-contact --print-parameters=markdown > "
                "doc/parameters.md)");
   }
+} // namespace
 
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  remove_earlier_results();
+  Runs runs;
+  runs.execute();
+
+  Checks checks;
+  check_provenance(checks, runs);
+  check_input_formats(checks, runs);
+  check_validate(checks, runs);
+  check_parameter_page(checks, runs.markdown);
   checks.assert_all();
-  out << "OK" << std::endl;
+  test_tools::out() << "OK" << std::endl;
 }

@@ -13,7 +13,7 @@
 //   - the run stopped by SIGTERM, resumed, ends with the results of the
 //     uninterrupted run (as printed, except the factorization count).
 
-#include "program_tools.h"
+#include "run_checks.h"
 
 #include <signal.h>
 #include <spawn.h>
@@ -21,6 +21,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -33,36 +34,10 @@ namespace fs = std::filesystem;
 namespace
 {
   using namespace program_tools;
+  using namespace run_checks;
 
-  std::vector<std::string>
-  arguments(const std::string              &directory,
-            const std::vector<std::string> &more = {})
-  {
-    std::vector<std::string> a = {test_tools::scene(
-                                    "barboteu_danan_2016_small.prm"),
-                                  "--set",
-                                  "Time/End time=0.125",
-                                  "--set",
-                                  "Checkpoint/Every=4",
-                                  "--set",
-                                  "Checkpoint/Keep=2",
-                                  "--set",
-                                  "Output/Progress every=0",
-                                  "--set",
-                                  "Output/Print timings=false",
-                                  "--set",
-                                  "Output/Print iteration counts=false",
-                                  "--set",
-                                  "Output/Directory=" + directory};
-    a.insert(a.end(), more.begin(), more.end());
-    return a;
-  }
-
-  std::string
-  status_of(const fs::path &directory)
-  {
-    return trim(read_text(directory / "run_status"));
-  }
+  /** Checkpoints kept: the newest two. */
+  const unsigned int keep = 2;
 
   unsigned int
   last_row(const fs::path &directory)
@@ -78,20 +53,8 @@ namespace
     std::snprintf(name, sizeof(name), "checkpoint_%05u", step);
     return fs::exists(directory / name / "manifest.txt");
   }
-} // namespace
 
-
-int
-main()
-{
-  std::ostream &out = test_tools::out();
-  Checks        checks;
-
-  fs::remove_all("full");
-  const Outcome full = execute(arguments("full"), {"", "full"});
-  checks.add(full.succeeded() && status_of("full") == "completed",
-             "the uninterrupted run completes");
-
+  /** A signal raised after step 5 by the fault injection. */
   struct Case
   {
     std::string              name;
@@ -100,6 +63,7 @@ main()
     std::string              rank;
     std::vector<std::string> more;
   };
+
   const std::vector<Case> cases = {
     {"sigterm", SIGTERM, 0, "", {}},
     {"sigint", SIGINT, 0, "", {}},
@@ -107,126 +71,156 @@ main()
     {"sigusr1", SIGUSR1, 0, "", {}},
     {"sigterm_rank_1_of_2", SIGTERM, 2, " rank 1", {}},
     {"sigint_no_checkpoints", SIGINT, 0, "", {"--set", "Checkpoint/Every=0"}}};
-  for (const auto &c : cases)
-    {
-      fs::remove_all(c.name);
-      Launch launch;
-      launch.name      = c.name;
-      launch.processes = c.processes;
-      launch.timeout   = 120;
-      launch.environment.push_back("DYNAMIC_CONTACT_KILL=signal " +
-                                   std::to_string(c.signal) + " after-step 5" +
-                                   c.rank);
-      const Outcome     o = execute(arguments(c.name, c.more), launch);
-      const std::string expected =
-        "stopped: signal " + std::to_string(c.signal) + " at step 5";
-      const bool checkpoints = c.more.empty();
-      out << c.name << " (" << std::max(c.processes, 1u) << " process"
-          << (c.processes > 1 ? "es" : "") << "): exit code " << o.code
-          << ", run_status: " << status_of(c.name) << ", last row: step "
-          << last_row(c.name)
-          << ", checkpoint_00005: " << yes_no(verified_checkpoint(c.name, 5))
-          << std::endl;
-      checks.add(o.exited && o.code == 128 + c.signal,
-                 c.name + ": exit code 128 + " + std::to_string(c.signal));
-      checks.add(status_of(c.name) == expected,
-                 c.name + ": run_status '" + expected + "'");
-      checks.add(last_row(c.name) == 5, c.name + ": rows up to step 5");
-      checks.add(verified_checkpoint(c.name, 5) == checkpoints,
-                 c.name + (checkpoints ? ": a checkpoint of step 5" :
-                                         ": no checkpoint"));
-      // (mpiexec reports the non-zero exit codes on stderr.)
-      checks.add(c.processes > 1 ?
-                   o.err.find("dynamic-contact: error") == std::string::npos :
-                   o.err.empty(),
-                 c.name + ": no error on stderr");
-    }
 
-  // Resumed, the stopped run ends as if it had not been stopped.
+  void
+  check_signal(const Case &c, Checks &checks)
   {
-    auto args = arguments("sigterm");
-    args.insert(args.begin(), "--resume");
-    const Outcome o = execute(args, {"", "sigterm.resumed"});
-    const auto    a = read_csv("full/time_series.csv");
-    const auto    b = read_csv("sigterm/time_series.csv");
-    std::string   differing;
-    if (a.size() != b.size() || a.empty() || a[0] != b[0])
-      differing = "shape";
-    else
-      for (unsigned int c = 0; c < a[0].size(); ++c)
-        for (unsigned int r = 1; r < a.size(); ++r)
-          if (a[r][c] != b[r][c] && a[0][c] != "factorizations")
-            {
-              differing += (differing.empty() ? "" : ", ") + a[0][c];
-              break;
-            }
+    fs::remove_all(c.name);
+    const Outcome o =
+      execute(sixteen_steps(c.name, keep, c.more),
+              launch_of(c.name,
+                        c.processes,
+                        120,
+                        {"DYNAMIC_CONTACT_KILL=signal " +
+                         std::to_string(c.signal) + " after-step 5" + c.rank}));
+    const std::string expected =
+      "stopped: signal " + std::to_string(c.signal) + " at step 5";
+    const bool checkpoints = c.more.empty();
+    test_tools::out() << c.name << " (" << processes_text(c.processes)
+                      << "): exit code " << o.code
+                      << ", run_status: " << run_status(c.name)
+                      << ", last row: step " << last_row(c.name)
+                      << ", checkpoint_00005: "
+                      << yes_no(verified_checkpoint(c.name, 5)) << std::endl;
+    checks.add(o.exited && o.code == 128 + c.signal,
+               c.name + ": exit code 128 + " + std::to_string(c.signal));
+    checks.add(run_status(c.name) == expected,
+               c.name + ": run_status '" + expected + "'");
+    checks.add(last_row(c.name) == 5, c.name + ": rows up to step 5");
+    checks.add(verified_checkpoint(c.name, 5) == checkpoints,
+               c.name + (checkpoints ? ": a checkpoint of step 5" :
+                                       ": no checkpoint"));
+    // (mpiexec reports the non-zero exit codes on stderr.)
+    checks.add(c.processes > 1 ?
+                 o.err.find("dynamic-contact: error") == std::string::npos :
+                 o.err.empty(),
+               c.name + ": no error on stderr");
+  }
+
+  /** Resumed, the stopped run ends as if it had not been stopped. */
+  void
+  check_resumed(Checks &checks)
+  {
+    const Outcome o =
+      execute(with({"--resume"}, sixteen_steps("sigterm", keep)),
+              {"", "sigterm.resumed"});
+    const auto differing = differing_csv_columns("full/time_series.csv",
+                                                 "sigterm/time_series.csv",
+                                                 0,
+                                                 {"factorizations"});
     const bool said =
       o.out.find("resumed from sigterm/checkpoint_00005") != std::string::npos;
-    out << "sigterm, resumed: exit code " << o.code << ", "
-        << status_of("sigterm") << ", from checkpoint_00005: " << yes_no(said)
-        << ", time series columns differing from the uninterrupted run "
-           "(besides factorizations): "
-        << (differing.empty() ? "none" : differing) << std::endl;
-    checks.add(o.succeeded() && status_of("sigterm") == "completed" && said,
+    test_tools::out() << "sigterm, resumed: exit code " << o.code << ", "
+                      << run_status("sigterm")
+                      << ", from checkpoint_00005: " << yes_no(said)
+                      << ", time series columns differing from the "
+                         "uninterrupted run (besides factorizations): "
+                      << join(differing) << std::endl;
+    checks.add(o.succeeded() && run_status("sigterm") == "completed" && said,
                "sigterm: resumed from checkpoint_00005, completes");
     checks.add(differing.empty(),
                "sigterm: the resumed run ends with the results of the "
                "uninterrupted one");
   }
 
-  // SIGTERM from outside, at a step the program does not choose.
+  /**
+   * Start the program with @p arguments in the background, its output in
+   * @p name.stdout and @p name.stderr; its process id (0 if not started).
+   */
+  pid_t
+  spawn(const std::string &name, const std::vector<std::string> &arguments)
   {
-    const std::string name = "external_sigterm";
-    fs::remove_all(name);
-    auto args = arguments(
-      name,
-      {"--set", "Geometry/Repetitions=128, 32", "--set", "Time/End time=1"});
     std::vector<std::string> argv_strings = {"/bin/sh",
                                              "-c",
-                                             "exec \"$0\" \"$@\" </dev/null "
-                                             ">external_sigterm.stdout "
-                                             "2>external_sigterm.stderr",
+                                             "exec \"$0\" \"$@\" </dev/null >" +
+                                               name + ".stdout 2>" + name +
+                                               ".stderr",
                                              DYNAMIC_CONTACT_EXECUTABLE};
-    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+    argv_strings.insert(argv_strings.end(), arguments.begin(), arguments.end());
     std::vector<char *> argv;
     for (auto &a : argv_strings)
       argv.push_back(a.data());
     argv.push_back(nullptr);
-    pid_t      pid = 0;
-    const bool started =
-      posix_spawn(&pid, "/bin/sh", nullptr, nullptr, argv.data(), environ) == 0;
+    pid_t pid = 0;
+    if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, argv.data(), environ) !=
+        0)
+      return 0;
+    return pid;
+  }
+
+  /** SIGTERM from outside, at a step the program does not choose. */
+  void
+  check_external_sigterm(Checks &checks)
+  {
+    const std::string name = "external_sigterm";
+    fs::remove_all(name);
+    const pid_t pid =
+      spawn(name,
+            sixteen_steps(name,
+                          keep,
+                          overrides({"Geometry/Repetitions=128, 32",
+                                     "Time/End time=1"})));
+    const bool started = pid != 0;
     // Wait for a few steps, then stop it.
     const auto start = std::chrono::steady_clock::now();
     while (started && last_row(name) < 3 &&
            std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     const unsigned int rows_before = last_row(name);
+    int                status      = 0;
     if (started)
-      ::kill(pid, SIGTERM);
-    int status = 0;
-    if (started)
-      ::waitpid(pid, &status, 0);
+      {
+        ::kill(pid, SIGTERM);
+        ::waitpid(pid, &status, 0);
+      }
     const bool         exited = started && WIFEXITED(status);
     const int          code   = exited ? WEXITSTATUS(status) : -1;
     const unsigned int last   = last_row(name);
     const bool         stopped_there =
-      status_of(name) == "stopped: signal 15 at step " + std::to_string(last);
-    out << "external SIGTERM: exit code " << code
-        << ", run_status 'stopped: signal 15 at step S', S the last row of "
-           "time_series.csv: "
-        << yes_no(stopped_there) << ", a checkpoint of step S: "
-        << yes_no(verified_checkpoint(name, last)) << std::endl;
+      run_status(name) == "stopped: signal 15 at step " + std::to_string(last);
+    test_tools::out() << "external SIGTERM: exit code " << code
+                      << ", run_status 'stopped: signal 15 at step S', S the "
+                         "last row of time_series.csv: "
+                      << yes_no(stopped_there) << ", a checkpoint of step S: "
+                      << yes_no(verified_checkpoint(name, last)) << std::endl;
     checks.add(exited && code == 143, "external SIGTERM: exit code 143");
     const bool stopped_in_time =
       stopped_there && last >= rows_before && last < 128;
     checks.add(stopped_in_time,
                "external SIGTERM: stopped after the step it was in" +
                  (stopped_in_time ? std::string() :
-                                    " [" + status_of(name) + "]"));
+                                    " [" + run_status(name) + "]"));
     checks.add(verified_checkpoint(name, last),
                "external SIGTERM: a checkpoint of the last step");
   }
+} // namespace
 
-  out << std::endl;
+
+int
+main()
+{
+  Checks checks;
+
+  fs::remove_all("full");
+  const Outcome full = execute(sixteen_steps("full", keep), {"", "full"});
+  checks.add(full.succeeded() && run_status("full") == "completed",
+             "the uninterrupted run completes");
+
+  for (const auto &c : cases)
+    check_signal(c, checks);
+  check_resumed(checks);
+  check_external_sigterm(checks);
+
+  test_tools::out() << std::endl;
   checks.assert_all();
 }
