@@ -303,14 +303,24 @@ namespace
          edit(line, "set " + entry.substr(entry.find('/') + 1) + " = " + value),
          {entry}});
     const std::vector<Case> more = {
-      set_case("spectral_radius_without_bathe",
+      // The entry of the time scheme's own subsection since the schemes
+      // are plugins: the old place names both new ones.
+      set_case("spectral_radius_old_place",
                {"Time/Spectral radius at infinity=0.5"},
                1,
-               {"Time/Spectral radius at infinity", "Time/Scheme = bathe"}),
+               {"Time/Spectral radius at infinity",
+                "Time/Bathe/Spectral radius at infinity",
+                "Time/Sdirk/Spectral radius at infinity"}),
       set_case("spectral_radius_above_one",
-               {"Time/Scheme=bathe", "Time/Spectral radius at infinity=1.5"},
+               {"Time/Scheme=bathe",
+                "Time/Bathe/Spectral radius at infinity=1.5"},
                1,
-               {"Time/Spectral radius at infinity"}),
+               {"Time/Bathe/Spectral radius at infinity"}),
+      // A scheme without a local error estimate cannot choose its steps.
+      set_case("adaptive_without_estimate",
+               {"Time/Scheme=trapezoidal", "Time/Adaptive=true"},
+               1,
+               {"Time/Adaptive", "Time/Scheme = trapezoidal"}),
       set_case("slip_length_with_sdirk",
                {"Time/Scheme=sdirk", "Friction/Slip length=0.01"},
                1,
