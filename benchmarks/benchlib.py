@@ -117,14 +117,15 @@ def program_command(exe, prm, overrides, ranks=1, extra=(), mpirun=None):
     return command
 
 
-def effective_parameters(exe, prm, overrides):
-    """The parameters a run of `prm` with `overrides` uses, as the program
-    prints them (--print-parameters): a dict 'Section/Name' -> value."""
+def print_parameters(exe, prm, overrides):
+    """Runs `exe prm --print-parameters` with `overrides`: (the completed
+    process, with its output as text; what it prints as a dict
+    'Section/Name' -> value, None if it failed)."""
     result = subprocess.run(program_command(exe, prm, overrides, extra=["--print-parameters"]),
                             env=_program_environment(), stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True)
     if result.returncode != 0:
-        sys.exit("%s --print-parameters failed:\n%s" % (prm, result.stdout[-2000:]))
+        return result, None
     values, sections = {}, []
     for line in result.stdout.splitlines():
         line = line.split("#", 1)[0].strip()
@@ -135,6 +136,15 @@ def effective_parameters(exe, prm, overrides):
         elif line.startswith("set ") and "=" in line:
             name, value = line[4:].split("=", 1)
             values["/".join(sections + [name.strip()])] = value.strip()
+    return result, values
+
+
+def effective_parameters(exe, prm, overrides):
+    """The parameters a run of `prm` with `overrides` uses, as the program
+    prints them (--print-parameters): a dict 'Section/Name' -> value."""
+    result, values = print_parameters(exe, prm, overrides)
+    if values is None:
+        sys.exit("%s --print-parameters failed:\n%s" % (prm, result.stdout[-2000:]))
     return values
 
 

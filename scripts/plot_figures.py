@@ -324,6 +324,24 @@ def scale_text(arrow_value, arrow_len, load_value, load_len):
                               load_value / 1e9))
 
 
+def legend_handles(friction):
+    """The legend of the mesh panels: the arrows (the friction traction's
+    only if @p friction) and the foundation surface at rest."""
+    arrows = [(COLOR_PRESSURE, r"$\uparrow$",
+               "normal pressure p+q of the foundation")]
+    if friction:
+        arrows.append((COLOR_FRICTION, r"$\rightarrow$",
+                       "friction traction (along x)"))
+    arrows.append((COLOR_LOAD, r"$\downarrow$",
+                   "applied load g(x,t); $\\blacktriangledown$ x = c t"))
+    handles = [plt.Line2D([], [], color=color, marker=marker,
+                          linestyle="none", markersize=10, label=label)
+               for color, marker, label in arrows]
+    handles.append(plt.Line2D([], [], color="0.55", linestyle="--",
+                              label="foundation surface at rest (y = 0)"))
+    return handles
+
+
 # --------------------------------------------------------------------------
 # Figure 2
 # --------------------------------------------------------------------------
@@ -360,21 +378,8 @@ def figure2(run, figdir):
     axes[-1].set_xlabel("x (m)")
     # A legend with the arrow scale, in the first panel.
     ref = nice_value(fmax / 2)
-    handles = [
-        plt.Line2D([], [], color=COLOR_PRESSURE, marker=r"$\uparrow$",
-                   linestyle="none", markersize=10,
-                   label="normal pressure p+q of the foundation"),
-        plt.Line2D([], [], color=COLOR_FRICTION, marker=r"$\rightarrow$",
-                   linestyle="none", markersize=10,
-                   label="friction traction (along x)"),
-        plt.Line2D([], [], color=COLOR_LOAD, marker=r"$\downarrow$",
-                   linestyle="none", markersize=10,
-                   label="applied load g(x,t); $\\blacktriangledown$ x = c t"),
-        plt.Line2D([], [], color="0.55", linestyle="--",
-                   label="foundation surface at rest (y = 0)"),
-    ]
-    axes[0].legend(handles=handles, loc="lower left", fontsize=7.5,
-                   ncol=2, framealpha=0.9)
+    axes[0].legend(handles=legend_handles(friction=True), loc="lower left",
+                   fontsize=7.5, ncol=2, framealpha=0.9)
     status = "" if run.status == "completed" else \
         "\n(run not completed: %s)" % run.status
     fig.suptitle(
@@ -484,18 +489,8 @@ def figure3(runs, figdir, fig2_run=None):
                              title, friction=False)
         ax.set_ylim(ymin, ymax)
     axes[-1].set_xlabel("x (m)")
-    handles = [
-        plt.Line2D([], [], color=COLOR_PRESSURE, marker=r"$\uparrow$",
-                   linestyle="none", markersize=10,
-                   label="normal pressure p+q of the foundation"),
-        plt.Line2D([], [], color=COLOR_LOAD, marker=r"$\downarrow$",
-                   linestyle="none", markersize=10,
-                   label="applied load g(x,t); $\\blacktriangledown$ x = c t"),
-        plt.Line2D([], [], color="0.55", linestyle="--",
-                   label="foundation surface at rest (y = 0)"),
-    ]
-    axes[0].legend(handles=handles, loc="lower left", fontsize=7.5,
-                   framealpha=0.9)
+    axes[0].legend(handles=legend_handles(friction=False), loc="lower left",
+                   fontsize=7.5, framealpha=0.9)
     ref = nice_value(fmax / 2)
     fig.suptitle(
         "Figure 3: influence of the length of the mass, g = F exp(-psi "

@@ -12,12 +12,11 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/cell_operators.h>
+#include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/laws/material.h>
 
 #include "test_tools.h"
@@ -29,10 +28,10 @@ namespace
   /** The matrix of @p form, assembled as BulkOperator assembled M, B, A. */
   template <int dim>
   void
-  assemble(const Discretization<dim>            &d,
-           const KelvinVoigtMaterial<dim>       &material,
+  assemble(const Discretization<dim>              &d,
+           const KelvinVoigtMaterial<dim>         &material,
            const typename CellOperators<dim>::Form form,
-           Matrix_t                             &F)
+           Matrix_t                               &F)
   {
     using Form = typename CellOperators<dim>::Form;
     TrilinosWrappers::SparsityPattern pattern(d.locally_owned,
@@ -46,14 +45,14 @@ namespace
                                     Utilities::MPI::this_mpi_process(d.comm));
     pattern.compress();
     F.reinit(pattern);
-    const QGauss<dim>  quadrature(d.fe.degree + 1);
-    FEValues<dim>      fe_values(d.mapping,
+    const QGauss<dim>                    quadrature(d.fe.degree + 1);
+    FEValues<dim>                        fe_values(d.mapping,
                             d.fe,
                             quadrature,
                             update_values | update_gradients |
                               update_JxW_values);
-    const unsigned int n = d.fe.n_dofs_per_cell();
-    FullMatrix<double> local(n, n);
+    const unsigned int                   n = d.fe.n_dofs_per_cell();
+    FullMatrix<double>                   local(n, n);
     std::vector<types::global_dof_index> dofs(n);
     const FEValuesExtractors::Vector     u(0);
     SymmetricTensor<4, dim>              T = identity_tensor<dim>();
@@ -82,36 +81,23 @@ namespace
   }
 
 
-  /** Refine the cells of the left half: hanging nodes. */
+  /** The box of 4 cells across, the cells of its left half refined. */
   template <int dim>
-  Discretization<dim> &
+  void
   make_mesh(Discretization<dim> &d)
   {
-    GridGenerator::subdivided_hyper_rectangle(d.triangulation,
-                                              std::vector<unsigned int>(dim,
-                                                                        4),
-                                              Point<dim>(),
-                                              dim == 2 ?
-                                                Point<dim>(2., 1.) :
-                                                Point<dim>(2., 1., 1.),
-                                              true);
-    for (const auto &cell : d.triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->center()[0] < 1.)
-        cell->set_refine_flag();
-    d.triangulation.execute_coarsening_and_refinement();
-    return d;
+    test_tools::make_box(d.triangulation, 4);
+    test_tools::refine_left_half(d.triangulation);
   }
-} // namespace
 
 
-template <int dim>
-void
-check(const unsigned int degree)
-{
-  const std::string name =
-    std::to_string(dim) + "D Q" + std::to_string(degree) + ": ";
-
-  // Clamped on the left (id 0), rollers at the bottom (id 2).
+  /**
+   * x^T F y and F x from the cells against the assembled F, for each form;
+   * clamped on the left (id 0), rollers at the bottom (id 2).
+   */
+  template <int dim>
+  void
+  check_forms(const unsigned int degree, const std::string &name)
   {
     Discretization<dim> d(MPI_COMM_WORLD, degree);
     make_mesh(d);
@@ -123,21 +109,15 @@ check(const unsigned int degree)
     CellOperators<dim> forms(d, m);
     forms.reinit();
 
-    Vector_t x, y, Fy, cells_Fy;
-    d.reinit_owned(x);
+    Vector_t x = test_tools::cosine_field(d), y, Fy, cells_Fy;
     d.reinit_owned(y);
     d.reinit_owned(Fy);
     d.reinit_owned(cells_Fy);
     VectorTools::interpolate(d.mapping,
                              d.dof_handler,
-                             Functions::CosineFunction<dim>(dim),
-                             x);
-    VectorTools::interpolate(d.mapping,
-                             d.dof_handler,
                              Functions::SquareFunction<dim>(),
                              y);
-    for (Vector_t *v : {&x, &y})
-      d.constraints.set_zero(*v);
+    d.constraints.set_zero(y);
     using Form = typename CellOperators<dim>::Form;
     for (const auto &[form, form_name] :
          {std::make_pair(Form::mass, "mass"),
@@ -160,8 +140,8 @@ check(const unsigned int degree)
                          std::abs(assembled));
             forms.vmult(form, cells_Fy, *b);
             cells_Fy -= Fy;
-            worst_vmult = std::max(worst_vmult,
-                                   cells_Fy.linfty_norm() / Fy.linfty_norm());
+            worst_vmult =
+              std::max(worst_vmult, cells_Fy.linfty_norm() / Fy.linfty_norm());
           }
         test_tools::check(worst_product < 1e-12 && worst_vmult < 1e-12,
                           name + form_name +
@@ -170,8 +150,29 @@ check(const unsigned int degree)
       }
   }
 
-  // No boundary condition, u = (x_1, x_0 / 2, 0): eps_01 = eps_10 = 3/4,
-  // the other entries 0, |eps|^2 = 2 (3/4)^2; |Omega| = 2.
+
+  /** u = (x_1, x_0 / 2, 0). */
+  template <int dim>
+  struct Linear : public Function<dim>
+  {
+    Linear()
+      : Function<dim>(dim)
+    {}
+    double
+    value(const Point<dim> &p, const unsigned int c) const override
+    {
+      return c == 0 ? p[1] : c == 1 ? 0.5 * p[0] : 0.;
+    }
+  };
+
+
+  /**
+   * No boundary condition, u = (x_1, x_0 / 2, 0): eps_01 = eps_10 = 3/4,
+   * the other entries 0, |eps|^2 = 2 (3/4)^2; |Omega| = 2.
+   */
+  template <int dim>
+  void
+  check_linear_field(const unsigned int degree, const std::string &name)
   {
     Discretization<dim> d(MPI_COMM_WORLD, degree);
     make_mesh(d);
@@ -181,33 +182,27 @@ check(const unsigned int degree)
     forms.reinit();
     Vector_t u;
     d.reinit_owned(u);
-    struct Linear : public Function<dim>
-    {
-      Linear()
-        : Function<dim>(dim)
-      {}
-      double
-      value(const Point<dim> &p, const unsigned int c) const override
-      {
-        return c == 0 ? p[1] : c == 1 ? 0.5 * p[0] : 0.;
-      }
-    };
-    VectorTools::interpolate(d.mapping, d.dof_handler, Linear(), u);
+    VectorTools::interpolate(d.mapping, d.dof_handler, Linear<dim>(), u);
     d.constraints.set_zero(u);
     const double exact = 2 * 0.5625 * 2.;
-    const double cells =
-      forms.product(CellOperators<dim>::Form::strain, u, u);
+    const double cells = forms.product(CellOperators<dim>::Form::strain, u, u);
     test_tools::check(std::abs(cells - exact) < 1e-12 * exact,
                       name + "a linear field: |eps|^2 |Omega| to 1e-12");
   }
-}
+} // namespace
 
 
 int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  check<2>(1);
-  check<2>(2);
-  check<3>(1);
+  test_tools::for_each_element({{2, 1}, {2, 2}, {3, 1}},
+                               [](const auto dim, const unsigned int degree) {
+                                 constexpr int     d = decltype(dim)::value;
+                                 const std::string name =
+                                   std::to_string(d) + "D Q" +
+                                   std::to_string(degree) + ": ";
+                                 check_forms<d>(degree, name);
+                                 check_linear_field<d>(degree, name);
+                               });
 }

@@ -259,7 +259,7 @@ namespace
 
 
   void
-  test_friction_2d()
+  test_friction_2d_slip_and_stick()
   {
     out() << "--- friction_response, 2D" << std::endl;
     const ContactNode<2> node  = node_2d();
@@ -319,9 +319,17 @@ namespace
     check(forward.state == FrictionState::slip &&
             near(forward.value, frame(node, 0., 0.422), 1e-14),
           "2D: same |z|, lambda . w_tau > 0: slip, value g t");
+  }
 
-    // Free: no contact, no friction coefficient, constrained node.
-    const auto free = respond(node,
+
+  /** Free: no contact, no friction coefficient, constrained node. */
+  void
+  test_friction_2d_free()
+  {
+    const ContactNode<2> node  = node_2d();
+    const Tensor<1, 2>   u_old = frame(node, 0.978, 0.3);
+    const Tensor<1, 2>   zero;
+    const auto           free = respond(node,
                               frame(node, -0.5, 0.),
                               frame(node, -0.1, 0.6),
                               frame(node, 0., 1.));
@@ -354,9 +362,18 @@ namespace
                                   make_foundation(true));
     check(undamped.state == FrictionState::free,
           "2D: approaching node, damping only in contact: free");
+  }
 
-    // The slip jacobian against central differences of lambda(w) = g(w) t,
-    // below and beyond the compliance cap.
+
+  /**
+   * The slip jacobian against central differences of lambda(w) = g(w) t,
+   * below and beyond the compliance cap.
+   */
+  void
+  test_friction_2d_jacobian()
+  {
+    const ContactNode<2> node = node_2d();
+    const Tensor<1, 2>   zero;
     out() << "slip jacobian vs. finite differences:" << std::endl;
     for (const double u_old_nu : {0.978, 1.978})
       {
@@ -477,9 +494,18 @@ namespace
                               frame(node, 0., 1., 0.));
     check(free.state == FrictionState::free && free.value.norm() == 0,
           "3D: out of contact: free, value 0");
+  }
 
-    // On the slip manifold: w_tau = 0.6 t, lambda = g t, t = cos 0.7 t1 +
-    // sin 0.7 t2, so z = (g + 0.6) t.
+
+  /**
+   * On the slip manifold: w_tau = 0.6 t, lambda = g t, t = cos 0.7 t1 +
+   * sin 0.7 t2, so z = (g + 0.6) t.
+   */
+  void
+  test_friction_3d_manifold()
+  {
+    const ContactNode<3> node  = node_3d();
+    const Tensor<1, 3>   u_old = frame(node, 0.978, 0.3, -0.2);
     out() << "on the slip manifold:" << std::endl;
     const Tensor<1, 3> t      = frame(node, 0., std::cos(0.7), std::sin(0.7));
     const Tensor<1, 3> w      = 0.22 * node.normal + 0.6 * t;
@@ -535,44 +561,28 @@ namespace
     out() << "--- projected_friction_force" << std::endl;
     const ContactNode<2> node = node_2d();
     const double         g    = 0.422;
+    // In the frame: w = 0.22 n + w_tau t, lambda = lambda_tau t; the
+    // projection expected_tau t.
     struct Case
     {
-      std::string  name;
-      Tensor<1, 2> w, lambda, expected;
-      bool         solution;
+      std::string name;
+      double      w_tau, lambda_tau, expected_tau;
+      bool        solution;
     };
-    const std::vector<Case> cases = {{"stick solution",
-                                      frame(node, 0.22, 0.),
-                                      frame(node, 0., 0.3),
-                                      frame(node, 0., 0.3),
-                                      true},
-                                     {"slip solution",
-                                      frame(node, 0.22, 0.6),
-                                      frame(node, 0., 0.422),
-                                      frame(node, 0., 0.422),
-                                      true},
-                                     {"lambda = 0, w_tau = 0.6 t",
-                                      frame(node, 0.22, 0.6),
-                                      Tensor<1, 2>(),
-                                      frame(node, 0., 0.422),
-                                      false},
-                                     {"lambda = 0.3 t, w_tau = 0.05 t",
-                                      frame(node, 0.22, 0.05),
-                                      frame(node, 0., 0.3),
-                                      frame(node, 0., 0.35),
-                                      false},
-                                     {"lambda = g t, w_tau = -0.6 t",
-                                      frame(node, 0.22, -0.6),
-                                      frame(node, 0., 0.422),
-                                      frame(node, 0., -0.178),
-                                      false}};
+    const std::vector<Case> cases = {
+      {"stick solution", 0., 0.3, 0.3, true},
+      {"slip solution", 0.6, 0.422, 0.422, true},
+      {"lambda = 0, w_tau = 0.6 t", 0.6, 0., 0.422, false},
+      {"lambda = 0.3 t, w_tau = 0.05 t", 0.05, 0.3, 0.35, false},
+      {"lambda = g t, w_tau = -0.6 t", -0.6, 0.422, -0.178, false}};
     for (const Case &x : cases)
       {
-        const Tensor<1, 2> p =
-          projected_friction_force(node, g, x.w, x.lambda, c);
+        const Tensor<1, 2> lambda = frame(node, 0., x.lambda_tau);
+        const Tensor<1, 2> p      = projected_friction_force(
+          node, g, frame(node, 0.22, x.w_tau), lambda, c);
         out() << x.name << ": " << in_frame(node, p) << std::endl;
-        check(near(p, x.expected, 1e-14) &&
-                (near(p, x.lambda, 1e-14) == x.solution),
+        check(near(p, frame(node, 0., x.expected_tau), 1e-14) &&
+                (near(p, lambda, 1e-14) == x.solution),
               x.name + (x.solution ? ": equals lambda" : ": differs"));
       }
     check(projected_friction_force(
@@ -605,45 +615,54 @@ namespace
   }
 
 
+  /**
+   * Slip: force = m 2.11 n + g t = 1.055 n + 0.422 t,
+   * block = m 0.7 n (x) n + t (x) 0.14 n.
+   */
   void
-  test_linearize_node()
+  test_linearize_slip_2d()
   {
     out() << "--- linearize_node" << std::endl;
     const Foundation     f     = make_foundation();
     const ContactNode<2> node  = node_2d();
     const Tensor<1, 2>   u_old = frame(node, 0.978, 0.3);
     const Tensor<1, 2>   zero;
+    const Tensor<1, 2>   w = frame(node, 0.22, 0.6);
+    const auto l = linearize_node(f, node, u_old, w, k, true, zero, mu, c);
+    out() << "slip: force = " << in_frame(node, l.force)
+          << "  block = " << in_frame(node, l.block) << std::endl;
+    check(l.friction.state == FrictionState::slip && l.active() &&
+            near(l.force, frame(node, 1.055, 0.422), 1e-14),
+          "2D slip: force 1.055 n + 0.422 t");
+    Tensor<2, 2> block =
+      outer_product(frame(node, 0.35, 0.), frame(node, 1., 0.));
+    block += outer_product(frame(node, 0., 1.), frame(node, 0.14, 0.));
+    check(near(l.block, block, 1e-14),
+          "2D slip: block 0.35 n (x) n + 0.14 t (x) n");
+    const auto force_of = [&](const Tensor<1, 2> &v) {
+      return linearize_node(f, node, u_old, v, k, true, zero, mu, c).force;
+    };
+    check(near(l.block, test_tools::finite_difference<2>(force_of, w), 1e-8),
+          "2D slip: block = finite differences of the force");
 
-    // Slip: force = m 2.11 n + g t = 1.055 n + 0.422 t,
-    // block = m 0.7 n (x) n + t (x) 0.14 n.
-    {
-      const Tensor<1, 2> w = frame(node, 0.22, 0.6);
-      const auto l = linearize_node(f, node, u_old, w, k, true, zero, mu, c);
-      out() << "slip: force = " << in_frame(node, l.force)
-            << "  block = " << in_frame(node, l.block) << std::endl;
-      check(l.friction.state == FrictionState::slip && l.active() &&
-              near(l.force, frame(node, 1.055, 0.422), 1e-14),
-            "2D slip: force 1.055 n + 0.422 t");
-      Tensor<2, 2> block =
-        outer_product(frame(node, 0.35, 0.), frame(node, 1., 0.));
-      block += outer_product(frame(node, 0., 1.), frame(node, 0.14, 0.));
-      check(near(l.block, block, 1e-14),
-            "2D slip: block 0.35 n (x) n + 0.14 t (x) n");
-      const auto force_of = [&](const Tensor<1, 2> &v) {
-        return linearize_node(f, node, u_old, v, k, true, zero, mu, c).force;
-      };
-      check(near(l.block, test_tools::finite_difference<2>(force_of, w), 1e-8),
-            "2D slip: block = finite differences of the force");
+    const auto normal_only =
+      linearize_node(f, node, u_old, w, k, false, zero, mu, c);
+    check(normal_only.friction.state == FrictionState::free &&
+            near(normal_only.force, frame(node, 1.055, 0.), 1e-14) &&
+            near(normal_only.block,
+                 Tensor<2, 2>(0.35 * outer_product(node.normal, node.normal)),
+                 1e-14),
+          "2D without friction: force 1.055 n, block 0.35 n (x) n");
+  }
 
-      const auto normal_only =
-        linearize_node(f, node, u_old, w, k, false, zero, mu, c);
-      check(normal_only.friction.state == FrictionState::free &&
-              near(normal_only.force, frame(node, 1.055, 0.), 1e-14) &&
-              near(normal_only.block,
-                   Tensor<2, 2>(0.35 * outer_product(node.normal, node.normal)),
-                   1e-14),
-            "2D without friction: force 1.055 n, block 0.35 n (x) n");
-    }
+
+  void
+  test_linearize_saturated_stick_free_2d()
+  {
+    const Foundation     f     = make_foundation();
+    const ContactNode<2> node  = node_2d();
+    const Tensor<1, 2>   u_old = frame(node, 0.978, 0.3);
+    const Tensor<1, 2>   zero;
     // Beyond the compliance cap (u_nu = 2): p = 3, p' = 0, g = 0.622 <
     // |z| = 0.8: force m 3.11 n + 0.622 t, block 0.25 n (x) n + t (x) 0.1 n.
     {
@@ -695,28 +714,35 @@ namespace
               l.force.norm() == 0 && l.block.norm() == 0,
             "2D out of contact: free, no force, no block, not active");
     }
-    // 3D on the slip manifold: force = 1.055 n + g t, block = the
-    // derivative of m p n + g(w) w_tau/|w_tau|.
-    {
-      const ContactNode<3> n3  = node_3d();
-      const Tensor<1, 3>   u0  = frame(n3, 0.978, 0.3, -0.2);
-      const Tensor<1, 3>   t   = frame(n3, 0., std::cos(0.7), std::sin(0.7));
-      const Tensor<1, 3>   w   = 0.22 * n3.normal + 0.6 * t;
-      const Tensor<1, 3>   lam = 0.422 * t;
-      const auto l = linearize_node(f, n3, u0, w, k, true, lam, mu, c);
-      out() << "3D slip: force = " << in_frame(n3, l.force) << std::endl;
-      check(l.friction.state == FrictionState::slip &&
-              near(l.force, Tensor<1, 3>(1.055 * n3.normal + lam), 1e-14),
-            "3D slip: force 1.055 n + g t");
-      const auto force_of = [&](const Tensor<1, 3> &v) {
-        const NormalResponse r     = normal_response(f, n3, u0, v, k);
-        const Tensor<1, 3>   v_tau = n3.tangential(v);
-        return Tensor<1, 3>(m * r.pressure * n3.normal +
-                            (mu * m * r.pressure / v_tau.norm()) * v_tau);
-      };
-      check(near(l.block, test_tools::finite_difference<3>(force_of, w), 1e-8),
-            "3D slip: block = finite differences of m p n + g w_tau/|w_tau|");
-    }
+  }
+
+
+  /**
+   * 3D on the slip manifold: force = 1.055 n + g t, block = the
+   * derivative of m p n + g(w) w_tau/|w_tau|.
+   */
+  void
+  test_linearize_slip_3d()
+  {
+    const Foundation     f   = make_foundation();
+    const ContactNode<3> n3  = node_3d();
+    const Tensor<1, 3>   u0  = frame(n3, 0.978, 0.3, -0.2);
+    const Tensor<1, 3>   t   = frame(n3, 0., std::cos(0.7), std::sin(0.7));
+    const Tensor<1, 3>   w   = 0.22 * n3.normal + 0.6 * t;
+    const Tensor<1, 3>   lam = 0.422 * t;
+    const auto           l = linearize_node(f, n3, u0, w, k, true, lam, mu, c);
+    out() << "3D slip: force = " << in_frame(n3, l.force) << std::endl;
+    check(l.friction.state == FrictionState::slip &&
+            near(l.force, Tensor<1, 3>(1.055 * n3.normal + lam), 1e-14),
+          "3D slip: force 1.055 n + g t");
+    const auto force_of = [&](const Tensor<1, 3> &v) {
+      const NormalResponse r     = normal_response(f, n3, u0, v, k);
+      const Tensor<1, 3>   v_tau = n3.tangential(v);
+      return Tensor<1, 3>(m * r.pressure * n3.normal +
+                          (mu * m * r.pressure / v_tau.norm()) * v_tau);
+    };
+    check(near(l.block, test_tools::finite_difference<3>(force_of, w), 1e-8),
+          "3D slip: block = finite differences of m p n + g w_tau/|w_tau|");
   }
 } // namespace
 
@@ -724,10 +750,16 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  test_normal_response();
-  test_friction_2d();
-  test_friction_3d();
-  test_projection();
-  test_linearize_node();
+  return test_tools::run_tests(argc,
+                               argv,
+                               {test_normal_response,
+                                test_friction_2d_slip_and_stick,
+                                test_friction_2d_free,
+                                test_friction_2d_jacobian,
+                                test_friction_3d,
+                                test_friction_3d_manifold,
+                                test_projection,
+                                test_linearize_slip_2d,
+                                test_linearize_saturated_stick_free_2d,
+                                test_linearize_slip_3d});
 }

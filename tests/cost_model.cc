@@ -69,90 +69,99 @@ namespace
   {
     return {2 * (m + 1) * 17, m - 1};
   }
-} // namespace
 
+  using CSolver = CostedSolver;
 
-int
-main(int argc, char *argv[])
-{
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  Checks       checks;
-  const auto   world = MPI_COMM_WORLD;
-  const auto   self  = MPI_COMM_SELF;
-  using CSolver      = CostedSolver;
-
-  // The table is the fit of the committed results.
-  if (root)
-    {
-      const Outcome o =
-        run_benchmark_script("cost-model", {"--check"}, "cost-model");
-      checks.add(o.succeeded(),
-                 "cost_model_table.cc is benchmarks/cost-model's fit of "
-                 "benchmarks/results/scaling*.csv");
-    }
-  bool finite = !cost_model_terms.empty();
-  for (const auto &t : cost_model_terms)
-    finite = finite && std::isfinite(t.coefficient) &&
-             t.coefficient > 0 && std::isfinite(t.exponent) &&
-             (t.processes == 1 || t.processes == 2);
-  checks.add(finite, "every term: a finite positive coefficient, 1 or 2 "
-                     "processes");
-
-  // Growth with the mesh.
-  bool grows = true, calibrated = true;
-  for (const CSolver s : {CSolver::condensed, CSolver::assembled})
-    for (const unsigned int processes : {1u, 2u, 16u})
-      for (const unsigned int dim : {2u, 3u})
-        {
-          SolverCost last;
-          for (const unsigned int size : {0u, 1u, 2u, 3u, 4u})
-            {
-              const auto [dofs, nodes] =
-                dim == 3 ? rail(std::vector{8u, 11u, 16u, 22u, 32u}[size]) :
-                           paper(128u << size);
-              const CSolver way =
-                s != CSolver::condensed || processes == 1 ? s :
-                dim == 3 ? CSolver::condensed_distributed :
-                           CSolver::condensed_on_every_process;
-              const auto c =
-                predicted_cost(way, dim, dofs, dim * nodes, processes);
-              calibrated = calibrated && c.calibrated;
-              grows      = grows && c.total(10) > last.total(10);
-              last       = c;
-            }
-        }
-  checks.add(calibrated,
-             "both solvers calibrated in 2D and 3D on 1, 2 and 16 processes "
-             "(on several, the condensed one with the whole factor on every "
-             "process in 2D, with MUMPS in 3D)");
-  checks.add(grows, "a larger mesh costs more (rail and paper domain, both "
-                    "solvers, 1, 2 and 16 processes)");
-
-  // Beyond two processes.
-  bool bounded = true;
-  for (const CSolver s : {CSolver::assembled,
-                          CSolver::condensed_on_every_process,
-                          CSolver::condensed_distributed})
-    {
-      const double most = s == CSolver::assembled ? 1 : 1.3;
-      const auto [dofs, nodes] = rail(16);
-      auto last                = predicted_cost(s, 3, dofs, 3 * nodes, 2);
-      for (const unsigned int p : {4u, 8u, 16u})
-        {
-          const auto c = predicted_cost(s, 3, dofs, 3 * nodes, p);
-          bounded      = bounded &&
-                    c.per_step <= last.per_step * most * (1 + 1e-12) &&
-                    c.per_step >= last.per_step / 2 * (1 - 1e-12) &&
-                    c.once <= last.once * most * (1 + 1e-12) &&
-                    c.once >= last.once / 2 * (1 - 1e-12);
-          last = c;
-        }
-    }
-  checks.add(bounded, "each doubling beyond 2 processes divides a cost by "
-                      "at most 2 and keeps it (assembled) or multiplies it "
-                      "by at most 1.3 (condensed)");
+  bool
+  is_root()
   {
+    return Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  }
+
+  /** The table is the fit of the committed results; every term finite. */
+  void
+  check_table(Checks &checks)
+  {
+    if (is_root())
+      {
+        const Outcome o =
+          run_benchmark_script("cost-model", {"--check"}, "cost-model");
+        checks.add(o.succeeded(),
+                   "cost_model_table.cc is benchmarks/cost-model's fit of "
+                   "benchmarks/results/scaling*.csv");
+      }
+    bool finite = !cost_model_terms.empty();
+    for (const auto &t : cost_model_terms)
+      finite = finite && std::isfinite(t.coefficient) && t.coefficient > 0 &&
+               std::isfinite(t.exponent) &&
+               (t.processes == 1 || t.processes == 2);
+    checks.add(finite,
+               "every term: a finite positive coefficient, 1 or 2 "
+               "processes");
+  }
+
+  /** Growth with the mesh. */
+  void
+  check_growth(Checks &checks)
+  {
+    bool grows = true, calibrated = true;
+    for (const CSolver s : {CSolver::condensed, CSolver::assembled})
+      for (const unsigned int processes : {1u, 2u, 16u})
+        for (const unsigned int dim : {2u, 3u})
+          {
+            SolverCost last;
+            for (const unsigned int size : {0u, 1u, 2u, 3u, 4u})
+              {
+                const auto [dofs, nodes] =
+                  dim == 3 ? rail(std::vector{8u, 11u, 16u, 22u, 32u}[size]) :
+                             paper(128u << size);
+                const CSolver way =
+                  s != CSolver::condensed || processes == 1 ? s :
+                  dim == 3 ? CSolver::condensed_distributed :
+                             CSolver::condensed_on_every_process;
+                const auto c =
+                  predicted_cost(way, dim, dofs, dim * nodes, processes);
+                calibrated = calibrated && c.calibrated;
+                grows      = grows && c.total(10) > last.total(10);
+                last       = c;
+              }
+          }
+    checks.add(calibrated,
+               "both solvers calibrated in 2D and 3D on 1, 2 and 16 processes "
+               "(on several, the condensed one with the whole factor on every "
+               "process in 2D, with MUMPS in 3D)");
+    checks.add(grows,
+               "a larger mesh costs more (rail and paper domain, both "
+               "solvers, 1, 2 and 16 processes)");
+  }
+
+  /** Beyond two processes. */
+  void
+  check_beyond_two_processes(Checks &checks)
+  {
+    bool bounded = true;
+    for (const CSolver s : {CSolver::assembled,
+                            CSolver::condensed_on_every_process,
+                            CSolver::condensed_distributed})
+      {
+        const double most        = s == CSolver::assembled ? 1 : 1.3;
+        const auto [dofs, nodes] = rail(16);
+        auto last                = predicted_cost(s, 3, dofs, 3 * nodes, 2);
+        for (const unsigned int p : {4u, 8u, 16u})
+          {
+            const auto c = predicted_cost(s, 3, dofs, 3 * nodes, p);
+            bounded      = bounded &&
+                      c.per_step <= last.per_step * most * (1 + 1e-12) &&
+                      c.per_step >= last.per_step / 2 * (1 - 1e-12) &&
+                      c.once <= last.once * most * (1 + 1e-12) &&
+                      c.once >= last.once / 2 * (1 - 1e-12);
+            last = c;
+          }
+      }
+    checks.add(bounded,
+               "each doubling beyond 2 processes divides a cost by "
+               "at most 2 and keeps it (assembled) or multiplies it "
+               "by at most 1.3 (condensed)");
     const auto [dofs, nodes] = rail(8);
     const auto two =
       predicted_cost(CSolver::condensed_distributed, 3, dofs, 3 * nodes, 2);
@@ -164,163 +173,198 @@ main(int argc, char *argv[])
                "by every process)");
   }
 
-  // The plan takes the lower predicted cost, and says both.
-  bool lower = true, said = true, said_beyond = true, some_condensed = false,
-       some_assembled = false;
-  for (const MPI_Comm comm : {self, world})
-    for (const unsigned int dim : {2u, 3u})
-      for (const unsigned int size : {8u, 16u, 22u, 32u, 128u, 512u, 2048u})
-        for (const unsigned int steps : {1u, 8u, 128u})
-          {
-            if ((dim == 3) != (size < 100))
-              continue;
-            const auto [dofs, nodes] = dim == 3 ? rail(size) : paper(size);
-            const SolverPlan plan =
-              plan_solver(automatic(), dim, dofs, nodes, steps, comm);
-            // With MUMPS (3D, several processes, a K0 too large for the
-            // whole factor on each) only on the meshes measured.
-            const bool beyond_mumps =
-              comm == world && dim == 3 && dofs > 3e4 &&
-              dofs > largest_costed_mesh(3, CSolver::condensed_distributed);
-            if (dim * nodes > 8200 || beyond_mumps)
-              {
-                lower = lower && !plan.condensed;
-                if (beyond_mumps && dim * nodes <= 8200)
-                  said_beyond =
-                    said_beyond &&
-                    plan.reason.find("larger than the meshes") !=
-                      std::string::npos;
-                continue;
-              }
-            const bool cheaper = plan.condensed_cost.total(steps) <=
-                                 plan.assembled_cost.total(steps);
-            lower = lower && plan.condensed == cheaper &&
-                    plan.steps_per_matrix == steps;
-            said  = said &&
-                   plan.reason.find(
-                     "condensed " +
-                     cost_string(plan.condensed_cost.total(steps))) !=
-                     std::string::npos &&
-                   plan.reason.find(
-                     "assembled " +
-                     cost_string(plan.assembled_cost.total(steps))) !=
-                     std::string::npos;
-            some_condensed = some_condensed || plan.condensed;
-            some_assembled = some_assembled || !plan.condensed;
-          }
-  checks.add(lower, "auto takes the solver of the lower predicted cost "
-                    "within the condensed limit, the assembled one beyond");
-  checks.add(said, "the plan's reason gives both predicted costs");
-  checks.add(said_beyond,
-             "with MUMPS on a mesh larger than those measured: assembled, "
-             "and the plan says why");
-  checks.add(some_condensed && some_assembled,
-             "both solvers are chosen somewhere on these meshes");
-
-  // Few steps per bulk matrix favour the solver with the cheaper set-up.
+  /** What the plans of check_lower_cost found. */
+  struct PlanFindings
   {
-    const auto [dofs, nodes] = rail(8);
-    const auto one  = plan_solver(automatic(), 3, dofs, nodes, 1, self);
-    const auto many = plan_solver(automatic(), 3, dofs, nodes, 1000, self);
-    checks.add(one.condensed_cost.once > one.assembled_cost.once &&
-                 (many.condensed || !one.condensed),
-               "the condensed solver's set-up (factorization, compliance) "
-               "costs more than the AMG's; if it is chosen for 1 step, it "
-               "is for 1000");
+    bool lower = true, said = true, said_beyond = true, some_condensed = false,
+         some_assembled = false;
+  };
+
+  /** The plan of one mesh, number of steps and communicator. */
+  void
+  check_plan(PlanFindings      &f,
+             const MPI_Comm     comm,
+             const unsigned int dim,
+             const unsigned int size,
+             const unsigned int steps)
+  {
+    const auto [dofs, nodes] = dim == 3 ? rail(size) : paper(size);
+    const SolverPlan plan =
+      plan_solver(automatic(), dim, dofs, nodes, steps, comm);
+    // With MUMPS (3D, several processes, a K0 too large for the
+    // whole factor on each) only on the meshes measured.
+    const bool beyond_mumps =
+      comm == MPI_COMM_WORLD && dim == 3 && dofs > 3e4 &&
+      dofs > largest_costed_mesh(3, CSolver::condensed_distributed);
+    if (dim * nodes > 8200 || beyond_mumps)
+      {
+        f.lower = f.lower && !plan.condensed;
+        if (beyond_mumps && dim * nodes <= 8200)
+          f.said_beyond =
+            f.said_beyond &&
+            plan.reason.find("larger than the meshes") != std::string::npos;
+        return;
+      }
+    const bool cheaper =
+      plan.condensed_cost.total(steps) <= plan.assembled_cost.total(steps);
+    f.lower =
+      f.lower && plan.condensed == cheaper && plan.steps_per_matrix == steps;
+    f.said = f.said &&
+             plan.reason.find("condensed " +
+                              cost_string(plan.condensed_cost.total(steps))) !=
+               std::string::npos &&
+             plan.reason.find("assembled " +
+                              cost_string(plan.assembled_cost.total(steps))) !=
+               std::string::npos;
+    f.some_condensed = f.some_condensed || plan.condensed;
+    f.some_assembled = f.some_assembled || !plan.condensed;
   }
 
-  // The limit and 'as set'.
+  /** The plan takes the lower predicted cost, and says both. */
+  void
+  check_lower_cost(Checks &checks)
   {
-    auto p            = automatic();
-    p.condensed_limit = 0;
-    const auto [dofs, nodes] = rail(8);
-    const auto capped = plan_solver(p, 3, dofs, nodes, 1000, self);
-    checks.add(!capped.condensed && !capped.condensed_cost.calibrated &&
-                 capped.reason.find("> 0") != std::string::npos,
-               "Condensed limit = 0: assembled, no costs predicted");
-    p.contact_solver = Parameters::Solver::ContactSolver::condensed;
-    const auto set   = plan_solver(p, 3, dofs, nodes, 1, self);
-    checks.add(set.condensed && set.reason.rfind("as set", 0) == 0,
-               "Contact solver = condensed: kept as set");
+    PlanFindings f;
+    for (const MPI_Comm comm : {MPI_COMM_SELF, MPI_COMM_WORLD})
+      for (const unsigned int dim : {2u, 3u})
+        for (const unsigned int size : {8u, 16u, 22u, 32u, 128u, 512u, 2048u})
+          for (const unsigned int steps : {1u, 8u, 128u})
+            if ((dim == 3) == (size < 100))
+              check_plan(f, comm, dim, size, steps);
+    checks.add(f.lower,
+               "auto takes the solver of the lower predicted cost "
+               "within the condensed limit, the assembled one beyond");
+    checks.add(f.said, "the plan's reason gives both predicted costs");
+    checks.add(f.said_beyond,
+               "with MUMPS on a mesh larger than those measured: assembled, "
+               "and the plan says why");
+    checks.add(f.some_condensed && f.some_assembled,
+               "both solvers are chosen somewhere on these meshes");
   }
-  // The whole CHOLMOD factor on every process: small K0, at most 4
-  // processes; else MUMPS over the processes.
+
+  /** Steps per matrix, the limit, 'as set' and K0's factorization. */
+  void
+  check_plan_options(Checks &checks)
   {
+    const auto self = MPI_COMM_SELF;
+    {
+      // Few steps per bulk matrix favour the solver with the cheaper set-up.
+      const auto [dofs, nodes] = rail(8);
+      const auto one  = plan_solver(automatic(), 3, dofs, nodes, 1, self);
+      const auto many = plan_solver(automatic(), 3, dofs, nodes, 1000, self);
+      checks.add(one.condensed_cost.once > one.assembled_cost.once &&
+                   (many.condensed || !one.condensed),
+                 "the condensed solver's set-up (factorization, compliance) "
+                 "costs more than the AMG's; if it is chosen for 1 step, it "
+                 "is for 1000");
+    }
+    {
+      // The limit and 'as set'.
+      auto p                   = automatic();
+      p.condensed_limit        = 0;
+      const auto [dofs, nodes] = rail(8);
+      const auto capped        = plan_solver(p, 3, dofs, nodes, 1000, self);
+      checks.add(!capped.condensed && !capped.condensed_cost.calibrated &&
+                   capped.reason.find("> 0") != std::string::npos,
+                 "Condensed limit = 0: assembled, no costs predicted");
+      p.contact_solver = Parameters::Solver::ContactSolver::condensed;
+      const auto set   = plan_solver(p, 3, dofs, nodes, 1, self);
+      checks.add(set.condensed && set.reason.rfind("as set", 0) == 0,
+                 "Contact solver = condensed: kept as set");
+    }
+    // The whole CHOLMOD factor on every process: small K0, at most 4
+    // processes; else MUMPS over the processes.
     using F                  = SolverPlan::Factorization;
     const auto [dofs, nodes] = paper(1024);
     bool as_measured         = true;
     for (const unsigned int n : {1u, 2u, 4u, 5u, 16u})
-      as_measured =
-        as_measured &&
-        bulk_factorization(automatic(), 2, dofs, n) ==
-          (n == 1 ? F::cholmod :
-           n <= 4 ? F::cholmod_on_every_process :
-                    F::amesos) &&
-        bulk_factorization(automatic(), 2, 2e5, n) ==
-          (n == 1 ? F::cholmod : F::amesos);
+      as_measured = as_measured &&
+                    bulk_factorization(automatic(), 2, dofs, n) ==
+                      (n == 1 ? F::cholmod :
+                       n <= 4 ? F::cholmod_on_every_process :
+                                F::amesos) &&
+                    bulk_factorization(automatic(), 2, 2e5, n) ==
+                      (n == 1 ? F::cholmod : F::amesos);
     checks.add(as_measured,
                "K0 factorized by CHOLMOD on one process, on every process of "
                "up to 4 while small, else by MUMPS");
   }
 
-  // The memory model against what benchmarks/memory measured: the peak of
-  // the largest process, within 12 %, for every preconditioner, on 1
-  // process (3D and 2D) and on 16 (3D).
+  /** The fields of a CSV line (commas within quotes kept). */
+  std::vector<std::string>
+  csv_fields(const std::string &line)
+  {
+    std::vector<std::string> f;
+    std::string              field;
+    bool                     quoted = false;
+    for (const char c : line)
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        f.push_back(std::exchange(field, ""));
+      else
+        field += c;
+    f.push_back(field);
+    return f;
+  }
+
+  /**
+   * One line of a memory measurement: whether it is a peak of a
+   * preconditioner auto chooses from (then ++rows) and within 12 % of the
+   * memory model.
+   */
+  bool
+  memory_row_close(const std::string &file,
+                   const unsigned int dim,
+                   const std::string &line,
+                   std::size_t       &rows)
+  {
+    // ranks,preconditioner,dofs,wall_time,item,mb_all,mb_largest,...
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() < 7 || f[4] != "peak resident")
+      return true;
+    using P   = Parameters::Solver::Preconditioner;
+    const P p = f[1] == "AMG"             ? P::amg :
+                f[1] == "GMG"             ? P::gmg :
+                f[1] == "matrix-free GMG" ? P::matrix_free_gmg :
+                                            P::automatic;
+    if (p == P::automatic)
+      return true; // AMG plain: not a choice of auto
+    // The coarse meshes: the rail's 10 x 1 x 1 cells, the paper's 128 x
+    // 128.
+    const double coarse_dofs = dim == 3 ? 3. * 11 * 2 * 2 : 2. * 129 * 129;
+    const double predicted =
+      predicted_memory(
+        p, dim, 1, std::stoul(f[2]), std::stoul(f[0]), coarse_dofs) /
+      1e6;
+    const double measured = std::stod(f[6]);
+    if (is_root() && std::abs(predicted / measured - 1) > 0.12)
+      std::cout << "  " << file << ", " << f[0] << " process(es), " << f[1]
+                << ": predicted " << predicted << " MB, measured " << measured
+                << " MB" << std::endl;
+    ++rows;
+    return std::abs(predicted / measured - 1) <= 0.12;
+  }
+
+  /**
+   * The memory model against what benchmarks/memory measured: the peak of
+   * the largest process, within 12 %, for every preconditioner, on 1
+   * process (3D and 2D) and on 16 (3D).
+   */
+  void
+  check_memory_model(Checks &checks)
   {
     bool        close = true;
     std::size_t rows  = 0;
-    // The coarse meshes: the rail's 10 x 1 x 1 cells, the paper's 128 x
-    // 128.
-    const auto coarse_dofs = [](const unsigned int dim) {
-      return dim == 3 ? 3. * 11 * 2 * 2 : 2. * 129 * 129;
-    };
     for (const auto &[file, dim] :
          std::vector<std::pair<std::string, unsigned int>>{
            {"memory.csv", 3}, {"memory_2d.csv", 2}})
       {
         std::ifstream in(std::string(SOURCE_DIR) + "/../benchmarks/results/" +
                          file);
-        std::string line;
+        std::string   line;
         while (std::getline(in, line))
-          {
-            // ranks,preconditioner,dofs,wall_time,item,mb_all,mb_largest,...
-            std::vector<std::string> f;
-            std::string              field;
-            bool                     quoted = false;
-            for (const char c : line)
-              if (c == '"')
-                quoted = !quoted;
-              else if (c == ',' && !quoted)
-                f.push_back(std::exchange(field, ""));
-              else
-                field += c;
-            f.push_back(field);
-            if (f.size() < 7 || f[4] != "peak resident")
-              continue;
-            using P = Parameters::Solver::Preconditioner;
-            const P p = f[1] == "AMG"             ? P::amg :
-                        f[1] == "GMG"             ? P::gmg :
-                        f[1] == "matrix-free GMG" ? P::matrix_free_gmg :
-                                                    P::automatic;
-            if (p == P::automatic)
-              continue; // AMG plain: not a choice of auto
-            const double predicted =
-              predicted_memory(p,
-                               dim,
-                               1,
-                               std::stoul(f[2]),
-                               std::stoul(f[0]),
-                               coarse_dofs(dim)) /
-              1e6;
-            const double measured = std::stod(f[6]);
-            close = close && std::abs(predicted / measured - 1) <= 0.12;
-            if (root && std::abs(predicted / measured - 1) > 0.12)
-              std::cout << "  " << file << ", " << f[0] << " process(es), "
-                        << f[1] << ": predicted " << predicted
-                        << " MB, measured " << measured << " MB"
-                        << std::endl;
-            ++rows;
-          }
+          close = memory_row_close(file, dim, line, rows) && close;
       }
     checks.add(close && rows == 8,
                "the memory model predicts the peak of the largest process "
@@ -328,13 +372,20 @@ main(int argc, char *argv[])
                "processes, and memory_2d.csv; AMG, GMG, matrix-free GMG)");
   }
 
-  // Preconditioner = auto: the fastest that fits.
+  using P = Parameters::Solver::Preconditioner;
+
+  /** The memory the rail 320 x 32 x 32 needs on 1 process. */
+  double
+  need(const P p, const unsigned int degree)
   {
-    using P                  = Parameters::Solver::Preconditioner;
-    const auto [dofs, nodes] = rail(32);
-    const auto need          = [&](const P p, const unsigned int degree) {
-      return predicted_memory(p, 3, degree, dofs, 1, 132);
-    };
+    return predicted_memory(p, 3, degree, rail(32).first, 1, 132);
+  }
+
+  /** Preconditioner = auto: the fastest that fits. */
+  void
+  check_preconditioner_choice(Checks &checks)
+  {
+    const auto dofs = rail(32).first;
     checks.add(need(P::amg, 1) > need(P::gmg, 1) &&
                  need(P::gmg, 1) > need(P::matrix_free_gmg, 1),
                "the rail 320 x 32 x 32 needs the most with the AMG, the "
@@ -344,8 +395,7 @@ main(int argc, char *argv[])
                "on a mesh without levels the GMGs need what the AMG needs");
     bool        as_budgeted = true;
     std::string reason;
-    for (const auto &[bytes, expected] :
-         std::vector<std::pair<double, P>>{
+    for (const auto &[bytes, expected] : std::vector<std::pair<double, P>>{
            {std::numeric_limits<double>::infinity(), P::amg},
            {1.01 * need(P::amg, 1), P::amg},
            {0.99 * need(P::amg, 1), P::gmg},
@@ -354,8 +404,9 @@ main(int argc, char *argv[])
       {
         MemoryBudget budget;
         budget.bytes_per_process = bytes;
-        as_budgeted = as_budgeted && choose_preconditioner(
-                                       3, dofs, 1, budget, reason) == expected;
+        as_budgeted =
+          as_budgeted &&
+          choose_preconditioner(3, dofs, 1, budget, reason) == expected;
       }
     checks.add(as_budgeted,
                "auto: the AMG while it fits, then the GMG, then the "
@@ -369,19 +420,27 @@ main(int argc, char *argv[])
     checks.add(choose_preconditioner(3, dofs, 1, small, reason) == P::amg,
                "elements of degree 3: the AMG (the GMG is for degree 1 and "
                "2)");
+  }
 
-    // In the plan: the assembled iterative solver only.
-    small.degree        = 1;
-    auto p              = automatic();
-    p.preconditioner    = P::automatic;
-    p.contact_solver    = Parameters::Solver::ContactSolver::assembled;
-    p.linear_solver     = Parameters::Solver::LinearSolver::iterative;
-    const auto assembled = plan_solver(p, 3, dofs, nodes, 1, self, small);
-    p.contact_solver     = Parameters::Solver::ContactSolver::condensed;
-    const auto condensed = plan_solver(p, 3, dofs, nodes, 1, self, small);
-    p.preconditioner     = P::gmg;
-    p.contact_solver     = Parameters::Solver::ContactSolver::assembled;
-    const auto set       = plan_solver(p, 3, dofs, nodes, 1, self, small);
+  /** In the plan: the assembled iterative solver only. */
+  void
+  check_preconditioner_in_plan(Checks &checks)
+  {
+    const auto self          = MPI_COMM_SELF;
+    const auto [dofs, nodes] = rail(32);
+    MemoryBudget small;
+    small.bytes_per_process = 1e6;
+    small.degree            = 1;
+    auto p                  = automatic();
+    p.preconditioner        = P::automatic;
+    p.contact_solver        = Parameters::Solver::ContactSolver::assembled;
+    p.linear_solver         = Parameters::Solver::LinearSolver::iterative;
+    const auto assembled    = plan_solver(p, 3, dofs, nodes, 1, self, small);
+    p.contact_solver        = Parameters::Solver::ContactSolver::condensed;
+    const auto condensed    = plan_solver(p, 3, dofs, nodes, 1, self, small);
+    p.preconditioner        = P::gmg;
+    p.contact_solver        = Parameters::Solver::ContactSolver::assembled;
+    const auto set          = plan_solver(p, 3, dofs, nodes, 1, self, small);
     checks.add(assembled.preconditioner == P::matrix_free_gmg &&
                  assembled.matrix_free_bulk() &&
                  assembled.description().find("preconditioner "
@@ -399,5 +458,21 @@ main(int argc, char *argv[])
                "plan: the condensed solver takes the AMG; a preconditioner "
                "set is kept");
   }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  Checks                           checks;
+  check_table(checks);
+  check_growth(checks);
+  check_beyond_two_processes(checks);
+  check_lower_cost(checks);
+  check_plan_options(checks);
+  check_memory_model(checks);
+  check_preconditioner_choice(checks);
+  check_preconditioner_in_plan(checks);
   checks.assert_all();
 }

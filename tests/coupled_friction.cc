@@ -39,8 +39,8 @@
 
 #include <deal.II/lac/full_matrix.h>
 
-#include <dynamic_contact/laws/contact_law.h>
 #include <dynamic_contact/contact/largest_eigenvalue.h>
+#include <dynamic_contact/laws/contact_law.h>
 
 #include "test_tools.h"
 
@@ -79,10 +79,10 @@ namespace
       }
     else
       {
-        node.normal[1]           = 0.6;
-        node.normal[dim - 1]     = -0.8;
-        node.tangents[0][0]      = 1;
-        node.tangents[dim - 2][1] = 0.8;
+        node.normal[1]                  = 0.6;
+        node.normal[dim - 1]            = -0.8;
+        node.tangents[0][0]             = 1;
+        node.tangents[dim - 2][1]       = 0.8;
         node.tangents[dim - 2][dim - 1] = 0.6;
       }
     return node;
@@ -96,8 +96,7 @@ namespace
                    const Tensor<1, dim>   &u_old,
                    const Tensor<1, dim>   &w,
                    const Tensor<1, dim>   &lambda,
-                   const double            limit =
-                     std::numeric_limits<double>::infinity())
+                   const double limit = std::numeric_limits<double>::infinity())
   {
     const double s = node.tangential(w).norm();
     return friction_response(node,
@@ -171,8 +170,8 @@ namespace
     const auto onset = coupled_response(node, law, u_old, w0, above * t);
     check(onset.state == FrictionState::slip &&
             (onset.direction - t).norm() <= 1e-14 &&
-            std::abs(t * (onset.jacobian * t) -
-                     law.derivative(0) * m * 2.11) <= 1e-12,
+            std::abs(t * (onset.jacobian * t) - law.derivative(0) * m * 2.11) <=
+              1e-12,
           d + "onset of slip (w_tau = 0): slip along t, the slip-rate term "
               "along t");
     // Stick: no Jacobian (lambda is a multiplier).
@@ -287,6 +286,128 @@ namespace
   }
 
 
+  /** The block's mass, initial velocity, shear force and largest mu. */
+  const double block_mass = 1000 * 0.2 * 1, v0 = 2, T = 4e5, mu_max = 0.6;
+
+  /** The rigid block's step: its number of solutions and its fast slip. */
+  struct RigidBlock
+  {
+    unsigned int solutions;
+    double       fast;
+  };
+
+  /**
+   * The rigid block's solutions: stick if the friction it needs stays below
+   * mu(0) N; slip rates where h(s) = (M/k)(s - v0) - T + mu(s) N changes
+   * sign.
+   */
+  RigidBlock
+  rigid_block(const BlockCase &c, const double N)
+  {
+    const double M     = block_mass;
+    const double alpha = c.decay_rate;
+    const auto   mu    = [&](const double s) {
+      return 0.2 * std::exp(-alpha * s) + 0.4;
+    };
+    const bool   can_stick = T + M * v0 / c.k <= mu(0) * N;
+    unsigned int roots     = 0;
+    double       previous  = M / c.k * (0 - v0) - T + mu(0) * N;
+    double       fast      = 0;
+    for (double s = 1e-6; s < 20; s *= 1.001)
+      {
+        const double h = M / c.k * (s - v0) - T + mu(s) * N;
+        if ((h > 0) != (previous > 0))
+          {
+            ++roots;
+            fast = s;
+          }
+        previous = h;
+      }
+    return {roots + (can_stick ? 1 : 0), fast};
+  }
+
+
+  /**
+   * One linearization of one case of the block; @p first_velocity: the
+   * mean velocity of the case's first (frozen) run, or -1.
+   */
+  void
+  check_block_step(const BlockCase   &c,
+                   const std::string &linearization,
+                   double            &first_velocity)
+  {
+    const double M               = block_mass;
+    const auto   r               = block_step(c, linearization);
+    const auto  &st              = r.statistics;
+    const double N               = r.normal_force;
+    const double alpha           = c.decay_rate;
+    const auto [solutions, fast] = rigid_block(c, N);
+    // The rigid translation's Rayleigh quotient of the bound:
+    // (k/M) sum_i Lambda_i, Lambda_i = L N_i + mu_max^2 m_i kappa/4
+    // (theta = 1, sum_i m_i = 1, kappa = k c_nu + d_nu).
+    const double rigid =
+      (alpha * 0.2 * N +
+       mu_max * mu_max * (c.k * c.stiffness + c.damping) / 4) *
+      c.k / M;
+    // The block's mean tangential velocity from its momentum:
+    // (M/k)(v - v0) = T - F_t, F_t the friction force.
+    const double slip_rate = v0 + c.k * (T - std::abs(r.tangential_force)) / M;
+    const std::string prefix = c.name + ", " + linearization + ": ";
+    out() << prefix << "the rigid block has " << solutions
+          << " solution(s); mean tangential velocity " << digits(slip_rate, 3)
+          << " m/s, bound " << digits(st.uniqueness_bound, 3) << " (rigid body "
+          << digits(rigid, 3) << "), certificate "
+          << (st.uniqueness_certificate < 0 ?
+                std::string("none") :
+                digits(st.uniqueness_certificate, 3))
+          << ", slip nodes " << st.n_slip << ", stick nodes " << st.n_stick
+          << std::endl;
+    check(solutions == c.solutions,
+          prefix + std::to_string(c.solutions) + " solution(s)");
+    // The block's deformation only adds compliance.
+    check(st.uniqueness_bound >= (1 - 1e-9) * rigid &&
+            st.uniqueness_bound <= 1.25 * rigid,
+          prefix + "bound between its rigid translation's value "
+                   "and 1.25 times it");
+    // A sufficient condition: a certificate below 1 implies one
+    // solution; above 1, nothing. The certificate bounds the
+    // Lanczos value from above, and is made only below 1.
+    if (st.uniqueness_certificate >= 0 && st.uniqueness_certificate < 1)
+      check(solutions == 1 && st.uniqueness_certificate >= st.uniqueness_bound,
+            prefix + "proven unique: one solution, certificate >= "
+                     "the Lanczos value");
+    else
+      check(st.uniqueness_bound >= 1 && st.uniqueness_certificate == -1,
+            prefix + "bound >= 1: nothing proven, no certificate");
+    // The starts' count (Friction/Count solutions): two distinct
+    // solutions found prove several; where there is one, every
+    // start that converged reached it.
+    check(c.solutions > 1 ? st.solutions >= 2 : st.solutions == 1,
+          prefix + "the starts found " + std::to_string(st.solutions) +
+            " distinct solution(s) (" + std::to_string(st.failed_starts) +
+            " reached none)");
+    check(st.contraction_factor < 1 && r.cutbacks == 0,
+          prefix + "contraction factor < 1 at the solution found, "
+                   "no cut-back");
+    if (c.solutions == 3 && linearization == "coupled")
+      // The same step, another of its solutions: the coupled
+      // Newton iteration, from the same start, ends at stick.
+      check(st.n_slip == 0 && st.n_stick > 0 && slip_rate < 0.05 * fast &&
+              r.relative_energy_defect() < 1e-8,
+            prefix + "another solution of the same step found: the "
+                     "block sticks (its mean velocity below 5 % of "
+                     "the fast slip)");
+    else
+      check(st.n_stick == 0 && std::abs(slip_rate - fast) <= 0.02 * fast,
+            prefix + "the (fast) slip root found to 2 %, s = " +
+              digits(fast, 3) + " m/s");
+    if (c.solutions == 1 && first_velocity >= 0)
+      check(std::abs(slip_rate - first_velocity) <= 1e-6 * first_velocity,
+            prefix + "the same solution as the frozen loop (1e-6)");
+    first_velocity = slip_rate;
+  }
+
+
   void
   test_block()
   {
@@ -297,107 +418,11 @@ namespace
       {"steep-k1e-2", 2000., 0.01, 1e10, 1e8, 3},
       {"steep-k1e-3", 2000., 0.001, 1e10, 1e8, 1},
       {"mild-soft", 0.01, 0.001, 1e8, 1e5, 1}};
-    const double M = 1000 * 0.2 * 1, v0 = 2, T = 4e5, mu_max = 0.6;
     for (const BlockCase &c : cases)
       {
         double first_velocity = -1;
         for (const std::string linearization : {"frozen", "coupled"})
-          {
-            const auto   r     = block_step(c, linearization);
-            const auto  &st    = r.statistics;
-            const double N     = r.normal_force;
-            const double alpha = c.decay_rate;
-            const auto   mu    = [&](const double s) {
-              return 0.2 * std::exp(-alpha * s) + 0.4;
-            };
-            // The rigid block's solutions: stick if the friction it needs
-            // stays below mu(0) N; slip rates where h(s) = (M/k)(s - v0) - T
-            // + mu(s) N changes sign.
-            const bool   can_stick = T + M * v0 / c.k <= mu(0) * N;
-            unsigned int roots     = 0;
-            double       previous  = M / c.k * (0 - v0) - T + mu(0) * N;
-            double       fast      = 0;
-            for (double s = 1e-6; s < 20; s *= 1.001)
-              {
-                const double h = M / c.k * (s - v0) - T + mu(s) * N;
-                if ((h > 0) != (previous > 0))
-                  {
-                    ++roots;
-                    fast = s;
-                  }
-                previous = h;
-              }
-            const unsigned int solutions = roots + (can_stick ? 1 : 0);
-            // The rigid translation's Rayleigh quotient of the bound:
-            // (k/M) sum_i Lambda_i, Lambda_i = L N_i + mu_max^2 m_i kappa/4
-            // (theta = 1, sum_i m_i = 1, kappa = k c_nu + d_nu).
-            const double rigid =
-              (alpha * 0.2 * N +
-               mu_max * mu_max * (c.k * c.stiffness + c.damping) / 4) *
-              c.k / M;
-            // The block's mean tangential velocity from its momentum:
-            // (M/k)(v - v0) = T - F_t, F_t the friction force.
-            const double slip_rate =
-              v0 + c.k * (T - std::abs(r.tangential_force)) / M;
-            const std::string prefix = c.name + ", " + linearization + ": ";
-            out() << prefix << "the rigid block has " << solutions
-                  << " solution(s); mean tangential velocity "
-                  << digits(slip_rate, 3) << " m/s, bound "
-                  << digits(st.uniqueness_bound, 3) << " (rigid body "
-                  << digits(rigid, 3) << "), certificate "
-                  << (st.uniqueness_certificate < 0 ?
-                        std::string("none") :
-                        digits(st.uniqueness_certificate, 3))
-                  << ", slip nodes " << st.n_slip << ", stick nodes "
-                  << st.n_stick << std::endl;
-            check(solutions == c.solutions,
-                  prefix + std::to_string(c.solutions) + " solution(s)");
-            // The block's deformation only adds compliance.
-            check(st.uniqueness_bound >= (1 - 1e-9) * rigid &&
-                    st.uniqueness_bound <= 1.25 * rigid,
-                  prefix + "bound between its rigid translation's value "
-                           "and 1.25 times it");
-            // A sufficient condition: a certificate below 1 implies one
-            // solution; above 1, nothing. The certificate bounds the
-            // Lanczos value from above, and is made only below 1.
-            if (st.uniqueness_certificate >= 0 && st.uniqueness_certificate < 1)
-              check(solutions == 1 &&
-                      st.uniqueness_certificate >= st.uniqueness_bound,
-                    prefix + "proven unique: one solution, certificate >= "
-                             "the Lanczos value");
-            else
-              check(st.uniqueness_bound >= 1 && st.uniqueness_certificate == -1,
-                    prefix + "bound >= 1: nothing proven, no certificate");
-            // The starts' count (Friction/Count solutions): two distinct
-            // solutions found prove several; where there is one, every
-            // start that converged reached it.
-            check(c.solutions > 1 ? st.solutions >= 2 : st.solutions == 1,
-                  prefix + "the starts found " + std::to_string(st.solutions) +
-                    " distinct solution(s) (" +
-                    std::to_string(st.failed_starts) + " reached none)");
-            check(st.contraction_factor < 1 && r.cutbacks == 0,
-                  prefix + "contraction factor < 1 at the solution found, "
-                           "no cut-back");
-            if (c.solutions == 3 && linearization == "coupled")
-              // The same step, another of its solutions: the coupled
-              // Newton iteration, from the same start, ends at stick.
-              check(st.n_slip == 0 && st.n_stick > 0 &&
-                      slip_rate < 0.05 * fast &&
-                      r.relative_energy_defect() < 1e-8,
-                    prefix + "another solution of the same step found: the "
-                             "block sticks (its mean velocity below 5 % of "
-                             "the fast slip)");
-            else
-              check(st.n_stick == 0 &&
-                      std::abs(slip_rate - fast) <= 0.02 * fast,
-                    prefix + "the (fast) slip root found to 2 %, s = " +
-                      digits(fast, 3) + " m/s");
-            if (c.solutions == 1 && first_velocity >= 0)
-              check(std::abs(slip_rate - first_velocity) <=
-                      1e-6 * first_velocity,
-                    prefix + "the same solution as the frozen loop (1e-6)");
-            first_velocity = slip_rate;
-          }
+          check_block_step(c, linearization, first_velocity);
       }
   }
 
@@ -409,13 +434,13 @@ namespace
     for (const std::string solver : {"condensed", "assembled"})
       for (const std::string linearization : {"frozen", "coupled"})
         (linearization == "frozen" ? frozen : coupled)
-          .push_back(test_tools::run<2>(
-                       test_tools::scene("barboteu_danan_2016_small.prm"),
-                       {"Solver/Contact solver=" + solver,
-                        "Friction/Linearization=" + linearization,
-                        "Output/Directory=output-paper-" + solver + "-" +
-                          linearization})
-                       ->time_series());
+          .push_back(
+            test_tools::run<2>(
+              test_tools::scene("barboteu_danan_2016_small.prm"),
+              {"Solver/Contact solver=" + solver,
+               "Friction/Linearization=" + linearization,
+               "Output/Directory=output-paper-" + solver + "-" + linearization})
+              ->time_series());
     // Friction/Count solutions solves each step again from other starts:
     // the run's own answers stay those of its loop, to the bit, and on this
     // scene the starts find steps with several solutions.
@@ -452,7 +477,7 @@ namespace
           std::string("paper small, ") + (s == 0 ? "condensed" : "assembled");
         const auto  &series = coupled[s];
         unsigned int passes = 0, passes_frozen = 0, two = 0, fallbacks = 0;
-        bool rule = true, balance = true;
+        bool         rule = true, balance = true;
         for (unsigned int n = 1; n < series.size(); ++n)
           {
             const auto &st = series[n].statistics;
@@ -483,10 +508,11 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  test_jacobian<2>();
-  test_jacobian<3>();
-  test_eigenvalue();
-  test_block();
-  test_paper_scene();
+  return test_tools::run_tests(argc,
+                               argv,
+                               {test_jacobian<2>,
+                                test_jacobian<3>,
+                                test_eigenvalue,
+                                test_block,
+                                test_paper_scene});
 }

@@ -100,7 +100,7 @@ namespace
 
 
   void
-  test_derivative_and_primitive()
+  test_derivative()
   {
     out() << "--- derivative vs. central differences (away from kinks)"
           << std::endl;
@@ -117,7 +117,12 @@ namespace
               "slope " + digits(ramp.get_slope(), 3) +
                 ": |p' - central difference| <= 1e-7 at 7 points");
       }
+  }
 
+
+  void
+  test_primitive()
+  {
     out() << "--- primitive vs. composite Simpson, and Pi' = p" << std::endl;
     const CappedRamp p(2., 3.);
     for (const double r : {-0.5, 0.7, 1.5, 2., 10.})
@@ -148,9 +153,17 @@ namespace
         convex = convex && p.primitive(0.5 * (a + b)) <=
                              0.5 * (p.primitive(a) + p.primitive(b)) + 1e-15;
     check(convex, "Pi convex: Pi((a+b)/2) <= (Pi(a) + Pi(b))/2");
+  }
 
-    // The step dissipation of doc/theory.md section 6,
-    // p(b)(b - a) - (Pi(b) - Pi(a)) >= 0, by hand and from Pi.
+
+  /**
+   * The step dissipation of doc/theory.md section 6,
+   * p(b)(b - a) - (Pi(b) - Pi(a)) >= 0, by hand and from Pi.
+   */
+  void
+  test_dissipation()
+  {
+    const CappedRamp p(2., 3.);
     out() << "--- dissipation p(b)(b - a) - (Pi(b) - Pi(a))" << std::endl;
     struct Step
     {
@@ -266,9 +279,12 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  test_ramp_values();
-  test_derivative_and_primitive();
-  test_zero_stiffness();
-  test_pressure();
+  return test_tools::run_tests(argc,
+                               argv,
+                               {test_ramp_values,
+                                test_derivative,
+                                test_primitive,
+                                test_dissipation,
+                                test_zero_stiffness,
+                                test_pressure});
 }

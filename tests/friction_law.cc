@@ -51,6 +51,16 @@ namespace
     return object;
   }
 
+  /** create(@p law), checked (message @p what) to make a @p Law. */
+  template <class Law>
+  std::unique_ptr<FrictionLaw>
+  create_checked(const std::string &law, const std::string &what)
+  {
+    auto object = create(law);
+    check(object != nullptr && dynamic_cast<Law *>(object.get()), what);
+    return object;
+  }
+
   /** max |mu'(s) - central difference| / max(1, |mu'(s)|) over @p points. */
   double
   derivative_error(const FrictionLaw &law, const std::vector<double> &points)
@@ -86,6 +96,36 @@ namespace
     return "";
   }
 
+  /** mu and mu' at a slip rate, by hand. */
+  struct Row
+  {
+    double s, value, derivative;
+  };
+
+  /**
+   * Print mu and mu' (to @p derivative_digits digits; -0 as 0) at the rows'
+   * slip rates and check them against the values by hand: mu to 1e-9, mu'
+   * to @p derivative_tolerance.
+   */
+  void
+  check_values(const FrictionLaw      &law,
+               const std::vector<Row> &rows,
+               const unsigned int      derivative_digits,
+               const double            derivative_tolerance)
+  {
+    for (const Row &row : rows)
+      {
+        out() << "s = " << digits(row.s, 6)
+              << "  mu = " << digits(law.value(row.s), 6) << "  mu' = "
+              << digits(law.derivative(row.s) + 0., derivative_digits)
+              << std::endl;
+        check(std::abs(law.value(row.s) - row.value) <= 1e-9 &&
+                std::abs(law.derivative(row.s) - row.derivative) <=
+                  derivative_tolerance,
+              "mu and mu' at s = " + digits(row.s, 3));
+      }
+  }
+
   bool
   contains(const std::string &text, const std::string &part)
   {
@@ -97,9 +137,8 @@ namespace
   test_constant()
   {
     out() << "--- constant mu = 0.4" << std::endl;
-    const auto law = create("constant");
-    check(law != nullptr && dynamic_cast<ConstantFriction *>(law.get()),
-          "create(constant) is a ConstantFriction");
+    const auto law = create_checked<ConstantFriction>(
+      "constant", "create(constant) is a ConstantFriction");
     check(law->value(0.) == 0.4 && law->value(1.) == 0.4 &&
             law->value(1e3) == 0.4,
           "mu(0) = mu(1) = mu(1000) = 0.4");
@@ -123,27 +162,16 @@ namespace
     out() << "--- exponential (a - b) exp(-alpha s) + b, a = 1, b = 0.5, "
              "alpha = 2000"
           << std::endl;
-    const auto law = create("exponential");
-    check(law != nullptr && dynamic_cast<ExponentialFriction *>(law.get()),
-          "create(exponential) is an ExponentialFriction");
+    const auto law = create_checked<ExponentialFriction>(
+      "exponential", "create(exponential) is an ExponentialFriction");
     // By hand: 0.5 exp(-2) = 0.0676676416, 0.5 exp(-0.2) = 0.409365377.
-    struct Row
-    {
-      double s, value, derivative;
-    };
-    for (const Row &row : std::vector<Row>{{0., 1., -1000.},
-                                           {1e-4, 0.909365377, -818.730753},
-                                           {1e-3, 0.567667642, -135.335283},
-                                           {1., 0.5, 0.}})
-      {
-        out() << "s = " << digits(row.s, 6)
-              << "  mu = " << digits(law->value(row.s), 6)
-              << "  mu' = " << digits(law->derivative(row.s) + 0., 6)
-              << std::endl;
-        check(std::abs(law->value(row.s) - row.value) <= 1e-9 &&
-                std::abs(law->derivative(row.s) - row.derivative) <= 1e-6,
-              "mu and mu' at s = " + digits(row.s, 3));
-      }
+    check_values(*law,
+                 {{0., 1., -1000.},
+                  {1e-4, 0.909365377, -818.730753},
+                  {1e-3, 0.567667642, -135.335283},
+                  {1., 0.5, 0.}},
+                 6,
+                 1e-6);
     check(derivative_error(*law, {1e-5, 1e-4, 5e-4, 1e-3, 3e-3, 0.01}) <= 1e-6,
           "mu' = central difference to 1e-6 at 6 points");
     check(!law->is_constant(), "not is_constant");
@@ -173,26 +201,16 @@ namespace
   test_expression()
   {
     out() << "--- expression 0.5 + 0.5*exp(-10*s)" << std::endl;
-    const auto law = create("expression");
-    check(law != nullptr && dynamic_cast<ExpressionFriction *>(law.get()),
-          "create(expression) is an ExpressionFriction");
+    const auto law = create_checked<ExpressionFriction>(
+      "expression", "create(expression) is an ExpressionFriction");
     // By hand: 0.5 exp(-1) = 0.183939721, 0.5 exp(-0.5) = 0.303265330.
-    struct Row
-    {
-      double s, value, derivative;
-    };
-    for (const Row &row : std::vector<Row>{{0., 1., -5.},
-                                           {0.05, 0.803265330, -3.03265330},
-                                           {0.1, 0.683939721, -1.83939721},
-                                           {10., 0.5, 0.}})
-      {
-        out() << "s = " << digits(row.s, 6)
-              << "  mu = " << digits(law->value(row.s), 6)
-              << "  mu' = " << digits(law->derivative(row.s), 4) << std::endl;
-        check(std::abs(law->value(row.s) - row.value) <= 1e-9 &&
-                std::abs(law->derivative(row.s) - row.derivative) <= 1e-5,
-              "mu and mu' at s = " + digits(row.s, 3));
-      }
+    check_values(*law,
+                 {{0., 1., -5.},
+                  {0.05, 0.803265330, -3.03265330},
+                  {0.1, 0.683939721, -1.83939721},
+                  {10., 0.5, 0.}},
+                 4,
+                 1e-5);
     check(derivative_error(*law, {0.01, 0.05, 0.1, 0.3, 1.}) <= 1e-6,
           "mu' = central difference to 1e-6 at 5 points");
     check(!law->is_constant(), "not is_constant");
@@ -379,10 +397,11 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  test_constant();
-  test_exponential();
-  test_expression();
-  test_create_and_errors();
-  test_slip_length();
+  return test_tools::run_tests(argc,
+                               argv,
+                               {test_constant,
+                                test_exponential,
+                                test_expression,
+                                test_create_and_errors,
+                                test_slip_length});
 }

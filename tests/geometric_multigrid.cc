@@ -23,11 +23,8 @@
 // 3. The finest level set up on the bulk forms' cell data (as the program
 //    does) gives the V-cycle of its own cell data exactly.
 
-#include <deal.II/base/function_lib.h>
-#include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/bulk/bulk_multigrid.h>
 #include <dynamic_contact/bulk/bulk_operator.h>
@@ -42,83 +39,41 @@ using namespace DynamicContact;
 
 namespace
 {
+  /** A BulkPreconditioner as deal.II's solvers take it. */
+  struct Preconditioner
+  {
+    const BulkPreconditioner &p;
+    void
+    vmult(Vector_t &dst, const Vector_t &src) const
+    {
+      p.vmult(dst, src);
+    }
+  };
+
+
   /**
-   * CG iterations of K0 x = K0 x_exact with the GMG; checks the answer, and
-   * K0 from the cells against the stored one.
+   * The box of 2 cells across, refined @p refinements times and then once
+   * more on its left half; clamped on the left, rollers at the bottom.
    */
   template <int dim>
-  unsigned int
-  solve(const unsigned int degree,
-        const unsigned int refinements,
-        const std::string &name)
+  void
+  make_mesh(Discretization<dim> &d, const unsigned int refinements)
   {
-    Discretization<dim> d(MPI_COMM_WORLD, degree);
-    GridGenerator::subdivided_hyper_rectangle(d.triangulation,
-                                              std::vector<unsigned int>(dim,
-                                                                        2),
-                                              Point<dim>(),
-                                              dim == 2 ?
-                                                Point<dim>(2., 1.) :
-                                                Point<dim>(2., 1., 1.),
-                                              true);
+    test_tools::make_box(d.triangulation, 2);
     d.triangulation.refine_global(refinements);
-    for (const auto &cell : d.triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->center()[0] < 1.)
-        cell->set_refine_flag();
-    d.triangulation.execute_coarsening_and_refinement();
+    test_tools::refine_left_half(d.triangulation);
     Parameters::BoundaryConditions bc;
     bc.clamped = {0};
     bc.roller  = {2};
     d.setup_dofs(bc);
+  }
 
-    const auto        m = test_tools::steel<dim>();
-    BulkOperator<dim> bulk(d, m, false);
-    bulk.reinit(/*stored=*/false);
-    const TimeScheme scheme(1e-4);
-    bulk.set_time_step(scheme);
-    const Matrix_t &K0 = bulk.newton_matrix();
-    const auto      gmg = create_bulk_multigrid(d, m, scheme, &K0);
 
-    Vector_t exact, b, x;
-    d.reinit_owned(exact);
-    d.reinit_owned(b);
-    d.reinit_owned(x);
-    VectorTools::interpolate(d.mapping,
-                             d.dof_handler,
-                             Functions::CosineFunction<dim>(dim),
-                             exact);
-    d.constraints.set_zero(exact);
-    K0.vmult(b, exact);
-
-    struct Preconditioner
-    {
-      const BulkPreconditioner &p;
-      void
-      vmult(Vector_t &dst, const Vector_t &src) const
-      {
-        p.vmult(dst, src);
-      }
-    } preconditioner{*gmg};
-    SolverControl      control(200, 1e-12 * b.l2_norm());
-    SolverCG<Vector_t> cg(control);
-    cg.solve(K0, x, b, preconditioner);
-    d.constraints.set_zero(x);
-    x -= exact;
-    test_tools::check(x.linfty_norm() <= 1e-8 * exact.linfty_norm(),
-                      name + ": CG with GMG solves K0 x = b to 1e-8");
-    test_tools::check(control.last_step() <= 30,
-                      name + ": within 30 iterations");
-
-    // K0 not stored: its product and its nodal blocks from the cells.
-    BulkOperator<dim> cells(d, m, false);
-    cells.reinit(/*stored=*/false, /*store_newton_matrix=*/false);
-    cells.set_time_step(scheme);
-    Vector_t cells_b;
-    d.reinit_owned(cells_b);
-    cells.newton_vmult(cells_b, exact);
-    cells_b -= b;
-    test_tools::check(cells_b.linfty_norm() <= 1e-12 * b.linfty_norm(),
-                      name + ": K0 x from the cells as stored, to 1e-12");
+  /** The locally owned nodes whose dofs are owned and unconstrained. */
+  template <int dim>
+  std::vector<std::array<types::global_dof_index, dim>>
+  free_nodes(const Discretization<dim> &d)
+  {
     std::vector<std::array<types::global_dof_index, dim>> nodes;
     std::set<types::global_dof_index>                     seen;
     for (const auto &cell : d.dof_handler.active_cell_iterators())
@@ -136,9 +91,33 @@ namespace
             if (free && seen.insert(node[0]).second)
               nodes.push_back(node);
           }
-    const auto   stored_blocks = bulk.newton_blocks(nodes);
-    const auto   cell_blocks   = cells.newton_blocks(nodes);
-    double       worst = 0, scale = 0;
+    return nodes;
+  }
+
+
+  /**
+   * K0 not stored (@p cells): its product and its nodal blocks from the
+   * cells against the stored K0 of @p bulk.
+   */
+  template <int dim>
+  void
+  check_cells_as_stored(const Discretization<dim> &d,
+                        const BulkOperator<dim>   &bulk,
+                        const BulkOperator<dim>   &cells,
+                        const Vector_t            &exact,
+                        const Vector_t            &b,
+                        const std::string         &name)
+  {
+    Vector_t cells_b;
+    d.reinit_owned(cells_b);
+    cells.newton_vmult(cells_b, exact);
+    cells_b -= b;
+    test_tools::check(cells_b.linfty_norm() <= 1e-12 * b.linfty_norm(),
+                      name + ": K0 x from the cells as stored, to 1e-12");
+    const auto nodes         = free_nodes(d);
+    const auto stored_blocks = bulk.newton_blocks(nodes);
+    const auto cell_blocks   = cells.newton_blocks(nodes);
+    double     worst = 0, scale = 0;
     for (unsigned int p = 0; p < nodes.size(); ++p)
       {
         worst = std::max(worst, (stored_blocks[p] - cell_blocks[p]).norm());
@@ -150,13 +129,31 @@ namespace
                         worst <= 1e-12 * scale,
                       name + ": K0's nodal blocks from the cells as stored, "
                              "to 1e-12 (hanging nodes resolved)");
+  }
 
+
+  /**
+   * CG with the matrix-free GMG on K0 from the cells; and its finest level
+   * on the bulk forms' cell data instead of its own: the same V-cycle, bit
+   * for bit.
+   */
+  template <int dim>
+  void
+  check_matrix_free(const Discretization<dim>      &d,
+                    const KelvinVoigtMaterial<dim> &m,
+                    const TimeScheme               &scheme,
+                    const BulkOperator<dim>        &cells,
+                    const Vector_t                 &exact,
+                    const Vector_t                 &b,
+                    const std::string              &name)
+  {
     const auto matrix_free = create_bulk_multigrid(d, m, scheme, nullptr);
-    const Preconditioner cell_preconditioner{*matrix_free};
+    const Preconditioner          cell_preconditioner{*matrix_free};
     const BulkMatrixOperator<dim> cells_K0{cells};
-    SolverControl      cell_control(200, 1e-12 * b.l2_norm());
-    SolverCG<Vector_t> cell_cg(cell_control);
-    x = 0;
+    SolverControl                 cell_control(200, 1e-12 * b.l2_norm());
+    SolverCG<Vector_t>            cell_cg(cell_control);
+    Vector_t                      x;
+    d.reinit_owned(x);
     cell_cg.solve(cells_K0, x, b, cell_preconditioner);
     d.constraints.set_zero(x);
     x -= exact;
@@ -164,8 +161,6 @@ namespace
                         cell_control.last_step() <= 30,
                       name + ": CG with the matrix-free GMG, too");
 
-    // The finest level on the bulk forms' cell data instead of its own:
-    // the same V-cycle, bit for bit.
     test_tools::check(cells.cell_data() != nullptr,
                       name + ": the cell-by-cell forms have cell data");
     const auto shared =
@@ -180,6 +175,52 @@ namespace
                         shared_cycle.linfty_norm() == 0,
                       name + ": the finest level on the forms' cell data "
                              "gives the same V-cycle exactly");
+  }
+
+
+  /**
+   * CG iterations of K0 x = K0 x_exact with the GMG; checks the answer, and
+   * K0 from the cells against the stored one.
+   */
+  template <int dim>
+  unsigned int
+  solve(const unsigned int degree,
+        const unsigned int refinements,
+        const std::string &name)
+  {
+    Discretization<dim> d(MPI_COMM_WORLD, degree);
+    make_mesh(d, refinements);
+
+    const auto        m = test_tools::steel<dim>();
+    BulkOperator<dim> bulk(d, m, false);
+    bulk.reinit(/*stored=*/false);
+    const TimeScheme scheme(1e-4);
+    bulk.set_time_step(scheme);
+    const Matrix_t &K0  = bulk.newton_matrix();
+    const auto      gmg = create_bulk_multigrid(d, m, scheme, &K0);
+
+    const Vector_t exact = test_tools::cosine_field(d);
+    Vector_t       b, x;
+    d.reinit_owned(b);
+    d.reinit_owned(x);
+    K0.vmult(b, exact);
+
+    const Preconditioner preconditioner{*gmg};
+    SolverControl        control(200, 1e-12 * b.l2_norm());
+    SolverCG<Vector_t>   cg(control);
+    cg.solve(K0, x, b, preconditioner);
+    d.constraints.set_zero(x);
+    x -= exact;
+    test_tools::check(x.linfty_norm() <= 1e-8 * exact.linfty_norm(),
+                      name + ": CG with GMG solves K0 x = b to 1e-8");
+    test_tools::check(control.last_step() <= 30,
+                      name + ": within 30 iterations");
+
+    BulkOperator<dim> cells(d, m, false);
+    cells.reinit(/*stored=*/false, /*store_newton_matrix=*/false);
+    cells.set_time_step(scheme);
+    check_cells_as_stored(d, bulk, cells, exact, b, name);
+    check_matrix_free(d, m, scheme, cells, exact, b, name);
     return control.last_step();
   }
 
@@ -191,7 +232,7 @@ namespace
     const std::string name =
       std::to_string(dim) + "D Q" + std::to_string(degree);
     const unsigned int coarse = solve<dim>(degree, 1, name + ", 1 refinement");
-    const unsigned int fine = solve<dim>(degree, 2, name + ", 2 refinements");
+    const unsigned int fine   = solve<dim>(degree, 2, name + ", 2 refinements");
     test_tools::check(3 * fine <= 4 * coarse + 6,
                       name + ": the finer mesh takes at most 4/3 the "
                              "iterations + 2");
@@ -211,20 +252,20 @@ namespace
       all.push_back("Output/Directory=output-" + name + "-" + directory);
       return test_tools::run<dim>(test_tools::scene(prm), all);
     };
-    const auto reference = with(
-      {"Solver/Contact solver=condensed", "Solver/Linear solver=direct"},
-      "condensed");
-    const auto &a = reference->time_series();
+    const auto reference =
+      with({"Solver/Contact solver=condensed", "Solver/Linear solver=direct"},
+           "condensed");
+    const auto                  &a = reference->time_series();
     std::vector<StepRecord<dim>> matrix_free_series;
     for (const std::string preconditioner : {"GMG", "matrix-free GMG"})
       {
-        const bool matrix_free = preconditioner != "GMG";
-        const auto gmg = with({"Solver/Contact solver=assembled",
-                               "Solver/Linear solver=iterative",
-                               "Solver/Preconditioner=" + preconditioner},
+        const bool        matrix_free = preconditioner != "GMG";
+        const auto        gmg         = with({"Solver/Contact solver=assembled",
+                                              "Solver/Linear solver=iterative",
+                                              "Solver/Preconditioner=" + preconditioner},
                               matrix_free ? "matrix-free" : "gmg");
-        const auto        &b    = gmg->time_series();
-        const std::string  what = name + ", " + preconditioner;
+        const auto       &b           = gmg->time_series();
+        const std::string what        = name + ", " + preconditioner;
         test_tools::check(a.size() == b.size(),
                           what + ": same number of steps");
         if (a.size() == b.size())
@@ -235,10 +276,10 @@ namespace
         test_tools::check(table.find("GMG of K0") != std::string::npos &&
                             table.find("AMG of K0") == std::string::npos,
                           what + ": the GMG served, not the AMG");
-        test_tools::check((table.find("bulk matrix K0") ==
-                           std::string::npos) == matrix_free,
-                          what + (matrix_free ? ": K0 not stored" :
-                                                ": K0 stored"));
+        test_tools::check((table.find("bulk matrix K0") == std::string::npos) ==
+                            matrix_free,
+                          what +
+                            (matrix_free ? ": K0 not stored" : ": K0 stored"));
         if (matrix_free)
           matrix_free_series = b;
       }
@@ -267,10 +308,11 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  check_preconditioner<2>(1);
-  check_preconditioner<2>(2);
-  check_preconditioner<3>(1);
-  check_preconditioner<3>(2);
+  test_tools::for_each_element({{2, 1}, {2, 2}, {3, 1}, {3, 2}},
+                               [](const auto dim, const unsigned int degree) {
+                                 check_preconditioner<decltype(dim)::value>(
+                                   degree);
+                               });
 
   // The scenes' first quarter second: the load comes in, contact and
   // friction start, the adaptive mesh changes.

@@ -74,30 +74,43 @@ namespace
     return true;
   }
 
-  template <int dim>
+  /** The largest difference of two entries (of all, as the symmetric
+   *  tensors store each entry once). */
+  template <int rank, int dim>
   double
-  max_difference(const SymmetricTensor<4, dim> &A,
-                 const SymmetricTensor<4, dim> &B)
+  max_difference(const SymmetricTensor<rank, dim> &A,
+                 const SymmetricTensor<rank, dim> &B)
   {
     double d = 0;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = 0; j < dim; ++j)
-        for (unsigned int k = 0; k < dim; ++k)
-          for (unsigned int l = 0; l < dim; ++l)
-            d = std::max(d, std::abs(A[i][j][k][l] - B[i][j][k][l]));
+    for (unsigned int i = 0;
+         i < SymmetricTensor<rank, dim>::n_independent_components;
+         ++i)
+      d = std::max(d, std::abs(A.access_raw_entry(i) - B.access_raw_entry(i)));
     return d;
   }
 
+
+  /** Positive definite for every valid Poisson ratio (-1, 1/2). */
   template <int dim>
-  double
-  max_difference(const SymmetricTensor<2, dim> &A,
-                 const SymmetricTensor<2, dim> &B)
+  void
+  test_positive_definite(const std::string &name, const PlaneModel model)
   {
-    double d = 0;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = 0; j < dim; ++j)
-        d = std::max(d, std::abs(A[i][j] - B[i][j]));
-    return d;
+    double smallest = 1e300;
+    for (const double kappa : {-0.9, -0.5, 0., 0.3, 0.45, 0.499})
+      {
+        const KelvinVoigtMaterial<dim> m(
+          material_parameters(1e11, kappa, model));
+        smallest = std::min(smallest, eigenvalues(m.elasticity())[0] / 1e11);
+      }
+    check(smallest > 0,
+          name + ": positive definite for kappa in {-0.9, ..., 0.499}");
+    if (model == PlaneModel::plane_strain)
+      {
+        // kappa = 0.6 is not a material: dim lambda + 2 mu < 0.
+        const KelvinVoigtMaterial<dim> m(material_parameters(1e11, 0.6, model));
+        check(eigenvalues(m.elasticity())[0] < 0,
+              name + ": not positive definite for kappa = 0.6");
+      }
   }
 
 
@@ -145,23 +158,7 @@ namespace
     check(as_expected,
           name + ": eigenvalues 2 mu and " + digits(bulk_eigenvalue, 6));
 
-    // Positive definite for every valid Poisson ratio (-1, 1/2).
-    double smallest = 1e300;
-    for (const double kappa : {-0.9, -0.5, 0., 0.3, 0.45, 0.499})
-      {
-        const KelvinVoigtMaterial<dim> m(
-          material_parameters(1e11, kappa, model));
-        smallest = std::min(smallest, eigenvalues(m.elasticity())[0] / 1e11);
-      }
-    check(smallest > 0,
-          name + ": positive definite for kappa in {-0.9, ..., 0.499}");
-    if (model == PlaneModel::plane_strain)
-      {
-        // kappa = 0.6 is not a material: dim lambda + 2 mu < 0.
-        const KelvinVoigtMaterial<dim> m(material_parameters(1e11, 0.6, model));
-        check(eigenvalues(m.elasticity())[0] < 0,
-              name + ": not positive definite for kappa = 0.6");
-      }
+    test_positive_definite<dim>(name, model);
 
     // Uniaxial strain eps_yy: sigma_yy = M eps, sigma_xx = lambda eps.
     const double            eps = 1e-3;
@@ -192,7 +189,7 @@ namespace
 
   /**
    * Plane stress is the 3D tensor with sigma_zz = 0 eliminated (static
-   * condensation), and uniaxial stress gives E in 3D and in plane stress.
+   * condensation).
    */
   void
   test_plane_stress_is_condensed_3d()
@@ -242,7 +239,16 @@ namespace
             test_tools::close(s2[1][1], -34e-3 / 7, 1e-13) &&
             test_tools::close(s2[0][1], 1e-3, 1e-13),
           "plane stress: sigma = (8/7, -34/7, 1) 1e-3 by hand");
+  }
 
+
+  /**
+   * Uniaxial stress gives E in 3D and in plane stress; in 3D the plane
+   * model is ignored; effective_lambda.
+   */
+  void
+  test_uniaxial_stress()
+  {
     out() << "--- uniaxial stress" << std::endl;
     const double E = 2.6, kappa = 0.3, s = 1e-2;
     {
@@ -398,6 +404,7 @@ main(int argc, char *argv[])
     "plane stress", PlaneModel::plane_stress, 6. / 7., 20. / 7., 26. / 7.);
   test_model<3>("3D", PlaneModel::plane_strain, 1.5, 3.5, 6.5);
   test_plane_stress_is_condensed_3d();
+  test_uniaxial_stress();
   test_viscosity<2>("plane strain", PlaneModel::plane_strain, 0.4);
   test_viscosity<2>("plane stress", PlaneModel::plane_stress, 0.08 / 0.6);
   test_viscosity<3>("3D", PlaneModel::plane_strain, 0.4);

@@ -18,24 +18,43 @@ using test_tools::check;
 
 namespace
 {
-  /** mu = Value: the constant law again, under another name. */
-  class FixedFriction : public FrictionLaw
+  /**
+   * What a law of one coefficient declares and parses: the entry
+   * Law::entry, a number >= 0 (default Law::default_value).
+   */
+  template <class Law, class Interface>
+  class OneCoefficient : public Interface
   {
   public:
     static void
     declare_parameters(ParameterHandler &prm)
     {
-      prm.declare_entry("Value", "0.5", Patterns::Double(0), "mu.");
+      prm.declare_entry(Law::entry,
+                        Law::default_value,
+                        Patterns::Double(0),
+                        Law::documentation);
     }
     void
     parse_parameters(ParameterHandler &prm) override
     {
-      mu = prm.get_double("Value");
+      coefficient = prm.get_double(Law::entry);
     }
+
+  protected:
+    double coefficient = std::stod(Law::default_value);
+  };
+
+
+  /** mu = Value: the constant law again, under another name. */
+  class FixedFriction : public OneCoefficient<FixedFriction, FrictionLaw>
+  {
+  public:
+    static constexpr const char *entry = "Value", *default_value = "0.5",
+                                *documentation = "mu.";
     double
     value(const double) const override
     {
-      return mu;
+      return coefficient;
     }
     double
     derivative(const double) const override
@@ -50,11 +69,8 @@ namespace
     std::string
     description() const override
     {
-      return "mu = " + std::to_string(mu) + " (test law)";
+      return "mu = " + std::to_string(coefficient) + " (test law)";
     }
-
-  private:
-    double mu = 0.5;
   };
   DYNAMIC_CONTACT_REGISTER(FrictionLaw,
                            FixedFriction,
@@ -67,42 +83,31 @@ namespace
    * ResponseLaw. One class for both laws of the foundation.
    */
   template <class Interface>
-  class LinearLaw : public Interface
+  class LinearLaw : public OneCoefficient<LinearLaw<Interface>, Interface>
   {
   public:
-    static void
-    declare_parameters(ParameterHandler &prm)
-    {
-      prm.declare_entry("Coefficient", "5e9", Patterns::Double(0), "c.");
-    }
-    void
-    parse_parameters(ParameterHandler &prm) override
-    {
-      c = prm.get_double("Coefficient");
-    }
+    static constexpr const char *entry = "Coefficient", *default_value = "5e9",
+                                *documentation = "c.";
     double
     value(const double r) const override
     {
-      return c * std::max(r, 0.);
+      return this->coefficient * std::max(r, 0.);
     }
     double
     derivative(const double r) const override
     {
-      return r > 0 ? c : 0.;
+      return r > 0 ? this->coefficient : 0.;
     }
     double
     primitive(const double r) const override
     {
-      return r > 0 ? 0.5 * c * r * r : 0.;
+      return r > 0 ? 0.5 * this->coefficient * r * r : 0.;
     }
     bool
     is_zero() const override
     {
-      return c == 0;
+      return this->coefficient == 0;
     }
-
-  private:
-    double c = 5e9;
   };
   DYNAMIC_CONTACT_REGISTER(NormalLaw,
                            LinearLaw<NormalLaw>,
@@ -172,16 +177,14 @@ namespace
           what + ": " + columns.front() + ", ... agree to " +
             test_tools::digits(tolerance, 1));
   }
-} // namespace
 
 
-int
-main(int argc, char *argv[])
-{
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-
-  // The entries that choose accept the new names (their patterns list
-  // them) and document them.
+  /**
+   * The entries that choose accept the new names (their patterns list
+   * them) and document them.
+   */
+  void
+  check_names()
   {
     ParameterHandler prm;
     RunParameters::declare_parameters(prm, 2);
@@ -210,58 +213,92 @@ main(int argc, char *argv[])
       }
   }
 
-  const std::vector<std::string> columns = {"normal_force",
-                                            "tangential_force",
-                                            "kinetic_energy",
-                                            "elastic_energy",
-                                            "dofs"};
 
-  compare("friction law 'fixed' = 'constant'",
-          series("fixed", {"Friction/Law=fixed", "Friction/Fixed/Value=0.4"}),
-          series("constant",
-                 {"Friction/Law=constant",
-                  "Friction/Constant/Coefficient=0.4"}),
-          columns,
-          0.);
-
-  compare("normal law 'linear' = capped ramp with an unreached cap",
-          series("linear",
-                 {"Foundation/Normal compliance/Law=linear",
-                  "Foundation/Normal compliance/Linear/Coefficient=5e9"}),
-          series("ramp",
-                 {"Foundation/Normal compliance/Capped ramp/Stiffness=5e9",
-                  "Foundation/Normal compliance/Capped ramp/Cap=1e17"}),
-          columns,
-          1e-10);
-
+  /** A run of a new law or strategy (its name, its overrides). */
+  struct Run
   {
-    const auto ramp =
-      series("damping-ramp",
-             {"Foundation/Normal damping/Capped ramp/Coefficient=1e8",
-              "Foundation/Normal damping/Capped ramp/Cap=1e17"});
-    compare("damping law 'linear' = capped ramp with an unreached cap",
-            series("linear-damping",
-                   {"Foundation/Normal damping/Law=linear",
-                    "Foundation/Normal damping/Linear/Coefficient=1e8"}),
-            ramp,
-            columns,
-            1e-10);
-    // The run takes its damping from the law: ten times its coefficient
-    // changes the series.
-    check(test_tools::largest_difference(
-            series("linear-damping-1e9",
-                   {"Foundation/Normal damping/Law=linear",
-                    "Foundation/Normal damping/Linear/Coefficient=1e9"}),
-            ramp) > 1e-6,
-          "damping law 'linear': its coefficient acts");
-  }
+    std::string              name;
+    std::vector<std::string> overrides;
+  };
 
-  compare("strategy 'everywhere' (levels 0 to 1) = Global refinements = 1",
-          series("everywhere",
-                 {"Mesh refinement/Strategy=everywhere",
-                  "Mesh refinement/Minimum level=0",
-                  "Mesh refinement/Maximum level=1"}),
-          series("global", {"Geometry/Global refinements=1"}),
-          columns,
-          1e-10);
+  /**
+   * The new law's run, the built-in's it must equal (to the tolerance);
+   * if @p acting names a run, it must differ from the built-in's.
+   */
+  struct Comparison
+  {
+    std::string what;
+    Run         new_law, built_in;
+    double      tolerance;
+    Run         acting;
+    std::string acting_what;
+  };
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check_names();
+
+  const std::vector<std::string> columns     = {"normal_force",
+                                                "tangential_force",
+                                                "kinetic_energy",
+                                                "elastic_energy",
+                                                "dofs"};
+  const std::vector<Comparison>  comparisons = {
+     {"friction law 'fixed' = 'constant'",
+      {"fixed", {"Friction/Law=fixed", "Friction/Fixed/Value=0.4"}},
+      {"constant",
+       {"Friction/Law=constant", "Friction/Constant/Coefficient=0.4"}},
+      0.,
+      {},
+      ""},
+     {"normal law 'linear' = capped ramp with an unreached cap",
+      {"linear",
+       {"Foundation/Normal compliance/Law=linear",
+        "Foundation/Normal compliance/Linear/Coefficient=5e9"}},
+      {"ramp",
+       {"Foundation/Normal compliance/Capped ramp/Stiffness=5e9",
+        "Foundation/Normal compliance/Capped ramp/Cap=1e17"}},
+      1e-10,
+      {},
+      ""},
+     // The run takes its damping from the law: ten times its coefficient
+     // changes the series.
+     {"damping law 'linear' = capped ramp with an unreached cap",
+      {"linear-damping",
+       {"Foundation/Normal damping/Law=linear",
+        "Foundation/Normal damping/Linear/Coefficient=1e8"}},
+      {"damping-ramp",
+       {"Foundation/Normal damping/Capped ramp/Coefficient=1e8",
+        "Foundation/Normal damping/Capped ramp/Cap=1e17"}},
+      1e-10,
+      {"linear-damping-1e9",
+       {"Foundation/Normal damping/Law=linear",
+        "Foundation/Normal damping/Linear/Coefficient=1e9"}},
+      "damping law 'linear': its coefficient acts"},
+     {"strategy 'everywhere' (levels 0 to 1) = Global refinements = 1",
+      {"everywhere",
+       {"Mesh refinement/Strategy=everywhere",
+        "Mesh refinement/Minimum level=0",
+        "Mesh refinement/Maximum level=1"}},
+      {"global", {"Geometry/Global refinements=1"}},
+      1e-10,
+      {},
+      ""}};
+  for (const Comparison &x : comparisons)
+    {
+      const auto built_in = series(x.built_in.name, x.built_in.overrides);
+      compare(x.what,
+              series(x.new_law.name, x.new_law.overrides),
+              built_in,
+              columns,
+              x.tolerance);
+      if (!x.acting.name.empty())
+        check(test_tools::largest_difference(
+                series(x.acting.name, x.acting.overrides), built_in) > 1e-6,
+              x.acting_what);
+    }
 }

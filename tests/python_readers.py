@@ -40,6 +40,18 @@ def contact_text(with_comment, with_time, time):
     return "\n".join(lines) + "\n"
 
 
+def check_error(read, path, what, words=(), naming="",
+                error_type=ValueError):
+    """read(path) raises @p error_type, its message holding every one of
+    @p words: one line, "<what><naming>" (just <what> if nothing is
+    raised)."""
+    try:
+        read(path)
+        check(False, what)
+    except error_type as error:
+        check(all(w in str(error) for w in words), what + naming)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     parser.add_argument("--work-dir", required=True)
@@ -96,34 +108,25 @@ def main():
     # Errors name the file.
     bad = os.path.join(args.work_dir, "bad.csv")
     write(bad, "a,b\n1,2\n3\n")
-    try:
-        read_table(bad)
-        check(False, "a short line is an error")
-    except ValueError as error:
-        check("bad.csv" in str(error) and "line 3" in str(error),
-              "a short line is an error naming the file and the line")
+    check_error(read_table, bad, "a short line is an error",
+                ("bad.csv", "line 3"), " naming the file and the line")
     partial = os.path.join(args.work_dir, "partial.csv")
     write(partial, "step,time\n0,0\n1,0.5\n2,1.")
     check(read_table(partial)["time"].tolist() == [0.0, 0.5],
           "a last row without its line end (being written) is left out")
     empty = os.path.join(args.work_dir, "empty.csv")
     write(empty, "# only a comment\n")
-    try:
-        read_time_series(empty)
-        check(False, "a file without a header is an error")
-    except ValueError as error:
-        check("empty.csv" in str(error),
-              "a file without a header is an error naming the file")
+    check_error(read_time_series, empty,
+                "a file without a header is an error", ("empty.csv",),
+                " naming the file")
     header_only = os.path.join(args.work_dir, "header_only.csv")
     write(header_only, "x,y,normal_pressure\n")
     c = read_contact(header_only)
     check(len(c) == 0 and c.columns == ["x", "y", "normal_pressure"],
           "a header without rows: empty columns")
-    try:
-        Run(os.path.join(args.work_dir, "missing"))
-        check(False, "a missing directory is an error")
-    except FileNotFoundError:
-        check(True, "a missing directory is an error")
+    check_error(Run, os.path.join(args.work_dir, "missing"),
+                "a missing directory is an error",
+                error_type=FileNotFoundError)
 
     # Parameter files.
     prm = os.path.join(args.work_dir, "scene.prm")
@@ -140,12 +143,8 @@ def main():
                                   "Time/End time=1", "Output/Output every=3"],
           "test_overrides: every '# test-overrides:' line, split at '|'")
     write(prm, "subsection Geometry\n  set A = 1\n")
-    try:
-        read_prm(prm)
-        check(False, "an unclosed subsection is an error")
-    except ValueError as error:
-        check("scene.prm" in str(error) and "Geometry" in str(error),
-              "an unclosed subsection is an error naming the file")
+    check_error(read_prm, prm, "an unclosed subsection is an error",
+                ("scene.prm", "Geometry"), " naming the file")
 
     check(pick_steps([0, 1, 2, 3], 8) == [1, 2, 3] and
           pick_steps([0], 8) == [0] and

@@ -107,15 +107,24 @@ def von_mises(s, szz):
                    + 3 * (xy ** 2 + xz ** 2 + yz ** 2))
 
 
-def check_solution(directory, pvtu, time, step, facts):
+def nonempty_pieces(directory, pvtu, time, step, facts, kind):
+    """(name, mesh) of each piece of a .pvtu record that has points, read
+    one after the other (read_piece); the number of pieces and the field
+    names of every piece go into facts as '<kind> pieces' and '<kind>
+    fields'."""
     names = pieces_of(directory, pvtu)
-    facts.setdefault("solution pieces", set()).add(len(names))
+    facts.setdefault(kind + " pieces", set()).add(len(names))
     for name in names:
-        path = os.path.join(directory, name)
-        mesh, fields = read_piece(path, time, step, facts)
-        facts.setdefault("solution fields", set()).update(fields)
-        if mesh is None:
-            continue
+        mesh, fields = read_piece(os.path.join(directory, name), time, step,
+                                  facts)
+        facts.setdefault(kind + " fields", set()).update(fields)
+        if mesh is not None:
+            yield name, mesh
+
+
+def check_solution(directory, pvtu, time, step, facts):
+    for name, mesh in nonempty_pieces(directory, pvtu, time, step, facts,
+                                      "solution"):
         stress = field(mesh, "stress")
         facts.setdefault("stress components", set()).add(stress.shape[1])
         check(stress.shape[1] == 9, "%s: the stress has 9 components" % name)
@@ -151,15 +160,9 @@ def node_of(row):
 
 
 def check_surface(directory, pvtu, time, step, facts):
-    names = pieces_of(directory, pvtu)
-    facts.setdefault("surface pieces", set()).add(len(names))
     points, values = [], {}
-    for name in names:
-        path = os.path.join(directory, name)
-        mesh, fields = read_piece(path, time, step, facts)
-        facts.setdefault("surface fields", set()).update(fields)
-        if mesh is None:
-            continue
+    for _, mesh in nonempty_pieces(directory, pvtu, time, step, facts,
+                                   "surface"):
         points.append(np.asarray(mesh.points, dtype=np.float64))
         for key in mesh.point_data:
             values.setdefault(key, []).append(field(mesh, key))

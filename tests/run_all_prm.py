@@ -35,6 +35,11 @@ from dynamic_contact.output import is_completed
 
 from script_checks import program_arguments
 
+# benchmarks/benchlib.py: the program's command line, --print-parameters.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.realpath(__file__))), "benchmarks"))
+import benchlib  # noqa: E402
+
 # Files of prm/ that are too large to run as they are: smaller meshes, the
 # same physics. (A new file can say this itself: '# test-overrides:'.)
 TABLE = {
@@ -74,28 +79,13 @@ def environment():
 
 def printed_parameter(program, prm, overrides, entry):
     """The value of one entry as `--print-parameters` gives it."""
-    command = [program, prm, "--print-parameters"]
-    for o in overrides:
-        command += ["--set", o]
-    result = subprocess.run(command, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True,
-                            env=environment())
-    if result.returncode != 0:
+    result, values = benchlib.print_parameters(program, prm, overrides)
+    if values is None:
         raise RuntimeError("--print-parameters failed: "
                            + result.stdout.strip()[-500:])
-    *sections, name = entry.split("/")
-    stack = []
-    for line in result.stdout.splitlines():
-        line = line.split("#", 1)[0].strip()
-        if line.startswith("subsection "):
-            stack.append(line[len("subsection "):].strip())
-        elif line == "end":
-            stack.pop()
-        elif line.startswith("set ") and "=" in line and stack == sections:
-            key, value = line[4:].split("=", 1)
-            if key.strip() == name:
-                return value.strip()
-    raise RuntimeError("--print-parameters does not print " + entry)
+    if entry not in values:
+        raise RuntimeError("--print-parameters does not print " + entry)
+    return values[entry]
 
 
 def overrides_of(program, root, relative, quick, steps):
@@ -129,9 +119,9 @@ def run_one(program, root, relative, work_dir, quick, steps):
         overrides = overrides_of(program, root, relative, quick, steps)
     except (OSError, ValueError, RuntimeError) as error:
         return relative, "FAILED: %s" % error, ""
-    command = [program, os.path.join(root, relative)]
-    for o in overrides + ["Output/Directory=" + directory]:
-        command += ["--set", o]
+    command = benchlib.program_command(
+        program, os.path.join(root, relative),
+        overrides + ["Output/Directory=" + directory])
     result = subprocess.run(command, stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True,
                             env=environment(), cwd=work_dir)

@@ -5,10 +5,16 @@
 // "output" that a test writes (rank 0 only) with NAME.output; the
 // simulator's progress on stdout is then discarded.
 
+#include <deal.II/base/function_lib.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/numerics/vector_tools_interpolate.h>
+
+#include <dynamic_contact/bulk/discretization.h>
 
 #include <dynamic_contact/laws/material.h>
 #include <dynamic_contact/parameters/parameters.h>
@@ -24,10 +30,86 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace test_tools
 {
+  /**
+   * The main() of a test of named steps: MPI (one thread per process), then
+   * each of @p tests in turn.
+   */
+  inline int
+  run_tests(int                                       argc,
+            char                                     *argv[],
+            const std::vector<std::function<void()>> &tests)
+  {
+    dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    for (const auto &test : tests)
+      test();
+    return 0;
+  }
+
+
+  /** The finite element of a check: its dimension and degree. */
+  struct Element
+  {
+    int          dim;
+    unsigned int degree;
+  };
+
+  /**
+   * @p f(std::integral_constant<int, dim>(), degree) for each of
+   * @p elements in turn (dim 2 or 3).
+   */
+  template <typename F>
+  void
+  for_each_element(const std::vector<Element> &elements, const F &f)
+  {
+    for (const Element &e : elements)
+      if (e.dim == 2)
+        f(std::integral_constant<int, 2>(), e.degree);
+      else
+        f(std::integral_constant<int, 3>(), e.degree);
+  }
+
+
+  /**
+   * The box (0, 2) x (0, 1) (x (0, 1)) of @p n cells in each direction, its
+   * boundary ids by face (0 on the left, 2 at the bottom).
+   */
+  template <int dim>
+  void
+  make_box(dealii::Triangulation<dim> &triangulation, const unsigned int n)
+  {
+    dealii::GridGenerator::subdivided_hyper_rectangle(
+      triangulation,
+      std::vector<unsigned int>(dim, n),
+      dealii::Point<dim>(),
+      dim == 2 ? dealii::Point<dim>(2., 1.) : dealii::Point<dim>(2., 1., 1.),
+      true);
+  }
+
+  /** Flag the locally owned cells of the left half (x < 1) for refinement. */
+  template <int dim>
+  void
+  flag_left_half(dealii::Triangulation<dim> &triangulation)
+  {
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->center()[0] < 1.)
+        cell->set_refine_flag();
+  }
+
+  /** Refine the cells of the left half (x < 1): hanging nodes. */
+  template <int dim>
+  void
+  refine_left_half(dealii::Triangulation<dim> &triangulation)
+  {
+    flag_left_half(triangulation);
+    triangulation.execute_coarsening_and_refinement();
+  }
+
+
   /** The Mandel basis of symmetric tensors (orthonormal for ':'). */
   template <int dim>
   std::vector<dealii::SymmetricTensor<2, dim>>
@@ -120,6 +202,31 @@ namespace test_tools
       if (!trim(line).empty())
         rows.push_back(split(line, ','));
     return rows;
+  }
+
+  /**
+   * Functions::CosineFunction (a smooth field) interpolated on @p d, in
+   * master form (the constrained entries zero).
+   */
+  template <int dim>
+  DynamicContact::Vector_t
+  cosine_field(const DynamicContact::Discretization<dim> &d)
+  {
+    DynamicContact::Vector_t v;
+    d.reinit_owned(v);
+    dealii::VectorTools::interpolate(
+      d.mapping, d.dof_handler, dealii::Functions::CosineFunction<dim>(dim), v);
+    d.constraints.set_zero(v);
+    return v;
+  }
+
+
+  /** Whether the first row of a CSV file is @p columns (comma-separated). */
+  inline bool
+  has_columns(const std::vector<std::vector<std::string>> &rows,
+              const std::string                           &columns)
+  {
+    return !rows.empty() && rows.front() == split(columns, ',');
   }
 
   /** A scene file of the repository's prm/ directory. */
@@ -267,8 +374,10 @@ namespace test_tools
     int         level = -1;
     try
       {
-        const auto cell = dealii::GridTools::find_active_cell_around_point(
-          d.mapping, d.triangulation, p);
+        const auto cell =
+          dealii::GridTools::find_active_cell_around_point(d.mapping,
+                                                           d.triangulation,
+                                                           p);
         if (cell.first->is_locally_owned())
           level = cell.first->level();
       }
@@ -287,9 +396,9 @@ namespace test_tools
   steel(const double viscosity_lambda = 0, const double viscosity_mu = 0)
   {
     DynamicContact::Parameters::Material m;
-    m.density          = 7850;
-    m.young_modulus    = 2e11;
-    m.poisson_ratio    = 0.3;
+    m.density       = 7850;
+    m.young_modulus = 2e11;
+    m.poisson_ratio = 0.3;
     m.plane_model =
       DynamicContact::Parameters::Material::PlaneModel::plane_stress;
     m.viscosity_lambda = viscosity_lambda;

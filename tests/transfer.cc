@@ -3,10 +3,6 @@
 // distributed mesh with hanging nodes and clamped boundaries (fields in
 // master form).
 
-#include <deal.II/base/function_lib.h>
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/numerics/vector_tools.h>
-
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/mesh/mesh_adaptation.h>
 
@@ -19,31 +15,18 @@ void
 check(const unsigned int degree)
 {
   Discretization<dim> d(MPI_COMM_WORLD, degree);
-  GridGenerator::subdivided_hyper_rectangle(d.triangulation,
-                                            std::vector<unsigned int>(dim, 4),
-                                            Point<dim>(),
-                                            dim == 2 ? Point<dim>(2., 1.) :
-                                                       Point<dim>(2., 1., 1.),
-                                            true);
+  test_tools::make_box(d.triangulation, 4);
   d.triangulation.refine_global(1);
   Parameters::BoundaryConditions bc;
   bc.clamped = {0};
   d.setup_dofs(bc);
 
   // A smooth field in master form.
-  Vector_t original;
-  d.reinit_owned(original);
-  VectorTools::interpolate(d.mapping,
-                           d.dof_handler,
-                           Functions::CosineFunction<dim>(dim),
-                           original);
-  d.constraints.set_zero(original);
-  Vector_t field = original;
+  const Vector_t original = test_tools::cosine_field(d);
+  Vector_t       field    = original;
 
   // Refine the cells of the left half (hanging nodes appear) ...
-  for (const auto &cell : d.triangulation.active_cell_iterators())
-    if (cell->is_locally_owned() && cell->center()[0] < 1.)
-      cell->set_refine_flag();
+  test_tools::flag_left_half(d.triangulation);
   refine_and_transfer(d, {&field}, [&]() { d.setup_dofs(bc); });
   test_tools::check(d.triangulation.n_global_active_cells() >
                       (dim == 2 ? 64u : 512u),
@@ -69,7 +52,8 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  check<2>(1);
-  check<2>(2);
-  check<3>(1);
+  test_tools::for_each_element({{2, 1}, {2, 2}, {3, 1}},
+                               [](const auto dim, const unsigned int degree) {
+                                 check<decltype(dim)::value>(degree);
+                               });
 }

@@ -23,15 +23,14 @@ process taking part). Against the SI run on as many processes:
 Prints one line per check and exits with 1 if any failed.
 """
 
-import csv
 import glob
 import os
-import shlex
 import subprocess
 import sys
 from fractions import Fraction
 
-from script_checks import check, finish, program_arguments
+from script_checks import (check, finish, program_arguments, read_csv,
+                           run_scene)
 
 # The scenes (unit-free overrides only: seconds are the time unit of all
 # three systems, counts and switches have no unit).
@@ -48,8 +47,9 @@ SCENES = {
                                  ["Geometry/Repetitions=32, 8",
                                   "Time/End time=0.5"]),
 }
-COMMON = ["Output/Write VTU=false", "Output/Print timings=false",
-          "Output/Progress every=0", "Output/Output every=8",
+# The overrides of every run (besides no timings and no progress lines,
+# which script_checks.run_scene sets).
+COMMON = ["Output/Write VTU=false", "Output/Output every=8",
           "Solver/Minimum DoFs per process=0"]
 SYSTEMS = ["SI", "mm-t-s", "in-lbf-s"]
 
@@ -112,16 +112,6 @@ def to_si(system, dimension, dim, per_length=False):
     return float(length ** l * mass ** m)
 
 
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def environment():
-    return dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-
-
 def dimension_of(prm):
     with open(prm) as f:
         for line in f:
@@ -179,26 +169,6 @@ def compare_columns(label, si_rows, rows, system, dim, table, per_length,
     return worst
 
 
-def run(program, mpiexec, processes, prm, out, overrides):
-    command = []
-    if processes > 1:
-        command = shlex.split(mpiexec) + ["-np", str(processes)]
-    command += [program, "--set", "Output/Directory=" + out]
-    for o in COMMON + overrides:
-        command += ["--set", o]
-    command.append(prm)
-    result = subprocess.run(command, env=environment(),
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            universal_newlines=True)
-    status = ""
-    if os.path.exists(os.path.join(out, "run_status")):
-        with open(os.path.join(out, "run_status")) as f:
-            status = f.read().strip()
-    if result.returncode != 0 or status != "completed":
-        sys.stderr.write(result.stdout[-3000:])
-    return result.returncode == 0 and status == "completed"
-
-
 def well_posedness(out):
     """The lines of the well-posedness report in out/log.txt ([]: none)."""
     with open(os.path.join(out, "log.txt")) as f:
@@ -238,8 +208,8 @@ def main():
             for system in SYSTEMS:
                 out = os.path.join(args.work_dir, "%s-%s-np%d"
                                    % (name, system, processes))
-                ok = run(args.program, args.mpiexec, processes,
-                         files[system], out, overrides)
+                ok = run_scene(args.program, files[system], out,
+                               COMMON + overrides, processes, args.mpiexec)
                 check(ok, "%s in %s on %d process(es): completed"
                       % (name, system, processes))
                 outputs[system] = out if ok else None

@@ -288,6 +288,16 @@ namespace
 
 
   void
+  test_viscous_coercivity()
+  {
+    out() << "--- viscous coercivity" << std::endl;
+    test_coercivity<2>(PlaneModel::plane_strain, "plane strain");
+    test_coercivity<2>(PlaneModel::plane_stress, "plane stress");
+    test_coercivity<3>(PlaneModel::plane_strain, "3D");
+  }
+
+
+  void
   test_foundation_bound()
   {
     out() << "--- the foundation's bound" << std::endl;
@@ -340,15 +350,13 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  test_closed_form();
-  test_laws();
-  test_elastic_and_unbounded();
-  test_units();
-  out() << "--- viscous coercivity" << std::endl;
-  test_coercivity<2>(PlaneModel::plane_strain, "plane strain");
-  test_coercivity<2>(PlaneModel::plane_stress, "plane stress");
-  test_coercivity<3>(PlaneModel::plane_strain, "3D");
-  test_foundation_bound();
-  test_scenes();
+  return test_tools::run_tests(argc,
+                               argv,
+                               {test_closed_form,
+                                test_laws,
+                                test_elastic_and_unbounded,
+                                test_units,
+                                test_viscous_coercivity,
+                                test_foundation_bound,
+                                test_scenes});
 }

@@ -109,7 +109,17 @@ def _finish(ax, drawn, ylabel):
         ax.legend(fontsize=8)
 
 
-def _save(fig, out_dir, name, dpi):
+def _figure(rows, height):
+    """A column of `rows` panels, 8 inches wide, sharing the x axis."""
+    return _pyplot().subplots(rows, 1, figsize=(8, height), sharex=True,
+                              constrained_layout=True)
+
+
+def _save(fig, axes, xlabel, heading, run, out_dir, name, dpi):
+    """The x label below the last panel, the heading with the run's title
+    above them; the figure written to out_dir/name and closed."""
+    axes[-1].set_xlabel(xlabel)
+    fig.suptitle(heading + _title(run), fontsize=11)
     path = os.path.join(out_dir, name)
     fig.savefig(path, dpi=dpi)
     _pyplot().close(fig)
@@ -121,10 +131,8 @@ def _save(fig, out_dir, name, dpi):
 # --------------------------------------------------------------------------
 
 def plot_forces(run, out_dir, notes, dpi):
-    plt = _pyplot()
     ts = run.time_series
-    fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True,
-                             constrained_layout=True)
+    fig, axes = _figure(2, 7)
     drawn = _plot_columns(axes[0], ts, ["normal_force", "tangential_force"],
                           notes, "contact forces",
                           {"normal_force": "normal force (sum of m_i (p+q))",
@@ -142,16 +150,13 @@ def plot_forces(run, out_dir, notes, dpi):
     _finish(axes[1], drawn, "force (N, 2D: N/m)")
     axes[1].set_title("applied load (body force + traction on Gamma_2)",
                       fontsize=10)
-    axes[1].set_xlabel("time (s)")
-    fig.suptitle("forces: " + _title(run), fontsize=11)
-    return _save(fig, out_dir, "forces.png", dpi)
+    return _save(fig, axes, "time (s)", "forces: ", run, out_dir,
+                 "forces.png", dpi)
 
 
 def plot_energies(run, out_dir, notes, dpi):
-    plt = _pyplot()
     ts = run.time_series
-    fig, axes = plt.subplots(4, 1, figsize=(8, 12), sharex=True,
-                             constrained_layout=True)
+    fig, axes = _figure(4, 12)
     drawn = _plot_columns(axes[0], ts, ["kinetic_energy", "elastic_energy",
                                         "foundation_energy", "total_energy"],
                           notes, "energies")
@@ -203,18 +208,15 @@ def plot_energies(run, out_dir, notes, dpi):
                        label="1e-8 (the bound the run checks)")
         _finish(ax, True, ylabel)
         ax.set_title(title + " (logarithmic)", fontsize=10)
-    axes[3].set_xlabel("time (s)")
-    fig.suptitle("energies: " + _title(run), fontsize=11)
-    return _save(fig, out_dir, "energies.png", dpi)
+    return _save(fig, axes, "time (s)", "energies: ", run, out_dir,
+                 "energies.png", dpi)
 
 
 def plot_iterations(run, out_dir, notes, dpi):
-    plt = _pyplot()
     ts = run.time_series
     after = _steps_after_zero(ts)
     steps = ts["step"][after] if "step" in ts else np.nonzero(after)[0]
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True,
-                             constrained_layout=True)
+    fig, axes = _figure(3, 8.5)
 
     def draw(ax, names, labels, title, ylabel, skip_zero=False):
         drawn = []
@@ -263,9 +265,8 @@ def plot_iterations(run, out_dir, notes, dpi):
     else:
         notes("iterations: no time_step column, panel left empty")
         _note_panel(ax, "time step: not in time_series.csv")
-    axes[2].set_xlabel("step")
-    fig.suptitle("iterations: " + _title(run), fontsize=11)
-    return _save(fig, out_dir, "iterations.png", dpi)
+    return _save(fig, axes, "step", "iterations: ", run, out_dir,
+                 "iterations.png", dpi)
 
 
 # --------------------------------------------------------------------------
@@ -319,8 +320,7 @@ def plot_profiles(run, out_dir, notes, dpi, max_profiles=8):
                                     ", ".join(str(s) for s in steps)))
     coord = _position(tables)
     three_d = all(t.is_numeric("z") for t in tables)
-    fig, axes = plt.subplots(4, 1, figsize=(8, 11), sharex=True,
-                             constrained_layout=True)
+    fig, axes = _figure(4, 11)
     colors = plt.get_cmap("viridis")(np.linspace(0, 0.9, len(steps)))
     panels = [
         ("normal_pressure", "normal pressure p+q (Pa)",
@@ -370,12 +370,11 @@ def plot_profiles(run, out_dir, notes, dpi, max_profiles=8):
             if ax.get_legend_handles_labels()[0]:
                 ax.legend(fontsize=7, ncol=2)
                 break
-    axes[-1].set_xlabel("%s (m)%s" % (coord or "position",
-                                     ", every node of the surface"
-                                     if three_d else ""))
-    fig.suptitle("Gamma_3 at the contact CSV times: " + _title(run),
-                 fontsize=11)
-    return _save(fig, out_dir, "gamma3_profiles.png", dpi)
+    return _save(fig, axes, "%s (m)%s" % (coord or "position",
+                                          ", every node of the surface"
+                                          if three_d else ""),
+                 "Gamma_3 at the contact CSV times: ", run, out_dir,
+                 "gamma3_profiles.png", dpi)
 
 
 # --------------------------------------------------------------------------
