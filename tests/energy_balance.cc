@@ -10,7 +10,7 @@
 // the Bathe scheme dissipation_inertia books the scheme's whole numerical
 // dissipation, the energy jump of the extrapolation to the second
 // sub-step's start included (dissipation_elastic is 0): it must be >= 0
-// too, and at work. With Time/Spectral radius at infinity = rho_inf > 0
+// too, and at work. With Time/Bathe/Spectral radius at infinity = rho_inf > 0
 // the second sub-step is a theta-step (1/2 < theta < 1) whose numerical
 // dissipation (theta - 1/2)(...) is booked in dissipation_inertia as well,
 // and whose compliance force (2 theta - 1) p(u_n) + 2 (1 - theta) DG
@@ -96,16 +96,18 @@ namespace
                             ", Spectral radius at infinity = " + rho :
                             std::string())
                       << std::endl;
-    auto simulator = test_tools::run<2>(
-      test_tools::scene("barboteu_danan_2016_small.prm"),
-      {"Output/Directory=output-energy-" +
-         std::string(scheme == "backward Euler" ? "euler" : scheme) +
-         (rho_inf > 0 ? "-" + rho : std::string()),
-       "Time/Scheme=" + scheme,
-       "Time/Spectral radius at infinity=" + std::to_string(rho_inf),
-       "Material/Viscosity lambda=1e7",
-       "Material/Viscosity mu=5e6",
-       "Foundation/Initial gap/Function expression=0.01*x"});
+    std::vector<std::string> settings = {
+      "Output/Directory=output-energy-" +
+        std::string(scheme == "backward Euler" ? "euler" : scheme) +
+        (rho_inf > 0 ? "-" + rho : std::string()),
+      "Material/Viscosity lambda=1e7",
+      "Material/Viscosity mu=5e6",
+      "Foundation/Initial gap/Function expression=0.01*x"};
+    for (const std::string &s : test_tools::scheme_settings(scheme, rho_inf))
+      settings.push_back(s);
+    auto simulator =
+      test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
+                         settings);
 
     // Which terms the scheme has: all for backward Euler; for the
     // trapezoidal rule not the first two nor the compliance term; for the
@@ -141,7 +143,7 @@ namespace
   }
 
 
-  /** Time/Scheme and Time/Spectral radius at infinity of each run. */
+  /** Time/Scheme and the spectral radius at infinity of each run. */
   const std::vector<std::pair<std::string, double>> schemes = {
     {"backward Euler", 0},
     {"trapezoidal", 0},

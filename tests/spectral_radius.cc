@@ -1,6 +1,6 @@
 // The high-frequency dissipation of Time/Scheme = bathe and sdirk, measured:
-// with Time/Spectral radius at infinity = rho_inf, a mode far beyond the
-// resolution (omega k -> infinity) is multiplied by rho_inf in a step
+// with Time/<Scheme>/Spectral radius at infinity = rho_inf, a mode far beyond
+// the resolution (omega k -> infinity) is multiplied by rho_inf in a step
 // (doc/theory.md section 2.4), and in the energy norm the amplification
 // of every mode has equal singular values, so that the energy of the
 // free, undamped body falls by exactly rho_inf^2 a step when every mode has
@@ -35,23 +35,24 @@ energies(const std::string &scheme,
          const double       k,
          const std::string &name)
 {
-  auto simulator = test_tools::run<2>(
-    test_tools::scene("barboteu_danan_2016_small.prm"),
-    {"Output/Directory=output-spectral-radius-" + name,
-     "Output/Output times=",
-     "Geometry/Repetitions=8, 2",
-     "Boundary conditions/Traction function/Function constants=F=0, psi=50, "
-     "c=2",
-     "Foundation/Initial gap/Function expression=1",
-     "Foundation/Normal damping/Capped ramp/Coefficient=0",
-     "Friction/Law=none",
-     "Initial conditions/Displacement/Function expression=0; "
-     "1e-3*sin(pi*x/2)",
-     "Time/Scheme=" + scheme,
-     "Time/" + PluginRegistry<StepScheme>::subsection(scheme) +
-       "/Spectral radius at infinity=" + std::to_string(rho_inf),
-     "Time/Time step=" + std::to_string(k),
-     "Time/End time=" + std::to_string(4 * k)});
+  std::vector<std::string> settings = {
+    "Output/Directory=output-spectral-radius-" + name,
+    "Output/Output times=",
+    "Geometry/Repetitions=8, 2",
+    "Boundary conditions/Traction function/Function constants=F=0, psi=50, "
+    "c=2",
+    "Foundation/Initial gap/Function expression=1",
+    "Foundation/Normal damping/Capped ramp/Coefficient=0",
+    "Friction/Law=none",
+    "Initial conditions/Displacement/Function expression=0; "
+    "1e-3*sin(pi*x/2)",
+    "Time/Time step=" + std::to_string(k),
+    "Time/End time=" + std::to_string(4 * k)};
+  const auto scheme_entries = test_tools::scheme_settings(scheme, rho_inf);
+  settings.insert(settings.end(), scheme_entries.begin(), scheme_entries.end());
+  auto simulator =
+    test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
+                       settings);
   Run    r;
   double worst_defect = 0;
   for (const auto &row : simulator->time_series())

@@ -236,6 +236,24 @@ namespace test_tools
     return std::string(SOURCE_DIR) + "/../prm/" + name;
   }
 
+  /**
+   * The settings of Time/Scheme = @p scheme with the spectral radius at
+   * infinity @p rho_inf in the scheme's own subsection (Time/Bathe,
+   * Time/Sdirk) where it is not the default 0.
+   */
+  inline std::vector<std::string>
+  scheme_settings(const std::string &scheme, const double rho_inf)
+  {
+    std::vector<std::string> settings = {"Time/Scheme=" + scheme};
+    if (rho_inf > 0)
+      settings.push_back(
+        "Time/" +
+        DynamicContact::PluginRegistry<DynamicContact::StepScheme>::subsection(
+          scheme) +
+        "/Spectral radius at infinity=" + std::to_string(rho_inf));
+    return settings;
+  }
+
   /** Fail the test with a message (non-zero exit: the harness reports it). */
   inline void
   check(const bool condition, const std::string &what)

@@ -31,13 +31,9 @@ max_error(const std::string &scheme,
       std::to_string(steps),
     "Geometry/Global refinements=4",
     "Finite element/Polynomial degree=2",
-    "Time/Time step=" + std::to_string(0.8 / steps),
-    "Time/Scheme=" + scheme};
-  // The parameter of the scheme's own subsection (Time/Bathe, Time/Sdirk).
-  if (rho_inf > 0)
-    options.push_back(
-      "Time/" + PluginRegistry<StepScheme>::subsection(scheme) +
-      "/Spectral radius at infinity=" + std::to_string(rho_inf));
+    "Time/Time step=" + std::to_string(0.8 / steps)};
+  for (const std::string &s : test_tools::scheme_settings(scheme, rho_inf))
+    options.push_back(s);
   auto simulator =
     test_tools::run<2>(test_tools::scene("manufactured_2d.prm"), options);
   double      error = 0, numerical = 0;
