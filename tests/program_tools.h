@@ -227,8 +227,8 @@ namespace program_tools
     launch.program                   = "python3";
     launch.environment               = {std::string("DYNAMIC_CONTACT=") +
                                         DYNAMIC_CONTACT_EXECUTABLE};
-    std::vector<std::string> command = {std::string(SOURCE_DIR) +
-                                        "/../benchmarks/" + script};
+    std::vector<std::string> command = {std::string(REPOSITORY_DIR) +
+                                        "/benchmarks/" + script};
     command.insert(command.end(), arguments.begin(), arguments.end());
     return execute(command, launch);
   }

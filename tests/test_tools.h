@@ -233,7 +233,7 @@ namespace test_tools
   inline std::string
   scene(const std::string &name)
   {
-    return std::string(SOURCE_DIR) + "/../prm/" + name;
+    return std::string(REPOSITORY_DIR) + "/prm/" + name;
   }
 
   /**

@@ -7,7 +7,7 @@ all). Comments ('#' to the end of the line) and blank lines are skipped,
 lines ending in a backslash continue on the next line.
 
 Besides, test_overrides() gives the `--set` overrides a parameter file asks
-for in the test that runs every prm file (tests/run_all_prm.py), from its
+for in the test that runs every prm file (tests/scenes/run_all_prm.py), from its
 comment lines
 
     # test-overrides: Geometry/Repetitions=8, 2 | Time/Time step=0.05

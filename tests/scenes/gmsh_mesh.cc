@@ -198,7 +198,7 @@ int
 main()
 {
   // No MPI here: the runs under mpiexec must not inherit a singleton's
-  // MPI environment (as in tests/checkpoint_restart.cc).
+  // MPI environment (as in tests/scenes/checkpoint_restart.cc).
   Checks checks;
   for (const auto &s : scenes)
     check_runs(s, checks);

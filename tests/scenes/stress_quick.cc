@@ -32,7 +32,7 @@ main()
   // Every scene of prm/stress/ gave its verdicts.
   unsigned int n_scenes = 0;
   for (const auto &entry :
-       fs::directory_iterator(fs::path(SOURCE_DIR) / ".." / "prm" / "stress"))
+       fs::directory_iterator(fs::path(REPOSITORY_DIR) / "prm" / "stress"))
     n_scenes += (entry.path().extension() == ".prm");
   unsigned int n_completed = 0;
   for (const auto &line : lines_of(o.out))

@@ -1183,7 +1183,7 @@ def main():
     here = os.path.dirname(os.path.realpath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[1])
     parser.add_argument("--work-dir", required=True)
-    parser.add_argument("--source-dir", default=os.path.dirname(here))
+    parser.add_argument("--source-dir", default=os.path.dirname(os.path.dirname(here)))
     parser.add_argument("--program", default=None,
                         help="dynamic-contact: validate the converted "
                         "scenes, run one, compare the converter's defaults "

@@ -36,8 +36,8 @@ from dynamic_contact.output import is_completed
 from script_checks import program_arguments
 
 # benchmarks/benchlib.py: the program's command line, --print-parameters.
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
-    os.path.realpath(__file__))), "benchmarks"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)),
+                                "..", "..", "benchmarks"))
 import benchlib  # noqa: E402
 
 # Files of prm/ that are too large to run as they are: smaller meshes, the

@@ -470,7 +470,7 @@ namespace
   void
   check_parameter_page(Checks &checks, const Run &markdown)
   {
-    const fs::path doc = fs::path(SOURCE_DIR) / ".." / "doc" / "parameters.md";
+    const fs::path doc = fs::path(REPOSITORY_DIR) / "doc" / "parameters.md";
     const bool fresh   = markdown.succeeded() && read_text(doc) == markdown.out;
     test_tools::out()
       << "doc/parameters.md is what --print-parameters=markdown prints: "

@@ -75,6 +75,43 @@ namespace
         return false;
     return true;
   }
+
+  /**
+   * Write VTU = false: no VTU at all, whatever VTU every and Output
+   * times say; the contact CSVs as before.
+   */
+  void
+  check_without_vtu(Checks &checks)
+  {
+    const std::string name = "none";
+    fs::remove_all(name);
+    Launch launch;
+    launch.name       = name;
+    launch.timeout    = 300;
+    const Outcome run = execute(arguments(name,
+                                          {"--set",
+                                           "Output/Write VTU=false",
+                                           "--set",
+                                           "Output/VTU every=1"}),
+                                launch);
+    checks.add(run.succeeded(), "none: the run completes");
+    std::string vtu, csv;
+    for (const auto &f : files_of(name))
+      {
+        if (f.find("vtu") != std::string::npos ||
+            f.find(".pvd") != std::string::npos)
+          vtu += " " + f;
+        if (f.rfind("contact_", 0) == 0)
+          csv += " " + f;
+      }
+    test_tools::out() << "none: VTU files and indexes:"
+                      << (vtu.empty() ? " none" : vtu)
+                      << "; contact CSVs:" << csv << std::endl;
+    checks.add(vtu.empty(), "none: no VTU file and no .pvd");
+    checks.add(csv == " contact_00000.csv contact_00013.csv contact_00026.csv "
+                      "contact_00032.csv",
+               "none: the contact CSVs of the steps 0, 13, 26 and 32");
+  }
 } // namespace
 
 int
@@ -114,7 +151,8 @@ main()
       reader.name    = name + "-read";
       reader.program = "/usr/bin/python3";
       const Outcome read =
-        execute({std::string(SOURCE_DIR) + "/read_output.py", name}, reader);
+        execute({std::string(REPOSITORY_DIR) + "/tests/read_output.py", name},
+                reader);
       out << read.out;
       if (!read.err.empty())
         out << "stderr:\n" << read.err;
@@ -125,36 +163,6 @@ main()
                  name + ": every file is in the manifest");
     }
 
-  // Write VTU = false: no VTU at all, whatever VTU every and Output times
-  // say; the contact CSVs as before.
-  {
-    const std::string name = "none";
-    fs::remove_all(name);
-    Launch launch;
-    launch.name       = name;
-    launch.timeout    = 300;
-    const Outcome run = execute(arguments(name,
-                                          {"--set",
-                                           "Output/Write VTU=false",
-                                           "--set",
-                                           "Output/VTU every=1"}),
-                                launch);
-    checks.add(run.succeeded(), "none: the run completes");
-    std::string vtu, csv;
-    for (const auto &f : files_of(name))
-      {
-        if (f.find("vtu") != std::string::npos ||
-            f.find(".pvd") != std::string::npos)
-          vtu += " " + f;
-        if (f.rfind("contact_", 0) == 0)
-          csv += " " + f;
-      }
-    out << "none: VTU files and indexes:" << (vtu.empty() ? " none" : vtu)
-        << "; contact CSVs:" << csv << std::endl;
-    checks.add(vtu.empty(), "none: no VTU file and no .pvd");
-    checks.add(csv == " contact_00000.csv contact_00013.csv contact_00026.csv "
-                      "contact_00032.csv",
-               "none: the contact CSVs of the steps 0, 13, 26 and 32");
-  }
+  check_without_vtu(checks);
   checks.assert_all();
 }

@@ -68,7 +68,7 @@ namespace
     fit.name    = "cost-model";
     fit.program = "python3";
     const Outcome model =
-      execute({std::string(SOURCE_DIR) + "/../benchmarks/cost-model",
+      execute({std::string(REPOSITORY_DIR) + "/benchmarks/cost-model",
                "--scaling",
                "scaling_quick.csv",
                "--text",

@@ -360,7 +360,7 @@ namespace
          std::vector<std::pair<std::string, unsigned int>>{
            {"memory.csv", 3}, {"memory_2d.csv", 2}})
       {
-        std::ifstream in(std::string(SOURCE_DIR) + "/../benchmarks/results/" +
+        std::ifstream in(std::string(REPOSITORY_DIR) + "/benchmarks/results/" +
                          file);
         std::string   line;
         while (std::getline(in, line))
