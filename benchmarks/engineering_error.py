@@ -8,6 +8,13 @@ Quantities (keys of QUANTITIES):
   normal_force     N(t), time_series.csv `normal_force`
   friction_force   the friction-force history, time_series.csv
                    `tangential_force` (sum over Gamma_3 of |lambda_i|)
+  friction_l1      the same history measured by its mean error over time
+                   (the L1 norm below), with its own reference: where a
+                   node's slip reverses, the node sticks for less than a
+                   step, and F(t) has dips one step wide that a given step
+                   catches or misses; they keep its max-norm error from
+                   falling with k, while their weight in the mean is of
+                   the order of k
   deflection       the largest deflection over Gamma_3,
                    delta(t) = max_x (-u_y(x, t)), from the contact CSVs
   pressure         the Gamma_3 pressure profiles p(x, t), contact CSV
@@ -19,7 +26,7 @@ Quantities (keys of QUANTITIES):
                    t = 1/8, ..., 1 (benchmarks/solution_error.py), against the
                    finest reference run (not extrapolated)
 
-Errors (relative, all maxima):
+Errors (relative; maxima but for friction_l1):
   history q(t):  max over the run's samples t_i in [1/16, 1] of
                  |q(t_i) - q_ref(t_i)| / max_t |q_ref(t)|, over the samples
                  that are steps of the reference (k = 1/320) if there are 4
@@ -27,6 +34,8 @@ Errors (relative, all maxima):
                  switched on at t = 0 next to the clamped end, is left out:
                  there the first steps' values depend on k at the per-cent
                  level and do not converge at the rate of the rest);
+  L1 history:    int |q - q_ref| dt / int |q_ref| dt over the same samples
+                 and interval (trapezoidal rule), for friction_l1;
   profile at T:  max over the run's Gamma_3 nodes x_j of
                  |p(x_j, T) - p_ref(x_j, T)| / max_x |p_ref(x, T)|,
                  p_ref interpolated linearly in x; the error of the quantity
@@ -45,11 +54,16 @@ from dynamic_contact.output import Run
 PROFILE_TIMES = [0.2, 0.4, 0.6, 0.8]
 HISTORY_START = 1.0 / 16  # histories are compared on [HISTORY_START, 1]
 VTU_TIMES = [i / 8 for i in range(1, 9)]
-HISTORIES = ["normal_force", "friction_force", "deflection", "energy"]
+HISTORIES = ["normal_force", "friction_force", "friction_l1", "deflection", "energy"]
+# The histories measured in the L1 norm in time (size()), each a column of
+# time_series.csv.
+L1_HISTORIES = {"friction_l1": "tangential_force"}
 PROFILES = ["pressure", "traction"]
 QUANTITIES = {  # key: (title, short label)
     "normal_force": ("contact-force history N(t)", "N(t)"),
     "friction_force": ("friction-force history", "friction force(t)"),
+    "friction_l1": ("friction-force history, mean error over time (L1)",
+                    "friction force (L1)"),
     "deflection": ("largest deflection max_x(-u_y) over time", "deflection(t)"),
     "pressure": ("Gamma3 pressure profiles, t = 0.2, 0.4, 0.6, 0.8", "pressure profiles"),
     "traction": ("Gamma3 friction-traction profiles, t = 0.2, ..., 0.8", "traction profiles"),
@@ -144,7 +158,7 @@ def extract(directory):
     t = np.asarray(ts["time"], dtype=float)
     keep = t >= HISTORY_START - 1e-9
     q = {}
-    for key, column in COLUMN.items():
+    for key, column in list(COLUMN.items()) + list(L1_HISTORIES.items()):
         q[key] = (t[keep], np.asarray(ts[column], dtype=float)[keep])
     steps_times = [(s, run.time_of(s)) for s in run.contact_steps if s > 0]
     kept = [(s, tt) for s, tt in steps_times if tt >= HISTORY_START - 1e-9]
@@ -157,17 +171,32 @@ def extract(directory):
     return q
 
 
-def history_error(run_t, run_q, ref_t, ref_q):
+def size(key, x, y):
+    """The norm of quantity `key` of the values y at the samples x: the
+    mean of |y| over [x_0, x_end] (trapezoidal rule) for an L1 history,
+    else max |y|."""
+    y = np.abs(np.asarray(y, dtype=float))
+    if key in L1_HISTORIES and len(x) > 1:
+        return float(np.trapz(y, x) / (x[-1] - x[0]))
+    return float(np.max(y))
+
+
+def history_error(run_t, run_q, ref_t, ref_q, key=None):
     """max_i |q(t_i) - q_ref(t_i)| / max |q_ref| over the run's samples
-    (extract() has left out those before HISTORY_START)."""
+    (extract() has left out those before HISTORY_START); for an L1 history
+    the mean of |q - q_ref| over them relative to the mean of |q_ref| over
+    the same samples (size())."""
     keep = (run_t >= ref_t[0] - 1e-9) & (run_t <= ref_t[-1] + 1e-9)
     j = np.clip(np.searchsorted(ref_t, run_t), 1, len(ref_t) - 1)
     nearest = np.minimum(np.abs(ref_t[j] - run_t), np.abs(ref_t[j - 1] - run_t))
     on_grid = keep & (nearest < 1e-9)
     if on_grid.sum() >= 4:  # compare where the reference has a step: no interpolation
         keep = on_grid
-    return float(np.max(np.abs(run_q[keep] - np.interp(run_t[keep], ref_t, ref_q)))
-                 / np.max(np.abs(ref_q)))
+    t = run_t[keep]
+    ref_on = np.interp(t, ref_t, ref_q)
+    if key in L1_HISTORIES:
+        return size(key, t, run_q[keep] - ref_on) / size(key, t, ref_on)
+    return size(key, t, run_q[keep] - ref_on) / float(np.max(np.abs(ref_q)))
 
 
 def profile_error(run_profiles, ref_profiles):
@@ -183,10 +212,12 @@ def profile_error(run_profiles, ref_profiles):
 def errors(run_q, ref):
     """The relative error of every quantity but theorem6 (see the module's
     docstring) of the quantities `run_q` (extract()) against `ref`
-    (read_reference())."""
+    (read_reference()); a history the reference lacks (one made before
+    friction_l1 existed) is left out."""
     out = {}
     for key in HISTORIES:
-        out[key] = history_error(*run_q[key], *ref[key])
+        if key in ref:
+            out[key] = history_error(*run_q[key], *ref[key], key=key)
     for key in PROFILES:
         out[key] = profile_error(run_q[key], ref[key])
     return out
@@ -202,13 +233,13 @@ def samples(q, key):
     return [q[key]]
 
 
-def scale(ref_parts):
-    return [float(np.max(np.abs(y))) for _, y in ref_parts]
+def scale(ref_parts, key=None):
+    return [size(key, x, y) for x, y in ref_parts]
 
 
-def rel_max(parts, scales):
-    """max over the parts of max|y| / scale of that part."""
-    return max(float(np.max(np.abs(y))) / s for y, s in zip(parts, scales))
+def rel_max(parts, scales, key=None):
+    """max over the parts (x, y) of size(y) / scale of that part."""
+    return max(size(key, x, y) / s for (x, y), s in zip(parts, scales))
 
 
 def diff_on(coarse, fine):
@@ -218,13 +249,13 @@ def diff_on(coarse, fine):
     return x, np.interp(x, fine[0], fine[1]) - y
 
 
-def order(levels, scales):
+def order(levels, scales, key=None):
     """Observed order from three levels, coarse to fine, each a list of
     parts: log2(|d01| / |d12|), differences on the coarsest samples."""
-    d01 = [diff_on(a, b)[1] for a, b in zip(levels[0], levels[1])]
-    d12 = [np.interp(x, *c2) - np.interp(x, *c1)
+    d01 = [diff_on(a, b) for a, b in zip(levels[0], levels[1])]
+    d12 = [(x, np.interp(x, *c2) - np.interp(x, *c1))
            for (x, _), c1, c2 in zip(levels[0], levels[1], levels[2])]
-    a, b = rel_max(d01, scales), rel_max(d12, scales)
+    a, b = rel_max(d01, scales, key), rel_max(d12, scales, key)
     if b <= 0 or a <= 0:
         return float("nan"), a, b
     return float(np.log2(a / b)), a, b
@@ -250,20 +281,22 @@ def used(p):
 # --- the reference files in benchmarks/results -------------------------------
 
 def write_reference(results_dir, histories, profiles, header, prefix="reference"):
-    """PREFIX_histories.csv (time, normal_force, friction_force, energy;
-    deflection on its own time column) and PREFIX_profiles.csv (time, x,
+    """PREFIX_histories.csv (time, normal_force, friction_force, energy,
+    deflection interpolated onto the same times, the L1 histories) and PREFIX_profiles.csv (time, x,
     pressure, traction); PREFIX is 'reference' for the paper's scene."""
     t = histories["normal_force"][0]
     path = os.path.join(results_dir, prefix + "_histories.csv")
     with open(path, "w") as f:
         f.write(header)
-        f.write("time,normal_force,friction_force,energy,deflection\n")
+        f.write("time,normal_force,friction_force,energy,deflection,"
+                + ",".join(L1_HISTORIES) + "\n")
         td, d = histories["deflection"]
         dd = np.interp(t, td, d)
         for i in range(len(t)):
-            f.write("%.10g,%.10e,%.10e,%.10e,%.10e\n"
-                    % (t[i], histories["normal_force"][1][i], histories["friction_force"][1][i],
-                       histories["energy"][1][i], dd[i]))
+            f.write("%.10g,%.10e,%.10e,%.10e,%.10e" % (
+                t[i], histories["normal_force"][1][i], histories["friction_force"][1][i],
+                histories["energy"][1][i], dd[i]))
+            f.write("".join(",%.10e" % histories[key][1][i] for key in L1_HISTORIES) + "\n")
     path2 = os.path.join(results_dir, prefix + "_profiles.csv")
     with open(path2, "w") as f:
         f.write(header)
@@ -289,7 +322,7 @@ def read_reference(results_dir, prefix="reference"):
     """The reference quantities in the layout of extract() (PREFIX as for
     write_reference)."""
     h = _read_csv(os.path.join(results_dir, prefix + "_histories.csv"))
-    ref = {key: (h["time"], h[key]) for key in HISTORIES}
+    ref = {key: (h["time"], h[key]) for key in HISTORIES if key in h}
     p = _read_csv(os.path.join(results_dir, prefix + "_profiles.csv"))
     for key in PROFILES:
         ref[key] = {}

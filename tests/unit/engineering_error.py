@@ -10,7 +10,9 @@ data made by hand whose answers are known:
   in time, read from contact CSVs;
 - the Output times a run needs hit or bracket t = 0.2, ..., 0.8;
 - the history and profile errors are the relative maxima they are defined
-  to be;
+  to be, the friction force's L1 measure (friction_l1) the relative mean:
+  a dip one step wide weighs k in it, and a reference without its column
+  leaves it out;
 - the same for the 3D rail's measures (benchmarks/rail_error.py, used by
   benchmarks/work-precision-3d): the observed order with unequal
   refinement ratios, the centre-line pressure and the largest deflection
@@ -69,6 +71,8 @@ def main():
     t, ct = ee.correction(tl[1][0], tl[2][0], q, factor_fine=True)
     check(np.max(np.abs(tl[1][0][1] + ct - np.exp(-t))) < 1e-12,
           "time correction of k = 1/320 gives the limit")
+    q1, _, _ = ee.order(tl, ee.scale(tl[1], "friction_l1"), "friction_l1")
+    check(abs(q1 - 1.0) < 1e-6, "observed order in time in the L1 norm %.8f (1 expected)" % q1)
     check(ee.used(0.7) == 1.0 and ee.used(5.0) == 3.0 and ee.used(1.7) == 1.7,
           "orders used for the corrections are clipped to [1, 3]")
     check(ee.used(float("nan")) is None and ee.used(0.3) is None and ee.used(-1.0) is None,
@@ -123,7 +127,8 @@ def main():
     # Errors against a reference: N_ref = 1 + t + 0.01 sin(...) on a fine grid.
     tr_ = np.linspace(0, 1, 1001)
     ref = {"normal_force": (tr_, 1 + tr_), "friction_force": (tr_, 2 * tr_ + 0.02),
-           "energy": (tr_, 3 - tr_), "deflection": (tr_, tr_ + 1.0)}
+           "friction_l1": (tr_, 2 * tr_ + 0.02), "energy": (tr_, 3 - tr_),
+           "deflection": (tr_, tr_ + 1.0)}
     for key in ("pressure", "traction"):
         ref[key] = {T: (np.array([0.0, 1.0]),
                         (10 * T + np.array([0.0, 1.0])) if key == "pressure"
@@ -134,6 +139,9 @@ def main():
           "exact histories have no error")
     check(abs(e["friction_force"] - 0.02 / 2.02) < 1e-12,
           "friction-force error 0.02 / max|ref| (%.6g)" % e["friction_force"])
+    # L1 over the run's samples t = 0.1 ... 0.9: int 0.02 / int (2 t + 0.02)
+    check(abs(e["friction_l1"] - 0.016 / 0.816) < 1e-12,
+          "friction-force L1 error int|F - F_ref| / int|F_ref| (%.6g)" % e["friction_l1"])
     check(e["pressure"] < 1e-12, "exact pressure profiles have no error")
     # traction: run -T x, reference -1.1 T x: max |0.1 T x| / (1.1 T) = 0.1/1.1
     check(abs(e["traction"] - 0.1 / 1.1) < 1e-12,
@@ -147,11 +155,37 @@ def main():
     check(all(np.allclose(back[k][1], ref[k][1]) for k in ee.HISTORIES)
           and np.allclose(back["pressure"][0.6][1], ref["pressure"][0.6][1]),
           "reference_histories.csv and reference_profiles.csv read back")
+    check_dips(ee)
+    # A reference made before friction_l1 existed: that error is left out.
+    path = os.path.join(args.work_dir, "old_histories.csv")
+    with open(os.path.join(args.work_dir, "reference_histories.csv")) as f:
+        write(path, "".join(line if line.startswith("#") else
+                            line.rsplit(",", 1)[0] + "\n" for line in f))
+    os.replace(path, os.path.join(args.work_dir, "old_reference_histories.csv"))
+    os.replace(os.path.join(args.work_dir, "reference_profiles.csv"),
+               os.path.join(args.work_dir, "old_reference_profiles.csv"))
+    old = ee.read_reference(args.work_dir, "old_reference")
+    check("friction_l1" not in old and "friction_l1" not in ee.errors(q, old)
+          and abs(ee.errors(q, old)["friction_force"] - e["friction_force"]) < 1e-12,
+          "a reference without the friction_l1 column: that error left out, the rest as before")
     rail(args.work_dir)
     if failures:
         print("%d check(s) failed" % len(failures))
         sys.exit(1)
     print("all checks passed")
+
+
+def check_dips(ee):
+    """A history with a dip one step wide (a node that sticks for a step
+    where its slip reverses): its max norm stays at the dip's depth as k
+    falls, its L1 norm falls like k."""
+    for n in (64, 128, 256):
+        x = np.linspace(0.0, 1.0, n + 1)
+        dip = np.zeros_like(x)
+        dip[n // 2] = -0.5
+        check(abs(ee.size("friction_force", x, dip) - 0.5) < 1e-15
+              and abs(ee.size("friction_l1", x, dip) - 0.5 / n) < 1e-15,
+              "a dip one step wide at k = 1/%d: max norm 0.5, L1 norm 0.5 k" % n)
 
 
 def rail(work_dir):
