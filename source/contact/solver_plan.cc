@@ -132,7 +132,6 @@ namespace DynamicContact
               const MPI_Comm                comm,
               const MemoryBudget           &memory)
   {
-    using CS = Parameters::Solver::ContactSolver;
     using LS = Parameters::Solver::LinearSolver;
     SolverPlan         plan;
     std::ostringstream reason;
@@ -141,21 +140,20 @@ namespace DynamicContact
       factorized_by_cholmod(parameters, dim, n_dofs, n_processes);
 
     // The condensed solver's dense tables are bounded by its limit
-    // (doc/algorithms.md, "Choosing"): Condensed limit on one process. With
-    // a CHOLMOD factor several processes are one as the condensed solver
-    // sees it (the compliance from the factor's trailing block); with
-    // MUMPS, in 3D the compliance comes from its Schur complement (the same
-    // limit), in 2D from dim solves per node (1000).
+    // (doc/algorithms.md, "Choosing"; Solver/Condensed). With a CHOLMOD
+    // factor several processes are one as the condensed solver sees it
+    // (the compliance from the factor's trailing block); with MUMPS over
+    // the processes its limit on several processes applies.
+    const bool         automatic = parameters.contact_solver == "auto";
     const unsigned int limit =
-      n_processes == 1 || one_factor ?
-        parameters.condensed_limit :
-        parameters.condensed_limit_on_several_processes.value_or(
-          dim == 3 ? parameters.condensed_limit : 1000);
+      parameters.contact_solver_plugin("condensed")
+        .boundary_limit(dim, n_processes > 1 && !one_factor)
+        .value_or(std::numeric_limits<unsigned int>::max());
     const unsigned int size = dim * n_contact_nodes;
     plan.steps_per_matrix   = std::max(steps_per_matrix, 1u);
-    if (parameters.contact_solver != CS::automatic)
+    if (!automatic)
       {
-        plan.condensed = parameters.contact_solver == CS::condensed;
+        plan.condensed = parameters.contact_solver == "condensed";
         reason << "as set";
       }
     else if (size > limit)
@@ -173,9 +171,7 @@ namespace DynamicContact
     plan.linear_solver = parameters.linear_solver;
     if (parameters.linear_solver == LS::automatic)
       plan.linear_solver =
-        (!plan.condensed && parameters.contact_solver == CS::automatic) ?
-          LS::iterative :
-          LS::direct;
+        (!plan.condensed && automatic) ? LS::iterative : LS::direct;
     // The condensed solver factorizes K0 (BulkSolver), the assembled one
     // its Newton matrix by Amesos.
     if (plan.condensed)

@@ -10,9 +10,9 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <dynamic_contact/base/error_messages.h>
+#include <dynamic_contact/base/number_or_auto.h>
 #include <dynamic_contact/parameters/parameters.h>
 
-#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -54,35 +54,6 @@ namespace DynamicContact
                      const unsigned int dim,
                      const std::string &default_expression,
                      const std::string &documentation);
-
-    /**
-     * The number that the whole of @p text is (read by @p read, e.g.
-     * std::stol or std::stod), or std::nullopt for 'auto'; @p error
-     * (CollectiveError) where it is neither or fails @p valid.
-     */
-    template <typename Number, typename Read>
-    std::optional<Number>
-    number_or_auto(const std::string                 &text,
-                   const Read                        &read,
-                   const std::function<bool(Number)> &valid,
-                   const std::string                 &error)
-    {
-      if (text == "auto")
-        return std::nullopt;
-      std::size_t end   = 0;
-      Number      value = 0;
-      bool        read_ = false;
-      try
-        {
-          value = read(text, &end);
-          read_ = true;
-        }
-      catch (...)
-        {}
-      require(read_ && end == text.size() && valid(value), error);
-      return value;
-    }
-
   } // namespace ParameterTools
 } // namespace DynamicContact
 

@@ -531,14 +531,10 @@ namespace DynamicContact
         std::unique_ptr<FrictionLaw> new_law = FrictionLaw::create(prm);
         law_name                             = prm.get("Law");
         const std::string           window   = prm.get("Maximum slip rate");
-        const std::optional<double> s_max    = number_or_auto<double>(
-          window,
-          [](const std::string &t, std::size_t *end) {
-            return std::stod(t, end);
-          },
-          [](const double v) { return std::isfinite(v) && v > 0; },
-          "Friction/Maximum slip rate: '" + window +
-            "' is neither a positive number nor 'auto'.");
+        const std::optional<double> s_max =
+          positive_or_auto(window,
+                           "Friction/Maximum slip rate: '" + window +
+                             "' is neither a positive number nor 'auto'.");
         maximum_slip_rate = s_max ? *s_max : material.p_wave_speed();
         if (new_law)
           new_law->set_slip_rate_window(maximum_slip_rate);

@@ -371,7 +371,7 @@ namespace DynamicContact
       solver.preconditioner !=
           Parameters::Solver::Preconditioner::matrix_free_gmg ||
         (solver.linear_solver != Parameters::Solver::LinearSolver::direct &&
-         solver.contact_solver != Parameters::Solver::ContactSolver::condensed),
+         solver.contact_solver != "condensed"),
       "Solver/Preconditioner = matrix-free GMG stores no K0: it needs "
       "Solver/Contact solver = assembled (or auto) and Solver/Linear "
       "solver = iterative (or auto).");

@@ -5,6 +5,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <dynamic_contact/base/plugins.h>
 #include <dynamic_contact/parameters/parameters.h>
 
 #include "parameter_tools.h"
@@ -21,78 +22,10 @@ namespace DynamicContact
   {
     namespace
     {
-      /**
-       * Solver: the choice of the contact solver and the caps of the
-       * condensed one.
-       */
-      void
-      declare_contact_solver_entries(ParameterHandler &prm)
-      {
-        prm.declare_entry(
-          "Contact solver",
-          "auto",
-          Patterns::Selection("auto|condensed|assembled"),
-          "How each semismooth Newton system is solved (all give the same "
-          "iterates, to the Newton tolerance). 'condensed': static "
-          "condensation onto Gamma_3 - the bulk matrix K0 is factorized once "
-          "per mesh and time step, the compliance of the contact nodes "
-          "computed from it (from the Schur complement on Gamma_3: on one "
-          "process from the Cholesky factor, on several in 3D from a MUMPS "
-          "factorization where it agrees with the solves, else by dim "
-          "solves per node), and each iteration is a "
-          "dense solve on the active contact nodes; Gamma_3 is replicated on "
-          "every process. 'assembled': the sparse Newton system of the whole "
-          "body, per process only its own part (with Linear solver = "
-          "iterative: GMRES preconditioned by algebraic multigrid of K0, "
-          "built once per mesh and time step; with direct: the Newton matrix "
-          "factorized when it changes, as in deal.II's step-42). 'auto': "
-          "the one of the lower predicted cost for the steps one bulk "
-          "matrix serves (the steps left, or to the next mesh adaptation; "
-          "one with an adaptive time step), from a cost model of the DoFs, "
-          "the contact nodes and the processes fitted to "
-          "benchmarks/scaling; the condensed one only while dim times the "
-          "number of contact nodes is at most Condensed limit (one process) "
-          "or Condensed limit on several processes, and on meshes smaller "
-          "than the model's always; the assembled one with the iterative "
-          "linear solver. Decided per mesh; the log gives the predicted "
-          "costs (the solver plan).");
-        prm.declare_entry(
-          "Condensed limit",
-          "8200",
-          Patterns::Integer(0),
-          "Contact solver = auto on one process: the largest dim times the "
-          "number of contact nodes for which the condensed solver may be "
-          "chosen (its dense tables hold 8 bytes x (dim n_Gamma)^2 twice; "
-          "within it the cost model chooses).");
-        prm.declare_entry(
-          "Condensed limit on several processes",
-          "auto",
-          Patterns::Anything(),
-          "Contact solver = auto on more than one process where K0 is "
-          "factorized by MUMPS over the processes (Direct solver package): "
-          "the same cap, an integer >= 0 or 'auto'. In 2D the compliance "
-          "then costs dim solves per contact node, so the condensed solver "
-          "is the faster one only on small contact boundaries: 'auto' is "
-          "1000. In 3D it comes from MUMPS's Schur complement: 'auto' is "
-          "Condensed limit. Where every process factorizes the whole K0 "
-          "(a small K0, Direct solver package = auto), Condensed limit "
-          "applies as on one process. Rank 0 holds the dense tables (8 "
-          "bytes x (dim n_Gamma)^2 twice).");
-      }
-
-
       /** Solver: the entries of the semismooth Newton iteration. */
       void
       declare_newton_entries(ParameterHandler &prm)
       {
-        prm.declare_entry(
-          "Provisional passes",
-          "true",
-          Patterns::Bool(),
-          "Condensed solver with a convexification loop: a pass that does "
-          "not end the loop takes its velocity from the stored compliance "
-          "responses, without a solve with K0 (doc/algorithms.md, "
-          "'Convexification loop'); false: every pass is solved in full.");
         prm.declare_entry(
           "Line search",
           "true",
@@ -203,7 +136,7 @@ namespace DynamicContact
     {
       prm.enter_subsection("Solver");
       {
-        declare_contact_solver_entries(prm);
+        declare_contact_solvers(prm);
         prm.declare_entry(
           "Minimum DoFs per process",
           "20000",
@@ -226,28 +159,14 @@ namespace DynamicContact
     Solver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Solver");
-      contact_solver =
-        (prm.get("Contact solver") == "assembled" ? ContactSolver::assembled :
-         prm.get("Contact solver") == "condensed" ? ContactSolver::condensed :
-                                                    ContactSolver::automatic);
-      condensed_limit = prm.get_integer("Condensed limit");
+      contact_solver = prm.get("Contact solver");
+      contact_solvers.clear();
       {
-        const std::string limit =
-          prm.get("Condensed limit on several processes");
-        const std::optional<long> value = number_or_auto<long>(
-          limit,
-          [](const std::string &t, std::size_t *end) {
-            return std::stol(t, end);
-          },
-          [](const long v) { return v >= 0; },
-          "Solver/Condensed limit on several processes: '" + limit +
-            "' is neither an integer >= 0 nor 'auto'.");
-        condensed_limit_on_several_processes.reset();
-        if (value)
-          condensed_limit_on_several_processes = *value;
+        const auto &registry = PluginRegistry<ContactSolverPlugin>::instance();
+        for (const std::string &name : registry.registered())
+          contact_solvers.emplace(name, registry.create(name, prm));
       }
       min_dofs_per_process  = prm.get_integer("Minimum DoFs per process");
-      provisional_passes    = prm.get_bool("Provisional passes");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");
       max_newton_iterations = prm.get_integer("Maximum Newton iterations");
@@ -269,14 +188,10 @@ namespace DynamicContact
       }
       {
         const std::string           memory = prm.get("Memory per process");
-        const std::optional<double> gb     = number_or_auto<double>(
-          memory,
-          [](const std::string &t, std::size_t *end) {
-            return std::stod(t, end);
-          },
-          [](const double v) { return std::isfinite(v) && v > 0; },
-          "Solver/Memory per process: '" + memory +
-            "' is neither a number of GB > 0 nor 'auto'.");
+        const std::optional<double> gb =
+          positive_or_auto(memory,
+                           "Solver/Memory per process: '" + memory +
+                             "' is neither a number of GB > 0 nor 'auto'.");
         memory_per_process.reset();
         if (gb)
           memory_per_process = *gb * 1e9;
@@ -290,6 +205,16 @@ namespace DynamicContact
                 linear_tolerance < 1,
               "Solver/Linear tolerance must lie in (0, 1), got " +
                 str(linear_tolerance) + ".");
+    }
+
+    const ContactSolverPlugin &
+    Solver::contact_solver_plugin(const std::string &name) const
+    {
+      const auto found = contact_solvers.find(name);
+      AssertThrow(found != contact_solvers.end() && found->second,
+                  ExcMessage("No contact solver '" + name +
+                             "' is registered."));
+      return *found->second;
     }
   } // namespace Parameters
 } // namespace DynamicContact

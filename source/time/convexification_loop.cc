@@ -162,9 +162,12 @@ namespace DynamicContact
   void
   StepSolver<dim>::ConvexificationLoop::start()
   {
-    allow_provisional = loop && solver.parameters.provisional_passes;
-    provisional       = false;
-    best_residual     = std::numeric_limits<double>::max();
+    allow_provisional =
+      loop &&
+      solver.parameters.contact_solver_plugin(solver.plan.contact_solver())
+        .provisional_passes();
+    provisional   = false;
+    best_residual = std::numeric_limits<double>::max();
     if (loop)
       {
         TimerSection t(solver.timer, "Friction: convexification update");

@@ -102,10 +102,8 @@ namespace DynamicContact
         if (lipschitz_constant > 0)
           problem.slip_rate_accuracy =
             friction_parameters.coefficient_tolerance / lipschitz_constant;
-        if (plan.condensed)
-          solver = std::make_unique<CondensedSolver<dim>>(problem);
-        else
-          solver = std::make_unique<AssembledSolver<dim>>(problem);
+        solver = planned_parameters.contact_solver_plugin(plan.contact_solver())
+                   .create(problem);
         solver->reinit();
       }
     return *solver;

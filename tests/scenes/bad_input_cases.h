@@ -487,6 +487,12 @@ namespace bad_input_cases
        {"Friction/Decay rate",
         "Friction/Exponential/Decay rate",
         "scripts/update-prm"}},
+      // A contact solver's entry of the flat Solver section.
+      {"old_solver_entry",
+       scene() + "\nsubsection Solver\n  set Condensed limit = 0\nend\n",
+       {"Solver/Condensed limit",
+        "Solver/Condensed/Limit",
+        "scripts/update-prm"}},
       {"velocity_strengthening",
        scene() +
          "\nsubsection Friction\n  set Law = expression\n  subsection "

@@ -8,8 +8,9 @@
 //   has one; the loop's fixed point does not depend on the relaxation: the
 //   same to the loop's tolerance), and
 //   the relaxation below 1 takes more convexification passes;
-// - Solver/Provisional passes = false gives the same solution, with more
-//   solves with K0; Solver/Condensed limit = 0 makes the plan assemble;
+// - Solver/Condensed/Provisional passes = false gives the same solution, with
+// more
+//   solves with K0; Solver/Condensed/Limit = 0 makes the plan assemble;
 //   the iterative linear solver to Solver/Linear tolerance agrees with the
 //   direct one, and one capped by Solver/Maximum linear iterations stops
 //   the run with an error that names the cap; Solver/AMG aggregation =
@@ -22,7 +23,7 @@
 //   penetrating nodes, and the energy balance still closes;
 // - Time/Maximum time step bounds the adaptive steps;
 // - Mesh refinement/Cell budget caps the adaptive mesh (and its solver plan
-//   stays); a Condensed limit that the adapted mesh's contact boundary
+//   stays); a Condensed/Limit that the adapted mesh's contact boundary
 //   crosses changes the plan, and log.txt has the new one; the error indicator
 //   with both fractions 0 leaves the mesh as it is, with a refine fraction
 //   it refines; contact following refines within its Window of the
@@ -161,16 +162,18 @@ namespace
           "tolerance, 1e-6");
     check(total(relaxed, passes) > total(reference, passes),
           "Friction/Relaxation = 0.7: more convexification passes");
-    const auto whole = series("whole", {"Solver/Provisional passes=false"});
-    check(largest_difference(whole, reference) < 1e-8,
-          "Solver/Provisional passes = false: the same solution to 1e-8");
+    const auto whole =
+      series("whole", {"Solver/Condensed/Provisional passes=false"});
+    check(
+      largest_difference(whole, reference) < 1e-8,
+      "Solver/Condensed/Provisional passes = false: the same solution to 1e-8");
     check(total(whole, solves) > total(reference, solves),
-          "Solver/Provisional passes = false: more solves with K0");
-    const auto assembled = series("limit", {"Solver/Condensed limit=0"});
+          "Solver/Condensed/Provisional passes = false: more solves with K0");
+    const auto assembled = series("limit", {"Solver/Condensed/Limit=0"});
     check(largest_difference(assembled, reference) < 1e-8,
-          "Solver/Condensed limit = 0: the same solution to 1e-8");
+          "Solver/Condensed/Limit = 0: the same solution to 1e-8");
     check(log_says("limit", "solver plan: assembled"),
-          "Solver/Condensed limit = 0: the plan assembles");
+          "Solver/Condensed/Limit = 0: the plan assembles");
     const auto iterative = series("iterative", iterative_solver);
     check(largest_difference(iterative, reference) < 1e-8,
           "Solver/Linear solver = iterative: the same solution to 1e-8");
@@ -326,9 +329,9 @@ namespace
 
     // A solver plan that an adapted mesh changes goes into log.txt, with
     // the step it applies from: in the adaptive scene's first 0.25 s dim x
-    // contact nodes grows from 38 to 42, across a Condensed limit of 41. A
+    // contact nodes grows from 38 to 42, across a Condensed/Limit of 41. A
     // run whose plan stays (the budget above) has no such line.
-    series("plan-change", {"Solver/Condensed limit=41"}, adaptive_scene);
+    series("plan-change", {"Solver/Condensed/Limit=41"}, adaptive_scene);
     const std::string changed =
       test_tools::read_text("output-plan-change/log.txt");
     check(std::regex_search(

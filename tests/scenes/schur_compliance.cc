@@ -9,7 +9,7 @@
 // 20 x 2 x 2) and the small paper scene each path must give the answers of
 // one process (computed here on rank 0 alone) to 1e-8 of each column's
 // peak, and take the compliance as said. Where MUMPS factorizes K0 over
-// the processes, Solver/Condensed limit on several processes decides
+// the processes, Solver/Condensed/Limit on several processes decides
 // between the condensed and the assembled solver.
 
 #include "test_tools.h"
@@ -91,7 +91,7 @@ main(int argc, char *argv[])
              "Amesos_Mumps",
              false);
 
-  // Solver/Condensed limit on several processes: with K0 factorized by
+  // Solver/Condensed/Limit on several processes: with K0 factorized by
   // MUMPS over the processes, Contact solver = auto takes the condensed
   // solver while dim x contact nodes (66 here) is at most the limit ('auto'
   // is 1000 in 2D), else the assembled one.
@@ -100,7 +100,7 @@ main(int argc, char *argv[])
       test_tools::run<2>(test_tools::scene("barboteu_danan_2016_small.prm"),
                          {"Time/End time=0.015625",
                           "Solver/Direct solver package=Amesos_Mumps",
-                          "Solver/Condensed limit on several processes=" +
+                          "Solver/Condensed/Limit on several processes=" +
                             limit,
                           "Output/Directory=output-limit-" + limit});
       if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
@@ -109,6 +109,6 @@ main(int argc, char *argv[])
       test_tools::check(
         test_tools::read_text("output-limit-" + limit + "/log.txt")
             .find("solver plan: " + plan) != std::string::npos,
-        "Condensed limit on several processes = " + limit + ": " + plan);
+        "Condensed/Limit on several processes = " + limit + ": " + plan);
     }
 }

@@ -11,7 +11,7 @@
 //    than on 2 (measured on a 16-core machine);
 //  - the plan takes the solver of the lower predicted cost for the steps
 //    one bulk matrix serves, says both costs, and takes the condensed
-//    solver only within Solver/Condensed limit and, with MUMPS, on the
+//    solver only within Solver/Condensed/Limit and, with MUMPS, on the
 //    meshes measured; 'as set' is kept;
 //  - K0 is factorized by CHOLMOD on every process only on up to 4;
 //  - the memory model (predicted_memory) predicts the peaks that
@@ -43,16 +43,20 @@ using namespace program_tools;
 
 namespace
 {
+  /**
+   * The section Solver as a parameter file with @p entries ("Entry=value",
+   * relative to Solver) gives it: Contact solver = auto and the other
+   * defaults.
+   */
   Parameters::Solver
-  automatic()
+  automatic(const std::vector<std::string> &entries = {})
   {
+    ParameterHandler prm;
+    Parameters::Solver::declare_parameters(prm);
+    for (const std::string &entry : entries)
+      apply_override(prm, "Solver/" + entry);
     Parameters::Solver p;
-    p.contact_solver        = Parameters::Solver::ContactSolver::automatic;
-    p.linear_solver         = Parameters::Solver::LinearSolver::automatic;
-    p.direct_solver_package = "auto";
-    p.condensed_limit       = 8200;
-    p.condensed_limit_on_several_processes.reset();
-    p.smoothed_aggregation = true;
+    p.parse_parameters(prm);
     return p;
   }
 
@@ -260,14 +264,13 @@ namespace
     }
     {
       // The limit and 'as set'.
-      auto p                   = automatic();
-      p.condensed_limit        = 0;
+      auto p                   = automatic({"Condensed/Limit=0"});
       const auto [dofs, nodes] = rail(8);
       const auto capped        = plan_solver(p, 3, dofs, nodes, 1000, self);
       checks.add(!capped.condensed && !capped.condensed_cost.calibrated &&
                    capped.reason.find("> 0") != std::string::npos,
-                 "Condensed limit = 0: assembled, no costs predicted");
-      p.contact_solver = Parameters::Solver::ContactSolver::condensed;
+                 "Condensed/Limit = 0: assembled, no costs predicted");
+      p.contact_solver = "condensed";
       const auto set   = plan_solver(p, 3, dofs, nodes, 1, self);
       checks.add(set.condensed && set.reason.rfind("as set", 0) == 0,
                  "Contact solver = condensed: kept as set");
@@ -433,13 +436,13 @@ namespace
     small.degree            = 1;
     auto p                  = automatic();
     p.preconditioner        = P::automatic;
-    p.contact_solver        = Parameters::Solver::ContactSolver::assembled;
+    p.contact_solver        = "assembled";
     p.linear_solver         = Parameters::Solver::LinearSolver::iterative;
     const auto assembled    = plan_solver(p, 3, dofs, nodes, 1, self, small);
-    p.contact_solver        = Parameters::Solver::ContactSolver::condensed;
+    p.contact_solver        = "condensed";
     const auto condensed    = plan_solver(p, 3, dofs, nodes, 1, self, small);
     p.preconditioner        = P::gmg;
-    p.contact_solver        = Parameters::Solver::ContactSolver::assembled;
+    p.contact_solver        = "assembled";
     const auto set          = plan_solver(p, 3, dofs, nodes, 1, self, small);
     checks.add(assembled.preconditioner == P::matrix_free_gmg &&
                  assembled.matrix_free_bulk() &&

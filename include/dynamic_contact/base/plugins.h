@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -93,6 +94,16 @@ namespace DynamicContact
       for (const auto &[name, plugin] : plugins)
         s += (s.empty() ? "" : separator) + name;
       return s;
+    }
+
+    /** The names, in the order of names(). */
+    std::vector<std::string>
+    registered() const
+    {
+      std::vector<std::string> list;
+      for (const auto &[name, plugin] : plugins)
+        list.push_back(name);
+      return list;
     }
 
     /** "'a': description of a. 'b': ..." for the choosing entry. */

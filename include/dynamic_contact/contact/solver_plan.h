@@ -71,6 +71,16 @@ namespace DynamicContact
     Parameters::Solver
     solver_parameters(const Parameters::Solver &given) const;
 
+    /**
+     * The registered contact solver of the plan (Solver/Contact solver,
+     * Parameters::Solver::contact_solvers): "condensed" or "assembled".
+     */
+    std::string
+    contact_solver() const
+    {
+      return condensed ? "condensed" : "assembled";
+    }
+
     /** "condensed" or "assembled (direct|iterative)". */
     std::string
     contact_solver_name() const;

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
+#include <dynamic_contact/base/contact_solver_plugin.h>
 #include <dynamic_contact/base/step_scheme.h>
 #include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/laws/material.h>
@@ -262,27 +263,25 @@ namespace DynamicContact
         direct,
         iterative
       };
-      enum class ContactSolver
-      {
-        automatic,
-        condensed,
-        assembled
-      };
-      ContactSolver contact_solver;
-      /** Contact solver = auto: the largest dim n_Gamma for condensed. */
-      unsigned int condensed_limit;
+      /** Solver/Contact solver: 'auto' or a registered solver's name. */
+      std::string contact_solver = "auto";
       /**
-       * The same on more than one process; std::nullopt for 'auto' (2D:
-       * 1000; 3D: condensed_limit).
+       * Every registered contact solver with the entries of its
+       * subsection (Solver/Condensed, ...), by name: Contact solver = auto
+       * may choose either.
        */
-      std::optional<unsigned int> condensed_limit_on_several_processes;
+      std::map<std::string, std::shared_ptr<const ContactSolverPlugin>>
+        contact_solvers;
+
+      /** The contact solver @p name (one of contact_solvers). */
+      const ContactSolverPlugin &
+      contact_solver_plugin(const std::string &name) const;
       /**
        * The fewest DoFs of the initial mesh per process: a run started on
        * more processes than DoFs / this takes part on that many only (the
        * first ones; at least one). 0: every process takes part.
        */
       unsigned int min_dofs_per_process;
-      bool         provisional_passes;
       bool         line_search;
       double       newton_tolerance;
       unsigned int max_newton_iterations;
