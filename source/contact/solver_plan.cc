@@ -165,6 +165,10 @@ namespace DynamicContact
       choose_by_cost(
         plan, reason, dim, n_dofs, size, limit, one_factor, comm);
 
+    plan.contact_solver = automatic ?
+                            (plan.condensed ? "condensed" : "assembled") :
+                            parameters.contact_solver;
+
     // The linear solver: auto is direct, except for the assembled solver
     // chosen by Contact solver = auto (a large contact boundary or a
     // large mesh), which solves by GMRES with algebraic multigrid.
@@ -213,8 +217,8 @@ namespace DynamicContact
   std::string
   SolverPlan::contact_solver_name() const
   {
-    if (condensed)
-      return "condensed";
+    if (contact_solver != "assembled")
+      return contact_solver;
     return linear_solver == Parameters::Solver::LinearSolver::iterative ?
              "assembled (iterative)" :
              "assembled (direct)";

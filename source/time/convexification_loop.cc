@@ -164,7 +164,7 @@ namespace DynamicContact
   {
     allow_provisional =
       loop &&
-      solver.parameters.contact_solver_plugin(solver.plan.contact_solver())
+      solver.parameters.contact_solver_plugin(solver.plan.contact_solver)
         .provisional_passes();
     provisional   = false;
     best_residual = std::numeric_limits<double>::max();

@@ -102,7 +102,7 @@ namespace DynamicContact
         if (lipschitz_constant > 0)
           problem.slip_rate_accuracy =
             friction_parameters.coefficient_tolerance / lipschitz_constant;
-        solver = planned_parameters.contact_solver_plugin(plan.contact_solver())
+        solver = planned_parameters.contact_solver_plugin(plan.contact_solver)
                    .create(problem);
         solver->reinit();
       }

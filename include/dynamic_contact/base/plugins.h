@@ -86,17 +86,7 @@ namespace DynamicContact
       plugins.emplace(name, std::move(plugin));
     }
 
-    /** "a|b|c", the pattern of the entry that chooses one. */
-    std::string
-    names(const std::string &separator = "|") const
-    {
-      std::string s;
-      for (const auto &[name, plugin] : plugins)
-        s += (s.empty() ? "" : separator) + name;
-      return s;
-    }
-
-    /** The names, in the order of names(). */
+    /** The names of the implementations, in alphabetical order. */
     std::vector<std::string>
     registered() const
     {
@@ -104,6 +94,16 @@ namespace DynamicContact
       for (const auto &[name, plugin] : plugins)
         list.push_back(name);
       return list;
+    }
+
+    /** "a|b|c", the pattern of the entry that chooses one. */
+    std::string
+    names(const std::string &separator = "|") const
+    {
+      std::string s;
+      for (const std::string &name : registered())
+        s += (s.empty() ? "" : separator) + name;
+      return s;
     }
 
     /** "'a': description of a. 'b': ..." for the choosing entry. */

@@ -27,7 +27,15 @@ namespace DynamicContact
     /** How K0 is factorized (bulk_factorization()). */
     using Factorization = BulkFactorization;
 
-    /** The condensed solver; else the assembled one. */
+    /**
+     * The registered contact solver that runs (Solver/Contact solver, or
+     * the choice of auto; Parameters::Solver::contact_solvers).
+     */
+    std::string contact_solver = "condensed";
+    /**
+     * It is the condensed solver (K0 factorized by BulkSolver); else K0 is
+     * factorized, if at all, as the assembled solver does.
+     */
     bool condensed = true;
     /** Direct or iterative (Solver/Linear solver with auto resolved). */
     Parameters::Solver::LinearSolver linear_solver =
@@ -72,16 +80,9 @@ namespace DynamicContact
     solver_parameters(const Parameters::Solver &given) const;
 
     /**
-     * The registered contact solver of the plan (Solver/Contact solver,
-     * Parameters::Solver::contact_solvers): "condensed" or "assembled".
+     * contact_solver, for the assembled one with its linear solver:
+     * "assembled (direct|iterative)".
      */
-    std::string
-    contact_solver() const
-    {
-      return condensed ? "condensed" : "assembled";
-    }
-
-    /** "condensed" or "assembled (direct|iterative)". */
     std::string
     contact_solver_name() const;
 
