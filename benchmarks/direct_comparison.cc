@@ -44,6 +44,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 using namespace dealii;
@@ -67,14 +68,7 @@ namespace
     std::vector<std::pair<SuiteSparse_long, double>> row;
     for (int r = 0; r < A.NumMyRows(); ++r)
       {
-        int     count;
-        double *values;
-        int    *indices;
-        A.ExtractMyRowView(r, count, values, indices);
-        row.clear();
-        for (int k = 0; k < count; ++k)
-          row.emplace_back(A.GCID(indices[k]), values[k]);
-        std::sort(row.begin(), row.end());
+        sorted_row(A, r, std::numeric_limits<SuiteSparse_long>::max(), row);
         for (const auto &[j, v] : row)
           {
             c.column.push_back(j);

@@ -25,14 +25,17 @@ namespace DynamicContact
                                      "from one process."));
       const bool receives =
         to_all || dealii::Utilities::MPI::this_mpi_process(comm) == root;
+      // MPI_Allgather(v) to every process, else MPI_Gather(v) to root:
+      // the same arguments, then the root.
+      const auto gather =
+        [&](const auto to_every, const auto to_root, const auto... arguments) {
+          return to_all ? to_every(arguments..., comm) :
+                          to_root(arguments..., root, comm);
+        };
       const int        size = static_cast<int>(local.size());
       std::vector<int> sizes(n);
-      int              ierr =
-        to_all ?
-                       MPI_Allgather(
-            &size, 1, MPI_INT, sizes.data(), 1, MPI_INT, comm) :
-                       MPI_Gather(
-            &size, 1, MPI_INT, sizes.data(), 1, MPI_INT, root, comm);
+      int              ierr = gather(
+        MPI_Allgather, MPI_Gather, &size, 1, MPI_INT, sizes.data(), 1, MPI_INT);
       AssertThrowMPI(ierr);
       std::vector<int> offsets(n, 0);
       long long        total = 0;
@@ -46,23 +49,15 @@ namespace DynamicContact
                                            "values in all."));
           }
       std::vector<double> all(static_cast<std::size_t>(total));
-      ierr = to_all ? MPI_Allgatherv(local.data(),
-                                     size,
-                                     MPI_DOUBLE,
-                                     all.data(),
-                                     sizes.data(),
-                                     offsets.data(),
-                                     MPI_DOUBLE,
-                                     comm) :
-                      MPI_Gatherv(local.data(),
-                                  size,
-                                  MPI_DOUBLE,
-                                  all.data(),
-                                  sizes.data(),
-                                  offsets.data(),
-                                  MPI_DOUBLE,
-                                  root,
-                                  comm);
+      ierr = gather(MPI_Allgatherv,
+                    MPI_Gatherv,
+                    local.data(),
+                    size,
+                    MPI_DOUBLE,
+                    all.data(),
+                    sizes.data(),
+                    offsets.data(),
+                    MPI_DOUBLE);
       AssertThrowMPI(ierr);
       if (!receives)
         return {};

@@ -116,11 +116,8 @@ namespace DynamicContact
     {
       const auto        &fe = discretization.fe;
       const QGauss<dim>  quadrature(fe.degree + 1);
-      FEValues<dim>      fe_values(discretization.mapping,
-                              fe,
-                              quadrature,
-                              update_values | update_gradients |
-                                update_JxW_values);
+      FEValues<dim>      fe_values = discretization.cell_values(
+        quadrature, update_values | update_gradients | update_JxW_values);
       const unsigned int n = fe.n_dofs_per_cell();
       std::vector<types::global_dof_index> dofs(n);
       std::vector<SymmetricTensor<2, dim>> eps(n);
@@ -584,11 +581,8 @@ namespace DynamicContact
     const auto                          &fe = discretization.fe;
     const unsigned int                   n  = fe.n_dofs_per_cell();
     const QGauss<dim>                    quadrature(fe.degree + 2);
-    FEValues<dim>                        fe_values(discretization.mapping,
-                            fe,
-                            quadrature,
-                            update_values | update_quadrature_points |
-                              update_JxW_values);
+    FEValues<dim>                        fe_values = discretization.cell_values(
+      quadrature, update_values | update_quadrature_points | update_JxW_values);
     Vector<double>                       local(n);
     Vector<double>                       value(dim);
     std::vector<types::global_dof_index> dofs(n);

@@ -47,18 +47,7 @@ namespace DynamicContact
       for (int r = 0; r < A.NumMyRows(); ++r)
         {
           const SuiteSparse_long global_row = A.GRID(r);
-          int                    count;
-          double                *values;
-          int                   *indices;
-          A.ExtractMyRowView(r, count, values, indices);
-          row.clear();
-          for (int k = 0; k < count; ++k)
-            {
-              const SuiteSparse_long c = A.GCID(indices[k]);
-              if (c <= global_row)
-                row.emplace_back(c, values[k]);
-            }
-          std::sort(row.begin(), row.end());
+          sorted_row(A, r, global_row, row);
           packed.push_back(global_row);
           packed.push_back(row.size());
           for (const auto &entry : row)

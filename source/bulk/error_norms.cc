@@ -24,11 +24,10 @@ namespace DynamicContact
     w_exact.set_time(t);
 
     const QGauss<dim>                    quadrature(d.fe.degree + 2);
-    FEValues<dim>                        fe_values(d.mapping,
-                            d.fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_quadrature_points | update_JxW_values);
+    FEValues<dim>                        fe_values =
+      d.cell_values(quadrature,
+                    update_values | update_gradients |
+                      update_quadrature_points | update_JxW_values);
     const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<Tensor<1, dim>>          w_h(quadrature.size());

@@ -5,84 +5,79 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <type_traits>
 
 namespace DynamicContact
 {
   namespace
   {
-    /** Declare a capped ramp's slope entry @p slope and its cap. */
-    void
-    declare_ramp(ParameterHandler  &prm,
-                 const std::string &slope,
-                 const std::string &slope_default,
-                 const std::string &slope_documentation,
-                 const std::string &cap_documentation)
+    /** The entries of a capped ramp law: its slope's, and the cap's. */
+    struct RampEntries
     {
-      prm.declare_entry(slope,
-                        slope_default,
-                        Patterns::Double(),
-                        slope_documentation);
-      prm.declare_entry("Cap", "1e17", Patterns::Double(), cap_documentation);
-    }
+      std::string slope;
+      std::string slope_default;
+      std::string slope_documentation;
+      std::string cap_documentation;
+      /** The path of the subsection (errors name it). */
+      std::string path;
+    };
 
-    /** The capped ramp of the entries (@p path names them in errors). */
-    CappedRamp
-    parse_ramp(ParameterHandler  &prm,
-               const std::string &slope_entry,
-               const std::string &path)
+    /** The entries of CappedRampLaw<Interface>. */
+    template <class Interface>
+    RampEntries
+    ramp_entries()
     {
-      const double slope = prm.get_double(slope_entry);
-      const double cap   = prm.get_double("Cap");
-      AssertThrow(std::isfinite(slope) && slope >= 0,
-                  ExcMessage(path + slope_entry + " must be >= 0, got " +
-                             str(slope) + "."));
-      AssertThrow(std::isfinite(cap) && cap > 0,
-                  ExcMessage(path + "Cap must be positive, got " + str(cap) +
-                             "."));
-      return CappedRamp(slope, cap);
+      if constexpr (std::is_same_v<Interface, NormalLaw>)
+        return {"Stiffness",
+                "5e9",
+                "c_nu in p(r) = min(c_nu r_+, c3) (Pa/m), >= 0.",
+                "c3, the bound of p (Pa), > 0. The paper's 1e8 GPa/m is "
+                "not reached.",
+                "Foundation/Normal compliance/Capped ramp/"};
+      else
+        return {"Coefficient",
+                "1e8",
+                "d_nu in q(r) = min(d_nu r_+, c4) (Pa s/m), >= 0. Zero "
+                "switches the damped response off.",
+                "c4, the bound of q (Pa), > 0.",
+                "Foundation/Normal damping/Capped ramp/"};
     }
   } // namespace
 
 
-  template <>
+  template <class Interface>
   void
-  CappedRampLaw<NormalLaw>::declare_parameters(ParameterHandler &prm)
+  CappedRampLaw<Interface>::declare_parameters(ParameterHandler &prm)
   {
-    declare_ramp(prm,
-                 "Stiffness",
-                 "5e9",
-                 "c_nu in p(r) = min(c_nu r_+, c3) (Pa/m), >= 0.",
-                 "c3, the bound of p (Pa), > 0. The paper's 1e8 GPa/m is "
-                 "not reached.");
+    const RampEntries e = ramp_entries<Interface>();
+    prm.declare_entry(e.slope,
+                      e.slope_default,
+                      Patterns::Double(),
+                      e.slope_documentation);
+    prm.declare_entry("Cap", "1e17", Patterns::Double(), e.cap_documentation);
   }
 
-  template <>
+
+  template <class Interface>
   void
-  CappedRampLaw<NormalLaw>::parse_parameters(ParameterHandler &prm)
+  CappedRampLaw<Interface>::parse_parameters(ParameterHandler &prm)
   {
-    ramp =
-      parse_ramp(prm, "Stiffness", "Foundation/Normal compliance/Capped ramp/");
+    const RampEntries e     = ramp_entries<Interface>();
+    const double      slope = prm.get_double(e.slope);
+    const double      cap   = prm.get_double("Cap");
+    AssertThrow(std::isfinite(slope) && slope >= 0,
+                ExcMessage(e.path + e.slope + " must be >= 0, got " +
+                           str(slope) + "."));
+    AssertThrow(std::isfinite(cap) && cap > 0,
+                ExcMessage(e.path + "Cap must be positive, got " + str(cap) +
+                           "."));
+    ramp = CappedRamp(slope, cap);
   }
 
-  template <>
-  void
-  CappedRampLaw<DampingLaw>::declare_parameters(ParameterHandler &prm)
-  {
-    declare_ramp(prm,
-                 "Coefficient",
-                 "1e8",
-                 "d_nu in q(r) = min(d_nu r_+, c4) (Pa s/m), >= 0. Zero "
-                 "switches the damped response off.",
-                 "c4, the bound of q (Pa), > 0.");
-  }
 
-  template <>
-  void
-  CappedRampLaw<DampingLaw>::parse_parameters(ParameterHandler &prm)
-  {
-    ramp =
-      parse_ramp(prm, "Coefficient", "Foundation/Normal damping/Capped ramp/");
-  }
+  template class CappedRampLaw<NormalLaw>;
+  template class CappedRampLaw<DampingLaw>;
 
   DYNAMIC_CONTACT_REGISTER(NormalLaw,
                            CappedRampLaw<NormalLaw>,
@@ -94,26 +89,38 @@ namespace DynamicContact
                            "the paper's q(r) = min(d_nu r_+, c4), eq. (88).");
 
 
+  namespace
+  {
+    /**
+     * Declare the entry Law of the registered @p Interface laws ('capped
+     * ramp' by default), whose text begins with @p what, and a subsection
+     * per law.
+     */
+    template <class Interface>
+    void
+    declare_law(ParameterHandler &prm, const std::string &what)
+    {
+      PluginRegistry<Interface>::instance().declare_parameters(
+        prm,
+        "Law",
+        "capped ramp",
+        what + ", with its parameters in the subsection of the law's name:");
+    }
+  } // namespace
+
+
   void
   Foundation::declare_parameters(ParameterHandler &prm)
   {
     {
       const ScopedSubsection section(prm, "Normal compliance");
-      PluginRegistry<NormalLaw>::instance().declare_parameters(
-        prm,
-        "Law",
-        "capped ramp",
-        "The normal compliance p(u_nu) of the penetration u_nu, with its "
-        "parameters in the subsection of the law's name:");
+      declare_law<NormalLaw>(
+        prm, "The normal compliance p(u_nu) of the penetration u_nu");
     }
 
     const ScopedSubsection section(prm, "Normal damping");
-    PluginRegistry<DampingLaw>::instance().declare_parameters(
-      prm,
-      "Law",
-      "capped ramp",
-      "The normal damped response q(u'_nu) of the normal velocity, with "
-      "its parameters in the subsection of the law's name:");
+    declare_law<DampingLaw>(
+      prm, "The normal damped response q(u'_nu) of the normal velocity");
     prm.declare_entry(
       "Only in contact",
       "false",

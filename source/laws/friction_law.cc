@@ -13,6 +13,20 @@
 
 namespace DynamicContact
 {
+  namespace
+  {
+    /** Declare the entry @p name, a number (Patterns::Double()). */
+    void
+    declare_number(ParameterHandler  &prm,
+                   const std::string &name,
+                   const std::string &default_value,
+                   const std::string &documentation)
+    {
+      prm.declare_entry(name, default_value, Patterns::Double(), documentation);
+    }
+  } // namespace
+
+
   std::vector<double>
   FrictionLaw::sample_points(const double s_max)
   {
@@ -117,10 +131,10 @@ namespace DynamicContact
   void
   ConstantFriction::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Coefficient",
-                      "0",
-                      Patterns::Double(),
-                      "mu, >= 0. Zero means no friction.");
+    declare_number(prm,
+                   "Coefficient",
+                   "0",
+                   "mu, >= 0. Zero means no friction.");
   }
 
   void
@@ -141,18 +155,12 @@ namespace DynamicContact
   void
   ExponentialFriction::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Static coefficient",
-                      "1",
-                      Patterns::Double(),
-                      "a = mu(0).");
-    prm.declare_entry("Dynamic coefficient",
-                      "0.5",
-                      Patterns::Double(),
-                      "b = mu(infinity), 0 < b <= a.");
-    prm.declare_entry("Decay rate",
-                      "2000",
-                      Patterns::Double(),
-                      "alpha (s/m), >= 0.");
+    declare_number(prm, "Static coefficient", "1", "a = mu(0).");
+    declare_number(prm,
+                   "Dynamic coefficient",
+                   "0.5",
+                   "b = mu(infinity), 0 < b <= a.");
+    declare_number(prm, "Decay rate", "2000", "alpha (s/m), >= 0.");
   }
 
   void

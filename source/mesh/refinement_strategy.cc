@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -95,6 +96,49 @@ namespace DynamicContact
     {
       return window >= 0 ? window : factor * body_thickness(tria);
     }
+
+
+    /**
+     * Declare the entry Window of a strategy that gives the finest level
+     * near some points: "Cells closer than this (m) to @p near get the
+     * finest level.", then @p note and the meaning of 'auto': @p factor
+     * (a word) the body's thickness.
+     */
+    void
+    declare_window(ParameterHandler  &prm,
+                   const std::string &near,
+                   const std::string &note,
+                   const std::string &factor)
+    {
+      prm.declare_entry("Window",
+                        "auto",
+                        Patterns::Anything(),
+                        "Cells closer than this (m) to " + near +
+                          " get the finest level. " + note +
+                          "'auto': " + factor +
+                          " the body's thickness (the smallest side of the "
+                          "coarse mesh's bounding box).");
+    }
+
+
+    /**
+     * The levels that the finest level within @p window of @p points asks
+     * for: the maximum level near a point, -1 (no wish) elsewhere.
+     * @p points: a vector of points, or a reference to one that outlives
+     * the levels.
+     */
+    template <int dim, typename Points>
+    typename RefinementStrategy<dim>::Levels
+    finest_near(Points points, const double window)
+    {
+      return
+        [window, points = std::move(points)](const auto        &cell,
+                                             const unsigned int max_level) {
+          return cell_near<dim>(cell, points, window) ?
+                   static_cast<int>(max_level) :
+                   -1;
+        };
+    }
   } // namespace
 
 
@@ -160,10 +204,8 @@ namespace DynamicContact
                                 d.fe,
                                 face_quadrature,
                                 update_quadrature_points);
-      FEValues<dim>           fe_values(d.mapping,
-                              d.fe,
-                              quadrature,
-                              update_quadrature_points);
+      FEValues<dim>           fe_values =
+        d.cell_values(quadrature, update_quadrature_points);
       std::vector<Point<dim>> points;
       std::vector<double>     magnitude;
       Vector<double>          value(dim);
@@ -226,15 +268,11 @@ namespace DynamicContact
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry("Window",
-                          "auto",
-                          Patterns::Anything(),
-                          "Cells closer than this (m) to a point where the "
-                          "load is large get the finest "
-                          "level. It must reach from the loaded boundary to "
-                          "the contact boundary if both should be fine. "
-                          "'auto': twice the body's thickness (the smallest "
-                          "side of the coarse mesh's bounding box).");
+        declare_window(prm,
+                       "a point where the load is large",
+                       "It must reach from the loaded boundary to the "
+                       "contact boundary if both should be fine. ",
+                       "twice");
         prm.declare_entry("Threshold",
                           "0.05",
                           Patterns::Double(0, 1),
@@ -253,16 +291,11 @@ namespace DynamicContact
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        const double window =
+        return finest_near<dim>(
+          large_load_points(context, threshold),
           resolved_window(this->window,
                           2.,
-                          context.discretization.triangulation);
-        return [window, points = large_load_points(context, threshold)](
-                 const auto &cell, const unsigned int max_level) {
-          return cell_near<dim>(cell, points, window) ?
-                   static_cast<int>(max_level) :
-                   -1;
-        };
+                          context.discretization.triangulation));
       }
 
     private:
@@ -282,14 +315,10 @@ namespace DynamicContact
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry("Window",
-                          "auto",
-                          Patterns::Anything(),
-                          "Cells closer than this (m) to a node that "
-                          "penetrates the foundation get the "
-                          "finest level. 'auto': half the body's thickness "
-                          "(the smallest side of the coarse mesh's bounding "
-                          "box).");
+        declare_window(prm,
+                       "a node that penetrates the foundation",
+                       "",
+                       "half");
       }
 
       void
@@ -302,16 +331,11 @@ namespace DynamicContact
       typename RefinementStrategy<dim>::Levels
       levels(const AdaptationContext<dim> &context) const override
       {
-        const double window =
+        return finest_near<dim>(
+          std::cref(context.contact_points),
           resolved_window(this->window,
                           0.5,
-                          context.discretization.triangulation);
-        return [window, &points = context.contact_points](
-                 const auto &cell, const unsigned int max_level) {
-          return cell_near<dim>(cell, points, window) ?
-                   static_cast<int>(max_level) :
-                   -1;
-        };
+                          context.discretization.triangulation));
       }
 
       bool

@@ -224,10 +224,7 @@ namespace DynamicContact
       contact_rows(boundary, states, u, w, friction, width);
 
     const auto gathered = gather_values(comm, rows, 0);
-    collectively(comm, [&]() {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
-
+    collectively_on_rank_zero(comm, [&]() {
       const std::string out =
         contact_csv_text<dim>(gathered, width, time, friction);
       directory.claim(name);

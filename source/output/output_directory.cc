@@ -230,8 +230,8 @@ namespace DynamicContact
   }
 
 
-  // ---------------------------------------------------------- AppendFile
-  AppendFile::~AppendFile()
+  // ---------------------------------------------------- OpenFile, AppendFile
+  OpenFile::~OpenFile()
   {
     if (fd >= 0)
       ::close(fd);
@@ -300,13 +300,6 @@ namespace DynamicContact
   {
     constexpr std::size_t status_room = 4096;
   }
-
-  StatusFile::~StatusFile()
-  {
-    if (fd >= 0)
-      ::close(fd);
-  }
-
 
   void
   StatusFile::open(const std::string &file)

@@ -91,9 +91,7 @@ namespace DynamicContact
                           const unsigned int step,
                           const MPI_Comm     comm)
   {
-    collectively(comm, [&]() {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
+    collectively_on_rank_zero(comm, [&]() {
       output_directory.claim("time_series.csv");
       replace_file(output_directory.file("time_series.csv"), kept, true);
       static const std::regex result(

@@ -282,10 +282,8 @@ namespace DynamicContact
       subdomain.reinit(n_cells);
       {
         const QGauss<dim>                    quadrature(d.fe.degree + 1);
-        FEValues<dim>                        fe_values(d.mapping,
-                                d.fe,
-                                quadrature,
-                                update_gradients | update_JxW_values);
+        FEValues<dim>                        fe_values =
+          d.cell_values(quadrature, update_gradients | update_JxW_values);
         const FEValuesExtractors::Vector     displacement(0);
         std::vector<SymmetricTensor<2, dim>> eps_u(quadrature.size()),
           eps_w(quadrature.size());
@@ -370,9 +368,7 @@ namespace DynamicContact
   void
   VtuWriter<dim>::write_index()
   {
-    collectively(comm, [&]() {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
+    collectively_on_rank_zero(comm, [&]() {
       if (records.empty())
         {
           directory.remove({"solution.pvd", "contact_surface.pvd"});
@@ -401,97 +397,73 @@ namespace DynamicContact
   namespace
   {
     /**
-     * Add the nodal vector field @p v (dim components, one name) of
-     * @p dof_handler to the volume or surface output @p out.
-     */
-    template <int dim, typename Output>
-    void
-    add_vector_field(Output                &out,
-                     const DoFHandler<dim> &dof_handler,
-                     const Vector_t        &v,
-                     const std::string     &name)
-    {
-      out.add_data_vector(
-        dof_handler,
-        v,
-        std::vector<std::string>(dim, name),
-        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-          dim, DataComponentInterpretation::component_is_part_of_vector));
-    }
-
-
-    /** The nodal fields of the surface Gamma_3 (contact_surface files). */
-    template <int dim>
-    void
-    add_surface_fields(
-      ContactFaces<dim>                                         &faces,
-      const Discretization<dim>                                 &d,
-      const Vector_t                                            &u_ghosted,
-      const std::array<Vector_t, n_vectorial>                   &vectorial,
-      const std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar)
-    {
-      add_vector_field(faces, d.dof_handler, u_ghosted, "displacement");
-      faces.add_data_vector(d.scalar_dof_handler,
-                            scalar[s_pressure],
-                            "normal_pressure");
-      faces.add_data_vector(d.scalar_dof_handler,
-                            scalar[s_penetration],
-                            "penetration");
-      add_vector_field(faces,
-                       d.dof_handler,
-                       vectorial[v_friction],
-                       "friction_traction");
-      add_vector_field(faces,
-                       d.dof_handler,
-                       vectorial[v_slip],
-                       "slip_velocity");
-      faces.add_data_vector(d.scalar_dof_handler,
-                            scalar[s_mu],
-                            "friction_coefficient");
-      faces.add_data_vector(d.scalar_dof_handler,
-                            scalar[s_state],
-                            "contact_state");
-    }
-
-
-    /**
-     * The nodal fields of the volume (solution files): displacement,
-     * velocity, the contact fields, and with @p friction the friction
-     * coefficient and slip rate.
+     * The nodal fields of the volume and of the surface Gamma_3: the
+     * ghosted solution and the contact fields, added by name to the volume
+     * or surface output.
      */
     template <int dim>
-    void
-    add_volume_nodal_fields(
-      FieldsOut<dim>                                            &data_out,
-      const Discretization<dim>                                 &d,
-      const Vector_t                                            &u_ghosted,
-      const Vector_t                                            &w_ghosted,
-      const std::array<Vector_t, n_vectorial>                   &vectorial,
-      const std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar,
-      const bool                                                 friction)
+    struct NodalFields
     {
-      add_vector_field(data_out, d.dof_handler, u_ghosted, "displacement");
-      add_vector_field(data_out, d.dof_handler, w_ghosted, "velocity");
-      add_vector_field(data_out,
-                       d.dof_handler,
-                       vectorial[v_traction],
-                       "contact_traction");
-      data_out.add_data_vector(d.scalar_dof_handler,
-                               scalar[s_pressure],
-                               "contact_pressure");
-      data_out.add_data_vector(d.scalar_dof_handler,
-                               scalar[s_state],
-                               "contact_state");
-      if (friction)
-        {
-          data_out.add_data_vector(d.scalar_dof_handler,
-                                   scalar[s_mu],
-                                   "friction_coefficient");
-          data_out.add_data_vector(d.scalar_dof_handler,
-                                   scalar[s_slip_rate],
-                                   "slip_rate");
-        }
-    }
+      const Discretization<dim>                                 &d;
+      const Vector_t                                            &u_ghosted;
+      const Vector_t                                            &w_ghosted;
+      const std::array<Vector_t, n_vectorial>                   &vectorial;
+      const std::array<TrilinosWrappers::MPI::Vector, n_scalar> &scalar;
+
+      /** Add the nodal vector field @p v (dim components, one name). */
+      template <typename Output>
+      void
+      add_vector(Output &out, const Vector_t &v, const std::string &name) const
+      {
+        out.add_data_vector(
+          d.dof_handler,
+          v,
+          std::vector<std::string>(dim, name),
+          std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+            dim, DataComponentInterpretation::component_is_part_of_vector));
+      }
+
+      /** Add the contact field scalar[@p index]. */
+      template <typename Output>
+      void
+      add_scalar(Output &out, const Scalar index, const std::string &name) const
+      {
+        out.add_data_vector(d.scalar_dof_handler, scalar[index], name);
+      }
+
+      /** The fields of the surface (contact_surface files). */
+      void
+      add_to_surface(ContactFaces<dim> &faces) const
+      {
+        add_vector(faces, u_ghosted, "displacement");
+        add_scalar(faces, s_pressure, "normal_pressure");
+        add_scalar(faces, s_penetration, "penetration");
+        add_vector(faces, vectorial[v_friction], "friction_traction");
+        add_vector(faces, vectorial[v_slip], "slip_velocity");
+        add_scalar(faces, s_mu, "friction_coefficient");
+        add_scalar(faces, s_state, "contact_state");
+      }
+
+      /**
+       * The fields of the volume (solution files): displacement, velocity,
+       * the contact fields, and with @p friction the friction coefficient
+       * and slip rate.
+       */
+      void
+      add_to_volume(FieldsOut<dim> &data_out, const bool friction) const
+      {
+        add_vector(data_out, u_ghosted, "displacement");
+        add_vector(data_out, w_ghosted, "velocity");
+        add_vector(data_out, vectorial[v_traction], "contact_traction");
+        add_scalar(data_out, s_pressure, "contact_pressure");
+        add_scalar(data_out, s_state, "contact_state");
+        if (friction)
+          {
+            add_scalar(data_out, s_mu, "friction_coefficient");
+            add_scalar(data_out, s_slip_rate, "slip_rate");
+          }
+      }
+    };
 
 
     /**
@@ -564,20 +536,18 @@ namespace DynamicContact
         };
         write_file(directory.file(solution_names[1 + rank]), piece(data_out));
         write_file(directory.file(surface_names[1 + rank]), piece(faces));
+        // The record names[0] of the pieces names[1], names[2], ...
+        const auto record = [&](const auto &out, const auto &names) {
+          std::ostringstream s;
+          out.write_pvtu_record(s,
+                                std::vector<std::string>(names.begin() + 1,
+                                                         names.end()));
+          write_file(directory.file(names[0]), s.str());
+        };
         if (rank == 0)
           {
-            std::ostringstream record;
-            data_out.write_pvtu_record(
-              record,
-              std::vector<std::string>(solution_names.begin() + 1,
-                                       solution_names.end()));
-            write_file(directory.file(solution_names[0]), record.str());
-            std::ostringstream surface_record;
-            faces.write_pvtu_record(
-              surface_record,
-              std::vector<std::string>(surface_names.begin() + 1,
-                                       surface_names.end()));
-            write_file(directory.file(surface_names[0]), surface_record.str());
+            record(data_out, solution_names);
+            record(faces, surface_names);
           }
       });
       return solution_names[0];
@@ -631,8 +601,8 @@ namespace DynamicContact
     FieldsOut<dim> data_out;
     data_out.set_flags(flags);
     data_out.attach_triangulation(d.triangulation);
-    add_volume_nodal_fields(
-      data_out, d, u_ghosted, w_ghosted, vectorial, scalar, friction);
+    const NodalFields<dim> nodal{d, u_ghosted, w_ghosted, vectorial, scalar};
+    nodal.add_to_volume(data_out, friction);
     add_stress_fields(
       data_out, stress_dofs, stress, von_mises, stress_zz, subdomain);
     const unsigned int n_subdivisions =
@@ -644,7 +614,7 @@ namespace DynamicContact
     ContactFaces<dim> faces(contact_ids);
     faces.set_flags(flags);
     faces.attach_triangulation(d.triangulation);
-    add_surface_fields(faces, d, u_ghosted, vectorial, scalar);
+    nodal.add_to_surface(faces);
     faces.build_patches(d.mapping, n_subdivisions);
 
     const std::string record =

@@ -30,19 +30,31 @@ namespace DynamicContact
 
 
     /**
-     * The line on the energy balance: whether its largest relative defect
-     * is below 1e-8 (@p balance) and every dissipation term is at least 0
-     * (@p dissipation).
+     * What the run's energy balance shows: whether its largest relative
+     * defect is below 1e-8 (balance) and every dissipation term is at least
+     * 0, up to round-off (dissipation).
      */
+    struct EnergyChecks
+    {
+      explicit EnergyChecks(const RunState &state)
+        : balance(state.max_relative_defect < 1e-8)
+        , dissipation(state.min_dissipation >= -EnergyBalanceTerms::roundoff)
+      {}
+
+      bool balance;
+      bool dissipation;
+    };
+
+
+    /** The line on the energy balance, what @p checks found. */
     void
     print_energy_balance(const ConditionalOStream &pcout,
                          const RunState           &state,
                          const RunParameters      &parameters,
-                         const bool                balance,
-                         const bool                dissipation)
+                         const EnergyChecks       &checks)
     {
       pcout << "  energy balance: max relative defect "
-            << (balance ?
+            << (checks.balance ?
                   "below 1e-8" :
                   "ABOVE 1e-8 (" + sig6(state.max_relative_defect) + ")")
             << ", every dissipation term >= 0"
@@ -51,7 +63,7 @@ namespace DynamicContact
                   " (the compliance term left out: not sign-definite with " +
                     parameters.time.scheme_name + ")")
             << ": "
-            << (dissipation ?
+            << (checks.dissipation ?
                   "yes" :
                   "NO (" + sig6(state.min_dissipation) + " of the energy)")
             << std::endl;
@@ -66,8 +78,7 @@ namespace DynamicContact
     std::string
     final_status(const ConditionalOStream &pcout,
                  const RunState           &state,
-                 const bool                balance,
-                 const bool                dissipation)
+                 const EnergyChecks       &checks)
     {
       std::vector<std::string> warnings;
       if (state.unconverged_steps > 0)
@@ -77,10 +88,10 @@ namespace DynamicContact
           " kept with an unconverged convexification loop (max |mu_i - "
           "mu(|w_tau,i|)| = " +
           sig6(state.worst_unconverged) + " > Friction/Coefficient tolerance)");
-      if (!balance)
+      if (!checks.balance)
         warnings.push_back("energy balance defect " +
                            sig6(state.max_relative_defect) + " > 1e-8");
-      if (!dissipation)
+      if (!checks.dissipation)
         warnings.push_back("a dissipation term below zero (" +
                            sig6(state.min_dissipation) + " of the energy)");
       std::string status = "completed";
@@ -226,10 +237,8 @@ namespace DynamicContact
           pcout << ", " << convexification << " convexification passes";
       }
     pcout << ".\n";
-    const bool balance = state.max_relative_defect < 1e-8;
-    const bool dissipation =
-      state.min_dissipation >= -EnergyBalanceTerms::roundoff;
-    print_energy_balance(pcout, state, parameters, balance, dissipation);
+    const EnergyChecks checks(state);
+    print_energy_balance(pcout, state, parameters, checks);
     // The summary: what a user checks before trusting the results.
     pcout << "Summary: results in " << parameters.output.directory << "/\n"
           << "  time step cut-backs: " << cutbacks
@@ -264,6 +273,6 @@ namespace DynamicContact
       print_solution_count(pcout);
 
     // An honest ending: completed, or completed with what did not hold.
-    return final_status(pcout, state, balance, dissipation);
+    return final_status(pcout, state, checks);
   }
 } // namespace DynamicContact

@@ -70,9 +70,7 @@ namespace DynamicContact
   void
   TimeLoop<dim>::write_provenance(const bool resume)
   {
-    collectively(comm, [&]() {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
+    collectively_on_rank_zero(comm, [&]() {
       screen_log.open(*output_directory, resume);
       parameter_files.write(*output_directory);
     });
@@ -83,9 +81,7 @@ namespace DynamicContact
   void
   TimeLoop<dim>::write_log(const bool close)
   {
-    collectively(comm, [&]() {
-      if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
+    collectively_on_rank_zero(comm, [&]() {
       if (close)
         screen_log.close();
       else

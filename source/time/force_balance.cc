@@ -93,10 +93,8 @@ namespace DynamicContact
     const auto &d = discretization;
     d.reinit_owned(volume_weights);
     const QGauss<dim>                    quadrature(d.fe.degree + 1);
-    FEValues<dim>                        fe_values(d.mapping,
-                            d.fe,
-                            quadrature,
-                            update_values | update_JxW_values);
+    FEValues<dim>                        fe_values =
+      d.cell_values(quadrature, update_values | update_JxW_values);
     std::vector<types::global_dof_index> dofs(d.fe.n_dofs_per_cell());
     Vector<double>                       local(d.fe.n_dofs_per_cell());
     for (const auto &cell : d.dof_handler.active_cell_iterators())
@@ -196,11 +194,10 @@ namespace DynamicContact
     const auto                      &fe = d.fe;
     const unsigned int               n  = fe.n_dofs_per_cell();
     const QGauss<dim>                quadrature(fe.degree + 2);
-    FEValues<dim>                    fe_values(d.mapping,
-                            fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_quadrature_points | update_JxW_values);
+    FEValues<dim>                    fe_values =
+      d.cell_values(quadrature,
+                    update_values | update_gradients |
+                      update_quadrature_points | update_JxW_values);
     const FEValuesExtractors::Vector displacement(0);
     std::vector<Tensor<1, dim>>      w_q(quadrature.size()),
       w_old_q(quadrature.size());

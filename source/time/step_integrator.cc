@@ -170,7 +170,8 @@ namespace DynamicContact
   {
     u_old = u;
     w_old = w;
-    ops.time.scheme->step(*this, record, t, k, accept_unconverged_loop);
+    ops.time.scheme->step(
+      StepArguments<dim>{*this, record, t, k, accept_unconverged_loop});
   }
 
 

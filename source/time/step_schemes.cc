@@ -17,18 +17,6 @@ namespace DynamicContact
 {
   namespace
   {
-    /** What StepScheme::step() gets, for a scheme's take_step<dim>(). */
-    template <int dim>
-    struct StepArguments
-    {
-      StepIntegrator<dim> &integrator;
-      StepRecord<dim>     &record;
-      const double         t;
-      const double         k;
-      const bool           accept_unconverged_loop;
-    };
-
-
     /**
      * The overrides of both dimensions of a scheme @p Derived, from its
      * templates take_step<dim>() and error<dim>().
@@ -69,24 +57,14 @@ namespace DynamicContact
       }
 
       void
-      step(StepIntegrator<2> &integrator,
-           StepRecord<2>     &record,
-           const double       t,
-           const double       k,
-           const bool         accept_unconverged_loop) const override
+      step(const StepArguments<2> &arguments) const override
       {
-        self().take_step(
-          StepArguments<2>{integrator, record, t, k, accept_unconverged_loop});
+        self().take_step(arguments);
       }
       void
-      step(StepIntegrator<3> &integrator,
-           StepRecord<3>     &record,
-           const double       t,
-           const double       k,
-           const bool         accept_unconverged_loop) const override
+      step(const StepArguments<3> &arguments) const override
       {
-        self().take_step(
-          StepArguments<3>{integrator, record, t, k, accept_unconverged_loop});
+        self().take_step(arguments);
       }
 
       void
@@ -115,6 +93,56 @@ namespace DynamicContact
         return static_cast<const Derived &>(*this);
       }
     };
+
+
+    /**
+     * The first solve of a step: from (u_{n-1}, w_{n-1}), whose energy is
+     * the record's previous energy, with @p scheme to @p t; its statistics
+     * and balance terms into @p statistics and @p terms.
+     */
+    template <int dim>
+    void
+    solve_from_start(const StepArguments<dim>             &a,
+                     const TimeScheme                     &scheme,
+                     const double                          t,
+                     typename StepSolver<dim>::Statistics &statistics,
+                     EnergyBalanceTerms                   &terms)
+    {
+      StepIntegrator<dim> &i = a.integrator;
+      i.solve_substep(scheme,
+                      t,
+                      i.u_old,
+                      i.w_old,
+                      a.record.previous_energy,
+                      a.accept_unconverged_loop,
+                      statistics,
+                      terms);
+    }
+
+
+    /**
+     * The second solve of a step of two: from (u_bar, w_bar), whose energy
+     * is @p start, with @p scheme to @p t; the step's statistics (those of
+     * the first solve, @p first_statistics, added) into the record, the
+     * solve's balance terms into @p terms.
+     */
+    template <int dim>
+    void
+    solve_from_bar(const StepArguments<dim>                   &a,
+                   const TimeScheme                           &scheme,
+                   const double                                t,
+                   const Energy                               &start,
+                   const typename StepSolver<dim>::Statistics &first_statistics,
+                   EnergyBalanceTerms                         &terms)
+    {
+      a.integrator.solve_second_substep(scheme,
+                                        t,
+                                        start.total(),
+                                        a.accept_unconverged_loop,
+                                        first_statistics,
+                                        a.record,
+                                        terms);
+    }
 
 
     /**
@@ -165,14 +193,7 @@ namespace DynamicContact
       {
         const TimeScheme     scheme(a.k, theta);
         StepIntegrator<dim> &i = a.integrator;
-        i.solve_substep(scheme,
-                        a.t,
-                        i.u_old,
-                        i.w_old,
-                        a.record.previous_energy,
-                        a.accept_unconverged_loop,
-                        a.record.statistics,
-                        a.record.terms);
+        solve_from_start(a, scheme, a.t, a.record.statistics, a.record.terms);
         i.measure_last_solve(a.record, scheme, i.u_old, i.w_old, a.t, a.k);
       }
 
@@ -303,8 +324,7 @@ namespace DynamicContact
     void
     Bathe::take_step(const StepArguments<dim> &a) const
     {
-      StepIntegrator<dim>   &i      = a.integrator;
-      StepRecord<dim>       &record = a.record;
+      StepIntegrator<dim>   &i = a.integrator;
       const double           t = a.t, k = a.k;
       const auto            &ops       = i.operators();
       const CompositeScheme &composite = coefficients;
@@ -312,14 +332,7 @@ namespace DynamicContact
       const TimeScheme                     first = composite.first_substep(k);
       typename StepSolver<dim>::Statistics first_statistics;
       EnergyBalanceTerms                   first_terms;
-      i.solve_substep(first,
-                      t - k / 2,
-                      i.u_old,
-                      i.w_old,
-                      record.previous_energy,
-                      a.accept_unconverged_loop,
-                      first_statistics,
-                      first_terms);
+      solve_from_start(a, first, t - k / 2, first_statistics, first_terms);
       // Sub-step 2: a theta-step from the extrapolated state x_bar =
       // (1 + a) x_{n-1/2} - a x_{n-1} to t (at rho_inf = 0 the three-point
       // backward difference: backward Euler over k/3 from
@@ -329,25 +342,19 @@ namespace DynamicContact
       const Energy     bar_energy = ops.energy_balance.energy(i.u_bar, i.w_bar);
       const TimeScheme last       = composite.second_substep(k);
       EnergyBalanceTerms second_terms;
-      i.solve_second_substep(last,
-                             t,
-                             bar_energy.total(),
-                             a.accept_unconverged_loop,
-                             first_statistics,
-                             record,
-                             second_terms);
+      solve_from_bar(a, last, t, bar_energy, first_statistics, second_terms);
       // (f, u_bar - u_{n-1/2}) = a/(1 + a) (f, u_bar - u_{n-1}) with the
       // second sub-step's load f (f_n at rho_inf = 0).
       i.scratch = i.u_bar;
       i.scratch -= i.u_old;
       const double extrapolation_work =
         composite.extrapolation_share() * (i.load * i.scratch);
-      record.terms = bathe_terms(first_terms,
-                                 bar_energy,
-                                 second_terms,
-                                 extrapolation_work,
-                                 record.previous_energy);
-      i.measure_last_solve(record, last, i.u_bar, i.w_bar, t, k);
+      a.record.terms = bathe_terms(first_terms,
+                                   bar_energy,
+                                   second_terms,
+                                   extrapolation_work,
+                                   a.record.previous_energy);
+      i.measure_last_solve(a.record, last, i.u_bar, i.w_bar, t, k);
     }
 
 
@@ -437,14 +444,11 @@ namespace DynamicContact
       EnergyBalanceTerms                   first_terms;
       const double                         old_foundation =
         ops.energy_balance.foundation_energy(i.u_old);
-      i.solve_substep(stage,
-                      t0 + sdirk.first_stage_time() * k,
-                      i.u_old,
-                      i.w_old,
-                      record.previous_energy,
-                      a.accept_unconverged_loop,
-                      first_statistics,
-                      first_terms);
+      solve_from_start(a,
+                       stage,
+                       t0 + sdirk.first_stage_time() * k,
+                       first_statistics,
+                       first_terms);
       i.u_stage = i.u;
       i.w_stage = i.w;
       const auto first_forces =
@@ -457,13 +461,7 @@ namespace DynamicContact
       const Energy hat_energy = ops.energy_balance.energy(i.u_bar, i.w_bar);
       EnergyBalanceTerms second_terms;
       const double       t2 = t0 + sdirk.second_stage_time() * k;
-      i.solve_second_substep(stage,
-                             t2,
-                             hat_energy.total(),
-                             a.accept_unconverged_loop,
-                             first_statistics,
-                             record,
-                             second_terms);
+      solve_from_bar(a, stage, t2, hat_energy, first_statistics, second_terms);
 
       // The error estimate (with w = W2) and the force balance of stage 2's
       // equation; the contact force sums extrapolated from the stages to

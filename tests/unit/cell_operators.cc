@@ -46,11 +46,9 @@ namespace
     pattern.compress();
     F.reinit(pattern);
     const QGauss<dim>                    quadrature(d.fe.degree + 1);
-    FEValues<dim>                        fe_values(d.mapping,
-                            d.fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_JxW_values);
+    FEValues<dim>                        fe_values =
+      d.cell_values(quadrature,
+                    update_values | update_gradients | update_JxW_values);
     const unsigned int                   n = d.fe.n_dofs_per_cell();
     FullMatrix<double>                   local(n, n);
     std::vector<types::global_dof_index> dofs(n);

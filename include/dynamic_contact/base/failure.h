@@ -108,6 +108,20 @@ namespace DynamicContact
   }
 
   /**
+   * Collective: collectively() for @p f run on rank 0 of @p comm alone (a
+   * file that rank 0 writes for all).
+   */
+  template <typename F>
+  void
+  collectively_on_rank_zero(const MPI_Comm comm, F &&f)
+  {
+    collectively(comm, [&]() {
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        f();
+    });
+  }
+
+  /**
    * Collective, once, right after MPI_Init: the communicator on which the
    * processes that caught an error meet (a duplicate of @p world, so that
    * it cannot be confused with any operation of the run).

@@ -20,6 +20,17 @@ namespace DynamicContact
   template <int dim>
   struct StepRecord;
 
+  /** What a step of a scheme gets (StepScheme::step()). */
+  template <int dim>
+  struct StepArguments
+  {
+    StepIntegrator<dim> &integrator;
+    StepRecord<dim>     &record;
+    const double         t;
+    const double         k;
+    const bool           accept_unconverged_loop;
+  };
+
   /**
    * A time scheme of Time/Scheme (doc/theory.md section 2), chosen by name
    * like the laws (doc/extending.md): each implementation registers itself
@@ -66,21 +77,13 @@ namespace DynamicContact
     }
 
     /**
-     * One step of length @p k to @p t with the primitives of
-     * @p integrator (StepIntegrator::step() describes the contract).
+     * One step of length k to t with the primitives of the integrator
+     * (StepIntegrator::step() describes the contract), all in @p arguments.
      */
     virtual void
-    step(StepIntegrator<2> &integrator,
-         StepRecord<2>     &record,
-         const double       t,
-         const double       k,
-         const bool         accept_unconverged_loop) const = 0;
+    step(const StepArguments<2> &arguments) const = 0;
     virtual void
-    step(StepIntegrator<3> &integrator,
-         StepRecord<3>     &record,
-         const double       t,
-         const double       k,
-         const bool         accept_unconverged_loop) const = 0;
+    step(const StepArguments<3> &arguments) const = 0;
 
     /**
      * @p e = the displacement's local error of the step of length @p k

@@ -3,10 +3,41 @@
 
 #include <suitesparse/cholmod.h>
 
+#include <Epetra_CrsMatrix.h>
+
+#include <algorithm>
 #include <cstddef>
+#include <utility>
+#include <vector>
 
 namespace DynamicContact
 {
+  /**
+   * The entries of the owned row @p r of @p A with a global column at most
+   * @p last (the row's global index: the upper triangle read as a column),
+   * as (global column, value) pairs sorted by column, into @p row.
+   */
+  inline void
+  sorted_row(const Epetra_CrsMatrix                           &A,
+             const int                                         r,
+             const SuiteSparse_long                            last,
+             std::vector<std::pair<SuiteSparse_long, double>> &row)
+  {
+    int     count;
+    double *values;
+    int    *indices;
+    A.ExtractMyRowView(r, count, values, indices);
+    row.clear();
+    for (int k = 0; k < count; ++k)
+      {
+        const SuiteSparse_long c = A.GCID(indices[k]);
+        if (c <= last)
+          row.emplace_back(c, values[k]);
+      }
+    std::sort(row.begin(), row.end());
+  }
+
+
   /**
    * CHOLMOD's view of a symmetric matrix of order @p n given by its upper
    * triangle column by column (compressed sparse columns, 64-bit indices,

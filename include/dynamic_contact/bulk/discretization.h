@@ -7,6 +7,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/lac/affine_constraints.h>
 
@@ -109,6 +110,17 @@ namespace DynamicContact
       reinit_ghosted(ghosted);
       expand(master_form, ghosted);
       return ghosted;
+    }
+
+    /**
+     * FEValues of the vector element fe with the mapping, at @p quadrature
+     * (which it copies) with @p flags.
+     */
+    FEValues<dim>
+    cell_values(const Quadrature<dim> &quadrature,
+                const UpdateFlags      flags) const
+    {
+      return FEValues<dim>(mapping, fe, quadrature, flags);
     }
 
     MPI_Comm                                  comm;

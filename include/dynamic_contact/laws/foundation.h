@@ -359,19 +359,9 @@ namespace DynamicContact
   };
 
 
-  // The entries of the two capped ramps (source/laws/foundation.cc).
-  template <>
-  void
-  CappedRampLaw<NormalLaw>::declare_parameters(ParameterHandler &prm);
-  template <>
-  void
-  CappedRampLaw<NormalLaw>::parse_parameters(ParameterHandler &prm);
-  template <>
-  void
-  CappedRampLaw<DampingLaw>::declare_parameters(ParameterHandler &prm);
-  template <>
-  void
-  CappedRampLaw<DampingLaw>::parse_parameters(ParameterHandler &prm);
+  // The entries of the two capped ramps, declare_parameters() and
+  // parse_parameters() of CappedRampLaw<NormalLaw> and
+  // CappedRampLaw<DampingLaw>: source/laws/foundation.cc.
 
 
   /**

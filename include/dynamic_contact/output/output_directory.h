@@ -79,19 +79,39 @@ namespace DynamicContact
 
 
   /**
+   * A file held open by one owner (no copies) and closed with it: what
+   * AppendFile and StatusFile share.
+   */
+  class OpenFile
+  {
+  public:
+    OpenFile(const OpenFile &) = delete;
+    OpenFile &
+    operator=(const OpenFile &) = delete;
+
+    bool
+    is_open() const
+    {
+      return fd >= 0;
+    }
+
+  protected:
+    OpenFile() = default;
+    ~OpenFile();
+
+    std::string name;
+    int         fd = -1;
+  };
+
+
+  /**
    * A file written a piece at a time (time_series.csv, the output
    * manifest): each append is complete or undone (the file is cut back to
    * its size before the append), so the file never ends in half a line.
    */
-  class AppendFile
+  class AppendFile : public OpenFile
   {
   public:
-    AppendFile() = default;
-    ~AppendFile();
-    AppendFile(const AppendFile &) = delete;
-    AppendFile &
-    operator=(const AppendFile &) = delete;
-
     /** Create (or truncate), or with @p append continue, @p file. */
     void
     open(const std::string &file, const bool append);
@@ -100,15 +120,8 @@ namespace DynamicContact
     /** fsync, then close, both checked. */
     void
     close();
-    bool
-    is_open() const
-    {
-      return fd >= 0;
-    }
 
   private:
-    std::string    name;
-    int            fd   = -1;
     std::uintmax_t size = 0;
   };
 
@@ -118,29 +131,14 @@ namespace DynamicContact
    * place (and cut to length), so that the final status can be written
    * even when the disk has filled up meanwhile.
    */
-  class StatusFile
+  class StatusFile : public OpenFile
   {
   public:
-    StatusFile() = default;
-    ~StatusFile();
-    StatusFile(const StatusFile &) = delete;
-    StatusFile &
-    operator=(const StatusFile &) = delete;
-
     void
     open(const std::string &file);
     /** Replace the content by @p status and a newline (fsync'ed). */
     void
     write(const std::string &status);
-    bool
-    is_open() const
-    {
-      return fd >= 0;
-    }
-
-  private:
-    std::string name;
-    int         fd = -1;
   };
 
 
