@@ -12,6 +12,7 @@
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/bulk/cholesky.h>
 #include <dynamic_contact/bulk/cholmod_views.h>
+#include <dynamic_contact/bulk/preconditioners.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -285,11 +286,10 @@ namespace DynamicContact
     else
       {
         cholesky.reset();
-        amg = std::make_unique<BulkAMG>();
-        amg->initialize(A,
-                        discretization,
-                        /*with_rotations=*/true,
-                        parameters.smoothed_aggregation);
+        amg =
+          create_preconditioner(parameters,
+                                "AMG",
+                                PreconditionerInput<dim>{discretization, &A});
       }
   }
 

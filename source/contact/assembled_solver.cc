@@ -4,6 +4,7 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/bulk/preconditioners.h>
 #include <dynamic_contact/contact/assembled_node_dofs.h>
 #include <dynamic_contact/contact/assembled_solver.h>
 #include <dynamic_contact/contact/largest_eigenvalue.h>
@@ -206,28 +207,15 @@ namespace DynamicContact
       return;
     TimerSection t(problem.timer, "Newton: AMG setup");
     preconditioner.reset();
-    // A mesh without levels to coarsen to (Geometry/Global refinements = 0)
-    // has no geometric hierarchy: the AMG of the stored K0 serves there
-    // (without a stored K0 the multigrid's coarsest level is the mesh).
     const bool stored = problem.bulk.stores_newton_matrix();
-    if (problem.parameters.preconditioner !=
-          Parameters::Solver::Preconditioner::amg &&
-        (problem.discretization.triangulation.n_global_levels() > 1 || !stored))
-      preconditioner =
-        create_bulk_multigrid(problem.discretization,
-                              problem.bulk.material_law(),
-                              problem.bulk.scheme(),
-                              stored ? &problem.bulk.newton_matrix() : nullptr,
-                              problem.bulk.cell_data());
-    else
-      {
-        auto algebraic = std::make_unique<BulkAMG>();
-        algebraic->initialize(problem.bulk.newton_matrix(),
-                              problem.discretization,
-                              /*with_rotations=*/true,
-                              problem.parameters.smoothed_aggregation);
-        preconditioner = std::move(algebraic);
-      }
+    preconditioner    = create_preconditioner(
+      problem.parameters,
+      problem.parameters.preconditioner,
+      PreconditionerInput<dim>{problem.discretization,
+                               stored ? &problem.bulk.newton_matrix() : nullptr,
+                                  &problem.bulk.material_law(),
+                                  &problem.bulk.scheme(),
+                                  problem.bulk.cell_data()});
     preconditioner_scheme = problem.bulk.scheme();
   }
 

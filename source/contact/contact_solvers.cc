@@ -122,25 +122,22 @@ namespace DynamicContact
   void
   declare_contact_solvers(ParameterHandler &prm)
   {
-    const auto &registry = PluginRegistry<ContactSolverPlugin>::instance();
-    prm.declare_entry(
-      "Contact solver",
-      "auto",
-      Patterns::Selection("auto|" + registry.names()),
-      "How each semismooth Newton system is solved (all give the same "
-      "iterates, to the Newton tolerance), with the entries of the solver's "
-      "subsection where it has any. 'auto': the one of the lower predicted "
-      "cost, condensed or assembled, for the steps one bulk matrix serves "
-      "(the steps left, or to the next mesh adaptation; one with an "
-      "adaptive time step), from a cost model of the DoFs, the contact "
-      "nodes and the processes fitted to benchmarks/scaling; the condensed "
-      "one only while dim times the number of contact nodes is at most "
-      "Condensed/Limit (one process) or Condensed/Limit on several "
-      "processes, and on meshes smaller than the model's always; the "
-      "assembled one with the iterative linear solver. Decided per mesh; "
-      "the log gives the predicted costs (the solver plan). " +
-        registry.documentation());
-    registry.declare_subsections(prm);
+    PluginRegistry<ContactSolverPlugin>::instance()
+      .declare_parameters_with_auto(
+        prm,
+        "Contact solver",
+        "How each semismooth Newton system is solved (all give the same "
+        "iterates, to the Newton tolerance), with the entries of the solver's "
+        "subsection where it has any. 'auto': the one of the lower predicted "
+        "cost, condensed or assembled, for the steps one bulk matrix serves "
+        "(the steps left, or to the next mesh adaptation; one with an "
+        "adaptive time step), from a cost model of the DoFs, the contact "
+        "nodes and the processes fitted to benchmarks/scaling; the condensed "
+        "one only while dim times the number of contact nodes is at most "
+        "Condensed/Limit (one process) or Condensed/Limit on several "
+        "processes, and on meshes smaller than the model's always; the "
+        "assembled one with the iterative linear solver. Decided per mesh; "
+        "the log gives the predicted costs (the solver plan).");
   }
 
 

@@ -1,4 +1,3 @@
-#include <dynamic_contact/bulk/bulk_multigrid.h>
 #include <dynamic_contact/contact/cost_model.h>
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <cstring>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 namespace DynamicContact
 {
@@ -130,35 +130,22 @@ namespace DynamicContact
   }
 
 
-  std::string
-  preconditioner_name(const Parameters::Solver::Preconditioner preconditioner)
+  std::vector<std::string>
+  preconditioner_candidates(const Parameters::Solver &parameters,
+                            const unsigned int        degree)
   {
-    using P = Parameters::Solver::Preconditioner;
-    switch (preconditioner)
-      {
-        case P::amg:
-          return "AMG";
-        case P::gmg:
-          return "GMG";
-        case P::matrix_free_gmg:
-          return "matrix-free GMG";
-        case P::automatic:
-          break;
-      }
-    return "auto";
-  }
-
-
-  std::vector<Parameters::Solver::Preconditioner>
-  preconditioner_candidates(const Parameters::Solver::Preconditioner given,
-                            const unsigned int                       degree)
-  {
-    using P = Parameters::Solver::Preconditioner;
-    if (given != P::automatic)
-      return {given};
-    if (degree <= 2)
-      return {P::amg, P::gmg, P::matrix_free_gmg};
-    return {P::amg};
+    if (parameters.preconditioner != "auto")
+      return {parameters.preconditioner};
+    std::vector<std::pair<unsigned int, std::string>> ranked;
+    for (const auto &[name, plugin] : parameters.preconditioners)
+      if (plugin->auto_rank() &&
+          (!plugin->highest_degree() || degree <= *plugin->highest_degree()))
+        ranked.emplace_back(*plugin->auto_rank(), name);
+    std::sort(ranked.begin(), ranked.end());
+    std::vector<std::string> names;
+    for (const auto &[rank, name] : ranked)
+      names.push_back(name);
+    return names;
   }
 
 
@@ -247,7 +234,7 @@ namespace DynamicContact
 
 
   double
-  predicted_memory(const Parameters::Solver::Preconditioner preconditioner,
+  predicted_memory(const PreconditionerPlugin           &preconditioner,
                    const unsigned int                    dim,
                    const unsigned int                    degree,
                    const dealii::types::global_dof_index n_dofs,
@@ -258,24 +245,20 @@ namespace DynamicContact
     // A node of an element of degree p couples on average with p + 2
     // nodes in each direction (2p + 1 at the cells' vertices, p + 1
     // within), dim components each.
-    const double matrix =
+    PreconditionerMemoryTerms terms;
+    terms.dim         = dim;
+    terms.n_dofs      = static_cast<double>(n_dofs);
+    terms.coarse_dofs = coarse_dofs;
+    terms.matrix =
       bytes_per_entry * dim * std::pow(degree + 2., static_cast<double>(dim));
-    const double per_process =
+    terms.amg                        = c.amg;
+    terms.levels                     = c.gmg_levels;
+    terms.factorized_coarsest        = c.gmg_coarsest;
+    const PreconditionerMemory share = preconditioner.memory(terms);
+    const double               per_process =
       static_cast<double>(n_dofs) / std::max(n_processes, 1u);
-    double per_dof = c.rest, fixed = program_bytes;
-    using P        = Parameters::Solver::Preconditioner;
-    if (preconditioner == P::amg || preconditioner == P::automatic ||
-        coarse_dofs >= static_cast<double>(n_dofs))
-      per_dof += (1 + c.amg) * matrix;
-    else
-      {
-        per_dof += (preconditioner == P::gmg ? matrix : 0.) + c.gmg_levels;
-        // The coarsest level: factorized while small, else its AMG.
-        fixed += coarse_dofs *
-                 (coarse_dofs <= largest_factorized_coarse_level(dim) ?
-                    c.gmg_coarsest :
-                    (1 + c.amg) * matrix);
-      }
+    const double per_dof = c.rest + share.per_dof;
+    const double fixed   = program_bytes + share.fixed;
     const double ghosts =
       n_processes > 1 && per_process > 0 ?
         1 + ghost_share / std::pow(per_process, 1. / dim) :

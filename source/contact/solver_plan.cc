@@ -80,29 +80,34 @@ namespace DynamicContact
   } // namespace
 
 
-  Parameters::Solver::Preconditioner
-  choose_preconditioner(const unsigned int            dim,
+  std::string
+  choose_preconditioner(const Parameters::Solver     &parameters,
+                        const unsigned int            dim,
                         const types::global_dof_index n_dofs,
                         const unsigned int            n_processes,
                         const MemoryBudget           &memory,
                         std::string                  &reason)
   {
-    using P = Parameters::Solver::Preconditioner;
+    Parameters::Solver automatic = parameters;
+    automatic.preconditioner     = "auto";
     std::ostringstream s;
     s << "peak predicted per process:";
-    std::optional<P> chosen;
-    P                least      = P::amg;
-    double           least_need = std::numeric_limits<double>::infinity();
-    for (const P p : preconditioner_candidates(P::automatic, memory.degree))
+    std::optional<std::string> chosen;
+    std::string                least = "AMG";
+    double least_need                = std::numeric_limits<double>::infinity();
+    bool   first                     = true;
+    for (const std::string &p :
+         preconditioner_candidates(automatic, memory.degree))
       {
-        const double need = predicted_memory(p,
-                                             dim,
-                                             memory.degree,
-                                             n_dofs,
-                                             n_processes,
-                                             memory.coarse_dofs);
-        s << (p == P::amg ? " " : ", ") << preconditioner_name(p) << " "
-          << memory_string(need);
+        const double need =
+          predicted_memory(parameters.preconditioner_plugin(p),
+                           dim,
+                           memory.degree,
+                           n_dofs,
+                           n_processes,
+                           memory.coarse_dofs);
+        s << (first ? " " : ", ") << p << " " << memory_string(need);
+        first = false;
         if (!chosen && need <= memory.bytes_per_process)
           chosen = p;
         if (need < least_need)
@@ -121,6 +126,39 @@ namespace DynamicContact
     reason = s.str();
     return chosen.value_or(least);
   }
+
+
+  namespace
+  {
+    /**
+     * The preconditioner of @p plan: as set, or for Preconditioner = auto
+     * the fastest that fits where the assembled iterative solver runs (the
+     * condensed solver's iterative solves with K0 take the AMG).
+     */
+    void
+    plan_preconditioner(SolverPlan                   &plan,
+                        const Parameters::Solver     &parameters,
+                        const unsigned int            dim,
+                        const types::global_dof_index n_dofs,
+                        const unsigned int            n_processes,
+                        const MemoryBudget           &memory)
+    {
+      plan.preconditioner = parameters.preconditioner;
+      if (plan.preconditioner == "auto")
+        plan.preconditioner =
+          !plan.condensed && plan.linear_solver ==
+                               Parameters::Solver::LinearSolver::iterative ?
+            choose_preconditioner(parameters,
+                                  dim,
+                                  n_dofs,
+                                  n_processes,
+                                  memory,
+                                  plan.preconditioner_reason) :
+            "AMG";
+      plan.preconditioner_plugin =
+        parameters.preconditioners.at(plan.preconditioner);
+    }
+  } // namespace
 
 
   SolverPlan
@@ -185,18 +223,7 @@ namespace DynamicContact
       plan.factorization = plan.linear_solver == LS::iterative ?
                              SolverPlan::Factorization::none :
                              SolverPlan::Factorization::amesos;
-    plan.smoothed_aggregation = parameters.smoothed_aggregation;
-    // The preconditioner: as set, or for Preconditioner = auto the
-    // fastest that fits where the assembled iterative solver runs (the
-    // condensed solver's iterative solves with K0 take the AMG).
-    using P             = Parameters::Solver::Preconditioner;
-    plan.preconditioner = parameters.preconditioner;
-    if (plan.preconditioner == P::automatic)
-      plan.preconditioner =
-        !plan.condensed && plan.linear_solver == LS::iterative ?
-          choose_preconditioner(
-            dim, n_dofs, n_processes, memory, plan.preconditioner_reason) :
-          P::amg;
+    plan_preconditioner(plan, parameters, dim, n_dofs, n_processes, memory);
     reason << "; " << n_dofs << " DoFs on " << n_processes << " process"
            << (n_processes == 1 ? "" : "es");
     plan.reason = reason.str();
@@ -243,12 +270,8 @@ namespace DynamicContact
           case F::none:
             break;
         }
-      return plan.preconditioner != Parameters::Solver::Preconditioner::amg ?
-               std::string("none (Krylov with geometric multigrid") +
-                 (plan.matrix_free_bulk() ? ", K0 applied cell by cell)" :
-                                            ")") :
-               std::string("none (Krylov with algebraic multigrid") +
-                 (plan.smoothed_aggregation ? ")" : ", plain aggregation)");
+      return "none (Krylov with " + plan.preconditioner_plugin->in_words() +
+             ")";
     }
   } // namespace
 
@@ -260,7 +283,7 @@ namespace DynamicContact
            ", factorization: " + factorization_text(*this) +
            (preconditioner_reason.empty() ?
               std::string() :
-              "; preconditioner " + preconditioner_name(preconditioner));
+              "; preconditioner " + preconditioner);
   }
 
 
@@ -272,7 +295,7 @@ namespace DynamicContact
            ")" +
            (preconditioner_reason.empty() ?
               std::string() :
-              "; preconditioner " + preconditioner_name(preconditioner) + " (" +
+              "; preconditioner " + preconditioner + " (" +
                 preconditioner_reason + ")");
   }
 } // namespace DynamicContact

@@ -297,8 +297,8 @@ namespace DynamicContact
         return "there is no parameter '" + path +
                "' (misspelt? --print-parameters lists every parameter).";
       return "there is no parameter '" + path + "': it is now '" + moved +
-             "' (each law, refinement strategy and contact solver has a "
-             "subsection of its own; scripts/update-prm " +
+             "' (each law, refinement strategy, contact solver and "
+             "preconditioner has a subsection of its own; scripts/update-prm " +
              (file.empty() ? std::string("FILE") : "'" + file + "'") +
              " rewrites a parameter file of the old layout).";
     }
@@ -568,7 +568,8 @@ namespace DynamicContact
       {"Solver/Condensed limit", "Solver/Condensed/Limit"},
       {"Solver/Condensed limit on several processes",
        "Solver/Condensed/Limit on several processes"},
-      {"Solver/Provisional passes", "Solver/Condensed/Provisional passes"}};
+      {"Solver/Provisional passes", "Solver/Condensed/Provisional passes"},
+      {"Solver/AMG aggregation", "Solver/AMG/Aggregation"}};
     return moves;
   }
 

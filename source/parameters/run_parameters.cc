@@ -367,21 +367,26 @@ namespace DynamicContact
     solver.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     output.parse_parameters(prm);
-    require(
-      solver.preconditioner !=
-          Parameters::Solver::Preconditioner::matrix_free_gmg ||
-        (solver.linear_solver != Parameters::Solver::LinearSolver::direct &&
-         solver.contact_solver != "condensed"),
-      "Solver/Preconditioner = matrix-free GMG stores no K0: it needs "
-      "Solver/Contact solver = assembled (or auto) and Solver/Linear "
-      "solver = iterative (or auto).");
-    require(solver.preconditioner == Parameters::Solver::Preconditioner::amg ||
-              solver.preconditioner ==
-                Parameters::Solver::Preconditioner::automatic ||
-              finite_element.degree <= 2,
-            "Solver/Preconditioner = GMG is made for elements of degree 1 "
-            "and 2 (Finite element/Polynomial degree = " +
-              std::to_string(finite_element.degree) + ").");
+    if (solver.preconditioner != "auto")
+      {
+        const PreconditionerPlugin &chosen =
+          solver.preconditioner_plugin(solver.preconditioner);
+        require(chosen.stores_matrix() ||
+                  (solver.linear_solver !=
+                     Parameters::Solver::LinearSolver::direct &&
+                   solver.contact_solver != "condensed"),
+                "Solver/Preconditioner = " + solver.preconditioner +
+                  " stores no K0: it needs Solver/Contact solver = "
+                  "assembled (or auto) and Solver/Linear solver = iterative "
+                  "(or auto).");
+        require(!chosen.highest_degree() ||
+                  finite_element.degree <= *chosen.highest_degree(),
+                "Solver/Preconditioner = " + solver.preconditioner +
+                  " is made for elements of degree up to " +
+                  std::to_string(chosen.highest_degree().value_or(0)) +
+                  " (Finite element/Polynomial degree = " +
+                  std::to_string(finite_element.degree) + ").");
+      }
     // The slip length's state advances with each solve over its own
     // (sub-)step: right for the theta-schemes, whose solve is the step; the
     // composite schemes combine their sub-steps' states differently

@@ -22,6 +22,36 @@ namespace DynamicContact
   {
     namespace
     {
+      /**
+       * Every registered implementation of @p Interface with the entries of
+       * its subsection (of the current subsection of @p prm), by name.
+       */
+      template <class Interface>
+      std::map<std::string, std::shared_ptr<const Interface>>
+      create_every_plugin(ParameterHandler &prm)
+      {
+        const auto &registry = PluginRegistry<Interface>::instance();
+        std::map<std::string, std::shared_ptr<const Interface>> plugins;
+        for (const std::string &name : registry.registered())
+          plugins.emplace(name, registry.create(name, prm));
+        return plugins;
+      }
+
+      /** The entry @p name of @p plugins (a @p kind, for the error). */
+      template <class Interface>
+      const Interface &
+      registered_plugin(
+        const std::map<std::string, std::shared_ptr<const Interface>> &plugins,
+        const std::string                                             &name,
+        const std::string                                             &kind)
+      {
+        const auto found = plugins.find(name);
+        AssertThrow(found != plugins.end() && found->second,
+                    ExcMessage("No " + kind + " '" + name +
+                               "' is registered."));
+        return *found->second;
+      }
+
       /** Solver: the entries of the semismooth Newton iteration. */
       void
       declare_newton_entries(ParameterHandler &prm)
@@ -83,40 +113,7 @@ namespace DynamicContact
                           "1000",
                           Patterns::Integer(1),
                           "Cap on the iterations of the iterative solver.");
-        prm.declare_entry(
-          "AMG aggregation",
-          "smoothed",
-          Patterns::Selection("smoothed|plain"),
-          "How the algebraic multigrid of K0 (the iterative solver's "
-          "preconditioner) builds its coarse levels from aggregates of "
-          "nodes. 'smoothed': smoothed aggregation, the fewest Krylov "
-          "iterations. 'plain': the aggregates' rigid-body modes without "
-          "smoothing, a hierarchy about a third as large and quicker to "
-          "build, for more Krylov iterations: for a mesh whose memory is "
-          "short (the memory table at the end of log.txt shows the "
-          "hierarchy's share).");
-        prm.declare_entry(
-          "Preconditioner",
-          "auto",
-          Patterns::Selection("auto|AMG|GMG|matrix-free GMG"),
-          "The preconditioner of the iterative solver (the solves with K0 "
-          "and the Newton systems of the assembled solver). 'AMG': "
-          "algebraic multigrid of K0 (Trilinos ML; Solver/AMG "
-          "aggregation). 'GMG': geometric multigrid on the mesh "
-          "coarsened level by level, K0 applied cell by cell on the "
-          "coarser levels, Chebyshev smoothing: no AMG hierarchy to store "
-          "(elements of degree 1 and 2; on a mesh without refinement "
-          "levels, Geometry/Global refinements = 0 and no adaptive "
-          "refinement yet, the AMG serves). 'matrix-free GMG': the same, "
-          "and K0 is not stored either but applied cell by cell on every "
-          "level, for the least memory (no matrix at all but the coarsest "
-          "level's) at a slower product with K0: the assembled solver "
-          "with Linear solver = iterative only. 'auto': for the assembled "
-          "iterative solver, the fastest of AMG, GMG and matrix-free GMG "
-          "(in this order) whose peak memory, as the memory model predicts "
-          "it for the mesh, fits into Solver/Memory per process (the least "
-          "hungry where none does); elsewhere the AMG. The log's solver "
-          "plan names the choice and the memory predicted.");
+        declare_preconditioners(prm);
         prm.declare_entry(
           "Memory per process",
           "auto",
@@ -160,12 +157,7 @@ namespace DynamicContact
     {
       prm.enter_subsection("Solver");
       contact_solver = prm.get("Contact solver");
-      contact_solvers.clear();
-      {
-        const auto &registry = PluginRegistry<ContactSolverPlugin>::instance();
-        for (const std::string &name : registry.registered())
-          contact_solvers.emplace(name, registry.create(name, prm));
-      }
+      contact_solvers       = create_every_plugin<ContactSolverPlugin>(prm);
       min_dofs_per_process  = prm.get_integer("Minimum DoFs per process");
       line_search           = prm.get_bool("Line search");
       newton_tolerance      = prm.get_double("Newton tolerance");
@@ -177,15 +169,8 @@ namespace DynamicContact
       direct_solver_package = prm.get("Direct solver package");
       linear_tolerance      = prm.get_double("Linear tolerance");
       max_linear_iterations = prm.get_integer("Maximum linear iterations");
-      smoothed_aggregation  = prm.get("AMG aggregation") == "smoothed";
-      {
-        const std::string name = prm.get("Preconditioner");
-        preconditioner         = name == "AMG" ? Preconditioner::amg :
-                                 name == "GMG" ? Preconditioner::gmg :
-                                 name == "matrix-free GMG" ?
-                                                 Preconditioner::matrix_free_gmg :
-                                                 Preconditioner::automatic;
-      }
+      preconditioner        = prm.get("Preconditioner");
+      preconditioners       = create_every_plugin<PreconditionerPlugin>(prm);
       {
         const std::string           memory = prm.get("Memory per process");
         const std::optional<double> gb =
@@ -210,11 +195,13 @@ namespace DynamicContact
     const ContactSolverPlugin &
     Solver::contact_solver_plugin(const std::string &name) const
     {
-      const auto found = contact_solvers.find(name);
-      AssertThrow(found != contact_solvers.end() && found->second,
-                  ExcMessage("No contact solver '" + name +
-                             "' is registered."));
-      return *found->second;
+      return registered_plugin(contact_solvers, name, "contact solver");
+    }
+
+    const PreconditionerPlugin &
+    Solver::preconditioner_plugin(const std::string &name) const
+    {
+      return registered_plugin(preconditioners, name, "preconditioner");
     }
   } // namespace Parameters
 } // namespace DynamicContact

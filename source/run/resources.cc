@@ -21,27 +21,28 @@ namespace DynamicContact
     /**
      * A lower bound of the memory of a scene of @p dofs DoFs (elements of
      * @p degree): a third of what the memory model predicts with the
-     * preconditioner of least memory that Solver/Preconditioner = @p given
-     * allows.
+     * preconditioner of least memory that Solver/Preconditioner of
+     * @p parameters allows.
      */
     double
-    least_memory_bound(const Parameters::Solver::Preconditioner given,
-                       const unsigned int                       dim,
-                       const unsigned int                       degree,
-                       const double                             dofs)
+    least_memory_bound(const Parameters::Solver &parameters,
+                       const unsigned int        dim,
+                       const unsigned int        degree,
+                       const double              dofs)
     {
-      using P      = Parameters::Solver::Preconditioner;
       double bytes = std::numeric_limits<double>::infinity();
-      for (const P candidate : preconditioner_candidates(given, degree))
-        bytes = std::min(bytes,
-                         predicted_memory(candidate,
-                                          dim,
-                                          degree,
-                                          static_cast<types::global_dof_index>(
-                                            std::min(dofs, 4294967295.)),
-                                          1,
-                                          0.) /
-                           3);
+      for (const std::string &candidate :
+           preconditioner_candidates(parameters, degree))
+        bytes =
+          std::min(bytes,
+                   predicted_memory(parameters.preconditioner_plugin(candidate),
+                                    dim,
+                                    degree,
+                                    static_cast<types::global_dof_index>(
+                                      std::min(dofs, 4294967295.)),
+                                    1,
+                                    0.) /
+                     3);
       return bytes;
     }
 
@@ -112,10 +113,10 @@ namespace DynamicContact
     const double cells       = n_coarse_cells * std::pow(2., dim * refinements);
     const double p           = parameters.finite_element.degree;
     const double dofs = dim * std::pow(p * std::pow(cells, 1. / dim) + 1, dim);
-    using P           = Parameters::Solver::Preconditioner;
-    const P given     = parameters.solver.preconditioner;
-    const double bytes =
-      least_memory_bound(given, dim, parameters.finite_element.degree, dofs);
+    const double bytes       = least_memory_bound(parameters.solver,
+                                            dim,
+                                            parameters.finite_element.degree,
+                                            dofs);
 
     // The memory available: MemAvailable of every host of the run, once.
     const auto hosts = memory_per_host(memory_available_here(), comm);
@@ -151,7 +152,7 @@ namespace DynamicContact
       throw CollectiveError(
         "The scene does not fit into memory: " + estimate + " need at least " +
         giga(bytes) + " with Solver/Preconditioner = " +
-        preconditioner_name(given) + ", and " + giga(total) +
+        parameters.solver.preconditioner + ", and " + giga(total) +
         " are available on the " + std::to_string(hosts.size()) + " host" +
         (hosts.size() > 1 ? "s" : "") + " of this run." + fix);
     return parameters.solver.memory_per_process.value_or(per_process);

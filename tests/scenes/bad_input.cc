@@ -258,6 +258,7 @@ main(int argc, char **argv)
                            value_cases,
                            mesh_cases,
                            running_cases,
+                           layout_cases,
                            parameter_file_cases,
                            command_line_cases})
     {

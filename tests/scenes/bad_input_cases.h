@@ -481,18 +481,6 @@ namespace bad_input_cases
             "t = 2.1",
             "last good state (step 6)"}}
         .found_while_running(),
-      // An entry of the flat layout of earlier versions: its new place named.
-      {"old_layout_entry",
-       scene() + "\nsubsection Friction\n  set Decay rate = 3\nend\n",
-       {"Friction/Decay rate",
-        "Friction/Exponential/Decay rate",
-        "scripts/update-prm"}},
-      // A contact solver's entry of the flat Solver section.
-      {"old_solver_entry",
-       scene() + "\nsubsection Solver\n  set Condensed limit = 0\nend\n",
-       {"Solver/Condensed limit",
-        "Solver/Condensed/Limit",
-        "scripts/update-prm"}},
       {"velocity_strengthening",
        scene() +
          "\nsubsection Friction\n  set Law = expression\n  subsection "
@@ -512,6 +500,41 @@ namespace bad_input_cases
       {"memory_too_small",
        edit(repetitions, repetitions + "\n  set Global refinements = 13"),
        {"does not fit into memory", "5.4e+08 cells", "GB"}},
+    };
+  }
+
+  /**
+   * Entries of the earlier flat layout (their new place named) and
+   * solver entries that do not go together.
+   */
+  inline std::vector<Case>
+  layout_cases()
+  {
+    return {
+      // An entry of the flat layout of earlier versions: its new place named.
+      {"old_layout_entry",
+       scene() + "\nsubsection Friction\n  set Decay rate = 3\nend\n",
+       {"Friction/Decay rate",
+        "Friction/Exponential/Decay rate",
+        "scripts/update-prm"}},
+      // A contact solver's entry of the flat Solver section.
+      {"old_solver_entry",
+       scene() + "\nsubsection Solver\n  set Condensed limit = 0\nend\n",
+       {"Solver/Condensed limit",
+        "Solver/Condensed/Limit",
+        "scripts/update-prm"}},
+      {"old_amg_entry",
+       scene() + "\nsubsection Solver\n  set AMG aggregation = plain\nend\n",
+       {"Solver/AMG aggregation", "Solver/AMG/Aggregation"}},
+      {"gmg_degree_3",
+       scene() + "\nsubsection Finite element\n  set Polynomial degree = "
+                 "3\nend\nsubsection Solver\n  set Preconditioner = "
+                 "GMG\nend\n",
+       {"Solver/Preconditioner = GMG", "degree up to 2", "degree = 3"}},
+      {"matrix_free_condensed",
+       scene() + "\nsubsection Solver\n  set Contact solver = condensed\n  "
+                 "set Preconditioner = matrix-free GMG\nend\n",
+       {"matrix-free GMG", "stores no K0", "Solver/Contact solver"}},
     };
   }
 

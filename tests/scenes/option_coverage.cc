@@ -13,7 +13,7 @@
 //   solves with K0; Solver/Condensed/Limit = 0 makes the plan assemble;
 //   the iterative linear solver to Solver/Linear tolerance agrees with the
 //   direct one, and one capped by Solver/Maximum linear iterations stops
-//   the run with an error that names the cap; Solver/AMG aggregation =
+//   the run with an error that names the cap; Solver/AMG/Aggregation =
 //   plain gives the same solution with more Krylov iterations (on a mesh
 //   refined twice: the multigrid has coarse levels there);
 // - Friction/Uniqueness monitor = always measures the bound with the
@@ -193,16 +193,16 @@ namespace
         overrides.insert(overrides.end(),
                          iterative_solver.begin(),
                          iterative_solver.end());
-        overrides.push_back("Solver/AMG aggregation=" + aggregation);
+        overrides.push_back("Solver/AMG/Aggregation=" + aggregation);
         aggregations.push_back(series("aggregation-" + aggregation, overrides));
       }
     check(test_tools::largest_difference(aggregations[1], aggregations[0]) <
             1e-8,
-          "Solver/AMG aggregation = plain: the same solution to 1e-8");
+          "Solver/AMG/Aggregation = plain: the same solution to 1e-8");
     check(total(aggregations[1], krylov) > total(aggregations[0], krylov),
-          "Solver/AMG aggregation = plain: more Krylov iterations");
+          "Solver/AMG/Aggregation = plain: more Krylov iterations");
     check(log_says("aggregation-plain", "plain aggregation"),
-          "Solver/AMG aggregation = plain: the solver plan says so");
+          "Solver/AMG/Aggregation = plain: the solver plan says so");
   }
 
   /**

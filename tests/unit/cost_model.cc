@@ -326,20 +326,19 @@ namespace
     const std::vector<std::string> f = csv_fields(line);
     if (f.size() < 7 || f[4] != "peak resident")
       return true;
-    using P   = Parameters::Solver::Preconditioner;
-    const P p = f[1] == "AMG"             ? P::amg :
-                f[1] == "GMG"             ? P::gmg :
-                f[1] == "matrix-free GMG" ? P::matrix_free_gmg :
-                                            P::automatic;
-    if (p == P::automatic)
+    const auto &registered = automatic().preconditioners;
+    if (registered.find(f[1]) == registered.end())
       return true; // AMG plain: not a choice of auto
     // The coarse meshes: the rail's 10 x 1 x 1 cells, the paper's 128 x
     // 128.
     const double coarse_dofs = dim == 3 ? 3. * 11 * 2 * 2 : 2. * 129 * 129;
-    const double predicted =
-      predicted_memory(
-        p, dim, 1, std::stoul(f[2]), std::stoul(f[0]), coarse_dofs) /
-      1e6;
+    const double predicted   = predicted_memory(*registered.at(f[1]),
+                                              dim,
+                                              1,
+                                              std::stoul(f[2]),
+                                              std::stoul(f[0]),
+                                              coarse_dofs) /
+                             1e6;
     const double measured = std::stod(f[6]);
     if (is_root() && std::abs(predicted / measured - 1) > 0.12)
       std::cout << "  " << file << ", " << f[0] << " process(es), " << f[1]
@@ -375,13 +374,19 @@ namespace
                "processes, and memory_2d.csv; AMG, GMG, matrix-free GMG)");
   }
 
-  using P = Parameters::Solver::Preconditioner;
+  /** The preconditioner @p name with its default parameters. */
+  const PreconditionerPlugin &
+  plugin(const std::string &name)
+  {
+    static const Parameters::Solver defaults = automatic();
+    return defaults.preconditioner_plugin(name);
+  }
 
   /** The memory the rail 320 x 32 x 32 needs on 1 process. */
   double
-  need(const P p, const unsigned int degree)
+  need(const std::string &name, const unsigned int degree)
   {
-    return predicted_memory(p, 3, degree, rail(32).first, 1, 132);
+    return predicted_memory(plugin(name), 3, degree, rail(32).first, 1, 132);
   }
 
   /** Preconditioner = auto: the fastest that fits. */
@@ -389,27 +394,40 @@ namespace
   check_preconditioner_choice(Checks &checks)
   {
     const auto dofs = rail(32).first;
-    checks.add(need(P::amg, 1) > need(P::gmg, 1) &&
-                 need(P::gmg, 1) > need(P::matrix_free_gmg, 1),
+    checks.add(preconditioner_candidates(automatic(), 1) ==
+                   std::vector<std::string>{"AMG", "GMG", "matrix-free GMG"} &&
+                 preconditioner_candidates(automatic(), 3) ==
+                   std::vector<std::string>{"AMG"} &&
+                 preconditioner_candidates(
+                   automatic({"Preconditioner=matrix-free GMG"}), 1) ==
+                   std::vector<std::string>{"matrix-free GMG"},
+               "auto tries the preconditioners by their rank (AMG, GMG, "
+               "matrix-free GMG), the geometric ones for degree 1 and 2 "
+               "only; one set is the only candidate");
+    checks.add(need("AMG", 1) > need("GMG", 1) &&
+                 need("GMG", 1) > need("matrix-free GMG", 1),
                "the rail 320 x 32 x 32 needs the most with the AMG, the "
                "least with the matrix-free GMG");
-    checks.add(predicted_memory(P::matrix_free_gmg, 3, 1, dofs, 1, dofs) ==
-                 need(P::amg, 1),
-               "on a mesh without levels the GMGs need what the AMG needs");
+    checks.add(
+      predicted_memory(plugin("matrix-free GMG"), 3, 1, dofs, 1, dofs) ==
+        need("AMG", 1),
+      "on a mesh without levels the GMGs need what the AMG needs");
     bool        as_budgeted = true;
     std::string reason;
-    for (const auto &[bytes, expected] : std::vector<std::pair<double, P>>{
-           {std::numeric_limits<double>::infinity(), P::amg},
-           {1.01 * need(P::amg, 1), P::amg},
-           {0.99 * need(P::amg, 1), P::gmg},
-           {0.99 * need(P::gmg, 1), P::matrix_free_gmg},
-           {0.5 * need(P::matrix_free_gmg, 1), P::matrix_free_gmg}})
+    for (const auto &[bytes, expected] :
+         std::vector<std::pair<double, std::string>>{
+           {std::numeric_limits<double>::infinity(), "AMG"},
+           {1.01 * need("AMG", 1), "AMG"},
+           {0.99 * need("AMG", 1), "GMG"},
+           {0.99 * need("GMG", 1), "matrix-free GMG"},
+           {0.5 * need("matrix-free GMG", 1), "matrix-free GMG"}})
       {
         MemoryBudget budget;
         budget.bytes_per_process = bytes;
         as_budgeted =
           as_budgeted &&
-          choose_preconditioner(3, dofs, 1, budget, reason) == expected;
+          choose_preconditioner(automatic(), 3, dofs, 1, budget, reason) ==
+            expected;
       }
     checks.add(as_budgeted,
                "auto: the AMG while it fits, then the GMG, then the "
@@ -420,7 +438,8 @@ namespace
     MemoryBudget small;
     small.bytes_per_process = 1e6;
     small.degree            = 3;
-    checks.add(choose_preconditioner(3, dofs, 1, small, reason) == P::amg,
+    checks.add(choose_preconditioner(automatic(), 3, dofs, 1, small, reason) ==
+                 "AMG",
                "elements of degree 3: the AMG (the GMG is for degree 1 and "
                "2)");
   }
@@ -435,27 +454,27 @@ namespace
     small.bytes_per_process = 1e6;
     small.degree            = 1;
     auto p                  = automatic();
-    p.preconditioner        = P::automatic;
+    p.preconditioner        = "auto";
     p.contact_solver        = "assembled";
     p.linear_solver         = Parameters::Solver::LinearSolver::iterative;
     const auto assembled    = plan_solver(p, 3, dofs, nodes, 1, self, small);
     p.contact_solver        = "condensed";
     const auto condensed    = plan_solver(p, 3, dofs, nodes, 1, self, small);
-    p.preconditioner        = P::gmg;
+    p.preconditioner        = "GMG";
     p.contact_solver        = "assembled";
     const auto set          = plan_solver(p, 3, dofs, nodes, 1, self, small);
-    checks.add(assembled.preconditioner == P::matrix_free_gmg &&
+    checks.add(assembled.preconditioner == "matrix-free GMG" &&
                  assembled.matrix_free_bulk() &&
                  assembled.description().find("preconditioner "
                                               "matrix-free GMG") !=
                    std::string::npos &&
                  assembled.solver_parameters(p).preconditioner ==
-                   P::matrix_free_gmg,
+                   "matrix-free GMG",
                "plan, assembled iterative, 1 MB per process: the "
                "matrix-free GMG, in the plan's description and in the "
                "solver's parameters");
-    checks.add(condensed.preconditioner == P::amg &&
-                 set.preconditioner == P::gmg &&
+    checks.add(condensed.preconditioner == "AMG" &&
+                 set.preconditioner == "GMG" &&
                  condensed.preconditioner_reason.empty() &&
                  set.preconditioner_reason.empty(),
                "plan: the condensed solver takes the AMG; a preconditioner "

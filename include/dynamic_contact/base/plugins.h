@@ -145,6 +145,22 @@ namespace DynamicContact
       declare_subsections(prm);
     }
 
+    /**
+     * The same with 'auto' (the default) as a further choice before the
+     * names: @p intro says what auto chooses.
+     */
+    void
+    declare_parameters_with_auto(ParameterHandler  &prm,
+                                 const std::string &entry,
+                                 const std::string &intro) const
+    {
+      prm.declare_entry(entry,
+                        "auto",
+                        Patterns::Selection("auto|" + names()),
+                        intro + " " + documentation());
+      declare_subsections(prm);
+    }
+
     /** Declare the subsection of every implementation. */
     void
     declare_subsections(ParameterHandler &prm) const

@@ -58,7 +58,7 @@ namespace DynamicContact
      * with the rigid-body modes as near null space, or with the dim
      * translations only if @p with_rotations is false (for the comparison
      * in benchmarks/amg-comparison); by smoothed aggregation, or plain
-     * aggregation if @p smoothed is false (Solver/AMG aggregation).
+     * aggregation if @p smoothed is false (Solver/AMG/Aggregation).
      */
     template <int dim>
     void
@@ -262,7 +262,7 @@ namespace DynamicContact
 
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    direct;
-    std::unique_ptr<BulkAMG>              amg;
+    std::unique_ptr<BulkPreconditioner>   amg;
     /** The CHOLMOD factorization (of the whole matrix on every process). */
     std::unique_ptr<Cholesky> cholesky;
     /**

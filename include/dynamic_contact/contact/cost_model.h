@@ -114,36 +114,30 @@ namespace DynamicContact
   double
   largest_costed_mesh(const unsigned int dim, const CostedSolver solver);
 
-  /** "AMG", "GMG", "matrix-free GMG" or "auto", as in the parameter file. */
-  std::string
-  preconditioner_name(const Parameters::Solver::Preconditioner preconditioner);
-
   /**
-   * The preconditioners Solver/Preconditioner = @p given allows with
-   * elements of degree @p degree: @p given itself, or for 'auto' the AMG,
-   * GMG and matrix-free GMG, fastest first, the geometric ones only for
-   * degree 1 and 2.
+   * The preconditioners Solver/Preconditioner of @p parameters allows with
+   * elements of degree @p degree: the one set, or for 'auto' those with an
+   * auto rank (PreconditionerPlugin::auto_rank(), fastest first) made for
+   * that degree.
    */
-  std::vector<Parameters::Solver::Preconditioner>
-  preconditioner_candidates(const Parameters::Solver::Preconditioner given,
-                            const unsigned int                       degree);
+  std::vector<std::string>
+  preconditioner_candidates(const Parameters::Solver &parameters,
+                            const unsigned int        degree);
 
   /**
    * The peak memory, in bytes, of the largest process of a run of the
    * assembled iterative solver with @p preconditioner on a mesh of
    * @p n_dofs bulk DoFs of elements of degree @p degree on @p n_processes
    * processes (benchmarks/memory at 10^6 DoFs): the program itself, and
-   * per DoF the mesh, the vectors and the GMRES basis, the stored K0 and
-   * its sparsity pattern (from the entries of a row), and the
-   * preconditioner's hierarchy, with the AMG's transient peak while it is
-   * built; for the geometric multigrid its levels and its coarsest level
-   * of @p coarse_dofs DoFs (factorized while small, else its AMG). On a
-   * mesh without refinement levels (@p coarse_dofs = @p n_dofs) the
-   * geometric multigrid has none to coarsen to, and it needs the AMG's
-   * memory.
+   * per DoF the mesh, the vectors and the GMRES basis, and the
+   * preconditioner's share (PreconditionerPlugin::memory(): K0 and its
+   * sparsity pattern where it is stored, from the entries of a row; the
+   * hierarchy, with the AMG's transient peak while it is built; for the
+   * geometric multigrid its levels and its coarsest level of
+   * @p coarse_dofs DoFs).
    */
   double
-  predicted_memory(const Parameters::Solver::Preconditioner preconditioner,
+  predicted_memory(const PreconditionerPlugin           &preconditioner,
                    const unsigned int                    dim,
                    const unsigned int                    degree,
                    const dealii::types::global_dof_index n_dofs,

@@ -10,6 +10,7 @@
 #include <mpi.h>
 
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace DynamicContact
@@ -41,14 +42,12 @@ namespace DynamicContact
     Parameters::Solver::LinearSolver linear_solver =
       Parameters::Solver::LinearSolver::direct;
     Factorization factorization = Factorization::cholmod;
-    /** Without one: the AMG's aggregation (Solver/AMG aggregation). */
-    bool smoothed_aggregation = true;
     /**
      * Without one: the preconditioner (Solver/Preconditioner, auto
-     * resolved: choose_preconditioner()).
+     * resolved: choose_preconditioner()), with its parameters.
      */
-    Parameters::Solver::Preconditioner preconditioner =
-      Parameters::Solver::Preconditioner::amg;
+    std::string                                 preconditioner = "AMG";
+    std::shared_ptr<const PreconditionerPlugin> preconditioner_plugin;
     /** Why the contact solver and the factorization were chosen. */
     std::string reason;
     /** Preconditioner = auto: why this one (empty otherwise). */
@@ -69,8 +68,7 @@ namespace DynamicContact
     bool
     matrix_free_bulk() const
     {
-      return preconditioner ==
-               Parameters::Solver::Preconditioner::matrix_free_gmg &&
+      return preconditioner_plugin && !preconditioner_plugin->stores_matrix() &&
              !condensed &&
              linear_solver == Parameters::Solver::LinearSolver::iterative;
     }
@@ -118,16 +116,16 @@ namespace DynamicContact
 
   /**
    * The preconditioner of the assembled iterative solver for
-   * Solver/Preconditioner = auto: the first of AMG, GMG and matrix-free
-   * GMG (fastest first: benchmarks/results/scaling_preconditioners.csv)
-   * whose peak memory
+   * Solver/Preconditioner = auto: the first of preconditioner_candidates()
+   * (AMG, GMG and matrix-free GMG, fastest first:
+   * benchmarks/results/scaling_preconditioners.csv) whose peak memory
    * predicted on the largest process (predicted_memory()) fits into the
-   * budget; the one of least memory where none fits. The geometric ones
-   * only for elements of degree 1 and 2. @p reason: the memory each needs
-   * and the budget, for the log.
+   * budget; the one of least memory where none fits. @p reason: the memory
+   * each needs and the budget, for the log.
    */
-  Parameters::Solver::Preconditioner
-  choose_preconditioner(const unsigned int                    dim,
+  std::string
+  choose_preconditioner(const Parameters::Solver             &parameters,
+                        const unsigned int                    dim,
                         const dealii::types::global_dof_index n_dofs,
                         const unsigned int                    n_processes,
                         const MemoryBudget                   &memory,

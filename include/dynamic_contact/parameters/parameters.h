@@ -5,6 +5,7 @@
 #include <deal.II/base/types.h>
 
 #include <dynamic_contact/base/contact_solver_plugin.h>
+#include <dynamic_contact/base/preconditioner_plugin.h>
 #include <dynamic_contact/base/step_scheme.h>
 #include <dynamic_contact/base/time_scheme.h>
 #include <dynamic_contact/laws/material.h>
@@ -290,27 +291,21 @@ namespace DynamicContact
       double       linear_tolerance;
       unsigned int max_linear_iterations;
       /**
-       * The AMG of K0 smooths its prolongators (smoothed aggregation);
-       * false: plain aggregation (a smaller hierarchy, more iterations).
+       * The iterative solver's preconditioner (Solver/Preconditioner): auto
+       * or one of preconditioners; in the parameters a solver works with
+       * (SolverPlan::solver_parameters()) never auto.
        */
-      bool smoothed_aggregation;
-      enum class Preconditioner
-      {
-        /** Chosen by the solver plan from the memory model. */
-        automatic,
-        /** The AMG of K0 (BulkAMG). */
-        amg,
-        /** Geometric multigrid (BulkMultigrid), K0 stored. */
-        gmg,
-        /** Geometric multigrid, K0 applied cell by cell (not stored). */
-        matrix_free_gmg
-      };
+      std::string preconditioner = "auto";
       /**
-       * The iterative solver's preconditioner (Solver/Preconditioner); in
-       * the parameters a solver works with (SolverPlan::
-       * solver_parameters()) never automatic.
+       * The registered preconditioners with the entries of their
+       * subsections (Solver/AMG, ...), by name.
        */
-      Preconditioner preconditioner = Preconditioner::automatic;
+      std::map<std::string, std::shared_ptr<const PreconditionerPlugin>>
+        preconditioners;
+
+      /** The preconditioner @p name (one of preconditioners). */
+      const PreconditionerPlugin &
+      preconditioner_plugin(const std::string &name) const;
       /**
        * Bytes one process may use (Solver/Memory per process);
        * std::nullopt for 'auto' (measured when the run starts).
