@@ -288,7 +288,7 @@ namespace DynamicContact
         cholesky.reset();
         amg =
           create_preconditioner(parameters,
-                                "AMG",
+                                algebraic_multigrid,
                                 PreconditionerInput<dim>{discretization, &A});
       }
   }

@@ -9,9 +9,12 @@
 #include <dynamic_contact/bulk/bulk_solver.h>
 #include <dynamic_contact/bulk/preconditioners.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -200,8 +203,26 @@ namespace DynamicContact
     std::unique_ptr<BulkPreconditioner> made =
       parameters.preconditioner_plugin(name).create(input);
     if (!made)
-      made = parameters.preconditioner_plugin("AMG").create(input);
+      made =
+        parameters.preconditioner_plugin(algebraic_multigrid).create(input);
     return made;
+  }
+
+
+  std::vector<std::string>
+  auto_preconditioners(const Parameters::Solver &parameters,
+                       const unsigned int        degree)
+  {
+    std::vector<std::pair<unsigned int, std::string>> ranked;
+    for (const auto &[name, plugin] : parameters.preconditioners)
+      if (plugin->auto_rank() &&
+          (!plugin->highest_degree() || degree <= *plugin->highest_degree()))
+        ranked.emplace_back(*plugin->auto_rank(), name);
+    std::sort(ranked.begin(), ranked.end());
+    std::vector<std::string> names;
+    for (const auto &[rank, name] : ranked)
+      names.push_back(name);
+    return names;
   }
 
 
@@ -236,7 +257,7 @@ namespace DynamicContact
   DYNAMIC_CONTACT_REGISTER(
     PreconditionerPlugin,
     AlgebraicMultigrid,
-    "AMG",
+    algebraic_multigrid,
     "algebraic multigrid of K0 (Trilinos ML; Solver/AMG), built once per "
     "mesh and time step.");
 

@@ -1,3 +1,4 @@
+#include <dynamic_contact/bulk/preconditioners.h>
 #include <dynamic_contact/contact/cost_model.h>
 
 #include <algorithm>
@@ -5,7 +6,6 @@
 #include <cstring>
 #include <iomanip>
 #include <sstream>
-#include <utility>
 
 namespace DynamicContact
 {
@@ -136,16 +136,7 @@ namespace DynamicContact
   {
     if (parameters.preconditioner != "auto")
       return {parameters.preconditioner};
-    std::vector<std::pair<unsigned int, std::string>> ranked;
-    for (const auto &[name, plugin] : parameters.preconditioners)
-      if (plugin->auto_rank() &&
-          (!plugin->highest_degree() || degree <= *plugin->highest_degree()))
-        ranked.emplace_back(*plugin->auto_rank(), name);
-    std::sort(ranked.begin(), ranked.end());
-    std::vector<std::string> names;
-    for (const auto &[rank, name] : ranked)
-      names.push_back(name);
-    return names;
+    return auto_preconditioners(parameters, degree);
   }
 
 

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <dynamic_contact/bulk/preconditioners.h>
 #include <dynamic_contact/contact/solver_plan.h>
 
 #include <algorithm>
@@ -88,16 +89,13 @@ namespace DynamicContact
                         const MemoryBudget           &memory,
                         std::string                  &reason)
   {
-    Parameters::Solver automatic = parameters;
-    automatic.preconditioner     = "auto";
     std::ostringstream s;
     s << "peak predicted per process:";
     std::optional<std::string> chosen;
-    std::string                least = "AMG";
+    std::string                least = algebraic_multigrid;
     double least_need                = std::numeric_limits<double>::infinity();
     bool   first                     = true;
-    for (const std::string &p :
-         preconditioner_candidates(automatic, memory.degree))
+    for (const std::string &p : auto_preconditioners(parameters, memory.degree))
       {
         const double need =
           predicted_memory(parameters.preconditioner_plugin(p),
@@ -154,7 +152,7 @@ namespace DynamicContact
                                   n_processes,
                                   memory,
                                   plan.preconditioner_reason) :
-            "AMG";
+            algebraic_multigrid;
       plan.preconditioner_plugin =
         parameters.preconditioners.at(plan.preconditioner);
     }

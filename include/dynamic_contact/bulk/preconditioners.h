@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace DynamicContact
 {
@@ -33,6 +34,23 @@ namespace DynamicContact
     /** BulkOperator::cell_data(), if set up. */
     const MatrixFree<dim, double> *cell_data = nullptr;
   };
+
+  /**
+   * The name of the algebraic multigrid among the preconditioners: the one
+   * of the condensed solver's iterative solves with K0, of 'auto' outside
+   * the assembled iterative solver, and where another cannot serve.
+   */
+  inline const std::string algebraic_multigrid = "AMG";
+
+  /**
+   * The preconditioners Preconditioner = auto tries with elements of
+   * degree @p degree: those of @p parameters with an auto rank
+   * (PreconditionerPlugin::auto_rank(), fastest first) made for that
+   * degree.
+   */
+  std::vector<std::string>
+  auto_preconditioners(const Parameters::Solver &parameters,
+                       const unsigned int        degree);
 
   /**
    * The preconditioner Solver/Preconditioner = @p name (a registered one,
