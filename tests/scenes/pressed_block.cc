@@ -49,7 +49,8 @@ check_block(const std::string &name, std::vector<std::string> overrides)
       p[1] = H;
       if (dim == 3)
         p[2] = 0.25;
-      const double u_y = simulator->simulator().point_displacement(p)[1];
+      const double u_y =
+        simulator->simulator().fields().point_displacement(p)[1];
       worst_top        = std::max(worst_top, std::abs(-u_y - top) / top);
     }
   test_tools::check(worst_top <= 1e-8,

@@ -291,7 +291,7 @@ namespace
                               "Solver/Memory per process=0.001"},
                              "auto");
     test_tools::check(
-      chosen->simulator().solver_plan().find(
+      chosen->simulator().solver().solver_plan().description().find(
         "preconditioner matrix-free GMG (peak predicted") !=
           std::string::npos &&
         chosen->simulator().memory_table().find("bulk matrix K0") ==

@@ -5,31 +5,26 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
-#include <dynamic_contact/bulk/bulk_operator.h>
 #include <dynamic_contact/bulk/discretization.h>
 #include <dynamic_contact/bulk/scene.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/contact/contact_state.h>
-#include <dynamic_contact/laws/foundation.h>
-#include <dynamic_contact/laws/friction_law.h>
 #include <dynamic_contact/laws/material.h>
-#include <dynamic_contact/mesh/mesh_adaptation.h>
 #include <dynamic_contact/output/checkpoint.h>
 #include <dynamic_contact/output/output.h>
 #include <dynamic_contact/output/output_directory.h>
 #include <dynamic_contact/parameters/parameters.h>
-#include <dynamic_contact/time/energy_balance.h>
-#include <dynamic_contact/time/force_balance.h>
+#include <dynamic_contact/run/discrete_operators.h>
+#include <dynamic_contact/run/field_io.h>
+#include <dynamic_contact/run/mesh_life_cycle.h>
+#include <dynamic_contact/run/model_checks.h>
 #include <dynamic_contact/time/step_integrator.h>
 #include <dynamic_contact/time/step_record.h>
-#include <dynamic_contact/time/step_solver.h>
 
 #include <functional>
-#include <array>
-#include <memory>
 #include <limits>
+#include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,13 +32,14 @@ namespace DynamicContact
 {
   /**
    * The discrete problem and its algorithm, step-42 style: owns the scene
-   * and its laws, the mesh, the DoFs, the solution on Gamma_3
-   * (ContactState), the operators and the solver, and the StepIntegrator
-   * that holds the fields u and w and does the scheme's solves; it calls
-   * the steps in functions named after them: set up the mesh and the
-   * initial state, adapt the mesh, do a time step (do_time_step: the
-   * integrator's step, the errors of a manufactured solution, the row's
-   * columns), write the fields.
+   * and its laws, the Discretization (mesh, DoFs, constraints), Gamma_3
+   * and its solution (ContactBoundary, ContactState), the operators and the
+   * solver, the MeshLifeCycle that creates and adapts the mesh, and the
+   * StepIntegrator that holds the fields u and w and does the scheme's
+   * solves. It calls them in functions named after the steps: set up the
+   * mesh and the initial state, adapt the mesh, do a time step
+   * (do_time_step: the integrator's step, the errors of a manufactured
+   * solution, the row's columns), write the fields.
    *
    * When and how often these happen, what is kept after a failure, and
    * where the results go is the TimeLoop's business (time_loop.h): it owns
@@ -63,20 +59,9 @@ namespace DynamicContact
     /** @name Set-up */
     /** @{ */
 
-    /**
-     * Create the coarse mesh of the scene, refusing a scene that cannot fit
-     * (check_resources) before anything is allocated.
-     */
+    /** The coarse mesh of the scene (MeshLifeCycle::create()). */
     void
     create_mesh();
-
-    /**
-     * After create_mesh(): the DoFs of the uniform mesh after Geometry/Global
-     * refinements (exact for a rectangle; dim degree^dim per cell of a mesh
-     * file), before any adaptive refinement.
-     */
-    double
-    initial_dofs_estimate() const;
 
     /**
      * A new run: refine the coarse mesh (Geometry/Global refinements, then
@@ -87,10 +72,9 @@ namespace DynamicContact
     set_up_initial_state();
 
     /**
-     * Before anything is written: the friction law (finite, >= 0, not
-     * increasing unless allowed) and the functions of the scene sampled on
-     * the mesh (loads over the time interval; initial conditions unless
-     * @p resume): a NaN or infinity is an error that names the function.
+     * Before anything is written: the friction law and the functions of
+     * the scene sampled on the mesh (model_checks.h), the initial
+     * conditions unless @p resume.
      */
     void
     check_input(const bool resume);
@@ -103,50 +87,13 @@ namespace DynamicContact
     void
     load_checkpoint(const std::string &path, const double t);
 
-    /**
-     * Write a checkpoint of the mesh and the fields with the loop's
-     * @p state (write_checkpoint in checkpoint.h).
-     */
-    void
-    save_checkpoint(OutputDirectory             &directory,
-                    const RunState              &state,
-                    const std::string           &parameters_of_run,
-                    const unsigned int           keep,
-                    const std::function<void()> &before_commit);
-
     /** The time series row of step 0: the initial state's energy. */
     StepRecord<dim>
     initial_record();
-
-    /**
-     * time_series.csv has the uniqueness measures' columns (a slip-rate
-     * dependent law, Friction/Uniqueness monitor not never).
-     */
-    bool
-    uniqueness_columns() const;
-
-    /**
-     * time_series.csv has the solution count's columns (Friction/Count
-     * solutions with a slip-rate dependent law).
-     */
-    bool
-    solution_count_columns() const;
     /** @} */
 
     /** @name The steps of the scheme */
     /** @{ */
-
-    /** Whether the mesh is adapted before step @p n, and how far ahead. */
-    bool
-    adaptation_due(const unsigned int n) const
-    {
-      return mesh_adaptation.due(n);
-    }
-    unsigned int
-    lookahead_steps() const
-    {
-      return mesh_adaptation.lookahead_steps();
-    }
 
     /**
      * Adapt the mesh for the times [t0, t1], transferring u, w and the
@@ -193,50 +140,49 @@ namespace DynamicContact
       std::optional<double> energy;
     };
     RestorePoint
-    restore_point() const;
+    restore_point() const
+    {
+      return {u, w, contact_state, energy_of_state};
+    }
     void
     restore(const RestorePoint &point);
     /** @} */
 
-    /** @name Output of the fields */
+    /** @name The fields and the model */
     /** @{ */
-    void
-    write_contact_csv(OutputDirectory   &directory,
-                      const unsigned int step,
-                      const double       t) const;
-    void
-    write_vtu(VtuWriter<dim>    &writer,
-              const unsigned int step,
-              const double       t) const;
+    /**
+     * The fields as they are written and read: contact CSV, VTU,
+     * checkpoints, the displacement at a point (FieldIO).
+     */
+    FieldIO<dim> &
+    fields()
+    {
+      return field_io;
+    }
+    const FieldIO<dim> &
+    fields() const
+    {
+      return field_io;
+    }
 
-    /** "2D, Q1 elements, N cells, M DoFs, K contact nodes". */
-    std::string
-    summary() const;
-    /** The material and friction lines of the header. */
+    /** The material and friction lines of the header (model_checks.h). */
     void
-    print_model(const ConditionalOStream &out) const;
+    print_model(const ConditionalOStream &out) const
+    {
+      DynamicContact::print_model(out,
+                                  parameters,
+                                  material,
+                                  operators.step_solver.has_friction());
+    }
     /** @} */
 
     /** @name What the time loop and the tests read */
     /** @{ */
-    std::string
-    solver_name() const
+    /** The solver of the steps, its plan for the current mesh. */
+    const StepSolver<dim> &
+    solver() const
     {
-      return step_solver.solver_name();
-    }
-
-    /** The solver plan of the current mesh, in words (log.txt). */
-    std::string
-    solver_plan() const
-    {
-      return step_solver.solver_plan().description();
-    }
-
-    /** What the plan of the current mesh chose (SolverPlan::choices()). */
-    std::string
-    solver_choices() const
-    {
-      return step_solver.solver_plan().choices();
+      return operators.step_solver;
     }
 
     /**
@@ -246,49 +192,23 @@ namespace DynamicContact
      */
     std::string
     memory_table() const;
-    bool
-    has_friction() const
+    /** The mesh: created, adapted, described (MeshLifeCycle). */
+    const MeshLifeCycle<dim> &
+    mesh() const
     {
-      return step_solver.has_friction();
+      return mesh_cycle;
     }
-    bool
-    adaptive_mesh() const
-    {
-      return mesh_adaptation.enabled();
-    }
-
     const ContactBoundary<dim> &
     contact() const
     {
       return contact_boundary;
     }
-
     /** The node states of the last step, aligned with contact().nodes(). */
     const std::vector<ContactNodeState<dim>> &
     node_states() const
     {
       return contact_state.nodes;
     }
-
-    /**
-     * The displacement at a point of the body (collective). Throws if the
-     * point is outside the body.
-     */
-    Tensor<1, dim>
-    point_displacement(const Point<dim> &point) const;
-
-    /** Displacement and velocity, in master form. */
-    const Vector_t &
-    displacement() const
-    {
-      return u;
-    }
-    const Vector_t &
-    velocity() const
-    {
-      return w;
-    }
-
     const Discretization<dim> &
     get_discretization() const
     {
@@ -302,19 +222,14 @@ namespace DynamicContact
     TimerOutput         &timer;
 
     // The input is parsed (and can fail) before anything else is built.
-    Scene<dim>                         scene;
-    KelvinVoigtMaterial<dim>           material;
-    Foundation                         foundation;
-    std::shared_ptr<const FrictionLaw> friction_law;
+    Scene<dim>               scene;
+    KelvinVoigtMaterial<dim> material;
 
-    Discretization<dim>        discretization;
-    ContactBoundary<dim>       contact_boundary;
-    ContactState<dim>          contact_state;
-    BulkOperator<dim>          bulk;
-    StepSolver<dim>            step_solver;
-    EnergyBalance<dim>         energy_balance;
-    ForceBalanceEvaluator<dim> force_balance;
-    MeshAdaptation<dim>        mesh_adaptation;
+    Discretization<dim>    discretization;
+    ContactBoundary<dim>   contact_boundary;
+    ContactState<dim>      contact_state;
+    DiscreteOperators<dim> operators;
+    MeshLifeCycle<dim>     mesh_cycle;
 
     /**
      * The time step: the scheme's solves and measures, and the fields (the
@@ -323,6 +238,8 @@ namespace DynamicContact
     StepIntegrator<dim> integrator;
     /** The state, in master form (constrained entries zero): integrator's. */
     Vector_t &u, &w;
+    /** The fields written and read. */
+    FieldIO<dim> field_io;
 
     /**
      * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
@@ -341,32 +258,21 @@ namespace DynamicContact
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
     setup_dofs();
-    /**
-     * The operators that depend on the mesh: bulk matrices, solvers, the
-     * solvers planned for the steps from @p start_time on.
-     */
+    /** The operators for the current mesh (DiscreteOperators::setup()). */
     void
     setup_operators(const double start_time);
-    /**
-     * The steps from @p start_time on that one bulk matrix K0 is expected to
-     * serve: those left, at most Mesh refinement/Refine every where the
-     * mesh adapts, one where the time step adapts (K0 changes with it).
-     */
-    unsigned int
-    steps_per_matrix(const double start_time) const;
     void
     set_initial_conditions();
-    /** Before the first step: refine for the initial load (adaptive runs). */
-    void
-    refine_initial_mesh();
 
-    /** Positions of the nodes that penetrate the foundation (all processes). */
-    std::vector<Point<dim>>
-    penetrating_nodes() const;
-
-    /** The errors of a manufactured solution at @p t, of (u, w). */
+    /**
+     * What every row records of the mesh and the scene: the errors of a
+     * manufactured solution at @p t (of u, w), the DoFs and cells, which
+     * optional columns time_series.csv has (the uniqueness measures with a
+     * slip-rate dependent law and Friction/Uniqueness monitor not never;
+     * the solution count with Friction/Count solutions and such a law).
+     */
     void
-    record_errors(StepRecord<dim> &record, const double t);
+    record_state(StepRecord<dim> &record, const double t);
   };
 } // namespace DynamicContact
 
