@@ -7,19 +7,16 @@
 
 #include <dynamic_contact/base/fault_injection.h>
 #include <dynamic_contact/output/checkpoint.h>
-#include <dynamic_contact/output/output.h>
-#include <dynamic_contact/output/output_directory.h>
 #include <dynamic_contact/output/output_schedule.h>
-#include <dynamic_contact/output/resume.h>
 #include <dynamic_contact/parameters/parameters.h>
 #include <dynamic_contact/run/provenance.h>
+#include <dynamic_contact/run/run_files.h>
+#include <dynamic_contact/run/run_report.h>
 #include <dynamic_contact/run/run_totals.h>
 #include <dynamic_contact/run/simulator.h>
+#include <dynamic_contact/run/step_lengths.h>
 #include <dynamic_contact/time/step_record.h>
 
-#include <chrono>
-#include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +29,11 @@ namespace DynamicContact
    * summary, the output directory and run_status, the screen log, and
    * resuming from a checkpoint. The loop state that a checkpoint carries
    * is one RunState (checkpoint.h), kept here as it is saved.
+   *
+   * The loop decides; three parts it owns do the work: StepLengths (the
+   * length of each step), RunFiles (the output directory and every file
+   * written into it) and RunReport (what the run prints). They read the
+   * RunState, and change it only where the loop calls them to.
    *
    * run() = initialize(), then advance() until it returns false, then
    * finish() (or stop() after a signal); tests drive them themselves to
@@ -97,7 +99,10 @@ namespace DynamicContact
      * take part, for a run on part of them.
      */
     void
-    set_process_note(const std::string &note);
+    set_process_note(const std::string &note)
+    {
+      process_note = note;
+    }
 
     /**
      * One time step; false (and nothing done) once the end time is reached
@@ -163,7 +168,7 @@ namespace DynamicContact
     const RunParameters parameters;
     MPI_Comm            comm;
     /** The screen output, and its copy log.txt (rank 0). */
-    mutable ScreenLog screen_log;
+    ScreenLog screen_log;
     /** When the run started (UTC, ISO 8601), for the header. */
     std::string        start_time;
     ConditionalOStream pcout;
@@ -178,77 +183,36 @@ namespace DynamicContact
     Simulator<dim> the_simulator;
     TimerOutput    timer;
 
-    /** Created in the constructor, opened (locked, checked) by initialize. */
-    std::unique_ptr<OutputDirectory> output_directory;
-    /** Whether this run has written run_status (taken over the results). */
-    bool took_over = false;
+    /** What each step writes, and how long it is. */
+    const OutputSchedule schedule;
+    const StepLengths    step_lengths;
+    /**
+     * The loop state a checkpoint carries: step, time, the current time
+     * step (StepLengths), the run's balances and counts. Its vtu_records
+     * are filled from the VTU writer when saved (RunFiles::checkpoint()).
+     */
+    RunState state;
+    /** The output directory and every file written into it, and what the
+     *  run prints: both keep references to the members above. */
+    RunFiles<dim>                files;
+    RunReport<dim>               report;
+    std::vector<StepRecord<dim>> rows;
+
     /** validate(): initialize() stops before the output directory. */
     bool validate_only = false;
     /** The mesh is built (processes_taking_part() or initialize()). */
     bool mesh_created = false;
-    /** Build the coarse mesh unless it is built already. */
-    void
-    create_mesh_once();
     /** set_process_note(). */
-    std::string process_note;
-    /** The parameters of the run as text (checkpoints, --resume). */
-    std::string parameters_of_run;
-    /** parameters.prm and parameters.json of the run. */
-    ParameterFiles                    parameter_files;
-    std::unique_ptr<TimeSeriesWriter> time_series_writer;
-    std::unique_ptr<VtuWriter<dim>>   vtu_writer;
-    std::vector<StepRecord<dim>>      rows;
-    /** What each step writes. */
-    const OutputSchedule schedule;
-
-    /**
-     * The loop state a checkpoint carries: step, time, the current time
-     * step (steps of the nominal Time/Time step, or shorter after a
-     * cut-back, growing back after good steps), the run's balances and
-     * counts. Its vtu_records are filled from the VTU writer when saved.
-     */
-    RunState state;
-
-    std::chrono::steady_clock::time_point wall_start;
-    /**
-     * Wall clock and simulated time when the first step of this run (since
-     * its start or resume) ended: the estimate of the time left is the wall
-     * time per simulated second since then (cut-backs included) times the
-     * simulated time left; set-up and the one-off work of the first step
-     * are left out.
-     */
-    std::optional<std::pair<std::chrono::steady_clock::time_point, double>>
-      stepping_start;
-    /**
-     * Wall time spent writing VTU files (and how many were written), in all
-     * and when stepping_start was set: the estimate of the time left counts
-     * the VTU files still to come at their mean cost instead of spreading
-     * the bursts of the ones written so far over the steps.
-     */
-    double       vtu_seconds          = 0;
-    unsigned int vtu_files            = 0;
-    double       vtu_seconds_at_start = 0;
-
+    std::string           process_note;
     const FaultInjection &faults = FaultInjection::instance();
-    /** A stop signal received (on any process), and the step of the last
-     *  checkpoint written. */
-    int          stopping_signal      = 0;
-    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
+    /** A stop signal received (on any process). */
+    int stopping_signal = 0;
     /** The end summary's counts (those before a resume included). */
     RunTotals totals;
 
-    /** The step k of the next try: the current one, shortened to end at
-     *  the Output times and at T (Time/Adaptive), no sliver of a step. */
-    double
-    next_step_length() const;
-    /**
-     * Time/Adaptive's controller after a step of @p k whose error estimate
-     * is @p error (relative to the tolerance): whether the step is
-     * accepted, and the next k (of the next step, or of the next try of a
-     * rejected one), on the grid Time step * 2^j.
-     */
-    std::pair<bool, double>
-    controlled_step_length(const double k, const double error) const;
+    /** Build the coarse mesh unless it is built already. */
+    void
+    create_mesh_once();
     /**
      * Try the next step, with cut-backs and rejections, until one is
      * accepted; returns its record, its length @p k and (Time/Adaptive)
@@ -263,61 +227,16 @@ namespace DynamicContact
      */
     void
     accept(const StepRecord<dim> &record, const double k, const double k_next);
-
-    /** Whether a step of size @p k that fails may be retried with k/2
-     *  (Time/Minimum time step). */
-    bool
-    can_cut_back(const double k) const;
-    /** Write the contact CSV and/or the VTU fields of the current step. */
-    void
-    output_results(const unsigned int step,
-                   const double       t,
-                   const bool         contact_csv,
-                   const bool         vtu);
-    void
-    print_header() const;
     /**
-     * After the mesh was adapted for step state.step + 1: if the new
-     * mesh's solver plan chooses otherwise than @p choices_before
-     * (SolverPlan::choices()), write it into log.txt, with the step it
-     * applies from (the screen shows it only with Output/Solver details,
-     * which prints every plan).
-     */
-    void
-    log_changed_plan(const std::string &choices_before);
-    void
-    print_progress(const StepRecord<dim> &record) const;
-
-    /** Write a checkpoint of the current state (Checkpoint/Every). */
-    void
-    checkpoint();
-    /**
-     * A step produced no good state: the simulator is back at @p good;
-     * write it out (contact CSV, VTU, a checkpoint) and throw @p message
-     * (collective).
+     * A step produced no good state: the simulator is back at the last
+     * good one; write it out (contact CSV, VTU, a checkpoint) and throw
+     * @p message (collective).
      */
     [[noreturn]] void
     stop_with_last_good_state(const std::string &message);
-
     /** --resume: load the newest good checkpoint, or refuse and say why. */
     void
     resume_from_checkpoint();
-    /** Collective: write run_status (a failure is a CollectiveError). */
-    void
-    write_status(const std::string &status);
-    /**
-     * Collective: open log.txt (with the screen output so far) and write
-     * parameters.prm and parameters.json; with @p resume continue log.txt.
-     */
-    void
-    write_provenance(const bool resume);
-    /** Collective: write the screen output since the last call to log.txt;
-     *  with @p close close it (before the final run_status). */
-    void
-    write_log(const bool close = false);
-    /** Rank 0 after an error: the message into log.txt, and close it. */
-    void
-    close_log_after_error(const std::string &reason);
   };
 
 
