@@ -95,11 +95,11 @@ namespace DynamicContact
   {
     TimerSection scope(timer, "Output");
     if (contact_csv)
-      simulator.write_contact_csv(directory, n, t);
+      simulator.fields().write_contact_csv(directory, n, t);
     if (vtu)
       {
         const auto start = std::chrono::steady_clock::now();
-        simulator.write_vtu(*vtu_writer, n, t);
+        simulator.fields().write_vtu(*vtu_writer, n, t);
         vtu_times.seconds += std::chrono::duration<double>(
                                std::chrono::steady_clock::now() - start)
                                .count();
@@ -115,11 +115,12 @@ namespace DynamicContact
     TimerSection scope(timer, "Checkpoint");
     RunState     saved = state;
     saved.vtu_records  = vtu_writer->get_records();
-    simulator.save_checkpoint(directory,
-                              saved,
-                              parameters_as_text,
-                              parameters.checkpoint.keep,
-                              [this]() { faults.in_checkpoint(state.step); });
+    simulator.fields().save_checkpoint(directory,
+                                       saved,
+                                       parameters_as_text,
+                                       parameters.checkpoint.keep,
+                                       [this]() { faults.in_checkpoint(state.step);
+                                       });
     last_checkpoint_step = state.step;
   }
 

@@ -60,8 +60,8 @@ namespace DynamicContact
   void
   RunReport<dim>::print_header(const std::string &process_note) const
   {
-    pcout << "dynamic-contact: " << simulator.summary();
-    if (simulator.adaptive_mesh())
+    pcout << "dynamic-contact: " << simulator.mesh().summary();
+    if (simulator.mesh().adaptation().enabled())
       pcout << " (adaptive)";
     pcout << '\n';
     if (!process_note.empty())
@@ -72,7 +72,7 @@ namespace DynamicContact
           coarse_mesh_note(parameters.geometry.repetitions,
                            parameters.geometry.global_refinements,
                            Utilities::MPI::n_mpi_processes(comm),
-                           simulator.adaptive_mesh());
+                           simulator.mesh().adaptation().enabled());
         if (!note.empty())
           pcout << "  note: " << note << ".\n";
       }
@@ -85,7 +85,8 @@ namespace DynamicContact
                       start_time) +
       "\n";
     // With the solver plan (it names the number of processes).
-    const std::string plan = "  solver plan: " + simulator.solver_plan() + "\n";
+    const std::string plan =
+      "  solver plan: " + simulator.solver().solver_plan().description() + "\n";
     if (parameters.output.print_timings)
       pcout << provenance << plan;
     else if (Utilities::MPI::this_mpi_process(comm) == 0)
@@ -93,7 +94,7 @@ namespace DynamicContact
     if (parameters.output.print_timings)
       pcout << "  MPI processes: " << Utilities::MPI::n_mpi_processes(comm)
             << ", parameter file: " << parameters.parameter_file
-            << ", contact solver: " << simulator.solver_name() << '\n';
+            << ", contact solver: " << simulator.solver().solver_name() << '\n';
     simulator.print_model(pcout);
   }
 
@@ -106,12 +107,12 @@ namespace DynamicContact
     // screen and so in log.txt.
     if (parameters.output.solver_details ||
         Utilities::MPI::this_mpi_process(comm) != 0 ||
-        simulator.solver_choices() == choices_before)
+        simulator.solver().solver_plan().choices() == choices_before)
       return;
-    screen_log.log_only("  solver plan from step " +
-                        std::to_string(state.step + 1) +
-                        " (mesh adapted at t = " + sig6(state.time) +
-                        "): " + simulator.solver_plan() + "\n");
+    screen_log.log_only(
+      "  solver plan from step " + std::to_string(state.step + 1) +
+      " (mesh adapted at t = " + sig6(state.time) +
+      "): " + simulator.solver().solver_plan().description() + "\n");
   }
 
 
@@ -171,12 +172,12 @@ namespace DynamicContact
     if (parameters.output.print_iteration_counts)
       {
         pcout << "  Newton " << statistics.newton_iterations;
-        if (simulator.has_friction())
+        if (simulator.solver().has_friction())
           pcout << "  convexification "
                 << statistics.convexification_iterations;
       }
     pcout << "  contact " << statistics.n_contact;
-    if (simulator.adaptive_mesh())
+    if (simulator.mesh().adaptation().enabled())
       pcout << "  cells " << record.cells;
     pcout << "  N = " << sig6(record.normal_force)
           << "  E = " << sig6(record.terms.energy.total());
@@ -229,7 +230,7 @@ namespace DynamicContact
         Utilities::System::get_memory_stats(memory);
         const double peak_mb =
           Utilities::MPI::sum(static_cast<double>(memory.VmHWM), comm) / 1024.;
-        pcout << "  contact solver: " << simulator.solver_name()
+        pcout << "  contact solver: " << simulator.solver().solver_name()
               << ", peak memory: " << std::fixed << std::setprecision(0)
               << peak_mb
               << " MB (all processes), wall time: " << std::setprecision(1)

@@ -140,7 +140,7 @@ namespace DynamicContact
     validate_only = true;
     initialize(false);
     timer.disable_output(); // set-up times of a run that does not run
-    return the_simulator.summary();
+    return the_simulator.mesh().summary();
   }
 
 
@@ -151,7 +151,7 @@ namespace DynamicContact
     const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
     create_mesh_once();
     const unsigned int minimum = parameters.solver.min_dofs_per_process;
-    const double       dofs    = the_simulator.initial_dofs_estimate();
+    const double       dofs    = the_simulator.mesh().initial_dofs_estimate();
     if (n == 1 || minimum == 0 || dofs >= double(n) * minimum)
       return n;
     const unsigned int m =
@@ -296,14 +296,17 @@ namespace DynamicContact
       return false;
 
     double remesh_energy_change = 0;
-    if (the_simulator.adaptation_due(state.step + 1))
+    if (the_simulator.mesh().adaptation().due(state.step + 1))
       {
         const double      T              = parameters.time.end_time;
         const double      k0             = parameters.time.time_step;
-        const std::string choices_before = the_simulator.solver_choices();
-        remesh_energy_change             = the_simulator.adapt_mesh(
+        const std::string choices_before =
+          the_simulator.solver().solver_plan().choices();
+        remesh_energy_change = the_simulator.adapt_mesh(
           state.time,
-          std::min(T, state.time + the_simulator.lookahead_steps() * k0),
+          std::min(T,
+                   state.time +
+                     the_simulator.mesh().adaptation().lookahead_steps() * k0),
           k0);
         report.log_changed_plan(choices_before);
       }
@@ -338,8 +341,8 @@ namespace DynamicContact
   TimeLoop<dim>::finish()
   {
     files.time_series_csv().close();
-    const std::string status =
-      totals.print_summary(pcout, state, parameters, the_simulator.has_friction());
+    const std::string status = totals.print_summary(
+      pcout, state, parameters, the_simulator.solver().has_friction());
     report.print_end(timer);
     files.write_log(true);
     files.write_status(status);
