@@ -152,6 +152,16 @@ namespace DynamicContact
   }
 
 
+  template <int dim>
+  void
+  Discretization<dim>::interpolate(const Function<dim> &function,
+                                   Vector_t            &vector) const
+  {
+    VectorTools::interpolate(mapping, dof_handler, function, vector);
+    constraints.set_zero(vector);
+  }
+
+
   template class Discretization<2>;
   template class Discretization<3>;
 } // namespace DynamicContact

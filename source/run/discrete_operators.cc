@@ -95,11 +95,17 @@ namespace DynamicContact
 
 
   template <int dim>
-  void
-  DiscreteOperators<dim>::memory_consumption(MemoryItems &items) const
+  std::string
+  DiscreteOperators<dim>::memory_table(const double field_bytes) const
   {
+    MemoryItems items;
+    discretization.memory_consumption(items);
     bulk.memory_consumption(items);
     step_solver.memory_consumption(items);
+    items.push_back({"the step's fields and work vectors", field_bytes, false});
+    return DynamicContact::memory_table(items,
+                                        discretization.dof_handler.n_dofs(),
+                                        discretization.comm);
   }
 
 

@@ -107,6 +107,26 @@ namespace DynamicContact
 
 
   template <int dim>
+  unsigned int
+  MeshLifeCycle<dim>::processes_taking_part(std::string &note) const
+  {
+    const unsigned int n       = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int minimum = parameters.solver.min_dofs_per_process;
+    const double       dofs    = initial_dofs_estimate();
+    if (n == 1 || minimum == 0 || dofs >= double(n) * minimum)
+      return n;
+    const unsigned int m =
+      std::max(1u, static_cast<unsigned int>(dofs / minimum));
+    note = std::to_string(m) + " of " + std::to_string(n) +
+           " processes take part (about " +
+           std::to_string(static_cast<long long>(std::llround(dofs))) +
+           " DoFs in the initial mesh, Solver/Minimum DoFs per process = " +
+           std::to_string(minimum) + "); the others wait for them";
+    return m;
+  }
+
+
+  template <int dim>
   std::string
   MeshLifeCycle<dim>::summary() const
   {

@@ -1,11 +1,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
-#include <deal.II/numerics/vector_tools.h>
 
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/timing.h>
-#include <dynamic_contact/bulk/error_norms.h>
 #include <dynamic_contact/run/simulator.h>
 
 #include <algorithm>
@@ -71,17 +69,6 @@ namespace DynamicContact
                             parameters.boundary_conditions.contact,
                             scene.initial_gap());
     integrator.reinit();
-    energy_of_state.reset();
-  }
-
-
-  template <int dim>
-  double
-  Simulator<dim>::energy_now()
-  {
-    if (!energy_of_state)
-      energy_of_state = operators.energy_balance.energy(u, w).total();
-    return *energy_of_state;
   }
 
 
@@ -93,25 +80,6 @@ namespace DynamicContact
     operators.setup(start_time,
                     memory_per_process,
                     mesh_cycle.adaptation().enabled());
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::set_initial_conditions()
-  {
-    // Interpolate, then impose the constraints (clamped and roller
-    // conditions, and master form at hanging nodes).
-    VectorTools::interpolate(discretization.mapping,
-                             discretization.dof_handler,
-                             scene.initial_displacement(),
-                             u);
-    VectorTools::interpolate(discretization.mapping,
-                             discretization.dof_handler,
-                             scene.initial_velocity(),
-                             w);
-    discretization.constraints.set_zero(u);
-    discretization.constraints.set_zero(w);
   }
 
 
@@ -129,7 +97,7 @@ namespace DynamicContact
   Simulator<dim>::adapt_mesh(const double t0, const double t1, const double k)
   {
     TimerSection scope(timer, "Mesh adaptation");
-    const double energy_before = energy_now();
+    const double energy_before = integrator.energy();
     if (mesh_cycle.adapt(t0, t1, k, u, w, contact_state, [this]() {
           setup_dofs();
         }))
@@ -141,7 +109,7 @@ namespace DynamicContact
         contact_state.lambda            = lambda;
         contact_state.coefficient_state = states;
       }
-    return energy_now() - energy_before;
+    return integrator.energy() - energy_before;
   }
 
 
@@ -162,12 +130,17 @@ namespace DynamicContact
       parameters.geometry.global_refinements);
     check_input(false);
     setup_dofs();
+    // Interpolated, then the constraints imposed (clamped and roller
+    // conditions, and master form at hanging nodes).
+    const auto set_initial_conditions = [this]() {
+      discretization.interpolate(scene.initial_displacement(), u);
+      discretization.interpolate(scene.initial_velocity(), w);
+    };
     if (mesh_cycle.adaptation().enabled())
-      mesh_cycle.refine_for_initial_load(
-        u,
-        w,
-        [this]() { set_initial_conditions(); },
-        [this]() { setup_dofs(); });
+      mesh_cycle.refine_for_initial_load(u,
+                                         w,
+                                         set_initial_conditions,
+                                         [this]() { setup_dofs(); });
     setup_operators(0.);
     set_initial_conditions();
     operators.step_solver.start_coefficient_states(w);
@@ -184,10 +157,10 @@ namespace DynamicContact
   {
     StepRecord<dim> record;
     record_state(record, 0.);
-    record.terms.energy    = operators.energy_balance.energy(u, w);
-    record.previous_energy = record.terms.energy.total();
-    energy_of_state        = record.previous_energy;
-    record.adaptive_time   = parameters.time.adaptive; // the columns, 0
+    record.terms.energy     = operators.energy_balance.energy(u, w);
+    record.previous_energy  = record.terms.energy.total();
+    integrator.known_energy = record.previous_energy;
+    record.adaptive_time    = parameters.time.adaptive; // the columns, 0
     return record;
   }
 
@@ -210,7 +183,7 @@ namespace DynamicContact
     // column: E_{n-1} below is that of the transferred fields.
     record.remesh_energy_change = remesh_energy_change;
     record.cutbacks             = cutbacks;
-    record.previous_energy      = energy_now(); // of (u, w) before the step
+    record.previous_energy = integrator.energy(); // of (u, w) before the step
     integrator.step(record, t, k, accept_unconverged_loop);
     if (parameters.time.adaptive)
       {
@@ -218,7 +191,7 @@ namespace DynamicContact
         record.rejected      = rejected;
       }
     record_state(record, t);
-    energy_of_state = record.terms.energy.total(); // the step succeeded
+    integrator.known_energy = record.terms.energy.total(); // the step succeeded
     return record;
   }
 
@@ -236,30 +209,7 @@ namespace DynamicContact
       StepSolver<dim>::runs_convexification_loop(friction.law.get());
     record.dofs  = discretization.dof_handler.n_dofs();
     record.cells = discretization.triangulation.n_global_active_cells();
-    if (!scene.has_exact_solution())
-      return;
-    TimerSection   scope(timer, "Step: energy and force balance");
-    const Vector_t u_ghosted = discretization.expanded(u),
-                   w_ghosted = discretization.expanded(w);
-    record.has_errors        = true;
-    record.errors =
-      compute_errors(discretization, material, scene, t, u_ghosted, w_ghosted);
-  }
-
-
-  template <int dim>
-  std::string
-  Simulator<dim>::memory_table() const
-  {
-    MemoryItems items;
-    discretization.memory_consumption(items);
-    operators.memory_consumption(items);
-    items.push_back({"the step's fields and work vectors",
-                     integrator.memory_consumption(),
-                     false});
-    return DynamicContact::memory_table(items,
-                                        discretization.dof_handler.n_dofs(),
-                                        comm);
+    integrator.record_errors(record, t);
   }
 
 
@@ -278,10 +228,10 @@ namespace DynamicContact
   void
   Simulator<dim>::restore(const RestorePoint &point)
   {
-    u               = point.u;
-    w               = point.w;
-    contact_state   = point.contact;
-    energy_of_state = point.energy;
+    u                       = point.u;
+    w                       = point.w;
+    contact_state           = point.contact;
+    integrator.known_energy = point.energy;
   }
 
 

@@ -3,6 +3,7 @@
 #include <dynamic_contact/base/error_messages.h>
 #include <dynamic_contact/base/failure.h>
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/bulk/error_norms.h>
 #include <dynamic_contact/time/step_integrator.h>
 
 #include <cmath>
@@ -21,6 +22,33 @@ namespace DynamicContact
   {
     for (Vector_t *v : fields(*this))
       ops.discretization.reinit_owned(*v);
+    known_energy.reset();
+  }
+
+
+  template <int dim>
+  double
+  StepIntegrator<dim>::energy()
+  {
+    if (!known_energy)
+      known_energy = ops.energy_balance.energy(u, w).total();
+    return *known_energy;
+  }
+
+
+  template <int dim>
+  void
+  StepIntegrator<dim>::record_errors(StepRecord<dim> &record,
+                                     const double     t) const
+  {
+    if (!ops.scene.has_exact_solution())
+      return;
+    TimerSection   scope(ops.timer, "Step: energy and force balance");
+    const Vector_t u_ghosted = ops.discretization.expanded(u),
+                   w_ghosted = ops.discretization.expanded(w);
+    record.has_errors        = true;
+    record.errors            = compute_errors(
+      ops.discretization, ops.material, ops.scene, t, u_ghosted, w_ghosted);
   }
 
 

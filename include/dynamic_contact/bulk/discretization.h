@@ -1,6 +1,7 @@
 #ifndef dynamic_contact_discretization_h
 #define dynamic_contact_discretization_h
 
+#include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
@@ -101,6 +102,13 @@ namespace DynamicContact
      */
     void
     expand(const Vector_t &master_form, Vector_t &ghosted) const;
+
+    /**
+     * @p function interpolated into @p vector (owned entries) in master
+     * form: the constrained entries set to zero.
+     */
+    void
+    interpolate(const Function<dim> &function, Vector_t &vector) const;
 
     /** The same, into a new ghosted vector. */
     Vector_t

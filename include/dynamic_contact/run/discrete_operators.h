@@ -19,6 +19,7 @@
 #include <dynamic_contact/time/step_solver.h>
 
 #include <limits>
+#include <string>
 
 namespace DynamicContact
 {
@@ -59,9 +60,14 @@ namespace DynamicContact
           const double memory_per_process,
           const bool   adaptive_mesh);
 
-    /** What they hold, by part (memory_table()). */
-    void
-    memory_consumption(MemoryItems &items) const;
+    /**
+     * What the run holds, by part (collective): the mesh and DoFs, the
+     * bulk operator's pattern and matrices, the contact solvers'
+     * factorizations, preconditioners and tables, and @p field_bytes of
+     * the step's fields and work vectors.
+     */
+    std::string
+    memory_table(const double field_bytes) const;
 
     const Foundation           foundation;
     BulkOperator<dim>          bulk;

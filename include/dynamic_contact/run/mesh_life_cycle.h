@@ -98,12 +98,13 @@ namespace DynamicContact
     create(TimerOutput &timer);
 
     /**
-     * After create(): the DoFs of the uniform mesh after Geometry/Global
-     * refinements (exact for a rectangle; dim degree^dim per cell of a mesh
-     * file), before any adaptive refinement.
+     * After create(): how many processes of this run should
+     * take part (Solver/Minimum DoFs per process) for the DoFs of the
+     * initial mesh: the first M of them, at least one. Where M is less than
+     * all, @p note is what the run prints about it.
      */
-    double
-    initial_dofs_estimate() const;
+    unsigned int
+    processes_taking_part(std::string &note) const;
 
     /** "2D, Q1 elements, N cells, M DoFs, K contact nodes". */
     std::string
@@ -149,6 +150,14 @@ namespace DynamicContact
     const ContactBoundary<dim> &contact_boundary;
     MPI_Comm                    comm;
     MeshAdaptation<dim>         mesh_adaptation;
+
+    /**
+     * After create(): the DoFs of the uniform mesh after Geometry/Global
+     * refinements (exact for a rectangle; dim degree^dim per cell of a mesh
+     * file), before any adaptive refinement.
+     */
+    double
+    initial_dofs_estimate() const;
 
     /**
      * One cycle's flags for [t0, t1] from the fields @p u and @p w (master

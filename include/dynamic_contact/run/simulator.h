@@ -142,7 +142,7 @@ namespace DynamicContact
     RestorePoint
     restore_point() const
     {
-      return {u, w, contact_state, energy_of_state};
+      return {u, w, contact_state, integrator.known_energy};
     }
     void
     restore(const RestorePoint &point);
@@ -185,13 +185,12 @@ namespace DynamicContact
       return operators.step_solver;
     }
 
-    /**
-     * What the run holds, by part (memory_table(); collective): the mesh
-     * and DoFs, the bulk operator's pattern and matrices, the contact
-     * solvers' factorizations, preconditioners and tables, the vectors.
-     */
+    /** What the run holds, by part (DiscreteOperators::memory_table()). */
     std::string
-    memory_table() const;
+    memory_table() const
+    {
+      return operators.memory_table(integrator.memory_consumption());
+    }
     /** The mesh: created, adapted, described (MeshLifeCycle). */
     const MeshLifeCycle<dim> &
     mesh() const
@@ -242,18 +241,11 @@ namespace DynamicContact
     FieldIO<dim> field_io;
 
     /**
-     * The total energy E of (u, w) as they stand, once computed: E_{n-1} of
-     * the next step is E_n of the last one (reset when the DoFs change).
-     */
-    std::optional<double> energy_of_state;
-    /**
      * The bytes one process may use (Solver/Memory per process, or what
      * the hosts had available at the start: check_resources()), for
      * Preconditioner = auto.
      */
     double memory_per_process = std::numeric_limits<double>::infinity();
-    double
-    energy_now();
 
     /** DoFs, constraints, Gamma_3 and vectors for the current mesh. */
     void
@@ -261,15 +253,13 @@ namespace DynamicContact
     /** The operators for the current mesh (DiscreteOperators::setup()). */
     void
     setup_operators(const double start_time);
-    void
-    set_initial_conditions();
 
     /**
-     * What every row records of the mesh and the scene: the errors of a
-     * manufactured solution at @p t (of u, w), the DoFs and cells, which
-     * optional columns time_series.csv has (the uniqueness measures with a
-     * slip-rate dependent law and Friction/Uniqueness monitor not never;
-     * the solution count with Friction/Count solutions and such a law).
+     * What every row records of the mesh and the scene at @p t: the DoFs
+     * and cells, the errors of a manufactured solution, which optional
+     * columns time_series.csv has (the uniqueness measures with a slip-rate
+     * dependent law and Friction/Uniqueness monitor not never; the solution
+     * count with Friction/Count solutions and such a law).
      */
     void
     record_state(StepRecord<dim> &record, const double t);

@@ -14,6 +14,7 @@
 #include <dynamic_contact/run/run_report.h>
 #include <dynamic_contact/run/run_totals.h>
 #include <dynamic_contact/run/simulator.h>
+#include <dynamic_contact/run/step_attempts.h>
 #include <dynamic_contact/run/step_lengths.h>
 #include <dynamic_contact/time/step_record.h>
 
@@ -209,31 +210,13 @@ namespace DynamicContact
     int stopping_signal = 0;
     /** The end summary's counts (those before a resume included). */
     RunTotals totals;
+    /** Each step tried until one is accepted (reads and updates the
+     *  members above). */
+    StepAttempts<dim> attempts;
 
     /** Build the coarse mesh unless it is built already. */
     void
     create_mesh_once();
-    /**
-     * Try the next step, with cut-backs and rejections, until one is
-     * accepted; returns its record, its length @p k and (Time/Adaptive)
-     * the length @p k_next of the step after it. Stops the run (with the
-     * last good state written) if no step can be had.
-     */
-    StepRecord<dim>
-    take_step(const double remesh_energy_change, double &k, double &k_next);
-    /**
-     * After an accepted step of @p k: the time, the next time step
-     * (@p k_next with Time/Adaptive), the run's totals.
-     */
-    void
-    accept(const StepRecord<dim> &record, const double k, const double k_next);
-    /**
-     * A step produced no good state: the simulator is back at the last
-     * good one; write it out (contact CSV, VTU, a checkpoint) and throw
-     * @p message (collective).
-     */
-    [[noreturn]] void
-    stop_with_last_good_state(const std::string &message);
     /** --resume: load the newest good checkpoint, or refuse and say why. */
     void
     resume_from_checkpoint();

@@ -16,6 +16,7 @@
 #include <dynamic_contact/time/step_solver.h>
 
 #include <array>
+#include <optional>
 #include <stdexcept>
 
 namespace DynamicContact
@@ -97,6 +98,13 @@ namespace DynamicContact
          const bool       accept_unconverged_loop);
 
     /**
+     * Where the scene has an exact (manufactured) solution: its errors at
+     * @p t against (u, w) as they stand, into @p record.
+     */
+    void
+    record_errors(StepRecord<dim> &record, const double t) const;
+
+    /**
      * The final Newton residual of the last step solved (the larger of
      * the two solves of a two-solve scheme).
      */
@@ -112,6 +120,15 @@ namespace DynamicContact
 
     /** The state: displacement and velocity, in master form. */
     Vector_t u, w;
+
+    /**
+     * The total energy E of (u, w) as they stand, computed once: E_{n-1}
+     * of a step is E_n of the step before.
+     */
+    double
+    energy();
+    /** E of (u, w) where it is known; reinit() forgets it. */
+    std::optional<double> known_energy;
 
     // For the schemes (step_schemes.cc): the fields of a step in progress
     // and the primitives a step is made of.
