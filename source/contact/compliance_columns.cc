@@ -2,37 +2,20 @@
 
 #include <dynamic_contact/base/mpi_gather.h>
 #include <dynamic_contact/base/timing.h>
-#include <dynamic_contact/contact/boundary_compliance.h>
+#include <dynamic_contact/contact/compliance_table.h>
 
 #include <algorithm>
 #include <functional>
 
 namespace DynamicContact
 {
-  // BoundaryCompliance<dim>::compute_columns and its two ways, in a file of
-  // their own (the rest of the class is in boundary_compliance.cc).
+  // ComplianceTable<dim>::make and its two ways, in a file of their own
+  // (the rest of the table is in compliance_table.cc).
   template <int dim>
   void
-  BoundaryCompliance<dim>::compute_columns(
-    const std::vector<unsigned int> &nodes,
-    Result                          &result)
-  {
-    if (leading != nullptr && leading->shared())
-      {
-        // Rank 0 inside on_leader(): every process computes them with it.
-        if (!has_columns(nodes))
-          leading->request(nodes);
-        return;
-      }
-    make_columns(nodes, result);
-  }
-
-
-  template <int dim>
-  void
-  BoundaryCompliance<dim>::make_columns(
-    const std::vector<unsigned int> &nodes,
-    Result                          &result)
+  ComplianceTable<dim>::make(const std::vector<unsigned int> &nodes,
+                             BulkSolver                      &bulk_solver,
+                             Result                          &result)
   {
     std::vector<unsigned int> missing;
     // Whole blocks of nodes_per_block consecutive nodes, each solved as one
@@ -55,22 +38,22 @@ namespace DynamicContact
     if (missing.empty())
       return;
     TimerSection t(problem.timer, "Bulk: compliance columns");
-    if (!columns_from_inverse_block())
-      columns_by_solves(missing, dim * nodes_per_block, result);
+    if (!columns_from_inverse_block(bulk_solver))
+      columns_by_solves(missing, dim * nodes_per_block, bulk_solver, result);
   }
 
 
   template <int dim>
   bool
-  BoundaryCompliance<dim>::columns_from_inverse_block()
+  ComplianceTable<dim>::columns_from_inverse_block(BulkSolver &bulk_solver)
   {
     // With the Cholesky factor (the whole one), which has the DoFs of
-    // Gamma_3 last (prepare()): the compliance of every node at once, from
-    // the inverse of their Schur complement (BulkSolver::inverse_block()),
-    // dense work of order (dim n)^3 instead of dim solves per node. The
-    // whole columns are not kept: with a Cholesky factor a solve reads
-    // fewer numbers than their sum. Only rank 0 holds C (and gets the
-    // block where it can).
+    // Gamma_3 last (BoundaryCompliance::prepare()): the compliance of every
+    // node at once, from the inverse of their Schur complement
+    // (BulkSolver::inverse_block()), dense work of order (dim n)^3 instead of
+    // dim solves per node. The whole columns are not kept: with a Cholesky
+    // factor a solve reads fewer numbers than their sum. Only rank 0 holds C
+    // (and gets the block where it can).
     std::vector<double> X;
     const bool          holds = holds_tables();
     if (!bulk_solver.inverse_block(X, false))
@@ -162,9 +145,10 @@ namespace DynamicContact
 
   template <int dim>
   void
-  BoundaryCompliance<dim>::columns_by_solves(
+  ComplianceTable<dim>::columns_by_solves(
     const std::vector<unsigned int> &missing,
     const unsigned int               block_size,
+    BulkSolver                      &bulk_solver,
     Result                          &result)
   {
     const auto                                 &all = gathered.all_nodes();
@@ -226,15 +210,11 @@ namespace DynamicContact
 
 
   template void
-  BoundaryCompliance<2>::compute_columns(const std::vector<unsigned int> &,
-                                         Result &);
+  ComplianceTable<2>::make(const std::vector<unsigned int> &,
+                           BulkSolver &,
+                           Result &);
   template void
-  BoundaryCompliance<3>::compute_columns(const std::vector<unsigned int> &,
-                                         Result &);
-  template void
-  BoundaryCompliance<2>::make_columns(const std::vector<unsigned int> &,
-                                      Result &);
-  template void
-  BoundaryCompliance<3>::make_columns(const std::vector<unsigned int> &,
-                                      Result &);
+  ComplianceTable<3>::make(const std::vector<unsigned int> &,
+                           BulkSolver &,
+                           Result &);
 } // namespace DynamicContact

@@ -1,17 +1,16 @@
 #ifndef dynamic_contact_boundary_compliance_h
 #define dynamic_contact_boundary_compliance_h
 
-#include <deal.II/lac/full_matrix.h>
-
 #include <dynamic_contact/base/leading_process.h>
 #include <dynamic_contact/bulk/bulk_solver.h>
+#include <dynamic_contact/contact/compliance_measures.h>
+#include <dynamic_contact/contact/compliance_springs.h>
+#include <dynamic_contact/contact/compliance_table.h>
 #include <dynamic_contact/contact/contact_boundary.h>
 #include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/largest_eigenvalue.h>
 
-#include <cstddef>
 #include <functional>
-#include <utility>
 #include <vector>
 
 namespace DynamicContact
@@ -44,6 +43,11 @@ namespace DynamicContact
    * the dense work with it (on_leader(): the condensed solver's dense
    * iterations, the uniqueness measure, the weakening limits); the other
    * processes compute its columns with it and know which exist.
+   *
+   * It owns K0' and its factorization, and asks for the columns; its parts
+   * are the table of C and the whole responses (ComplianceTable), the
+   * springs and their Woodbury correction (ComplianceSprings), and what is
+   * measured from the compliance of K0 (ComplianceMeasures).
    */
   template <int dim>
   class BoundaryCompliance
@@ -87,10 +91,7 @@ namespace DynamicContact
     bool
     has_columns(const std::vector<unsigned int> &nodes) const
     {
-      for (const unsigned int j : nodes)
-        if (!made[j])
-          return false;
-      return true;
+      return table.has_columns(nodes);
     }
 
     /**
@@ -122,14 +123,14 @@ namespace DynamicContact
     const std::vector<Tensor<2, dim>> &
     column(const unsigned int j) const
     {
-      return columns[j];
+      return table.column(j);
     }
 
     /** The spring's stiffness at every node (0 where there is none). */
     double
     spring_stiffness(const unsigned int i) const
     {
-      return springs[i];
+      return stiff_springs.stiffness(i);
     }
 
     /** w_i -= sum_j C_ij f_j over the nodes @p nodes (rank 0 only). */
@@ -206,84 +207,19 @@ namespace DynamicContact
     BulkSolver bulk_solver;
     TimeScheme prepared_scheme;
 
-    /** The spring nodes (indices into all_nodes()) and their stiffness. */
-    std::vector<unsigned int> spring_nodes;
-    std::vector<double>       springs; // one per node of all_nodes()
-
-    /**
-     * columns[j][i] = C_ij, empty until node j was first active (and on
-     * every process but rank 0); made[j]: C_:j exists (every process).
-     */
-    std::vector<std::vector<Tensor<2, dim>>> columns;
-    std::vector<bool>                        made;
-    /** Inside on_leader() on rank 0: compute_columns() asks through it. */
-    LeadingProcess *leading = nullptr;
     /** For each node of all_nodes(): its index among the owned nodes, or -1. */
     std::vector<int> owned_index;
 
-    /**
-     * The whole responses K0'^{-1} P_j^T e_c (owned entries, index
-     * dim j + c), kept beside C while they fit in full_column_budget bytes
-     * on every process and a sum of all of them reads fewer numbers than a
-     * solve (BulkSolver::solve_cost(): with MUMPS; with a Cholesky factor a
-     * solve is as fast or faster): with them a provisional velocity or a
-     * whole-system step is a sum of columns instead of a solve with K0'.
-     */
-    std::vector<std::vector<double>> full_columns;
-    std::size_t                      stored_full_columns = 0;
-    /**
-     * Node j's whole responses are stored (the same on every process: a
-     * process that owns no DoF stores empty ones).
-     */
-    std::vector<bool> full_column_stored;
-    /** The largest number of owned DoFs of a process. */
-    types::global_dof_index      max_owned_dofs     = 0;
-    static constexpr std::size_t full_column_budget = std::size_t(512) << 20;
+    /** C and the whole responses. */
+    ComplianceTable<dim> table;
+    /** The springs S and their Woodbury correction. */
+    ComplianceSprings<dim> stiff_springs;
+    /** The weakening limits and the spectral radius. */
+    ComplianceMeasures<dim> measures;
+    friend class ComplianceMeasures<dim>;
 
-    /**
-     * (S^{-1} - P C' P^T)^{-1} of apply_k0() and the springs' (node,
-     * component) pairs, for the K0' they were made with.
-     */
-    /**
-     * sum_b |R_a [K0^{-1}]_ab R_b^T| x_b for every vector x of @p x (rank
-     * 0, after apply_k0() over @p nodes): the entries of K0^{-1} one block
-     * at a time, C' plus the springs' Woodbury term.
-     */
-    void
-    apply_absolute(const std::vector<unsigned int>        &nodes,
-                   const std::vector<Tensor<2, dim>>      &R,
-                   const std::vector<std::vector<double>> &x,
-                   std::vector<std::vector<double>>       &y) const;
-
-    FullMatrix<double>                                 spring_correction;
-    std::vector<std::pair<unsigned int, unsigned int>> spring_dofs;
-    TimeScheme                                         correction_scheme;
-
-    /** weakening_limits() for the K0 they were measured with. */
-    std::vector<double> limits;
-    TimeScheme          limits_scheme;
-
-    /** Choose the spring nodes (once per mesh). */
-    void
-    choose_spring_nodes();
-
-    /** K0' = K0 + S from the current K0 (collective). */
-    void
-    add_springs();
-
-    /** compute_columns() on every process together. */
-    void
-    make_columns(const std::vector<unsigned int> &nodes, Result &result);
-
-    /** Columns from BulkSolver::inverse_block(), if it gives them. */
-    bool
-    columns_from_inverse_block();
-
-    /** The columns of @p missing nodes by dim solves each. */
-    void
-    columns_by_solves(const std::vector<unsigned int> &missing,
-                      const unsigned int               block_size,
-                      Result                          &result);
+    /** Inside on_leader() on rank 0: compute_columns() asks through it. */
+    LeadingProcess *leading = nullptr;
   };
 } // namespace DynamicContact
 
