@@ -3,8 +3,8 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <dynamic_contact/base/timing.h>
+#include <dynamic_contact/contact/assembled_linear_solves.h>
 #include <dynamic_contact/contact/assembled_node_dofs.h>
-#include <dynamic_contact/contact/assembled_solver.h>
 
 #include <algorithm>
 #include <array>
@@ -162,15 +162,52 @@ namespace DynamicContact
 
 
   template <int dim>
+  AssembledIterativeSolve<dim>::AssembledIterativeSolve(
+    const ContactProblem<dim> &problem)
+    : problem(problem)
+  {}
+
+
+  template <int dim>
   void
-  AssembledSolver<dim>::solve_iterative(const NodalSystem             &system,
-                                        const WholeSystemNewton<dim>  &newton,
-                                        const WholeSystemIterate<dim> &x,
-                                        Vector_t                      &dw,
-                                        Result                        &result)
+  AssembledIterativeSolve<dim>::apply_jacobian(
+    const AssembledNodalSystem<dim> &system,
+    const Vector_t                  &x,
+    Vector_t                        &y) const
   {
-    const auto &nodes = problem.boundary.nodes();
-    prepare_preconditioner();
+    const auto     &nodes = problem.boundary.nodes();
+    const IndexSet &owned = problem.discretization.locally_owned;
+    problem.bulk.newton_vmult(y, x);
+    double       *yy = y.trilinos_vector()[0];
+    const double *xx = x.trilinos_vector()[0];
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (system.blocks[i].norm_square() > 0)
+        {
+          std::array<unsigned int, dim> local;
+          Tensor<1, dim>                xi;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              local[c] = owned.index_within_set(nodes[i].dofs[c]);
+              xi[c]    = xx[local[c]];
+            }
+          const Tensor<1, dim> add = system.blocks[i] * xi;
+          for (unsigned int c = 0; c < dim; ++c)
+            yy[local[c]] += add[c];
+        }
+  }
+
+
+  template <int dim>
+  void
+  AssembledIterativeSolve<dim>::solve(const AssembledNodalSystem<dim> &system,
+                                      const WholeSystemNewton<dim>    &newton,
+                                      const WholeSystemIterate<dim>   &x,
+                                      const Vector_t           &base_residual,
+                                      const BulkPreconditioner &preconditioner,
+                                      Vector_t                 &dw,
+                                      ContactSolveResult       &result)
+  {
+    const auto  &nodes = problem.boundary.nodes();
     TimerSection t(problem.timer, "Newton: iterative solve");
 
     // dw = dw0 + delta: dw0 holds the prescribed tangential increments of
@@ -210,7 +247,7 @@ namespace DynamicContact
     const FunctionOperator projected_preconditioner{
       [&](Vector_t &y, const Vector_t &v) {
         sticks.project(v, projected);
-        preconditioner->vmult(y, projected);
+        preconditioner.vmult(y, projected);
         sticks.add_tangential(v, -1., y);
       }};
 
@@ -244,16 +281,18 @@ namespace DynamicContact
 
 
 
-  template void
-  AssembledSolver<2>::solve_iterative(const NodalSystem &,
-                                      const WholeSystemNewton<2> &,
-                                      const WholeSystemIterate<2> &,
-                                      Vector_t &,
-                                      Result &);
-  template void
-  AssembledSolver<3>::solve_iterative(const NodalSystem &,
-                                      const WholeSystemNewton<3> &,
-                                      const WholeSystemIterate<3> &,
-                                      Vector_t &,
-                                      Result &);
+  template <int dim>
+  void
+  AssembledIterativeSolve<dim>::memory_consumption(MemoryItems &items) const
+  {
+    items.push_back({"GMRES basis (the most a solve used)",
+                     double(largest_basis) *
+                       problem.discretization.locally_owned.n_elements() *
+                       sizeof(double),
+                     false});
+  }
+
+
+  template class AssembledIterativeSolve<2>;
+  template class AssembledIterativeSolve<3>;
 } // namespace DynamicContact

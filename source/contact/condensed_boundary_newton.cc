@@ -1,21 +1,35 @@
 #include <dynamic_contact/base/timing.h>
-#include <dynamic_contact/contact/condensed_solver.h>
+#include <dynamic_contact/contact/condensed_boundary_newton.h>
 #include <dynamic_contact/contact/newton_driver.h>
 
 #include <algorithm>
 
 namespace DynamicContact
 {
-  // Phase 1 of CondensedSolver, the iteration on Gamma_3 alone, in a file of
-  // its own (the rest of the class is in condensed_solver.cc).
+  // Phase 1 of CondensedSolver, the iteration on Gamma_3 alone.
+
+  template <int dim>
+  CondensedBoundaryNewton<dim>::CondensedBoundaryNewton(
+    const ContactProblem<dim>   &problem,
+    const GatheredBoundary<dim> &gathered,
+    BoundaryCompliance<dim>     &compliance,
+    ReducedSystem<dim>          &reduced,
+    const BoundaryStepData<dim> &data)
+    : problem(problem)
+    , gathered(gathered)
+    , compliance(compliance)
+    , reduced(reduced)
+    , data(data)
+  {}
+
 
   template <int dim>
   void
-  CondensedSolver<dim>::linearize(Iterate &it) const
+  CondensedBoundaryNewton<dim>::linearize(Iterate &it) const
   {
-    const auto        &u_old   = u_old_all;
-    const auto        &w_old   = w_old_all;
-    const auto        &mu      = mu_all;
+    const auto        &u_old   = data.u_old;
+    const auto        &w_old   = data.w_old;
+    const auto        &mu      = data.mu;
     const auto        &lambda  = it.lambda;
     const auto        &w_nodes = it.w;
     const auto        &nodes   = gathered.all_nodes();
@@ -28,13 +42,14 @@ namespace DynamicContact
     it.base.resize(n);
     it.signature = 0;
     it.active.clear();
-    it.f_scale = std::max(force_scale, 1e-300); // WholeSystemNewton's floor
+    // WholeSystemNewton's floor.
+    it.f_scale      = std::max(data.force_scale, 1e-300);
     it.law_residual = 0;
     it.law_squares  = 0;
     for (unsigned int i = 0; i < n; ++i)
       {
         const NodeEvaluation<dim> e = evaluate_node(problem,
-                                                    step_scheme,
+                                                    data.scheme,
                                                     nodes[i],
                                                     u_old[i],
                                                     w_old[i],
@@ -70,14 +85,14 @@ namespace DynamicContact
    * to its scale).
    */
   template <int dim>
-  class CondensedSolver<dim>::BoundaryProblem
+  class CondensedBoundaryNewton<dim>::BoundaryProblem
   {
   public:
-    using Iterate = typename CondensedSolver<dim>::Iterate;
+    using Iterate = typename CondensedBoundaryNewton<dim>::Iterate;
 
-    BoundaryProblem(CondensedSolver<dim> &solver,
-                    const double          w_scale,
-                    Result               &result)
+    BoundaryProblem(CondensedBoundaryNewton<dim> &solver,
+                    const double                  w_scale,
+                    Result                       &result)
       : solver(solver)
       , w_scale(w_scale)
       , result(result)
@@ -88,10 +103,7 @@ namespace DynamicContact
     {
       solver.linearize(x);
       solver.compliance.compute_columns(x.active, result);
-      solver.compliance.response(solver.w_free_nodes,
-                                 x.g,
-                                 x.active,
-                                 x.response);
+      solver.compliance.response(solver.data.w_free, x.g, x.active, x.response);
       const auto &response  = x.response;
       x.equilibrium         = 0;
       x.equilibrium_squares = 0;
@@ -148,13 +160,13 @@ namespace DynamicContact
       // does not matter: the next residual is of the order of the square
       // of this one.
       solver.reduced.step(x,
-                          solver.step_scheme,
+                          solver.data.scheme,
                           r,
                           dw,
                           full.lambda,
                           new_forces,
                           residual(x) >= far_above);
-      solver.compliance.response(solver.w_free_nodes,
+      solver.compliance.response(solver.data.w_free,
                                  new_forces,
                                  x.active,
                                  full.w);
@@ -189,21 +201,21 @@ namespace DynamicContact
     }
 
   private:
-    static constexpr double     far_above = 1e-3;
-    CondensedSolver<dim>       &solver;
-    const double                w_scale;
-    Result                     &result;
-    std::vector<Tensor<1, dim>> response, r, dw, new_forces, difference;
-    std::vector<unsigned int>   differing;
+    static constexpr double       far_above = 1e-3;
+    CondensedBoundaryNewton<dim> &solver;
+    const double                  w_scale;
+    Result                       &result;
+    std::vector<Tensor<1, dim>>   response, r, dw, new_forces, difference;
+    std::vector<unsigned int>     differing;
   };
 
 
   template <int dim>
   void
-  CondensedSolver<dim>::boundary_newton(Iterate     &it,
-                                        const double w_scale,
-                                        const double tolerance,
-                                        Result      &result)
+  CondensedBoundaryNewton<dim>::solve(Iterate     &it,
+                                      const double w_scale,
+                                      const double tolerance,
+                                      Result      &result)
   {
     TimerSection t(problem.timer, "Contact: boundary Newton");
     // On rank 0, which holds C; the others compute the new columns of C
@@ -222,7 +234,8 @@ namespace DynamicContact
                         problem.details,
                         result);
     });
-    // What solve(), finalize() and polish() use of the iterate.
+    // What CondensedSolver's solve() and finalize() and
+    // CondensedWholeSystem::polish() use of the iterate.
     compliance.share(it.w);
     compliance.share(it.lambda);
     compliance.share(it.g);
@@ -233,18 +246,6 @@ namespace DynamicContact
 
 
 
-  template void
-  CondensedSolver<2>::linearize(Iterate &) const;
-  template void
-  CondensedSolver<3>::linearize(Iterate &) const;
-  template void
-  CondensedSolver<2>::boundary_newton(Iterate &,
-                                      const double,
-                                      const double,
-                                      Result &);
-  template void
-  CondensedSolver<3>::boundary_newton(Iterate &,
-                                      const double,
-                                      const double,
-                                      Result &);
+  template class CondensedBoundaryNewton<2>;
+  template class CondensedBoundaryNewton<3>;
 } // namespace DynamicContact

@@ -1,13 +1,10 @@
 #ifndef dynamic_contact_assembled_solver_h
 #define dynamic_contact_assembled_solver_h
 
-#include <deal.II/lac/trilinos_solver.h>
-
-#include <dynamic_contact/bulk/bulk_solver.h>
+#include <dynamic_contact/contact/assembled_linear_solves.h>
+#include <dynamic_contact/contact/assembled_stiffness.h>
 #include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/whole_system_newton.h>
-
-#include <memory>
 
 namespace DynamicContact
 {
@@ -36,6 +33,12 @@ namespace DynamicContact
    * Linear solver = direct: the Newton matrix (K0 copied, the nodal blocks
    * added, the stick rows replaced) is factorized when it changes and the
    * factorization reused while it does not.
+   *
+   * This class is the Newton iteration (the nodal blocks and the stick set
+   * of an iterate, the friction forces of the step); its parts are K0
+   * (AssembledStiffness: the multigrid, K0's nodal blocks, solves with K0)
+   * and the two linear solves of a step (AssembledIterativeSolve,
+   * AssembledDirectSolve: assembled_linear_solves.h).
    */
   template <int dim>
   class AssembledSolver : public ContactSolver<dim>, public LinearBackend<dim>
@@ -73,91 +76,18 @@ namespace DynamicContact
   private:
     const ContactProblem<dim> problem;
 
-    /** The Newton step of one iterate: nodal blocks and the stick set. */
-    struct NodalSystem
-    {
-      std::vector<Tensor<2, dim>> blocks; // P^T B P, per owned node
-      std::vector<bool>           stick;
-      std::vector<double>         diagonal; // mean diagonal of K0 at a node
-    };
+    using NodalSystem = AssembledNodalSystem<dim>;
 
+    /** K0: its multigrid, its nodal blocks, solves with it. */
+    AssembledStiffness<dim> stiffness;
     /** Solve for dw (iterative, projected): see the class documentation. */
-    void
-    solve_iterative(const NodalSystem             &system,
-                    const WholeSystemNewton<dim>  &newton,
-                    const WholeSystemIterate<dim> &x,
-                    Vector_t                      &dw,
-                    Result                        &result);
-
-    /**
-     * The assembled Newton matrix of @p system: K0, the nodal blocks, and
-     * each stick node's rows replaced by its normal equation and its
-     * stick constraints.
-     */
-    void
-    assemble_direct_matrix(const NodalSystem &system);
-
+    AssembledIterativeSolve<dim> iterative;
     /** Solve for dw (direct, assembled): see the class documentation. */
-    void
-    solve_direct(const NodalSystem             &system,
-                 const WholeSystemNewton<dim>  &newton,
-                 const WholeSystemIterate<dim> &x,
-                 Vector_t                      &dw,
-                 Result                        &result);
-
-    /** y = (K0 + sum P^T B P) x, without the stick projection. */
-    void
-    apply_jacobian(const NodalSystem &system,
-                   const Vector_t    &x,
-                   Vector_t          &y) const;
-
-    // Iterative: the multigrid of K0 (algebraic or geometric), for the time
-    // step it was built for.
-    std::unique_ptr<BulkPreconditioner> preconditioner;
-    TimeScheme                          preconditioner_scheme;
-    /** K0's blocks at the owned nodes, for the K0 they were taken from. */
-    std::vector<Tensor<2, dim>> bulk_blocks;
-    TimeScheme                  blocks_scheme;
-    /** BulkOperator::newton_blocks() at the nodes, unless K0 is unchanged. */
-    const std::vector<Tensor<2, dim>> &
-    nodal_bulk_blocks();
-
-    /** Build the AMG of the current K0 unless it is built. */
-    void
-    prepare_preconditioner();
-    /**
-     * x = K0^{-1} b by CG with the AMG of K0, to @p tolerance relative to
-     * |b| (constrained entries zero).
-     */
-    void
-    solve_bulk(const Vector_t &b, Vector_t &x, const double tolerance);
-
-    /**
-     * The coupled linearization's limits of the owned nodes
-     * (WeakeningLimit), for the K0 they were measured with.
-     */
-    std::vector<double> weakening_limits;
-    TimeScheme          limits_scheme;
-    /** Measure them if K0 changed (collective). */
-    const std::vector<double> &
-    coupled_limits();
-
-    // Direct: the Newton matrix and its factorization, and what it was made
-    // of (reused while unchanged).
-    Matrix_t                                        system_matrix;
-    SolverControl                                   direct_control;
-    std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
-    std::vector<Tensor<2, dim>>                     factorized_blocks;
-    std::vector<bool>                               factorized_stick;
-    TimeScheme                                      factorized_scheme;
-    /** The largest growth of resident memory a factorization measured. */
-    double factorization_bytes = 0;
-    /** The most GMRES basis vectors a solve used. */
-    unsigned int largest_basis = 0;
+    AssembledDirectSolve<dim> direct;
 
     /** The residual with the linearized forces' constant part. */
     Vector_t base_residual;
-    Vector_t increment, scratch, scratch2;
+    Vector_t increment, scratch;
   };
 } // namespace DynamicContact
 

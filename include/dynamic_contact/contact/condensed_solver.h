@@ -2,12 +2,13 @@
 #define dynamic_contact_condensed_solver_h
 
 #include <dynamic_contact/contact/boundary_compliance.h>
+#include <dynamic_contact/contact/condensed_boundary_newton.h>
+#include <dynamic_contact/contact/condensed_whole_system.h>
 #include <dynamic_contact/contact/contact_solver.h>
 #include <dynamic_contact/contact/reduced_system.h>
 #include <dynamic_contact/contact/whole_system_newton.h>
 
 #include <optional>
-#include <utility>
 
 namespace DynamicContact
 {
@@ -27,11 +28,14 @@ namespace DynamicContact
    * - this class: the iteration over them, in two phases, each a
    *   globalized_newton() iteration: on Gamma_3 alone (w_Gamma = w_free -
    *   C f, no solve with K0' but for new columns of C), which finds the
-   *   active sets, then on the whole system, whose Newton steps it solves
-   *   by the same condensation (the LinearBackend role: a solve with K0',
-   *   a dense solve and a solve with K0' or a sum of stored columns each),
-   *   which polishes the solution where the cancellation in w_free - C f
-   *   limits phase 1.
+   *   active sets (CondensedBoundaryNewton), then on the whole system,
+   *   whose Newton steps it solves by the same condensation (the
+   *   LinearBackend role: a solve with K0', a dense solve and a solve with
+   *   K0' or a sum of stored columns each), which polishes the solution
+   *   where the cancellation in w_free - C f limits phase 1
+   *   (CondensedWholeSystem, which also keeps w_free = K0'^{-1} b for the
+   *   passes of a step); and the provisional passes of a convexification
+   *   loop (solve_provisional(), finalize()).
    *
    * A step costs a solve with K0' for w_free, one for the velocity of each
    * convexification pass, and in the whole-system phase one plus one or
@@ -95,7 +99,10 @@ namespace DynamicContact
     void
     memory_consumption(MemoryItems &items) const override;
 
-    /** The whole-system Newton step by condensation (phase 2). */
+    /**
+     * The whole-system Newton step by condensation (phase 2:
+     * CondensedWholeSystem::newton_step()).
+     */
     void
     newton_step(const WholeSystemNewton<dim>  &system,
                 const WholeSystemIterate<dim> &x,
@@ -110,33 +117,15 @@ namespace DynamicContact
     BoundaryCompliance<dim> compliance;
     /** The dense system of a Newton step on the active nodes. */
     ReducedSystem<dim> reduced;
-
-    /** The data of the current solve at every node, and its scheme. */
-    std::vector<Tensor<1, dim>> u_old_all, w_old_all;
-    FrictionCoefficients        mu_all;
-    TimeScheme                  step_scheme;
-
-    Vector_t solution, right_hand_side, residual, increment, scratch;
-
-    /** K0'^{-1} b for the last b (the passes of a step share it). */
-    Vector_t free_response, cached_rhs;
-    /**
-     * resolvable_force() of cached_rhs: the floor of the force scale of
-     * the law residual on Gamma_3 (WholeSystemNewton::force_scale).
-     */
-    double                      force_scale = 0;
-    std::vector<Tensor<1, dim>> w_free_nodes;
-    bool                        free_response_valid = false;
+    /** The data of the current solve at every node. */
+    BoundaryStepData<dim> data;
+    /** Phase 1, on Gamma_3 alone. */
+    CondensedBoundaryNewton<dim> boundary_newton;
+    /** The free response and phase 2, on the whole body. */
+    CondensedWholeSystem<dim> whole_system;
 
     /** The linearization of every node at an iterate. */
     using Iterate = BoundaryIterate<dim>;
-
-    /** Linearize every node at it.w, it.lambda (the current solve's data). */
-    void
-    linearize(Iterate &it) const;
-
-    /** Phase 1 as globalized_newton() sees it (defined in the .cc). */
-    class BoundaryProblem;
 
     /**
      * What a provisional solve leaves for finalize(): its data (owned
@@ -158,17 +147,7 @@ namespace DynamicContact
      * provisional solve before the pending one, if the pending one followed
      * another in the same step.
      */
-    std::optional<
-      std::pair<std::vector<Tensor<1, dim>>, std::vector<unsigned int>>>
-      previous_pass;
-
-
-    /**
-     * w_free = K0'^{-1} b, unless b is the last one (the passes of a step
-     * share it); true if it was (collective).
-     */
-    bool
-    update_free_response(const Vector_t &rhs, Result &result);
+    std::optional<typename CondensedWholeSystem<dim>::PassForces> previous_pass;
 
     /**
      * A pending provisional pass of the same step (@p same_rhs) is the
@@ -188,36 +167,6 @@ namespace DynamicContact
           const bool                   provisional,
           const double                 velocity_accuracy = 0);
 
-    /**
-     * Phase 1 on the current solve's data from @p it, to the relative
-     * residual max(Newton tolerance, @p tolerance).
-     */
-    void
-    boundary_newton(Iterate     &it,
-                    const double w_scale,
-                    const double tolerance,
-                    Result      &result);
-
-    /**
-     * From the phase-1 iterate @p it: w = K0'^{-1}(b - sum P^T g), then
-     * phase 2 (the whole-system Newton iteration) on @p step (its b the
-     * last one, cached_rhs), to Solver/Newton tolerance (no step where the
-     * start already meets it).
-     */
-    void
-    polish(const Iterate               &it,
-           const ContactStep<dim>      &step,
-           std::vector<Tensor<1, dim>> &lambda,
-           Vector_t                    &w,
-           Result                      &result,
-           Vector_t                    *previous = nullptr);
-
-    /** v += factor sum_i P_i^T f_i over the owned nodes (f at every node). */
-    void
-    add_nodal_forces(const std::vector<Tensor<1, dim>> &f,
-                     const double                       factor,
-                     Vector_t                          &v) const;
-
     /** The coefficients of the owned nodes at every node (collective). */
     FrictionCoefficients
     gather_coefficients(const FrictionCoefficients &mu) const
@@ -231,13 +180,6 @@ namespace DynamicContact
                 gathered.gather(mu.state) :
                 std::vector<double>(),
               mu.slip_length};
-    }
-
-    /** The nodal values of a vector at every node (collective). */
-    std::vector<Tensor<1, dim>>
-    gather_values(const Vector_t &v) const
-    {
-      return gathered.gather(problem.boundary.values(v));
     }
   };
 } // namespace DynamicContact
