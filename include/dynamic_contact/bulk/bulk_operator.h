@@ -7,12 +7,13 @@
 
 #include <dynamic_contact/base/memory_report.h>
 #include <dynamic_contact/base/time_scheme.h>
-#include <dynamic_contact/bulk/bulk_kernel.h>
+#include <dynamic_contact/bulk/bulk_load.h>
+#include <dynamic_contact/bulk/bulk_newton_matrix.h>
 #include <dynamic_contact/bulk/cell_operators.h>
 #include <dynamic_contact/bulk/discretization.h>
-#include <dynamic_contact/bulk/face_load_quadrature.h>
 #include <dynamic_contact/bulk/linear_algebra.h>
 #include <dynamic_contact/bulk/scene.h>
+#include <dynamic_contact/bulk/stored_forms.h>
 #include <dynamic_contact/laws/material.h>
 
 #include <array>
@@ -44,6 +45,10 @@ namespace DynamicContact
    *   each form (and M's pattern), for the large meshes of the assembled
    *   solver, whose Krylov solves cost far more than the forms' products.
    * The two give the same forms to round-off.
+   *
+   * The operator owns its parts: the stored forms (StoredForms), K0
+   * (BulkNewtonMatrix), the forms' cell data (CellOperators) and the load
+   * vector's cells and quadrature (BulkLoad).
    */
   template <int dim>
   class BulkOperator
@@ -78,7 +83,7 @@ namespace DynamicContact
     bool
     stores_newton_matrix() const
     {
-      return newton_stored;
+      return newton.stored();
     }
 
     /** Whether the forms are stored matrices (the last reinit()). */
@@ -110,8 +115,8 @@ namespace DynamicContact
     const Matrix_t &
     newton_matrix() const
     {
-      Assert(newton_stored, ExcMessage("K0 is not stored."));
-      return bulk_matrix;
+      Assert(newton.stored(), ExcMessage("K0 is not stored."));
+      return newton.matrix();
     }
 
     /**
@@ -229,7 +234,7 @@ namespace DynamicContact
     const TrilinosWrappers::SparsityPattern &
     sparsity_pattern() const
     {
-      return pattern;
+      return newton.sparsity_pattern();
     }
 
   private:
@@ -239,37 +244,19 @@ namespace DynamicContact
     const KelvinVoigtMaterial<dim> &material;
     const bool                      strain_norm;
 
-    bool                              stored        = true;
-    bool                              newton_stored = true;
-    TrilinosWrappers::SparsityPattern pattern;
-    /** M's: each component coupled with itself (stored forms only). */
-    TrilinosWrappers::SparsityPattern mass_pattern;
-    Matrix_t                          mass_matrix;
-    Matrix_t                          elasticity_matrix;
-    Matrix_t                          viscosity_matrix;
-    Matrix_t                          strain_matrix;
-    Matrix_t                          bulk_matrix;
-    CellOperators<dim>                forms;
-
-    /**
-     * The locally owned cells with a load (Scene::carries_load), found by
-     * the first assemble_load_vector() on a mesh: the load of a step is
-     * assembled on them alone.
-     */
-    mutable std::vector<typename DoFHandler<dim>::active_cell_iterator>
-                              loaded_cells;
-    mutable const Scene<dim> *loaded_cells_scene = nullptr;
-    /** Their loaded faces, and the index of each face's cell in the list. */
-    mutable std::vector<typename FaceLoadQuadrature<dim>::Face> loaded_faces;
-    mutable std::vector<unsigned int> loaded_face_cell;
-    mutable std::vector<Vector<double>> face_values;
-    FaceLoadQuadrature<dim>             face_quadrature;
-    TimeScheme                current;
-    mutable Vector_t          tmp;
-
-    /** The stored matrix of @p form. */
-    const Matrix_t &
-    matrix(const Form form) const;
+    /** Whether the forms are stored matrices (the last reinit()). */
+    bool stored = true;
+    /** The forms applied cell by cell (matrix-free forms). */
+    CellOperators<dim> forms;
+    /** The forms as matrices (stored forms). */
+    StoredForms<dim> stored_forms;
+    /** K0, stored or applied cell by cell. */
+    BulkNewtonMatrix<dim> newton;
+    /** The loaded cells and faces of the load vector. */
+    BulkLoad<dim> load_vector;
+    /** The time scheme K0 was formed for. */
+    TimeScheme       current;
+    mutable Vector_t tmp;
 
     /** x^T F y, from the stored matrix or the cells. */
     double
@@ -278,28 +265,6 @@ namespace DynamicContact
     /** @p dst = F @p src, from the stored matrix or the cells. */
     void
     vmult(const Form form, Vector_t &dst, const Vector_t &src) const;
-
-    /** The stored forms: M, B, A, the Gram matrix of V on their patterns. */
-    void
-    assemble_forms();
-
-    /** K0 assembled cell by cell (matrix-free forms). */
-    void
-    assemble_bulk_matrix(const TimeScheme &scheme);
-
-    /**
-     * K0's matrix on each cell that @p take (called on the owned and ghost
-     * cells) accepts, for the time scheme of @p kernel: @p cell_done(local,
-     * dofs).
-     */
-    template <typename Take, typename CellDone>
-    void
-    for_each_cell_matrix(const BulkKernel<dim> &kernel,
-                         const Take            &take,
-                         const CellDone        &cell_done) const;
-
-    /** K0's integrand for the last time scheme (set_time_step()). */
-    BulkKernel<dim> kernel;
   };
 
 
