@@ -123,44 +123,123 @@ def value_span(line):
 
 
 # ------------------------------------------------------------ mesh files
-def convert_mesh(text, factor, file):
-    """The Gmsh file @p text (ASCII, MSH 2 or 4) with its node coordinates
-    (and the bounding boxes of $Entities) times @p factor."""
-    lines = split_lines(text)
-    out = [list(l) for l in lines]
-    version = None
-    i = 0
+class MeshLines:
+    """The lines of a Gmsh file being converted (@p out: as they become),
+    read field by field with errors that name the file and the line."""
 
-    def where(k):
-        return "mesh file '%s', line %d: " % (file, k + 1)
+    def __init__(self, text, factor, file):
+        self.lines = split_lines(text)
+        self.out = [list(l) for l in self.lines]
+        self.factor = factor
+        self.file = file
 
-    def numbers(k, count, section):
-        if k >= len(lines):
+    def where(self, k):
+        return "mesh file '%s', line %d: " % (self.file, k + 1)
+
+    def numbers(self, k, count, section):
+        if k >= len(self.lines):
             fail("mesh file '%s' ends inside its $%s section"
-                 % (file, section))
-        fields = lines[k][0].split()
+                 % (self.file, section))
+        fields = self.lines[k][0].split()
         if len(fields) < count:
-            fail(where(k) + "cannot read this line of the $%s section"
+            fail(self.where(k) + "cannot read this line of the $%s section"
                  % section)
         return fields
 
-    def integer(text, k, section):
+    def integer(self, text, k, section):
         try:
             return int(text)
         except ValueError:
-            fail(where(k) + "'%s' is not an integer ($%s section)"
+            fail(self.where(k) + "'%s' is not an integer ($%s section)"
                  % (text, section))
 
-    def scale_fields(k, positions, section):
-        fields = lines[k][0].split()
+    def scale_fields(self, k, positions, section):
+        fields = self.lines[k][0].split()
         for p in positions:
             if p >= len(fields):
-                fail(where(k) + "cannot read this line of the $%s section"
-                     % section)
-            fields[p] = scale_number_text(fields[p], factor,
-                                          where(k) + "coordinate ")
-        out[k][0] = " ".join(fields)
+                fail(self.where(k) + "cannot read this line of the $%s "
+                     "section" % section)
+            fields[p] = scale_number_text(fields[p], self.factor,
+                                          self.where(k) + "coordinate ")
+        self.out[k][0] = " ".join(fields)
 
+
+def mesh_version(mesh, i, section):
+    """The version of the $MeshFormat section at the line @p i (ASCII,
+    MSH 2 or 4)."""
+    fields = mesh.numbers(i + 1, 2, section)
+    version = fields[0]
+    if fields[1] != "0":
+        fail(mesh.where(i + 1) + "a binary mesh file (MSH %s) is not "
+             "converted; save it as ASCII" % version)
+    if version.split(".")[0] not in ("2", "4"):
+        fail(mesh.where(i + 1) + "MSH %s: only the formats 2 and 4 "
+             "(ASCII) are converted" % version)
+    return version
+
+
+def scale_nodes(mesh, i, version, section):
+    """The $Nodes section at the line @p i scaled; returns the line after
+    its $EndNodes."""
+    k = i + 1
+    if version.split(".")[0] == "2":
+        n = mesh.integer(mesh.numbers(k, 1, section)[0], k, section)
+        for j in range(n):
+            mesh.numbers(k + 1 + j, 4, section)
+            mesh.scale_fields(k + 1 + j, (1, 2, 3), section)
+        k += 1 + n
+    else:
+        header = mesh.numbers(k, 2, section)
+        blocks = mesh.integer(header[0], k, section)
+        k += 1
+        for _ in range(blocks):
+            block = mesh.numbers(k, 4, section)
+            n = mesh.integer(block[3], k, section)
+            k += 1
+            if version == "4.0":
+                for j in range(n):
+                    mesh.numbers(k + j, 4, section)
+                    mesh.scale_fields(k + j, (1, 2, 3), section)
+                k += n
+            else:
+                k += n      # the node tags
+                for j in range(n):
+                    mesh.numbers(k + j, 3, section)
+                    mesh.scale_fields(k + j, (0, 1, 2), section)
+                k += n
+    if k >= len(mesh.lines) or mesh.lines[k][0].strip() != "$EndNodes":
+        fail(mesh.where(min(k, len(mesh.lines) - 1)) + "expected $EndNodes "
+             "after the nodes the $Nodes header announces")
+    return k + 1
+
+
+def scale_entities(mesh, i, version, section):
+    """The bounding boxes of the $Entities section (MSH 4) at the line
+    @p i scaled; returns the line after its $EndEntities."""
+    k = i + 1
+    counts = [mesh.integer(c, k, section)
+              for c in mesh.numbers(k, 4, section)[:4]]
+    k += 1
+    for d, n in enumerate(counts):
+        positions = ((1, 2, 3) if d == 0 and version != "4.0"
+                     else (1, 2, 3, 4, 5, 6))
+        for j in range(n):
+            mesh.numbers(k + j, len(positions) + 1, section)
+            mesh.scale_fields(k + j, positions, section)
+        k += n
+    if k >= len(mesh.lines) or mesh.lines[k][0].strip() != "$EndEntities":
+        fail(mesh.where(min(k, len(mesh.lines) - 1)) +
+             "expected $EndEntities")
+    return k + 1
+
+
+def convert_mesh(text, factor, file):
+    """The Gmsh file @p text (ASCII, MSH 2 or 4) with its node coordinates
+    (and the bounding boxes of $Entities) times @p factor."""
+    mesh = MeshLines(text, factor, file)
+    lines = mesh.lines
+    version = None
+    i = 0
     found_nodes = False
     while i < len(lines):
         line = lines[i][0].strip()
@@ -170,75 +249,26 @@ def convert_mesh(text, factor, file):
         section = line[1:]
         if i == 0 or version is None:
             if section != "MeshFormat":
-                fail(where(i) + "the file is not a Gmsh mesh file in the MSH "
-                     "2 or 4 ASCII format (it does not begin with "
+                fail(mesh.where(i) + "the file is not a Gmsh mesh file in "
+                     "the MSH 2 or 4 ASCII format (it does not begin with "
                      "$MeshFormat)")
         if section == "MeshFormat":
-            fields = numbers(i + 1, 2, section)
-            version = fields[0]
-            if fields[1] != "0":
-                fail(where(i + 1) + "a binary mesh file (MSH %s) is not "
-                     "converted; save it as ASCII" % version)
-            if version.split(".")[0] not in ("2", "4"):
-                fail(where(i + 1) + "MSH %s: only the formats 2 and 4 "
-                     "(ASCII) are converted" % version)
+            version = mesh_version(mesh, i, section)
             i += 2
         elif section == "Nodes":
             found_nodes = True
-            major = version.split(".")[0]
-            k = i + 1
-            if major == "2":
-                n = integer(numbers(k, 1, section)[0], k, section)
-                for j in range(n):
-                    numbers(k + 1 + j, 4, section)
-                    scale_fields(k + 1 + j, (1, 2, 3), section)
-                k += 1 + n
-            else:
-                header = numbers(k, 2, section)
-                blocks = integer(header[0], k, section)
-                k += 1
-                for _ in range(blocks):
-                    block = numbers(k, 4, section)
-                    n = integer(block[3], k, section)
-                    k += 1
-                    if version == "4.0":
-                        for j in range(n):
-                            numbers(k + j, 4, section)
-                            scale_fields(k + j, (1, 2, 3), section)
-                        k += n
-                    else:
-                        k += n      # the node tags
-                        for j in range(n):
-                            numbers(k + j, 3, section)
-                            scale_fields(k + j, (0, 1, 2), section)
-                        k += n
-            if k >= len(lines) or lines[k][0].strip() != "$EndNodes":
-                fail(where(min(k, len(lines) - 1)) + "expected $EndNodes "
-                     "after the nodes the $Nodes header announces")
-            i = k + 1
+            i = scale_nodes(mesh, i, version, section)
         elif section == "Entities" and version.split(".")[0] == "4":
-            k = i + 1
-            counts = [integer(c, k, section)
-                      for c in numbers(k, 4, section)[:4]]
-            k += 1
-            for d, n in enumerate(counts):
-                positions = ((1, 2, 3) if d == 0 and version != "4.0"
-                             else (1, 2, 3, 4, 5, 6))
-                for j in range(n):
-                    numbers(k + j, len(positions) + 1, section)
-                    scale_fields(k + j, positions, section)
-                k += n
-            if k >= len(lines) or lines[k][0].strip() != "$EndEntities":
-                fail(where(min(k, len(lines) - 1)) + "expected $EndEntities")
-            i = k + 1
+            i = scale_entities(mesh, i, version, section)
         elif section in ("Periodic", "Parametrizations",
                          "PartitionedEntities", "GhostElements"):
-            fail(where(i) + "the $%s section is not converted (it holds "
-                 "lengths or partitions); save the mesh without it" % section)
+            fail(mesh.where(i) + "the $%s section is not converted (it "
+                 "holds lengths or partitions); save the mesh without it"
+                 % section)
         else:
             i += 1
     if version is None:
         fail("mesh file '%s' has no $MeshFormat section" % file)
     if not found_nodes:
         fail("mesh file '%s' has no $Nodes section" % file)
-    return "".join(l + e for l, e in out)
+    return "".join(l + e for l, e in mesh.out)

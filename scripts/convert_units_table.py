@@ -77,88 +77,107 @@ FUNCTIONS = {
 }
 
 
-def _table():
-    t = {}
+def _add(t, kind, dimension, *paths):
+    for p in paths:
+        t[p] = (kind, dimension)
 
-    def add(kind, dimension, *paths):
-        for p in paths:
-            t[p] = (kind, dimension)
 
-    add(NAME, None, "Dimension")
+def _table_functions_and_boundary(t):
+    _add(t, NAME, None, "Dimension")
     for f, dimension in FUNCTIONS.items():
-        add(FUNCTION, dimension, f + "/Function expression")
-        add(FUNCTION_PART, dimension, f + "/Function constants",
-            f + "/Variable names")
+        _add(t, FUNCTION, dimension, f + "/Function expression")
+        _add(t, FUNCTION_PART, dimension, f + "/Function constants",
+             f + "/Variable names")
     bc = "Boundary conditions/"
-    add(NAME, None, *(bc + n for n in
-                      ("Clamped", "Contact", "Free", "Roller", "Traction")))
-    add(RATIO, None, bc + "Load quadrature tolerance")
-    add(NAME, None, "Checkpoint/Every", "Checkpoint/Keep",
-        "Finite element/Polynomial degree")
+    _add(t, NAME, None, *(bc + n for n in
+                         ("Clamped", "Contact", "Free", "Roller", "Traction")))
+    _add(t, RATIO, None, bc + "Load quadrature tolerance")
+    _add(t, NAME, None, "Checkpoint/Every", "Checkpoint/Keep",
+         "Finite element/Polynomial degree")
+
+
+def _table_foundation_and_friction(t):
     fo = "Foundation/"
-    add(NAME, None, fo + "Normal compliance/Law", fo + "Normal damping/Law",
-        fo + "Normal damping/Only in contact")
-    add(NUMBER, STRESS_PER_LENGTH,
-        fo + "Normal compliance/Capped ramp/Stiffness")
-    add(NUMBER, STRESS, fo + "Normal compliance/Capped ramp/Cap",
-        fo + "Normal damping/Capped ramp/Cap")
-    add(NUMBER, DAMPING, fo + "Normal damping/Capped ramp/Coefficient")
+    _add(t, NAME, None, fo + "Normal compliance/Law",
+         fo + "Normal damping/Law", fo + "Normal damping/Only in contact")
+    _add(t, NUMBER, STRESS_PER_LENGTH,
+         fo + "Normal compliance/Capped ramp/Stiffness")
+    _add(t, NUMBER, STRESS, fo + "Normal compliance/Capped ramp/Cap",
+         fo + "Normal damping/Capped ramp/Cap")
+    _add(t, NUMBER, DAMPING, fo + "Normal damping/Capped ramp/Coefficient")
     fr = "Friction/"
-    add(RATIO, None, fr + "Coefficient tolerance",
-        fr + "Convexification tolerance", fr + "Relaxation",
-        fr + "Constant/Coefficient", fr + "Exponential/Static coefficient",
-        fr + "Exponential/Dynamic coefficient")
+    _add(t, RATIO, None, fr + "Coefficient tolerance",
+         fr + "Convexification tolerance", fr + "Relaxation",
+         fr + "Constant/Coefficient", fr + "Exponential/Static coefficient",
+         fr + "Exponential/Dynamic coefficient")
     # c_t: c = c_t k and c m_i w_tau is a nodal force (m_i an area), so
     # c_t is a force per volume, like its default E/h.
-    add(NUMBER, STRESS_PER_LENGTH, fr + "Complementarity constant")
-    add(NAME, None, fr + "Law", fr + "Linearization",
-        fr + "Maximum convexification iterations", fr + "Uniqueness monitor",
-        fr + "Count solutions", fr + "Velocity strengthening")
-    add(NUMBER, VELOCITY, fr + "Maximum slip rate", fr + "Reference slip rate")
-    add(NUMBER, LENGTH, fr + "Slip length")
-    add(NUMBER, SLOWNESS, fr + "Exponential/Decay rate")
-    add(FRICTION, None, fr + "Expression/Function expression")
-    add(FRICTION_PART, None, fr + "Expression/Function constants")
+    _add(t, NUMBER, STRESS_PER_LENGTH, fr + "Complementarity constant")
+    _add(t, NAME, None, fr + "Law", fr + "Linearization",
+         fr + "Maximum convexification iterations", fr + "Uniqueness monitor",
+         fr + "Count solutions", fr + "Velocity strengthening")
+    _add(t, NUMBER, VELOCITY, fr + "Maximum slip rate",
+         fr + "Reference slip rate")
+    _add(t, NUMBER, LENGTH, fr + "Slip length")
+    _add(t, NUMBER, SLOWNESS, fr + "Exponential/Decay rate")
+    _add(t, FRICTION, None, fr + "Expression/Function expression")
+    _add(t, FRICTION_PART, None, fr + "Expression/Function constants")
+
+
+def _table_geometry_material_refinement(t):
     g = "Geometry/"
-    add(NAME, None, g + "Global refinements", g + "Repetitions", g + "Type")
-    add(LIST, LENGTH, g + "Lower left", g + "Upper right")
-    add(MESH, LENGTH, g + "Mesh file")
+    _add(t, NAME, None, g + "Global refinements", g + "Repetitions",
+         g + "Type")
+    _add(t, LIST, LENGTH, g + "Lower left", g + "Upper right")
+    _add(t, MESH, LENGTH, g + "Mesh file")
     ma = "Material/"
-    add(NUMBER, DENSITY, ma + "Density")
-    add(NUMBER, STRESS, ma + "Young modulus")
-    add(NUMBER, VISCOSITY, ma + "Viscosity lambda", ma + "Viscosity mu")
-    add(RATIO, None, ma + "Poisson ratio")
-    add(NAME, None, ma + "Plane model")
+    _add(t, NUMBER, DENSITY, ma + "Density")
+    _add(t, NUMBER, STRESS, ma + "Young modulus")
+    _add(t, NUMBER, VISCOSITY, ma + "Viscosity lambda", ma + "Viscosity mu")
+    _add(t, RATIO, None, ma + "Poisson ratio")
+    _add(t, NAME, None, ma + "Plane model")
     mr = "Mesh refinement/"
-    add(NAME, None, mr + "Cell budget", mr + "Maximum level",
-        mr + "Minimum level", mr + "Refine every", mr + "Strategy")
-    add(NUMBER, LENGTH, mr + "Contact following/Window",
-        mr + "Load following/Window")
-    add(RATIO, None, mr + "Error indicator/Coarsen fraction",
-        mr + "Error indicator/Refine fraction",
-        mr + "Load following/Threshold")
+    _add(t, NAME, None, mr + "Cell budget", mr + "Maximum level",
+         mr + "Minimum level", mr + "Refine every", mr + "Strategy")
+    _add(t, NUMBER, LENGTH, mr + "Contact following/Window",
+         mr + "Load following/Window")
+    _add(t, RATIO, None, mr + "Error indicator/Coarsen fraction",
+         mr + "Error indicator/Refine fraction",
+         mr + "Load following/Threshold")
+
+
+def _table_output_solver_time(t):
     o = "Output/"
-    add(NAME, None, o + "Directory", o + "Output every",
-        o + "Print iteration counts", o + "Print timings",
-        o + "Progress every", o + "Solver details", o + "VTU every",
-        o + "VTU subdivisions", o + "Write VTU")
-    add(LIST, TIME, o + "Output times")
+    _add(t, NAME, None, o + "Directory", o + "Output every",
+         o + "Print iteration counts", o + "Print timings",
+         o + "Progress every", o + "Solver details", o + "VTU every",
+         o + "VTU subdivisions", o + "Write VTU")
+    _add(t, LIST, TIME, o + "Output times")
     s = "Solver/"
-    add(NAME, None, *(s + n for n in (
-        "AMG/Aggregation", "Condensed/Limit",
-        "Condensed/Limit on several processes", "Condensed/Provisional passes",
-        "Contact solver", "Direct solver package", "Line search",
-        "Linear solver", "Maximum Newton iterations", "Maximum linear iterations",
-        "Memory per process", "Minimum DoFs per process", "Preconditioner")))
-    add(RATIO, None, s + "Linear tolerance", s + "Newton tolerance")
+    _add(t, NAME, None, *(s + n for n in (
+         "AMG/Aggregation", "Condensed/Limit",
+         "Condensed/Limit on several processes", "Condensed/Provisional passes",
+         "Contact solver", "Direct solver package", "Line search",
+         "Linear solver", "Maximum Newton iterations", "Maximum linear iterations",
+         "Memory per process", "Minimum DoFs per process", "Preconditioner")))
+    _add(t, RATIO, None, s + "Linear tolerance", s + "Newton tolerance")
     ti = "Time/"
-    add(NAME, None, ti + "Adaptive", ti + "Cut back where not unique",
-        ti + "Scheme")
-    add(RATIO, None, ti + "Adaptive tolerance",
-        ti + "Bathe/Spectral radius at infinity",
-        ti + "Sdirk/Spectral radius at infinity")
-    add(NUMBER, TIME, ti + "End time", ti + "Time step",
-        ti + "Minimum time step", ti + "Maximum time step")
+    _add(t, NAME, None, ti + "Adaptive", ti + "Cut back where not unique",
+         ti + "Scheme")
+    _add(t, RATIO, None, ti + "Adaptive tolerance",
+         ti + "Bathe/Spectral radius at infinity",
+         ti + "Sdirk/Spectral radius at infinity")
+    _add(t, NUMBER, TIME, ti + "End time", ti + "Time step",
+         ti + "Minimum time step", ti + "Maximum time step")
+
+
+def _table():
+    """Every entry of the program's parameters: (kind, dimension)."""
+    t = {}
+    _table_functions_and_boundary(t)
+    _table_foundation_and_friction(t)
+    _table_geometry_material_refinement(t)
+    _table_output_solver_time(t)
     return t
 
 

@@ -346,9 +346,10 @@ def legend_handles(friction):
 # Figure 2
 # --------------------------------------------------------------------------
 
-def figure2(run, figdir):
-    picks = [(target,) + run.step_near(target) for target in FIG2_TIMES]
-    contacts = [run.contact(step) for _, step, _ in picks]
+def figure2_mesh(run, picks, contacts, figdir):
+    """figure2.png: the deformed mesh and the contact forces at the steps
+    @p picks ((requested time, step, time)); returns the line on the
+    run's status for the titles ("" if completed)."""
     fmax = max(max(np.abs(c["normal_pressure"]).max(),
                    np.abs(c.get("tangential_traction", np.zeros(1))).max())
                for c in contacts)
@@ -397,8 +398,12 @@ def figure2(run, figdir):
     fig.savefig(out, dpi=DPI)
     plt.close(fig)
     print("wrote", out, "at steps", [s for _, s, _ in picks])
+    return status
 
-    # Profiles against x.
+
+def figure2_profiles(run, picks, contacts, status, figdir):
+    """figure2_pressure.png: the profiles against x at the steps
+    @p picks."""
     fig, axes = plt.subplots(3, 1, figsize=(9, 10.5), sharex=True,
                              constrained_layout=True,
                              gridspec_kw={"height_ratios": [1.3, 1, 1]})
@@ -446,11 +451,63 @@ def figure2(run, figdir):
     print("wrote", out)
 
 
+def figure2(run, figdir):
+    picks = [(target,) + run.step_near(target) for target in FIG2_TIMES]
+    contacts = [run.contact(step) for _, step, _ in picks]
+    status = figure2_mesh(run, picks, contacts, figdir)
+    figure2_profiles(run, picks, contacts, status, figdir)
+
+
 # --------------------------------------------------------------------------
 # Figure 3
 # --------------------------------------------------------------------------
 
-def figure3(runs, figdir, fig2_run=None):
+def figure3_profile_row(ax, curves, target, normalized):
+    """One panel of figure3_pressure.png: the pressure of each of
+    @p curves ((run, psi or None for the Figure 2 scene, colour)) at the
+    step nearest @p target, in GPa or divided by the total load."""
+    xx = np.linspace(0, 2, 401)
+    for run, psi, color in curves:
+        step, time = run.step_near(target)
+        c = run.contact(step)
+        if psi is None:
+            label = "psi = %g, with friction (Figure 2 scene)" \
+                % run.load[1]
+            width, style = 1.0, "--"
+        else:
+            label = "psi = %g, frictionless" % psi
+            width, style = 1.8, "-"
+        label += ", t = %.4f s" % time
+        total = np.sqrt(np.pi / run.load[1]) * run.load[0] \
+            if run.load else 1.0
+        scale = 1.0 / total if normalized else 1e-9
+        ax.plot(c["x"], c["normal_pressure"] * scale, color=color,
+                linewidth=width, linestyle=style, label=label)
+        if run.load:
+            ax.plot(xx, load_profile(run.load, xx, time) * scale,
+                    color=color, linestyle=":", linewidth=1)
+    ax.axvline(2.0 * target, color="0.7", linewidth=0.6)
+    ax.grid(True, alpha=0.3)
+    ax.set_xlim(0, 2)
+    ax.set_ylim(bottom=0)
+    if normalized:
+        ax.set_ylabel("pressure / total load (m$^{-1}$)")
+        ax.set_title("the same at t $\\approx$ %.1f s, divided by the "
+                     "total applied load F$\\sqrt{\\pi/\\psi}$ "
+                     "(N/m): how the load is spread" % target,
+                     fontsize=10)
+    else:
+        ax.set_ylabel("pressure (GPa)")
+        ax.set_title("normal pressure p+q on $\\Gamma_3$ (solid) and "
+                     "applied load g on the top face (dotted), "
+                     "t $\\approx$ %.1f s" % target, fontsize=10)
+    ax.legend(fontsize=7.5, loc="upper right" if target < 0.5
+              else "upper left")
+
+
+def figure3_mesh(runs, figdir):
+    """figure3.png: the deformed mesh and the contact pressure of each
+    run of @p runs ((run, psi)) at FIG3_TIMES."""
     panels = []
     for run, psi in runs:
         for target in FIG3_TIMES:
@@ -503,53 +560,21 @@ def figure3(runs, figdir, fig2_run=None):
     plt.close(fig)
     print("wrote", out, "at steps", [p[3] for p in panels])
 
-    # Pressure profiles.
+
+def figure3_profiles(runs, figdir, fig2_run):
+    """figure3_pressure.png: the pressure profiles of @p runs (and of
+    @p fig2_run, dashed) at FIG3_PROFILE_TIMES, the first again divided
+    by the total load."""
     fig, axes = plt.subplots(3, 1, figsize=(9, 10.5), sharex=True,
                              constrained_layout=True)
     colors = ["tab:blue", "tab:orange"]
-    xx = np.linspace(0, 2, 401)
     curves = [(run, psi, color) for (run, psi), color in zip(runs, colors)]
     if fig2_run is not None:
         curves.append((fig2_run, None, "0.45"))
     rows = [(t, False) for t in FIG3_PROFILE_TIMES] + \
         [(FIG3_PROFILE_TIMES[0], True)]
     for ax, (target, normalized) in zip(axes, rows):
-        for run, psi, color in curves:
-            step, time = run.step_near(target)
-            c = run.contact(step)
-            if psi is None:
-                label = "psi = %g, with friction (Figure 2 scene)" \
-                    % run.load[1]
-                width, style = 1.0, "--"
-            else:
-                label = "psi = %g, frictionless" % psi
-                width, style = 1.8, "-"
-            label += ", t = %.4f s" % time
-            total = np.sqrt(np.pi / run.load[1]) * run.load[0] \
-                if run.load else 1.0
-            scale = 1.0 / total if normalized else 1e-9
-            ax.plot(c["x"], c["normal_pressure"] * scale, color=color,
-                    linewidth=width, linestyle=style, label=label)
-            if run.load:
-                ax.plot(xx, load_profile(run.load, xx, time) * scale,
-                        color=color, linestyle=":", linewidth=1)
-        ax.axvline(2.0 * target, color="0.7", linewidth=0.6)
-        ax.grid(True, alpha=0.3)
-        ax.set_xlim(0, 2)
-        ax.set_ylim(bottom=0)
-        if normalized:
-            ax.set_ylabel("pressure / total load (m$^{-1}$)")
-            ax.set_title("the same at t $\\approx$ %.1f s, divided by the "
-                         "total applied load F$\\sqrt{\\pi/\\psi}$ "
-                         "(N/m): how the load is spread" % target,
-                         fontsize=10)
-        else:
-            ax.set_ylabel("pressure (GPa)")
-            ax.set_title("normal pressure p+q on $\\Gamma_3$ (solid) and "
-                         "applied load g on the top face (dotted), "
-                         "t $\\approx$ %.1f s" % target, fontsize=10)
-        ax.legend(fontsize=7.5, loc="upper right" if target < 0.5
-                  else "upper left")
+        figure3_profile_row(ax, curves, target, normalized)
     axes[-1].set_xlabel("x (m)")
     fig.suptitle("Figure 3: contact pressure for a long (psi = 5) and a "
                  "shorter (psi = 20) mass, frictionless; thin grey line: x = "
@@ -558,6 +583,11 @@ def figure3(runs, figdir, fig2_run=None):
     fig.savefig(out, dpi=DPI)
     plt.close(fig)
     print("wrote", out)
+
+
+def figure3(runs, figdir, fig2_run=None):
+    figure3_mesh(runs, figdir)
+    figure3_profiles(runs, figdir, fig2_run)
 
 
 def main():

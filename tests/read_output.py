@@ -159,7 +159,10 @@ def node_of(row):
                            float(row["z"]) if "z" in row else 0.0], 6))
 
 
-def check_surface(directory, pvtu, time, step, facts):
+def read_surface(directory, pvtu, time, step, facts):
+    """The points of the surface pieces of @p pvtu and their fields: the
+    points, the values by field, the first index of each distinct point
+    (faces are patches of their own: shared nodes repeat)."""
     points, values = [], {}
     for _, mesh in nonempty_pieces(directory, pvtu, time, step, facts,
                                    "surface"):
@@ -180,22 +183,33 @@ def check_surface(directory, pvtu, time, step, facts):
             if not np.array_equal(v[i], v[distinct[k]]):
                 check(False, "%s: %s differs between the copies of a node" % (pvtu, key))
                 break
-    codes = values["contact_state"][:, 0]
-    check(np.all(codes == np.round(codes)) and np.all(np.isin(codes, [0, 1, 2, 3])),
-          "%s: the states are the codes 0, 1, 2, 3" % pvtu)
-    facts.setdefault("state codes", set()).update(int(c) for c in codes)
+    return values, distinct
 
-    # Node by node against the contact CSV of the same step.
-    csv_path = os.path.join(directory, "contact_%05d.csv" % step)
-    if not os.path.exists(csv_path):
-        # A step without a contact CSV: the nodes of the initial mesh, if
-        # the mesh does not change (time_series.csv: the same cells).
-        series = read_csv(os.path.join(directory, "time_series.csv"))
-        if len({r["cells"] for r in series}) == 1:
-            rows = read_csv(os.path.join(directory, "contact_00000.csv"))
-            check({node_of(r) for r in rows} <= set(distinct),
-                  "%s: a point at every node of Gamma_3" % pvtu)
-        return
+
+def node_pairs(r, i, values, dim, friction):
+    """The (field, value in the file, value in the CSV) of the surface
+    point @p i and the CSV row @p r of its node, and the state the CSV
+    says."""
+    pairs = [("normal_pressure", values["normal_pressure"][i, 0], float(r["normal_pressure"])),
+             ("penetration", values["penetration"][i, 0], float(r["u_nu"]))]
+    for d, axis in enumerate("xyz"[:dim]):
+        pairs.append(("displacement", values["displacement"][i, d], float(r["u_" + axis])))
+    if friction:
+        pairs.append(("friction_coefficient", values["friction_coefficient"][i, 0],
+                      float(r["mu"])))
+        if dim == 2:
+            # The tangent t = (1, 0) on a bottom face, the scene's Gamma_3.
+            pairs.append(("friction_traction", values["friction_traction"][i, 0],
+                          float(r["tangential_traction"])))
+        state = r["state"]
+    else:
+        state = "contact" if float(r["normal_pressure"]) > 0 else "free"
+    return pairs, state
+
+
+def check_surface_against_csv(pvtu, csv_path, time, values, distinct, facts):
+    """Node by node against the contact CSV @p csv_path of the same step."""
+    codes = values["contact_state"][:, 0]
     rows = read_csv(csv_path)
     check(all(float(r["time"]) == time for r in rows),
           "%s: the time column is %r" % (os.path.basename(csv_path), time))
@@ -217,20 +231,7 @@ def check_surface(directory, pvtu, time, step, facts):
         if i is None:
             check(False, "%s: no surface point at the node %s" % (pvtu, x))
             continue
-        pairs = [("normal_pressure", values["normal_pressure"][i, 0], float(r["normal_pressure"])),
-                 ("penetration", values["penetration"][i, 0], float(r["u_nu"]))]
-        for d, axis in enumerate("xyz"[:dim]):
-            pairs.append(("displacement", values["displacement"][i, d], float(r["u_" + axis])))
-        if friction:
-            pairs.append(("friction_coefficient", values["friction_coefficient"][i, 0],
-                          float(r["mu"])))
-            if dim == 2:
-                # The tangent t = (1, 0) on a bottom face, the scene's Gamma_3.
-                pairs.append(("friction_traction", values["friction_traction"][i, 0],
-                              float(r["tangential_traction"])))
-            state = r["state"]
-        else:
-            state = "contact" if float(r["normal_pressure"]) > 0 else "free"
+        pairs, state = node_pairs(r, i, values, dim, friction)
         check(int(codes[i]) == STATE_CODES[state],
               "%s: state code %d at %s, the CSV says %s" % (pvtu, codes[i], x, state))
         for key, a, b in pairs:
@@ -242,6 +243,27 @@ def check_surface(directory, pvtu, time, step, facts):
               "%s: %s equals the contact CSV (%g of %g)" % (pvtu, key, dev, scale))
     facts["surface steps checked against the CSV"] = \
         facts.get("surface steps checked against the CSV", 0) + 1
+
+
+def check_surface(directory, pvtu, time, step, facts):
+    values, distinct = read_surface(directory, pvtu, time, step, facts)
+    codes = values["contact_state"][:, 0]
+    check(np.all(codes == np.round(codes)) and np.all(np.isin(codes, [0, 1, 2, 3])),
+          "%s: the states are the codes 0, 1, 2, 3" % pvtu)
+    facts.setdefault("state codes", set()).update(int(c) for c in codes)
+
+    # Node by node against the contact CSV of the same step.
+    csv_path = os.path.join(directory, "contact_%05d.csv" % step)
+    if not os.path.exists(csv_path):
+        # A step without a contact CSV: the nodes of the initial mesh, if
+        # the mesh does not change (time_series.csv: the same cells).
+        series = read_csv(os.path.join(directory, "time_series.csv"))
+        if len({r["cells"] for r in series}) == 1:
+            rows = read_csv(os.path.join(directory, "contact_00000.csv"))
+            check({node_of(r) for r in rows} <= set(distinct),
+                  "%s: a point at every node of Gamma_3" % pvtu)
+        return
+    check_surface_against_csv(pvtu, csv_path, time, values, distinct, facts)
 
 
 def main():

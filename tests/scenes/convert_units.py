@@ -105,12 +105,10 @@ DOC_DISAGREEMENTS = set()
 DOC_WITHOUT_UNIT = set()
 
 # ----------------------------------------------------------------- 1.
-def check_scene(converter, read_prm, work, relative, original, program):
-    """The round trip of the scene @p original (named @p relative)."""
-    name = re.sub(r"[^A-Za-z0-9_.-]+", "_",
-                  os.path.splitext(relative)[0]).strip("_")
-    directory = os.path.join(work, "round_trip", name)
-    os.makedirs(directory, exist_ok=True)
+def convert_chain(converter, directory, name, relative, original):
+    """@p original converted SI -> mm-t-s -> in-lbf-s -> SI into
+    @p directory: the (system, path) of each, the original first; None
+    if a conversion failed."""
     chain = [("SI", original)]
     try:
         for system, tag in (("mm-t-s", "mm"), ("in-lbf-s", "in"),
@@ -121,15 +119,13 @@ def check_scene(converter, read_prm, work, relative, original, program):
     except RuntimeError as e:
         check(False, "%s: converts SI -> mm-t-s -> in-lbf-s -> SI (%s)"
               % (relative, e))
-        return
+        return None
     check(True, "%s: converts SI -> mm-t-s -> in-lbf-s -> SI" % relative)
-    a = read_prm(original)
-    mm = read_prm(chain[1][1])
-    back = read_prm(chain[3][1])
-    dimension = int(a.get("Dimension", "2"))
-    module = converter.module
+    return chain
 
-    # The defaults the scene leaves out: stated in mm-t-s, converted.
+
+def check_stated_defaults(module, relative, a, mm):
+    """The defaults the scene leaves out: stated in mm-t-s, converted."""
     expected = {}
     for key, text in unstated_defaults(module, a).items():
         f = factor("SI", "mm-t-s", module.TABLE[key][1])
@@ -143,15 +139,9 @@ def check_scene(converter, read_prm, work, relative, original, program):
               "%s = %s" % (key.split("/", 1)[-1], mm.get(key))
               for key in sorted(set(stated) | set(expected))) or "none"))
 
-    # Back to itself: the values a run uses (the defaults filled in).
-    problems = differences(with_defaults(module, a),
-                           with_defaults(module, back))
-    check(not problems, "%s: the round trip gives every value a run uses "
-          "back (numbers to 1e-12, expressions and constants as they "
-          "were, but for components that are numbers)%s"
-          % (relative, "" if not problems else ": " + "; ".join(problems)))
 
-    # The functions: evaluated, round trip and mm-t-s.
+def check_functions(relative, a, mm, back, dimension):
+    """The functions: evaluated, round trip and mm-t-s."""
     problems = []
     for subsection, dimension_of_value in FUNCTIONS.items():
         key = subsection + "/Function expression"
@@ -179,36 +169,78 @@ def check_scene(converter, read_prm, work, relative, original, program):
           "times their factor (1e-12)%s"
           % (relative, "" if not problems else ": " + "; ".join(problems)))
 
-    if a.get("Geometry/Type") == "gmsh":
-        def mesh(prm_path, entries):
-            return mesh_nodes(os.path.join(os.path.dirname(prm_path),
-                                           entries["Geometry/Mesh file"]))
-        nodes = mesh(original, a)
-        nodes_mm = mesh(chain[1][1], mm)
-        nodes_back = mesh(chain[3][1], back)
-        check(os.path.dirname(os.path.join(
-            directory, mm["Geometry/Mesh file"])) == directory and
-            mm["Geometry/Mesh file"] == name + "_mm.msh",
-            "%s: the mm-t-s scene names its mesh copy next to it" % relative)
-        check(nodes_mm == [exact(x, 1000) for x in nodes],
-              "%s: the mm-t-s mesh's nodes are 1000 times the SI ones "
-              "(correctly rounded)" % relative)
-        check(len(nodes_back) == len(nodes) and
-              all(close(x, y, scale=1e-3) for x, y in zip(nodes, nodes_back)),
-              "%s: the mesh's nodes come back to 1e-12" % relative)
 
+def mesh_of(prm_path, entries):
+    """The nodes of the Gmsh mesh the scene @p prm_path names."""
+    return mesh_nodes(os.path.join(os.path.dirname(prm_path),
+                                   entries["Geometry/Mesh file"]))
+
+
+def check_mesh_copies(relative, directory, name, chain, entries):
+    """A Gmsh scene: the mm-t-s mesh copy beside its scene, its nodes
+    scaled, the round trip's nodes back. @p entries: the scenes of
+    @p chain read (SI, mm-t-s, back to SI)."""
+    a, mm, back = entries
+    nodes = mesh_of(chain[0][1], a)
+    nodes_mm = mesh_of(chain[1][1], mm)
+    nodes_back = mesh_of(chain[3][1], back)
+    check(os.path.dirname(os.path.join(
+        directory, mm["Geometry/Mesh file"])) == directory and
+        mm["Geometry/Mesh file"] == name + "_mm.msh",
+        "%s: the mm-t-s scene names its mesh copy next to it" % relative)
+    check(nodes_mm == [exact(x, 1000) for x in nodes],
+          "%s: the mm-t-s mesh's nodes are 1000 times the SI ones "
+          "(correctly rounded)" % relative)
+    check(len(nodes_back) == len(nodes) and
+          all(close(x, y, scale=1e-3) for x, y in zip(nodes, nodes_back)),
+          "%s: the mesh's nodes come back to 1e-12" % relative)
+
+
+def check_validate(program, relative, directory, chain):
+    """The converted scenes of @p chain pass dynamic-contact --validate."""
+    failed = []
+    for system, path in chain[1:]:
+        r = subprocess.run([program, "--validate", path],
+                           capture_output=True, text=True,
+                           cwd=directory)
+        if r.returncode != 0:
+            failed.append("%s: %s" % (system, (r.stdout + r.stderr)
+                                      .strip().splitlines()[-1:]))
+    check(not failed, "%s: the converted scenes pass dynamic-contact "
+          "--validate%s" % (relative, "" if not failed else
+                            ": " + "; ".join(failed)))
+
+
+def check_scene(converter, read_prm, work, relative, original, program):
+    """The round trip of the scene @p original (named @p relative)."""
+    name = re.sub(r"[^A-Za-z0-9_.-]+", "_",
+                  os.path.splitext(relative)[0]).strip("_")
+    directory = os.path.join(work, "round_trip", name)
+    os.makedirs(directory, exist_ok=True)
+    chain = convert_chain(converter, directory, name, relative, original)
+    if chain is None:
+        return
+    a = read_prm(original)
+    mm = read_prm(chain[1][1])
+    back = read_prm(chain[3][1])
+    dimension = int(a.get("Dimension", "2"))
+    module = converter.module
+
+    check_stated_defaults(module, relative, a, mm)
+
+    # Back to itself: the values a run uses (the defaults filled in).
+    problems = differences(with_defaults(module, a),
+                           with_defaults(module, back))
+    check(not problems, "%s: the round trip gives every value a run uses "
+          "back (numbers to 1e-12, expressions and constants as they "
+          "were, but for components that are numbers)%s"
+          % (relative, "" if not problems else ": " + "; ".join(problems)))
+
+    check_functions(relative, a, mm, back, dimension)
+    if a.get("Geometry/Type") == "gmsh":
+        check_mesh_copies(relative, directory, name, chain, (a, mm, back))
     if program:
-        failed = []
-        for system, path in chain[1:]:
-            r = subprocess.run([program, "--validate", path],
-                               capture_output=True, text=True,
-                               cwd=directory)
-            if r.returncode != 0:
-                failed.append("%s: %s" % (system, (r.stdout + r.stderr)
-                                          .strip().splitlines()[-1:]))
-        check(not failed, "%s: the converted scenes pass dynamic-contact "
-              "--validate%s" % (relative, "" if not failed else
-                                ": " + "; ".join(failed)))
+        check_validate(program, relative, directory, chain)
 
 
 # ----------------------------------------------------------------- 2.

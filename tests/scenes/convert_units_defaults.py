@@ -153,11 +153,10 @@ def run_steps(program, path, output, steps=3):
     return series, contact
 
 
-def check_defaults_written(converter, read_prm, work, program):
-    """The defaults a scene leaves out are written, converted, into the
-    mm-t-s scene, where a reader finds them; the scene runs as before."""
-    directory = os.path.join(work, "defaults")
-    os.makedirs(directory, exist_ok=True)
+def convert_written(converter, directory):
+    """The minimal and the partial scene converted into mm-t-s, each
+    against the exact text expected; returns (path, converted path,
+    converted text) by name for those converted."""
     header = "# Units: mm-t-s (length mm, mass t, time s; force N, stress " \
         "MPa); converted from SI by scripts/convert-units (from %s).\n"
     results = {}
@@ -181,36 +180,44 @@ def check_defaults_written(converter, read_prm, work, program):
               "indentation), else in a new block at the end%s"
               % (name, COMMENT.strip(), "" if got == want else
                  "; got:\n" + got))
-    if "minimal" in results:
-        mm = read_prm(results["minimal"][1])
-        check(mm.get("Material/Density") == "1e-09" and
-              mm.get("Material/Young modulus") == "100000" and
-              mm.get("Foundation/Normal compliance/Capped ramp/Stiffness")
-              == "5" and
-              mm.get("Friction/Exponential/Decay rate") == "2" and
-              mm.get("Geometry/Upper right") == "2000, 100" and
-              "Time/Time step" not in mm and "Time/End time" not in mm and
-              "Geometry/Lower left" not in mm,
-              "the minimal scene in mm-t-s: Density 1e-9 t/mm^3, Young "
-              "modulus 1e5 MPa, Stiffness 5e9 Pa/m = 5 N/mm^3, Decay rate "
-              "2 s/mm, Upper right 2000, 100 mm; the times (factor 1) and "
-              "the lower left corner (0) are not written")
-        # Back to SI: the numbers of the program's defaults again.
-        back = os.path.join(directory, "minimal_si.prm")
-        try:
-            converter.convert("mm-t-s", "SI", results["minimal"][1], back)
-            entries = read_prm(back)
-            module = converter.module
-            wrong = [key for key, text in unstated_defaults(
-                         module, read_prm(results["minimal"][0])).items()
-                     if key in mm and not all(close(p, q) for p, q in zip(
-                         number_list(entries[key]), number_list(text)))]
-            check(not wrong, "the minimal scene back in SI states the "
-                  "program's defaults (to 1e-12)%s"
-                  % ("" if not wrong else ": " + ", ".join(wrong)))
-        except RuntimeError as e:
-            check(False, "the minimal scene back to SI (%s)" % e)
-    # A scene in mm-t-s without a density ran with 1000 t/mm^3.
+    return results
+
+
+def check_minimal_mm(converter, read_prm, directory, minimal):
+    """The minimal scene in mm-t-s (@p minimal: its paths) read back, and
+    back to SI the numbers of the program's defaults again."""
+    mm = read_prm(minimal[1])
+    check(mm.get("Material/Density") == "1e-09" and
+          mm.get("Material/Young modulus") == "100000" and
+          mm.get("Foundation/Normal compliance/Capped ramp/Stiffness")
+          == "5" and
+          mm.get("Friction/Exponential/Decay rate") == "2" and
+          mm.get("Geometry/Upper right") == "2000, 100" and
+          "Time/Time step" not in mm and "Time/End time" not in mm and
+          "Geometry/Lower left" not in mm,
+          "the minimal scene in mm-t-s: Density 1e-9 t/mm^3, Young "
+          "modulus 1e5 MPa, Stiffness 5e9 Pa/m = 5 N/mm^3, Decay rate "
+          "2 s/mm, Upper right 2000, 100 mm; the times (factor 1) and "
+          "the lower left corner (0) are not written")
+    # Back to SI: the numbers of the program's defaults again.
+    back = os.path.join(directory, "minimal_si.prm")
+    try:
+        converter.convert("mm-t-s", "SI", minimal[1], back)
+        entries = read_prm(back)
+        module = converter.module
+        wrong = [key for key, text in unstated_defaults(
+                     module, read_prm(minimal[0])).items()
+                 if key in mm and not all(close(p, q) for p, q in zip(
+                     number_list(entries[key]), number_list(text)))]
+        check(not wrong, "the minimal scene back in SI states the "
+              "program's defaults (to 1e-12)%s"
+              % ("" if not wrong else ": " + ", ".join(wrong)))
+    except RuntimeError as e:
+        check(False, "the minimal scene back to SI (%s)" % e)
+
+
+def check_mm_scene_to_si(converter, read_prm, directory):
+    """A scene in mm-t-s without a density ran with 1000 t/mm^3."""
     path = os.path.join(directory, "mm_scene.prm")
     write(path, "subsection Geometry\n  set Type = gmsh\n  set Mesh file = "
           + os.path.join(os.path.dirname(converter.script), "..", "prm",
@@ -225,8 +232,9 @@ def check_defaults_written(converter, read_prm, work, program):
           "a scene in mm-t-s without Density ran with 1000 t/mm^3: in SI "
           "1e15 kg/m^3, E 1e11 MPa = 1e17 Pa; no corners for Type = gmsh")
 
-    if not program or "minimal" not in results:
-        return
+
+def check_written_validate(program, directory, results):
+    """The scenes and their conversions pass dynamic-contact --validate."""
     failed = []
     for name, (path, out, _) in sorted(results.items()):
         for scene in (path, out):
@@ -240,7 +248,12 @@ def check_defaults_written(converter, read_prm, work, program):
     check(not failed, "the scenes with their defaults written pass "
           "dynamic-contact --validate%s"
           % ("" if not failed else ": " + "; ".join(failed)))
-    path, out, _ = results["minimal"]
+
+
+def check_runs_alike(program, directory, minimal):
+    """The minimal scene runs three steps identically in SI and in
+    mm-t-s (@p minimal: its paths)."""
+    path, out, _ = minimal
     si = run_steps(program, path, os.path.join(directory, "run_si"))
     mm = run_steps(program, out, os.path.join(directory, "run_mm"))
     if si is None or mm is None:
@@ -266,7 +279,21 @@ def check_defaults_written(converter, read_prm, work, program):
           "displacements 1000 times in mm, to 1e-9)")
 
 
-# ----------------------------------------------------------------- 6.
+def check_defaults_written(converter, read_prm, work, program):
+    """The defaults a scene leaves out are written, converted, into the
+    mm-t-s scene, where a reader finds them; the scene runs as before."""
+    directory = os.path.join(work, "defaults")
+    os.makedirs(directory, exist_ok=True)
+    results = convert_written(converter, directory)
+    if "minimal" in results:
+        check_minimal_mm(converter, read_prm, directory, results["minimal"])
+    check_mm_scene_to_si(converter, read_prm, directory)
+    if not program or "minimal" not in results:
+        return
+    check_written_validate(program, directory, results)
+    check_runs_alike(program, directory, results["minimal"])
+
+
 def program_entries(program, dimension, directory):
     """{entry: (value, default)} that the program prints for a scene of
     @p dimension that sets nothing else."""

@@ -106,6 +106,83 @@ def falling_time(level):
     return TP - TP / (2 * math.pi) * math.acos(1 - 2 * ratio)
 
 
+def check_run(args, base, fold, dim, k, steps):
+    """The run of @p dim with the step k: completed, its line of the
+    table, its polarization (3D) and with several roots where it stops
+    slipping. Returns (end time, D, L1 error), None if the run failed."""
+    scene = os.path.join(args.source_dir, SCENES[dim])
+    name = "%dD, alpha = %g" % (dim, base.alpha)
+    out = os.path.join(args.work_dir, "%dd-%g-%g" % (dim, base.alpha, k))
+    ok = run_scene(args.program, scene, out,
+                   ["Time/Time step=%g" % k,
+                    "Time/Scheme=" + args.scheme,
+                    "Friction/Exponential/Decay rate=%g" % base.alpha])
+    check(ok, "%s, k = %g: completed" % (name, k))
+    if not ok:
+        return None
+    rows = read_csv(os.path.join(out, "time_series.csv"))
+    cutbacks = sum(int(r["cutbacks"]) for r in rows)
+    times, rates, d, across = centre_history(out, dim)
+    end = times[-1]
+    d_exact = exact_distance(base, end)
+    exact = base.history([tau_inc(t) for t in times])
+    l1 = sum((times[i] - times[i - 1]) * abs(rates[i] - exact[i])
+             for i in range(1, len(times))) / d_exact
+    slipping = [t for t, w in zip(times, rates) if w > 1e-3 * A]
+    t_off = slipping[-1] if slipping else float("nan")
+    print("    %-8g  %.6e  %+.3f %%  %.3e  %.4e  %d"
+          % (k, d, 100 * (d / d_exact - 1), l1, t_off, cutbacks))
+    if dim == 3:
+        check(abs(across) <= 1e-3 * abs(d),
+              "%s, k = %g: the slip keeps the pulse's polarization"
+              " (across it %.1e of D)" % (name, k,
+                                          abs(across / d)))
+    if fold:
+        t_fold = falling_time(fold[1])
+        t_other = falling_time(MU_A * P / 2)
+        check(abs(t_off - t_fold) <= 2 * k,
+              "%s, k = %g: the base slips on the upper root until "
+              "its fold: it stops at %.4e s, %.1f steps from the "
+              "fold %.4e s (where 2 tau_inc falls to mu(0) P: "
+              "%.4e s)" % (name, k, t_off, (t_off - t_fold) / k,
+                           t_fold, t_other))
+        if k == steps[-1]:
+            check(t_off - t_other >= 2 * k,
+                  "%s, k = %g: ... and not where sticking becomes "
+                  "a solution again (%.1f steps after it)"
+                  % (name, k, (t_off - t_other) / k))
+    return end, d, l1
+
+
+def check_convergence(name, base, fold, distances, l1s, end):
+    """The error of D falls with k; with one root, D and the L1 error
+    converge at first order."""
+    d_exact = exact_distance(base, end)
+    errors = [abs(x / d_exact - 1) for x in distances]
+    check(errors[0] > errors[1] > errors[2],
+          "%s: the error of D falls with k (%s)" % (
+              name, ", ".join("%.2f %%" % (100 * e)
+                              for e in errors)))
+    if fold:
+        return
+    ratio = (distances[-2] - distances[-3]) / \
+        (distances[-1] - distances[-2])
+    limit = 2 * distances[-1] - distances[-2]
+    check(1.6 <= ratio <= 2.5,
+          "%s: D converges at first order in k (ratio of "
+          "successive differences %.2f)" % (name, ratio))
+    check(abs(limit / d_exact - 1) <= 0.02,
+          "%s: the Richardson limit of D within 2 %% of the "
+          "closed form %.6e m (%+.3f %%; what is left is "
+          "the mesh's error)"
+          % (name, d_exact, 100 * (limit / d_exact - 1)))
+    r1 = l1s[-2] / l1s[-1]
+    check(1.5 <= r1 <= 2.5,
+          "%s: the L1 error of the slip rate falls at first "
+          "order (ratio %.2f, order %.2f)"
+          % (name, r1, math.log(r1, 2)))
+
+
 def main():
     parser = program_arguments(__doc__)
     parser.add_argument("--steps", default=",".join("%g" % k for k in STEPS))
@@ -118,78 +195,20 @@ def main():
         base = ShearBase(Z, P, MU_A, MU_B, alpha)
         fold = base.fold()
         for dim in [int(d) for d in args.dims.split(",")]:
-            scene = os.path.join(args.source_dir, SCENES[dim])
             name = "%dD, alpha = %g" % (dim, alpha)
             end = None
             print("%s (%s): k, D, D error, L1 error, t_off, cut-backs"
                   % (name, "several roots" if fold else "one root"))
             distances, l1s = [], []
             for k in steps:
-                out = os.path.join(args.work_dir, "%dd-%g-%g" % (dim, alpha, k))
-                ok = run_scene(args.program, scene, out,
-                               ["Time/Time step=%g" % k,
-                                "Time/Scheme=" + args.scheme,
-                                "Friction/Exponential/Decay rate=%g" % alpha])
-                check(ok, "%s, k = %g: completed" % (name, k))
-                if not ok:
+                result = check_run(args, base, fold, dim, k, steps)
+                if result is None:
                     continue
-                rows = read_csv(os.path.join(out, "time_series.csv"))
-                cutbacks = sum(int(r["cutbacks"]) for r in rows)
-                times, rates, d, across = centre_history(out, dim)
-                end = times[-1]
-                d_exact = exact_distance(base, end)
-                exact = base.history([tau_inc(t) for t in times])
-                l1 = sum((times[i] - times[i - 1]) * abs(rates[i] - exact[i])
-                         for i in range(1, len(times))) / d_exact
-                slipping = [t for t, w in zip(times, rates) if w > 1e-3 * A]
-                t_off = slipping[-1] if slipping else float("nan")
+                end, d, l1 = result
                 distances.append(d)
                 l1s.append(l1)
-                print("    %-8g  %.6e  %+.3f %%  %.3e  %.4e  %d"
-                      % (k, d, 100 * (d / d_exact - 1), l1, t_off, cutbacks))
-                if dim == 3:
-                    check(abs(across) <= 1e-3 * abs(d),
-                          "%s, k = %g: the slip keeps the pulse's polarization"
-                          " (across it %.1e of D)" % (name, k,
-                                                      abs(across / d)))
-                if fold:
-                    t_fold = falling_time(fold[1])
-                    t_other = falling_time(MU_A * P / 2)
-                    check(abs(t_off - t_fold) <= 2 * k,
-                          "%s, k = %g: the base slips on the upper root until "
-                          "its fold: it stops at %.4e s, %.1f steps from the "
-                          "fold %.4e s (where 2 tau_inc falls to mu(0) P: "
-                          "%.4e s)" % (name, k, t_off, (t_off - t_fold) / k,
-                                       t_fold, t_other))
-                    if k == steps[-1]:
-                        check(t_off - t_other >= 2 * k,
-                              "%s, k = %g: ... and not where sticking becomes "
-                              "a solution again (%.1f steps after it)"
-                              % (name, k, (t_off - t_other) / k))
             if len(distances) >= 3 and end:
-                d_exact = exact_distance(base, end)
-                errors = [abs(x / d_exact - 1) for x in distances]
-                check(errors[0] > errors[1] > errors[2],
-                      "%s: the error of D falls with k (%s)" % (
-                          name, ", ".join("%.2f %%" % (100 * e)
-                                          for e in errors)))
-                if not fold:
-                    ratio = (distances[-2] - distances[-3]) / \
-                        (distances[-1] - distances[-2])
-                    limit = 2 * distances[-1] - distances[-2]
-                    check(1.6 <= ratio <= 2.5,
-                          "%s: D converges at first order in k (ratio of "
-                          "successive differences %.2f)" % (name, ratio))
-                    check(abs(limit / d_exact - 1) <= 0.02,
-                          "%s: the Richardson limit of D within 2 %% of the "
-                          "closed form %.6e m (%+.3f %%; what is left is "
-                          "the mesh's error)"
-                          % (name, d_exact, 100 * (limit / d_exact - 1)))
-                    r1 = l1s[-2] / l1s[-1]
-                    check(1.5 <= r1 <= 2.5,
-                          "%s: the L1 error of the slip rate falls at first "
-                          "order (ratio %.2f, order %.2f)"
-                          % (name, r1, math.log(r1, 2)))
+                check_convergence(name, base, fold, distances, l1s, end)
     finish("shear_wave")
 
 

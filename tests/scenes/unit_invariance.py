@@ -184,91 +184,117 @@ def well_posedness(out):
     return report
 
 
+def convert_scene(args, name, source):
+    """@p source converted from SI into every system of SYSTEMS by
+    scripts/convert-units; returns the files by system."""
+    converter = os.path.join(args.source_dir, "scripts", "convert-units")
+    files = {}
+    for system in SYSTEMS:
+        files[system] = os.path.join(args.work_dir,
+                                     "%s-%s.prm" % (name, system))
+        command = [sys.executable, converter, "--from", "SI", "--to",
+                   system, source, "-o", files[system]]
+        subprocess.run(command, check=True)
+    return files
+
+
+def run_systems(args, name, files, overrides, processes):
+    """The scene in every system on @p processes; returns the output
+    directories by system (None where the run failed)."""
+    outputs = {}
+    for system in SYSTEMS:
+        out = os.path.join(args.work_dir, "%s-%s-np%d"
+                           % (name, system, processes))
+        ok = run_scene(args.program, files[system], out,
+                       COMMON + overrides, processes, args.mpiexec)
+        check(ok, "%s in %s on %d process(es): completed"
+              % (name, system, processes))
+        outputs[system] = out if ok else None
+    return outputs
+
+
+def compare_time_series(label, si_series, series, system, dim):
+    """time_series.csv of a run in @p system against the SI run's: the
+    steps, the solver's path, the columns, the diagnostics."""
+    check(len(series) == len(si_series),
+          "%s: as many steps (%d, SI %d)"
+          % (label, len(series) - 1, len(si_series) - 1))
+    differing = [int(a["step"]) for a, b in
+                 zip(si_series, series)
+                 if any(a[c] != b[c] for c in PATH)]
+    check(not differing,
+          "%s: the same cut-backs, Newton iterations and "
+          "passes in every step (%d steps differ%s)"
+          % (label, len(differing),
+             (": " + ", ".join(map(str, differing[:8])))
+             if differing else ""))
+    compare_columns(label + ", time_series.csv", si_series,
+                    series, system, dim, TIME_SERIES, True,
+                    peaks([si_series], TIME_SERIES))
+    # The diagnostics with their own tolerances.
+    energy = max(abs(float(r["total_energy"]))
+                 for r in si_series) or 1.
+    factor = to_si(system, ENERGY, dim, True)
+    defect = max(abs(float(r["energy_balance_defect"])) * factor
+                 for r in series)
+    check(defect <= 1e-8 * energy,
+          "%s: energy balance defect below 1e-8 of the energy "
+          "(%.1e)" % (label, defect / energy))
+    residual = max(float(r["coefficient_residual"])
+                   for r in series)
+    check(residual <= 1e-6,
+          "%s: friction-law residual below the Coefficient "
+          "tolerance (%.1e)" % (label, residual))
+
+
+def compare_system(label, si, out, system, dim):
+    """The run in @p out (in @p system) against the SI run in @p si: its
+    time series, the contact CSVs, the well-posedness report."""
+    si_series = read_csv(os.path.join(si, "time_series.csv"))
+    si_contact = sorted(glob.glob(os.path.join(si, "contact_*.csv")))
+    series = read_csv(os.path.join(out, "time_series.csv"))
+    compare_time_series(label, si_series, series, system, dim)
+    contact = sorted(glob.glob(os.path.join(out,
+                                            "contact_*.csv")))
+    check([os.path.basename(f) for f in contact] ==
+          [os.path.basename(f) for f in si_contact],
+          "%s: the same contact CSVs" % label)
+    si_report = well_posedness(si)
+    check(si_report and well_posedness(out) == si_report,
+          "%s: the same well-posedness report (%d lines)"
+          % (label, len(si_report)))
+    si_tables = [read_csv(f) for f in si_contact]
+    peak_of = peaks(si_tables, CONTACT)
+    for a, b in zip(si_tables, contact):
+        compare_columns("%s, %s" % (label, os.path.basename(b)),
+                        a, read_csv(b), system, dim, CONTACT,
+                        False, peak_of)
+
+
 def main():
     parser = program_arguments(__doc__)
     parser.add_argument("--mpiexec", default="mpiexec")
     parser.add_argument("--scenes", default=",".join(SCENES))
     args = parser.parse_args()
     os.makedirs(args.work_dir, exist_ok=True)
-    converter = os.path.join(args.source_dir, "scripts", "convert-units")
 
     for name in args.scenes.split(","):
         source, overrides = SCENES[name]
         source = os.path.join(args.source_dir, source)
         dim = dimension_of(source)
-        files = {}
-        for system in SYSTEMS:
-            files[system] = os.path.join(args.work_dir,
-                                         "%s-%s.prm" % (name, system))
-            command = [sys.executable, converter, "--from", "SI", "--to",
-                       system, source, "-o", files[system]]
-            subprocess.run(command, check=True)
+        files = convert_scene(args, name, source)
         for processes in (1, 2):
-            outputs = {}
-            for system in SYSTEMS:
-                out = os.path.join(args.work_dir, "%s-%s-np%d"
-                                   % (name, system, processes))
-                ok = run_scene(args.program, files[system], out,
-                               COMMON + overrides, processes, args.mpiexec)
-                check(ok, "%s in %s on %d process(es): completed"
-                      % (name, system, processes))
-                outputs[system] = out if ok else None
+            outputs = run_systems(args, name, files, overrides, processes)
             si = outputs["SI"]
             if si is None:
                 continue
-            si_series = read_csv(os.path.join(si, "time_series.csv"))
-            si_contact = sorted(glob.glob(os.path.join(si, "contact_*.csv")))
             for system in SYSTEMS[1:]:
                 out = outputs[system]
                 if out is None:
                     continue
                 label = "%s, %s vs SI, %d process(es)" % (name, system,
                                                           processes)
-                series = read_csv(os.path.join(out, "time_series.csv"))
-                check(len(series) == len(si_series),
-                      "%s: as many steps (%d, SI %d)"
-                      % (label, len(series) - 1, len(si_series) - 1))
-                differing = [int(a["step"]) for a, b in
-                             zip(si_series, series)
-                             if any(a[c] != b[c] for c in PATH)]
-                check(not differing,
-                      "%s: the same cut-backs, Newton iterations and "
-                      "passes in every step (%d steps differ%s)"
-                      % (label, len(differing),
-                         (": " + ", ".join(map(str, differing[:8])))
-                         if differing else ""))
-                compare_columns(label + ", time_series.csv", si_series,
-                                series, system, dim, TIME_SERIES, True,
-                                peaks([si_series], TIME_SERIES))
-                # The diagnostics with their own tolerances.
-                energy = max(abs(float(r["total_energy"]))
-                             for r in si_series) or 1.
-                factor = to_si(system, ENERGY, dim, True)
-                defect = max(abs(float(r["energy_balance_defect"])) * factor
-                             for r in series)
-                check(defect <= 1e-8 * energy,
-                      "%s: energy balance defect below 1e-8 of the energy "
-                      "(%.1e)" % (label, defect / energy))
-                residual = max(float(r["coefficient_residual"])
-                               for r in series)
-                check(residual <= 1e-6,
-                      "%s: friction-law residual below the Coefficient "
-                      "tolerance (%.1e)" % (label, residual))
-                contact = sorted(glob.glob(os.path.join(out,
-                                                        "contact_*.csv")))
-                check([os.path.basename(f) for f in contact] ==
-                      [os.path.basename(f) for f in si_contact],
-                      "%s: the same contact CSVs" % label)
-                si_report = well_posedness(si)
-                check(si_report and well_posedness(out) == si_report,
-                      "%s: the same well-posedness report (%d lines)"
-                      % (label, len(si_report)))
-                si_tables = [read_csv(f) for f in si_contact]
-                peak_of = peaks(si_tables, CONTACT)
-                for a, b in zip(si_tables, contact):
-                    compare_columns("%s, %s" % (label, os.path.basename(b)),
-                                    a, read_csv(b), system, dim, CONTACT,
-                                    False, peak_of)
+                compare_system(label, si, out, system, dim)
     finish("unit_invariance")
 
 

@@ -32,19 +32,22 @@ import numpy as np
 from script_checks import check, failures, write
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--source-dir", required=True)
-    parser.add_argument("--work-dir", required=True)
-    args = parser.parse_args()
-    sys.path.insert(0, os.path.join(args.source_dir, "benchmarks"))
-    import engineering_error as ee
+def space_level(n, h):
+    """Q_h(x) = sin(x) + 0.3 h^2 cos(3x) + 2 on n + 1 nodes of [0, 2]."""
+    x = np.linspace(0.0, 2.0, n + 1)
+    return [(x, np.sin(x) + 0.3 * h ** 2 * np.cos(3 * x) + 2.0)]
 
-    # Richardson in space: Q_h(x) = sin(x) + 0.3 h^2 cos(3x) on nested grids.
-    def level(n, h):
-        x = np.linspace(0.0, 2.0, n + 1)
-        return [(x, np.sin(x) + 0.3 * h ** 2 * np.cos(3 * x) + 2.0)]
-    levels = [level(16, 1 / 16), level(32, 1 / 32), level(64, 1 / 64)]
+
+def time_level(m):
+    """exp(-t) + 0.05 k t^2 at the m steps of k = 1/m."""
+    t = np.arange(1, m + 1) / m
+    return [(t, np.exp(-t) + 0.05 * (1.0 / m) * t ** 2)]
+
+
+def check_space_richardson(ee):
+    """Richardson in space on nested grids: order 2."""
+    levels = [space_level(16, 1 / 16), space_level(32, 1 / 32),
+              space_level(64, 1 / 64)]
     scales = ee.scale(levels[2])
     p, d01, d12 = ee.order(levels, scales)
     check(abs(p - 2.0) < 1e-6, "observed order in space %.8f (2 expected)" % p)
@@ -61,11 +64,11 @@ def main():
     check(np.max(np.abs(extrapolated - exact)) < 0.1 * np.max(np.abs(fine_y - exact)),
           "space extrapolation at least 10 times better than the finest level everywhere")
 
-    # Richardson in time, order 1, correction of the middle level (k = 1/320).
-    def tlevel(m):
-        t = np.arange(1, m + 1) / m
-        return [(t, np.exp(-t) + 0.05 * (1.0 / m) * t ** 2)]
-    tl = [tlevel(160), tlevel(320), tlevel(640)]
+
+def check_time_richardson(ee):
+    """Richardson in time, order 1, correction of the middle level
+    (k = 1/320); the orders used."""
+    tl = [time_level(160), time_level(320), time_level(640)]
     q, _, _ = ee.order(tl, ee.scale(tl[1]))
     check(abs(q - 1.0) < 1e-6, "observed order in time %.8f (1 expected)" % q)
     t, ct = ee.correction(tl[1][0], tl[2][0], q, factor_fine=True)
@@ -78,7 +81,9 @@ def main():
     check(ee.used(float("nan")) is None and ee.used(0.3) is None and ee.used(-1.0) is None,
           "no correction for a sequence that does not converge (order < 1/2)")
 
-    # Output times: on the grid, or bracketing.
+
+def check_output_times(ee):
+    """Output times: on the grid, or bracketing."""
     check(ee.output_times(1.0 / 80)[:3] == [0.125, 0.2, 0.25],
           "k = 1/80: the profile times are steps (%s)" % ee.output_times(1.0 / 80)[:3])
     check([0.1875, 0.203125] == [t for t in ee.output_times(1.0 / 64) if 0.15 < t < 0.21],
@@ -88,24 +93,37 @@ def main():
                                                 for s in o),
           "output overrides: no VTU, Output times shifted below the steps")
 
-    # A run written by hand: steps at t = 0.1, 0.3, 0.5, 0.7, 0.9 with
-    # profiles linear in t; N(t) = 1 + t.
-    run = os.path.join(args.work_dir, "run")
-    os.makedirs(run, exist_ok=True)
-    for name in os.listdir(run):
-        os.remove(os.path.join(run, name))
-    times = [0.0, 0.1, 0.3, 0.5, 0.7, 0.9]
+
+def empty_directory(path):
+    """@p path, made if missing, without the files a previous run left."""
+    os.makedirs(path, exist_ok=True)
+    for name in os.listdir(path):
+        os.remove(os.path.join(path, name))
+
+
+def write_run(run, times, xs):
+    """A run written by hand: steps at @p times with profiles linear in t;
+    N(t) = 1 + t."""
+    empty_directory(run)
     lines = ["step,time,normal_force,tangential_force,total_energy"]
     for s, t in enumerate(times):
         lines.append("%d,%g,%g,%g,%g" % (s, t, 1 + t, 2 * t, 3 - t))
     write(os.path.join(run, "time_series.csv"), "\n".join(lines) + "\n")
-    xs = [0.0, 0.5, 1.0]
     for s, t in enumerate(times):
         rows = ["time,x,y,normal_pressure,tangential_traction,u_y"]
         for x in xs:
             rows.append("%g,%g,0,%g,%g,%g" % (t, x, 10 * t + x, -t * x, -(t + x)))
         write(os.path.join(run, "contact_%05d.csv" % s), "\n".join(rows) + "\n")
     write(os.path.join(run, "run_status"), "completed\n")
+
+
+def check_extract(ee, work_dir):
+    """The run of write_run() at t = 0.1, 0.3, 0.5, 0.7, 0.9 read back;
+    returns what ee.extract() read."""
+    run = os.path.join(work_dir, "run")
+    times = [0.0, 0.1, 0.3, 0.5, 0.7, 0.9]
+    xs = [0.0, 0.5, 1.0]
+    write_run(run, times, xs)
     q = ee.extract(run)
     x, p = q["pressure"][0.4]
     check(np.allclose(p, 4.0 + np.array(xs)), "pressure profile at t = 0.4 interpolated in time "
@@ -123,8 +141,13 @@ def main():
                                                                           times[2:]),
           "histories start at HISTORY_START")
     ee.HISTORY_START = 0.0
+    return q
 
-    # Errors against a reference: N_ref = 1 + t + 0.01 sin(...) on a fine grid.
+
+def check_errors(ee, q):
+    """Errors against a reference: N_ref = 1 + t on a fine grid, the
+    friction force off by 0.02, the traction by 10 %; returns the
+    reference and the errors."""
     tr_ = np.linspace(0, 1, 1001)
     ref = {"normal_force": (tr_, 1 + tr_), "friction_force": (tr_, 2 * tr_ + 0.02),
            "friction_l1": (tr_, 2 * tr_ + 0.02), "energy": (tr_, 3 - tr_),
@@ -146,28 +169,53 @@ def main():
     # traction: run -T x, reference -1.1 T x: max |0.1 T x| / (1.1 T) = 0.1/1.1
     check(abs(e["traction"] - 0.1 / 1.1) < 1e-12,
           "traction error max_x |p - p_ref| / max|p_ref| (%.6g)" % e["traction"])
+    return ref, e
 
-    # The reference files round-trip.
+
+def check_reference_files(ee, work_dir, ref):
+    """The reference files round-trip."""
     hist = {k: ref[k] for k in ee.HISTORIES}
-    ee.write_reference(args.work_dir, hist, {"pressure": ref["pressure"],
-                                             "traction": ref["traction"]}, "# test\n")
-    back = ee.read_reference(args.work_dir)
+    ee.write_reference(work_dir, hist, {"pressure": ref["pressure"],
+                                        "traction": ref["traction"]}, "# test\n")
+    back = ee.read_reference(work_dir)
     check(all(np.allclose(back[k][1], ref[k][1]) for k in ee.HISTORIES)
           and np.allclose(back["pressure"][0.6][1], ref["pressure"][0.6][1]),
           "reference_histories.csv and reference_profiles.csv read back")
-    check_dips(ee)
-    # A reference made before friction_l1 existed: that error is left out.
-    path = os.path.join(args.work_dir, "old_histories.csv")
-    with open(os.path.join(args.work_dir, "reference_histories.csv")) as f:
+
+
+def check_old_reference(ee, work_dir, q, e):
+    """A reference made before friction_l1 existed (the files of
+    check_reference_files() without that column): that error is left
+    out."""
+    path = os.path.join(work_dir, "old_histories.csv")
+    with open(os.path.join(work_dir, "reference_histories.csv")) as f:
         write(path, "".join(line if line.startswith("#") else
                             line.rsplit(",", 1)[0] + "\n" for line in f))
-    os.replace(path, os.path.join(args.work_dir, "old_reference_histories.csv"))
-    os.replace(os.path.join(args.work_dir, "reference_profiles.csv"),
-               os.path.join(args.work_dir, "old_reference_profiles.csv"))
-    old = ee.read_reference(args.work_dir, "old_reference")
+    os.replace(path, os.path.join(work_dir, "old_reference_histories.csv"))
+    os.replace(os.path.join(work_dir, "reference_profiles.csv"),
+               os.path.join(work_dir, "old_reference_profiles.csv"))
+    old = ee.read_reference(work_dir, "old_reference")
     check("friction_l1" not in old and "friction_l1" not in ee.errors(q, old)
           and abs(ee.errors(q, old)["friction_force"] - e["friction_force"]) < 1e-12,
           "a reference without the friction_l1 column: that error left out, the rest as before")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--source-dir", required=True)
+    parser.add_argument("--work-dir", required=True)
+    args = parser.parse_args()
+    sys.path.insert(0, os.path.join(args.source_dir, "benchmarks"))
+    import engineering_error as ee
+
+    check_space_richardson(ee)
+    check_time_richardson(ee)
+    check_output_times(ee)
+    q = check_extract(ee, args.work_dir)
+    ref, e = check_errors(ee, q)
+    check_reference_files(ee, args.work_dir, ref)
+    check_dips(ee)
+    check_old_reference(ee, args.work_dir, q, e)
     rail(args.work_dir)
     if failures:
         print("%d check(s) failed" % len(failures))
@@ -208,9 +256,7 @@ def rail(work_dir):
     # t = j/32; the pressure on the centre line z = 0.05 is 10 t + x, and
     # -u_y = t + x + z (largest at x = 2, z = 0.1).
     run = os.path.join(work_dir, "rail")
-    os.makedirs(run, exist_ok=True)
-    for name in os.listdir(run):
-        os.remove(os.path.join(run, name))
+    empty_directory(run)
     times = [j / 32 for j in range(0, 9)]
     lines = ["step,time,normal_force,tangential_force,total_energy"]
     for s, t in enumerate(times):
