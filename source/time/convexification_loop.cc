@@ -162,12 +162,9 @@ namespace DynamicContact
   void
   StepSolver<dim>::ConvexificationLoop::start()
   {
-    allow_provisional =
-      loop &&
-      solver.parameters.contact_solver_plugin(solver.plan.contact_solver)
-        .provisional_passes();
-    provisional   = false;
-    best_residual = std::numeric_limits<double>::max();
+    allow_provisional = loop && solver.solvers.provisional_passes();
+    provisional       = false;
+    best_residual     = std::numeric_limits<double>::max();
     if (loop)
       {
         TimerSection t(solver.timer, "Friction: convexification update");
@@ -368,7 +365,7 @@ namespace DynamicContact
     Assert(scheme == bulk.scheme(),
            ExcMessage("K0 is not formed for the step's time scheme."));
     Statistics          statistics;
-    ContactSolver<dim> &contact_solver = solver_for(scheme);
+    ContactSolver<dim> &contact_solver = solvers.solver_for(scheme);
     const auto          u_old_nodes = contact_boundary.values(u_old);
     const auto          w_old_nodes = contact_boundary.values(w_old);
     const bool          count       = friction_parameters.count_solutions &&
@@ -391,10 +388,25 @@ namespace DynamicContact
                           Parameters::Friction::Monitor::always ||
                         (friction_parameters.uniqueness_monitor ==
                            Parameters::Friction::Monitor::automatic &&
-                         plan.condensed)))
-      measure_uniqueness(scheme, contact_solver, statistics);
+                         solvers.plan().condensed)))
+      uniqueness.measure(scheme, contact_solver, statistics);
     if (count)
-      count_solutions(arguments, w_old, start_state, statistics);
+      uniqueness.count_solutions(
+        [&](Vector_t          &w_start,
+            Statistics        &start_statistics,
+            const double       coefficient_tolerance,
+            const unsigned int max_passes,
+            const bool         coupled) {
+          run_loop(arguments,
+                   w_start,
+                   start_statistics,
+                   LoopOptions{coefficient_tolerance, max_passes, coupled},
+                   false);
+        },
+        scheme,
+        w_old,
+        start_state,
+        statistics);
     if (loop_active && friction_parameters.slip_length.active())
       advance_coefficient_states(scheme);
     return statistics;

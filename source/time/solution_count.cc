@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <dynamic_contact/base/timing.h>
-#include <dynamic_contact/time/step_solver.h>
+#include <dynamic_contact/time/solution_uniqueness.h>
 
 #include <algorithm>
 #include <string>
@@ -152,10 +152,11 @@ namespace DynamicContact
 
   template <int dim>
   void
-  StepSolver<dim>::count_solutions(const LoopArguments     &arguments,
-                                   const Vector_t          &w_old,
-                                   const ContactState<dim> &start_state,
-                                   Statistics              &statistics)
+  SolutionUniqueness<dim>::count_solutions(const Loop              &loop,
+                                           const TimeScheme        &scheme,
+                                           const Vector_t          &w_old,
+                                           const ContactState<dim> &start_state,
+                                           StepStatistics          &statistics)
   {
     // doc/theory.md section 5.3. Each start: an initial velocity (which
     // gives the loop its first coefficients mu(|w_tau|)), the friction
@@ -177,23 +178,19 @@ namespace DynamicContact
           set_start_velocity(start,
                              contact_boundary.nodes(),
                              w_old,
-                             arguments.scheme.effective_derivative(),
+                             scheme.effective_derivative(),
                              fast,
                              w,
                              contact_state.lambda);
-        Statistics unused;
+        StepStatistics unused;
         try
           {
-            run_loop(
-              arguments,
-              w,
-              unused,
-              LoopOptions{
-                1e-2 * friction_parameters.coefficient_tolerance,
-                std::max(200u,
-                         friction_parameters.max_convexification_iterations),
-                start == Start::coupled},
-              false);
+            loop(w,
+                 unused,
+                 1e-2 * friction_parameters.coefficient_tolerance,
+                 std::max(200u,
+                          friction_parameters.max_convexification_iterations),
+                 start == Start::coupled);
           }
         catch (const StepFailure &failure)
           {
@@ -234,13 +231,15 @@ namespace DynamicContact
 
   // For 2D and 3D.
   template void
-  StepSolver<2>::count_solutions(const LoopArguments &,
-                                 const Vector_t &,
-                                 const ContactState<2> &,
-                                 Statistics &);
+  SolutionUniqueness<2>::count_solutions(const Loop &,
+                                         const TimeScheme &,
+                                         const Vector_t &,
+                                         const ContactState<2> &,
+                                         StepStatistics &);
   template void
-  StepSolver<3>::count_solutions(const LoopArguments &,
-                                 const Vector_t &,
-                                 const ContactState<3> &,
-                                 Statistics &);
+  SolutionUniqueness<3>::count_solutions(const Loop &,
+                                         const TimeScheme &,
+                                         const Vector_t &,
+                                         const ContactState<3> &,
+                                         StepStatistics &);
 } // namespace DynamicContact

@@ -12,6 +12,9 @@
 #include <dynamic_contact/laws/contact_law.h>
 #include <dynamic_contact/laws/foundation.h>
 #include <dynamic_contact/laws/friction_law.h>
+#include <dynamic_contact/time/planned_solvers.h>
+#include <dynamic_contact/time/solution_uniqueness.h>
+#include <dynamic_contact/time/step_statistics.h>
 
 #include <algorithm>
 #include <array>
@@ -33,108 +36,17 @@ namespace DynamicContact
    * ContactSolver), and stops by the rule (85) together with
    * max_i |mu_i - mu(|w_tau,i|)| <= tol. Without friction, or with a
    * constant coefficient, there is one pass and no friction work.
+   *
+   * Its parts: the solver plan and the contact solvers (PlannedSolvers),
+   * the uniqueness measures and the solution count (SolutionUniqueness),
+   * and what a solve did (StepStatistics).
    */
   template <int dim>
   class StepSolver
   {
   public:
-    struct Statistics
-    {
-      unsigned int newton_iterations          = 0;
-      unsigned int convexification_iterations = 0;
-      bool         convexification_converged  = true;
-      unsigned int factorizations             = 0;
-      unsigned int bulk_solves                = 0;
-      unsigned int cycles                     = 0;
-      unsigned int line_search_steps          = 0;
-      /** Krylov iterations (Solver/Linear solver = iterative). */
-      unsigned int linear_iterations = 0;
-      double       residual          = 0;
-      /** max_i |mu_i - mu(|w_tau,i|)| over nodes in contact. */
-      double       coefficient_residual = 0;
-      /**
-       * Coupled passes (Friction/Linearization = coupled) that did not
-       * converge, after which the step was solved by the frozen loop.
-       */
-      unsigned int coupled_fallbacks = 0;
-      /**
-       * The uniqueness measures of the solution (doc/theory.md section
-       * 5.2), -1 where they were not evaluated (Friction/Uniqueness
-       * monitor). uniqueness_bound: rho(C Lambda), Lambda_i = theta L N_i
-       * + mu_max^2 m_i kappa_i / 4 (the paper's smallness condition with
-       * the coupling through the normal forces), as the Lanczos iteration
-       * estimates it from below; a sufficient condition: below 1 the step
-       * has one solution, at 1 or more nothing is proven.
-       * uniqueness_certificate: an upper bound of it, computed where the
-       * Lanczos value is below 1 and the solver holds C's entries (the
-       * condensed solver), -1 elsewhere: below 1, one solution is proven.
-       * contraction_factor: rho(C D) at the solution, a bound of the
-       * frozen-coefficient loop's contraction factor there (below 1: the
-       * loop is attracted to it; 1 or more: it may be repelled).
-       */
-      double       uniqueness_bound       = -1;
-      double       uniqueness_certificate = -1;
-      double       contraction_factor     = -1;
-      /**
-       * Friction/Count solutions (doc/theory.md section 5.3): the distinct
-       * solutions that the step's starts reached (0: not counted), the
-       * largest distance between two of them relative to the largest
-       * velocity on Gamma_3, and the starts that reached none.
-       */
-      unsigned int solutions            = 0;
-      double       solution_spread      = 0;
-      unsigned int failed_starts        = 0;
-      unsigned int n_contact            = 0;
-      unsigned int n_stick              = 0;
-      unsigned int n_slip               = 0;
-
-      /** Add the work of a Newton solve; its residual is the last. */
-      void
-      add_newton(const ContactSolveResult &r)
-      {
-        newton_iterations += r.iterations;
-        factorizations += r.factorizations;
-        bulk_solves += r.bulk_solves;
-        cycles += r.cycles;
-        line_search_steps += r.line_search_steps;
-        linear_iterations += r.linear_iterations;
-        residual = r.residual;
-      }
-
-      /**
-       * Add the work of an earlier sub-step of the same step (a composite
-       * scheme): the counts add up, the loop converged only if both did,
-       * the coefficient residual is the larger; the residual and the node
-       * counts stay those of this (the last) solve.
-       */
-      void
-      add_work(const Statistics &earlier)
-      {
-        newton_iterations += earlier.newton_iterations;
-        convexification_iterations += earlier.convexification_iterations;
-        convexification_converged =
-          convexification_converged && earlier.convexification_converged;
-        factorizations += earlier.factorizations;
-        bulk_solves += earlier.bulk_solves;
-        cycles += earlier.cycles;
-        line_search_steps += earlier.line_search_steps;
-        linear_iterations += earlier.linear_iterations;
-        coefficient_residual =
-          std::max(coefficient_residual, earlier.coefficient_residual);
-        coupled_fallbacks += earlier.coupled_fallbacks;
-        uniqueness_bound = std::max(uniqueness_bound, earlier.uniqueness_bound);
-        solutions        = std::max(solutions, earlier.solutions);
-        solution_spread  = std::max(solution_spread, earlier.solution_spread);
-        failed_starts += earlier.failed_starts;
-        // Proven only where every sub-step is.
-        uniqueness_certificate =
-          uniqueness_certificate < 0 || earlier.uniqueness_certificate < 0 ?
-            -1. :
-            std::max(uniqueness_certificate, earlier.uniqueness_certificate);
-        contraction_factor =
-          std::max(contraction_factor, earlier.contraction_factor);
-      }
-    };
+    /** What the solve of a step did and found (step_statistics.h). */
+    using Statistics = StepStatistics;
 
     StepSolver(const Discretization<dim>  &discretization,
                const BulkOperator<dim>    &bulk,
@@ -183,22 +95,21 @@ namespace DynamicContact
     std::string
     solver_name() const
     {
-      return plan.contact_solver_name();
+      return solvers.plan().contact_solver_name();
     }
 
     /** How the steps are solved on the current mesh, and why. */
     const SolverPlan &
     solver_plan() const
     {
-      return plan;
+      return solvers.plan();
     }
 
     /** What the contact solvers made so far hold on this process. */
     void
     memory_consumption(MemoryItems &items) const
     {
-      for (const auto &[theta, solver] : solvers)
-        solver->memory_consumption(items);
+      solvers.memory_consumption(items);
     }
 
     /** True if the scene has friction (a law with a nonzero coefficient). */
@@ -235,7 +146,6 @@ namespace DynamicContact
     ContactState<dim>          &contact_state;
     const Foundation           &foundation;
     const FrictionLaw          *friction_law;
-    const Parameters::Solver    parameters;
     const Parameters::Friction  friction_parameters;
     TimerOutput                &timer;
     const ConditionalOStream   &details;
@@ -250,22 +160,10 @@ namespace DynamicContact
      */
     const double lipschitz_constant;
 
-    /**
-     * One contact solver per theta of the (sub-)steps, made when first
-     * needed: K0 = (rho/k) M + theta A + theta^2 k B depends on theta, and a
-     * solver keeps its factorization (and the condensed solver's compliance
-     * columns) from step to step while K0 does not change. A composite
-     * scheme (Time/Scheme = bathe) alternates two thetas (at rho_inf = 1
-     * both sub-steps are trapezoidal over k/2: one); the others use one.
-     */
-    std::map<double, std::unique_ptr<ContactSolver<dim>>> solvers;
-    /** The solver for steps of @p scheme's theta. */
-    ContactSolver<dim> &
-    solver_for(const TimeScheme &scheme);
-    /** How the steps are solved (made by reinit()). */
-    SolverPlan plan;
-    /** The parameters with the plan's choices, which the solvers keep. */
-    Parameters::Solver planned_parameters;
+    /** The solver plan and the contact solvers, one per theta. */
+    PlannedSolvers<dim> solvers;
+    /** The uniqueness measures and the solution count of a step. */
+    SolutionUniqueness<dim> uniqueness;
 
     /** The convexification loop of one step (convexification_loop.cc). */
     class ConvexificationLoop;
@@ -300,30 +198,6 @@ namespace DynamicContact
              Statistics          &statistics,
              const LoopOptions   &options,
              const bool           accept_unconverged_loop);
-
-    /**
-     * Friction/Count solutions (doc/theory.md section 5.3): the step solved
-     * again from several starts to a coefficient residual of 1/100 of
-     * Friction/Coefficient tolerance, and the
-     * distinct solutions counted into @p statistics. @p start_state is the
-     * contact state at the step's start; the contact state and @p w of the
-     * step's solution are left as they were (collective).
-     */
-    void
-    count_solutions(const LoopArguments     &arguments,
-                    const Vector_t          &w_old,
-                    const ContactState<dim> &start_state,
-                    Statistics              &statistics);
-
-    /**
-     * The uniqueness measures of the solved step into @p statistics
-     * (Statistics::uniqueness_bound, uniqueness_certificate,
-     * contraction_factor; collective).
-     */
-    void
-    measure_uniqueness(const TimeScheme   &scheme,
-                       ContactSolver<dim> &solver,
-                       Statistics         &statistics);
 
     /** Evaluate the owned nodes' states at the converged (w, lambda). */
     void

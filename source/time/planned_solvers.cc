@@ -1,0 +1,80 @@
+#include <dynamic_contact/time/planned_solvers.h>
+
+namespace DynamicContact
+{
+  template <int dim>
+  PlannedSolvers<dim>::PlannedSolvers(
+    const Discretization<dim>  &discretization,
+    const BulkOperator<dim>    &bulk,
+    const ContactBoundary<dim> &contact_boundary,
+    const Foundation           &foundation,
+    const Parameters::Solver   &solver_parameters,
+    TimerOutput                &timer,
+    const ConditionalOStream   &details,
+    const bool                  friction,
+    const double                coefficient_tolerance,
+    const double                lipschitz_constant)
+    : discretization(discretization)
+    , bulk(bulk)
+    , contact_boundary(contact_boundary)
+    , foundation(foundation)
+    , parameters(solver_parameters)
+    , timer(timer)
+    , details(details)
+    , friction(friction)
+    , coefficient_tolerance(coefficient_tolerance)
+    , lipschitz_constant(lipschitz_constant)
+  {}
+
+
+  template <int dim>
+  void
+  PlannedSolvers<dim>::reinit(const double        complementarity_constant,
+                              const unsigned int  steps_per_matrix,
+                              const MemoryBudget &memory)
+  {
+    c_t                = complementarity_constant;
+    solver_plan        = plan_solver(parameters,
+                              dim,
+                              discretization.dof_handler.n_dofs(),
+                              contact_boundary.n_global_nodes(),
+                              steps_per_matrix,
+                              discretization.comm,
+                              memory);
+    planned_parameters = solver_plan.solver_parameters(parameters);
+    details << "  solver plan: " << solver_plan.description() << std::endl;
+    solvers.clear();
+  }
+
+
+  template <int dim>
+  ContactSolver<dim> &
+  PlannedSolvers<dim>::solver_for(const TimeScheme &scheme)
+  {
+    auto &solver = solvers[scheme.theta()];
+    if (!solver)
+      {
+        ContactProblem<dim> problem{discretization,
+                                    bulk,
+                                    contact_boundary,
+                                    foundation,
+                                    planned_parameters,
+                                    timer,
+                                    details,
+                                    friction,
+                                    c_t};
+        if (lipschitz_constant > 0)
+          problem.slip_rate_accuracy =
+            coefficient_tolerance / lipschitz_constant;
+        solver =
+          planned_parameters.contact_solver_plugin(solver_plan.contact_solver)
+            .create(problem);
+        solver->reinit();
+      }
+    return *solver;
+  }
+
+
+  template class PlannedSolvers<2>;
+  template class PlannedSolvers<3>;
+} // namespace DynamicContact
