@@ -6,19 +6,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  BoundaryCompliance<dim>::BoundaryCompliance(
-    const ContactProblem<dim>   &problem,
-    const GatheredBoundary<dim> &gathered)
-    : problem(problem)
-    , gathered(gathered)
-    , bulk_solver(problem.parameters)
-    , table(problem, gathered)
-    , stiff_springs(problem, gathered)
-    , measures(*this)
-  {}
-
-
-  template <int dim>
   void
   BoundaryCompliance<dim>::reinit()
   {

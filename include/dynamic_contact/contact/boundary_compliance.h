@@ -56,7 +56,14 @@ namespace DynamicContact
     using Result = ContactSolveResult;
 
     BoundaryCompliance(const ContactProblem<dim>   &problem,
-                       const GatheredBoundary<dim> &gathered);
+                       const GatheredBoundary<dim> &gathered)
+      : problem(problem)
+      , gathered(gathered)
+      , bulk_solver(problem.parameters)
+      , table(problem, gathered)
+      , stiff_springs(problem, gathered)
+      , measures(*this)
+    {}
 
     /** After GatheredBoundary::reinit() (collective). */
     void
