@@ -137,17 +137,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  bool
-  BoundaryCompliance<dim>::apply_full_columns(
-    const std::vector<Tensor<1, dim>> &f,
-    const std::vector<unsigned int>   &nodes,
-    Vector_t                          &x) const
-  {
-    return table.apply_full_columns(f, nodes, x);
-  }
-
-
-  template <int dim>
   void
   BoundaryCompliance<dim>::response(
     const std::vector<Tensor<1, dim>> &w_free,

@@ -164,7 +164,10 @@ namespace DynamicContact
     bool
     apply_full_columns(const std::vector<Tensor<1, dim>> &f,
                        const std::vector<unsigned int>   &nodes,
-                       Vector_t                          &x) const;
+                       Vector_t                          &x) const
+    {
+      return table.apply_full_columns(f, nodes, x);
+    }
 
     /**
      * The compliance of K0 itself (not of K0' = K0 + S) between nodes of
