@@ -127,32 +127,24 @@ namespace DynamicContact
   }
 
 
-  template std::vector<double>
-  rigid_body_modes(const Mapping<2> &,
-                   const DoFHandler<2> &,
-                   std::vector<double> *);
-  template std::vector<double>
-  rigid_body_modes(const Mapping<3> &,
-                   const DoFHandler<3> &,
-                   std::vector<double> *);
-  template void
-  BulkAMG::initialize(const Matrix_t &,
-                      const Mapping<2> &,
-                      const DoFHandler<2> &,
-                      bool,
-                      bool);
-  template void
-  BulkAMG::initialize(const Matrix_t &,
-                      const Mapping<3> &,
-                      const DoFHandler<3> &,
-                      bool,
-                      bool);
-  template std::vector<double>
-  rigid_body_modes(const Discretization<2> &, std::vector<double> *);
-  template std::vector<double>
-  rigid_body_modes(const Discretization<3> &, std::vector<double> *);
-  template void
-  BulkAMG::initialize(const Matrix_t &, const Discretization<2> &, bool, bool);
-  template void
-  BulkAMG::initialize(const Matrix_t &, const Discretization<3> &, bool, bool);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                        \
+  template std::vector<double> rigid_body_modes(const Mapping<dim> &,           \
+                                                const DoFHandler<dim> &,        \
+                                                std::vector<double> *);         \
+  template void                BulkAMG::initialize(const Matrix_t &,            \
+                                    const Mapping<dim> &,        \
+                                    const DoFHandler<dim> &,     \
+                                    bool,                        \
+                                    bool);                       \
+  template std::vector<double> rigid_body_modes(const Discretization<dim> &,    \
+                                                std::vector<double> *);         \
+  template void                BulkAMG::initialize(const Matrix_t &,            \
+                                    const Discretization<dim> &, \
+                                    bool,                        \
+                                    bool);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

@@ -563,16 +563,16 @@ namespace DynamicContact
   }
 
 
-  template std::unique_ptr<BulkPreconditioner>
-  create_bulk_multigrid(const Discretization<2> &,
-                        const KelvinVoigtMaterial<2> &,
-                        const TimeScheme &,
-                        const Matrix_t *,
-                        const MatrixFree<2, double> *);
-  template std::unique_ptr<BulkPreconditioner>
-  create_bulk_multigrid(const Discretization<3> &,
-                        const KelvinVoigtMaterial<3> &,
-                        const TimeScheme &,
-                        const Matrix_t *,
-                        const MatrixFree<3, double> *);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                              \
+  template std::unique_ptr<BulkPreconditioner> create_bulk_multigrid( \
+    const Discretization<dim> &,                                      \
+    const KelvinVoigtMaterial<dim> &,                                 \
+    const TimeScheme &,                                               \
+    const Matrix_t *,                                                 \
+    const MatrixFree<dim, double> *);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

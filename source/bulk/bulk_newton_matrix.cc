@@ -11,17 +11,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  BulkNewtonMatrix<dim>::BulkNewtonMatrix(
-    const Discretization<dim>      &d,
-    const KelvinVoigtMaterial<dim> &material,
-    const CellOperators<dim>       &forms)
-    : discretization(d)
-    , material(material)
-    , forms(forms)
-  {}
-
-
-  template <int dim>
   void
   BulkNewtonMatrix<dim>::reinit(const bool store)
   {

@@ -5,20 +5,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  BulkOperator<dim>::BulkOperator(const Discretization<dim>      &d,
-                                  const KelvinVoigtMaterial<dim> &material,
-                                  const bool                      strain_norm)
-    : discretization(d)
-    , material(material)
-    , strain_norm(strain_norm)
-    , forms(d, material)
-    , stored_forms(d, material, strain_norm)
-    , newton(d, material, forms)
-    , load_vector(d)
-  {}
-
-
-  template <int dim>
   void
   BulkOperator<dim>::reinit(const bool store)
   {

@@ -69,18 +69,16 @@ namespace DynamicContact
   }
 
 
-  template Errors
-  compute_errors<2>(const Discretization<2> &,
-                    const KelvinVoigtMaterial<2> &,
-                    const Scene<2> &,
-                    const double,
-                    const Vector_t &,
-                    const Vector_t &);
-  template Errors
-  compute_errors<3>(const Discretization<3> &,
-                    const KelvinVoigtMaterial<3> &,
-                    const Scene<3> &,
-                    const double,
-                    const Vector_t &,
-                    const Vector_t &);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                \
+  template Errors compute_errors<dim>(const Discretization<dim> &,      \
+                                      const KelvinVoigtMaterial<dim> &, \
+                                      const Scene<dim> &,               \
+                                      const double,                     \
+                                      const Vector_t &,                 \
+                                      const Vector_t &);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

@@ -7,16 +7,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  StoredForms<dim>::StoredForms(const Discretization<dim>      &d,
-                                const KelvinVoigtMaterial<dim> &material,
-                                const bool                      strain_norm)
-    : discretization(d)
-    , material(material)
-    , strain_norm(strain_norm)
-  {}
-
-
-  template <int dim>
   void
   StoredForms<dim>::clear()
   {

@@ -13,13 +13,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  AssembledDirectSolve<dim>::AssembledDirectSolve(
-    const ContactProblem<dim> &problem)
-    : problem(problem)
-  {}
-
-
-  template <int dim>
   void
   AssembledDirectSolve<dim>::reinit()
   {
@@ -97,36 +90,33 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledDirectSolve<dim>::solve(const AssembledNodalSystem<dim> &system,
-                                   const WholeSystemNewton<dim>    &newton,
-                                   const WholeSystemIterate<dim>   &x,
-                                   const Vector_t     &base_residual,
-                                   Vector_t           &dw,
-                                   ContactSolveResult &result)
+  AssembledDirectSolve<dim>::solve(const AssembledNewtonStep<dim> &step,
+                                   Vector_t                       &dw,
+                                   ContactSolveResult             &result)
   {
     const auto &nodes = problem.boundary.nodes();
 
     // The Newton matrix changes only through the nodal blocks, the stick
     // set and K0's k: reuse the factorization if none of them changed.
-    bool same =
-      (factorized_scheme == newton.scheme &&
-       factorized_blocks == system.blocks && factorized_stick == system.stick);
+    bool same = (factorized_scheme == step.newton.scheme &&
+                 factorized_blocks == step.system.blocks &&
+                 factorized_stick == step.system.stick);
     same = Utilities::MPI::min(same ? 1 : 0, problem.discretization.comm) == 1;
 
     if (!same)
-      assemble_matrix(system);
+      assemble_matrix(step.system);
 
     // Right-hand side: -R, with the stick nodes' rows replaced likewise.
-    right_hand_side = base_residual;
+    right_hand_side = step.base_residual;
     right_hand_side *= -1.;
     for (unsigned int i = 0; i < nodes.size(); ++i)
-      if (system.stick[i])
+      if (step.system.stick[i])
         {
           const auto          &node = nodes[i];
           const Tensor<1, dim> r    = raw_values(node, right_hand_side);
           // t_s . w_e = 0 at the new iterate: t_s . dw = -(t_s . w_e)/theta.
           const Tensor<1, dim> w_e =
-            newton.effective_velocity(i, node.value(x.w));
+            step.newton.effective_velocity(i, node.value(step.x.w));
           const unsigned int host          = host_component(node);
           right_hand_side(node.dofs[host]) = node.normal * r;
           unsigned int s                   = 0;
@@ -134,7 +124,7 @@ namespace DynamicContact
             if (c != host)
               right_hand_side(node.dofs[c]) =
                 -(node.tangents[s++] * w_e) /
-                newton.scheme.effective_derivative();
+                step.newton.scheme.effective_derivative();
         }
     right_hand_side.compress(VectorOperation::insert);
 
@@ -150,9 +140,9 @@ namespace DynamicContact
         growth.keep_largest(factorization_bytes);
         return_free_memory();
         ++result.factorizations;
-        factorized_blocks = system.blocks;
-        factorized_stick  = system.stick;
-        factorized_scheme = newton.scheme;
+        factorized_blocks = step.system.blocks;
+        factorized_stick  = step.system.stick;
+        factorized_scheme = step.newton.scheme;
       }
     TimerSection t(problem.timer, "Newton: triangular solves");
     direct->solve(dw, right_hand_side);

@@ -162,13 +162,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  AssembledIterativeSolve<dim>::AssembledIterativeSolve(
-    const ContactProblem<dim> &problem)
-    : problem(problem)
-  {}
-
-
-  template <int dim>
   void
   AssembledIterativeSolve<dim>::apply_jacobian(
     const AssembledNodalSystem<dim> &system,
@@ -199,10 +192,7 @@ namespace DynamicContact
 
   template <int dim>
   void
-  AssembledIterativeSolve<dim>::solve(const AssembledNodalSystem<dim> &system,
-                                      const WholeSystemNewton<dim>    &newton,
-                                      const WholeSystemIterate<dim>   &x,
-                                      const Vector_t           &base_residual,
+  AssembledIterativeSolve<dim>::solve(const AssembledNewtonStep<dim> &step,
                                       const BulkPreconditioner &preconditioner,
                                       Vector_t                 &dw,
                                       ContactSolveResult       &result)
@@ -215,17 +205,17 @@ namespace DynamicContact
     // on the complement (the stick nodes' tangential components removed).
     std::vector<unsigned int> stick_nodes;
     for (unsigned int i = 0; i < nodes.size(); ++i)
-      if (system.stick[i])
+      if (step.system.stick[i])
         stick_nodes.push_back(i);
     Vector_t dw0;
     problem.discretization.reinit_owned(dw0);
-    prescribed_stick_increments(nodes, stick_nodes, newton, x.w, dw0);
+    prescribed_stick_increments(nodes, stick_nodes, step.newton, step.x.w, dw0);
 
     // f = -R - J dw0, projected.
     Vector_t f;
     problem.discretization.reinit_owned(f);
-    apply_jacobian(system, dw0, f);
-    f.sadd(-1., -1., base_residual);
+    apply_jacobian(step.system, dw0, f);
+    f.sadd(-1., -1., step.base_residual);
     for (const unsigned int i : stick_nodes)
       set_raw_values(nodes[i],
                      normal_part(nodes[i], raw_values(nodes[i], f)),
@@ -235,13 +225,13 @@ namespace DynamicContact
     // The projected operator and preconditioner.
     const StickProjection<dim> sticks(nodes,
                                       stick_nodes,
-                                      system.diagonal,
+                                      step.system.diagonal,
                                       problem.discretization.locally_owned);
     Vector_t                   projected;
     problem.discretization.reinit_owned(projected);
     const FunctionOperator A{[&](Vector_t &y, const Vector_t &v) {
       sticks.project(v, projected);
-      apply_jacobian(system, projected, y);
+      apply_jacobian(step.system, projected, y);
       sticks.add_tangential(v, 1., y);
     }};
     const FunctionOperator projected_preconditioner{
@@ -252,7 +242,7 @@ namespace DynamicContact
       }};
 
     SolverControl         control(problem.parameters.max_linear_iterations,
-                          forcing_term(x.relative_residual,
+                          forcing_term(step.x.relative_residual,
                                        problem.parameters) *
                             f.l2_norm());
     SolverGMRES<Vector_t> gmres(
@@ -278,7 +268,6 @@ namespace DynamicContact
     dw = dw0;
     dw += delta;
   }
-
 
 
   template <int dim>

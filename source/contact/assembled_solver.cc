@@ -97,15 +97,12 @@ namespace DynamicContact
       base_residual);
     if (problem.parameters.linear_solver ==
         Parameters::Solver::LinearSolver::iterative)
-      iterative.solve(system,
-                      newton,
-                      x,
-                      base_residual,
+      iterative.solve({system, newton, x, base_residual},
                       stiffness.preconditioner(),
                       increment,
                       result);
     else
-      direct.solve(system, newton, x, base_residual, increment, result);
+      direct.solve({system, newton, x, base_residual}, increment, result);
     problem.discretization.constraints.set_zero(increment);
 
     full.w = x.w;

@@ -13,13 +13,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  AssembledStiffness<dim>::AssembledStiffness(
-    const ContactProblem<dim> &problem)
-    : problem(problem)
-  {}
-
-
-  template <int dim>
   void
   AssembledStiffness<dim>::reinit()
   {

@@ -6,19 +6,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  BoundaryCompliance<dim>::BoundaryCompliance(
-    const ContactProblem<dim>   &problem,
-    const GatheredBoundary<dim> &gathered)
-    : problem(problem)
-    , gathered(gathered)
-    , bulk_solver(problem.parameters)
-    , table(problem, gathered)
-    , stiff_springs(problem, gathered)
-    , measures(*this)
-  {}
-
-
-  template <int dim>
   void
   BoundaryCompliance<dim>::reinit()
   {
@@ -146,17 +133,6 @@ namespace DynamicContact
     for (Vector_t *xc : x)
       problem.discretization.constraints.set_zero(*xc);
     result.bulk_solves += b.size();
-  }
-
-
-  template <int dim>
-  bool
-  BoundaryCompliance<dim>::apply_full_columns(
-    const std::vector<Tensor<1, dim>> &f,
-    const std::vector<unsigned int>   &nodes,
-    Vector_t                          &x) const
-  {
-    return table.apply_full_columns(f, nodes, x);
   }
 
 

@@ -8,15 +8,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  ComplianceSprings<dim>::ComplianceSprings(
-    const ContactProblem<dim>   &problem,
-    const GatheredBoundary<dim> &gathered)
-    : problem(problem)
-    , gathered(gathered)
-  {}
-
-
-  template <int dim>
   void
   ComplianceSprings<dim>::reinit()
   {

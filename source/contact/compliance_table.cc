@@ -6,14 +6,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  ComplianceTable<dim>::ComplianceTable(const ContactProblem<dim>   &problem,
-                                        const GatheredBoundary<dim> &gathered)
-    : problem(problem)
-    , gathered(gathered)
-  {}
-
-
-  template <int dim>
   void
   ComplianceTable<dim>::reinit()
   {

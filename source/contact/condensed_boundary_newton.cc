@@ -8,20 +8,6 @@ namespace DynamicContact
 {
   // Phase 1 of CondensedSolver, the iteration on Gamma_3 alone.
 
-  template <int dim>
-  CondensedBoundaryNewton<dim>::CondensedBoundaryNewton(
-    const ContactProblem<dim>   &problem,
-    const GatheredBoundary<dim> &gathered,
-    BoundaryCompliance<dim>     &compliance,
-    ReducedSystem<dim>          &reduced,
-    const BoundaryStepData<dim> &data)
-    : problem(problem)
-    , gathered(gathered)
-    , compliance(compliance)
-    , reduced(reduced)
-    , data(data)
-  {}
-
 
   template <int dim>
   void
@@ -243,7 +229,6 @@ namespace DynamicContact
     compliance.share(it.active);
     compliance.share(result);
   }
-
 
 
   template class CondensedBoundaryNewton<2>;

@@ -211,17 +211,6 @@ namespace DynamicContact
 
   template <int dim>
   void
-  CondensedSolver<dim>::newton_step(const WholeSystemNewton<dim>  &system,
-                                    const WholeSystemIterate<dim> &x,
-                                    WholeSystemIterate<dim>       &full,
-                                    Result                        &result)
-  {
-    whole_system.newton_step(system, x, full, result);
-  }
-
-
-  template <int dim>
-  void
   CondensedSolver<dim>::memory_consumption(MemoryItems &items) const
   {
     compliance.memory_consumption(items);

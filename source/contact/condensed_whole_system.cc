@@ -10,23 +10,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  CondensedWholeSystem<dim>::CondensedWholeSystem(
-    const ContactProblem<dim>          &problem,
-    const GatheredBoundary<dim>        &gathered,
-    BoundaryCompliance<dim>            &compliance,
-    ReducedSystem<dim>                 &reduced,
-    const CondensedBoundaryNewton<dim> &boundary_newton,
-    BoundaryStepData<dim>              &data)
-    : problem(problem)
-    , gathered(gathered)
-    , compliance(compliance)
-    , reduced(reduced)
-    , boundary_newton(boundary_newton)
-    , data(data)
-  {}
-
-
-  template <int dim>
   void
   CondensedWholeSystem<dim>::reinit()
   {

@@ -54,16 +54,6 @@ namespace DynamicContact
   } // namespace
 
 
-
-  template <int dim>
-  ReducedSystem<dim>::ReducedSystem(
-    const GatheredBoundary<dim>   &gathered,
-    const BoundaryCompliance<dim> &compliance)
-    : gathered(gathered)
-    , compliance(compliance)
-  {}
-
-
   template <int dim>
   void
   ReducedSystem<dim>::reset()

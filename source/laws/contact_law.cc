@@ -224,36 +224,24 @@ namespace DynamicContact
   }
 
 
-  template Tensor<1, 2>
-  projected_friction_force(const ContactNode<2> &,
-                           const double,
-                           const Tensor<1, 2> &,
-                           const Tensor<1, 2> &,
-                           const double);
-  template Tensor<1, 3>
-  projected_friction_force(const ContactNode<3> &,
-                           const double,
-                           const Tensor<1, 3> &,
-                           const Tensor<1, 3> &,
-                           const double);
-  template FrictionResponse<2>
-  friction_response(const ContactNode<2> &,
-                    const NormalResponse &,
-                    const Tensor<1, 2> &,
-                    const Tensor<1, 2> &,
-                    const double,
-                    const double,
-                    const double,
-                    const double,
-                    const double);
-  template FrictionResponse<3>
-  friction_response(const ContactNode<3> &,
-                    const NormalResponse &,
-                    const Tensor<1, 3> &,
-                    const Tensor<1, 3> &,
-                    const double,
-                    const double,
-                    const double,
-                    const double,
-                    const double);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                                     \
+  template Tensor<1, dim> projected_friction_force(const ContactNode<dim> &, \
+                                                   const double,             \
+                                                   const Tensor<1, dim> &,   \
+                                                   const Tensor<1, dim> &,   \
+                                                   const double);            \
+  template FrictionResponse<dim> friction_response(const ContactNode<dim> &, \
+                                                   const NormalResponse &,   \
+                                                   const Tensor<1, dim> &,   \
+                                                   const Tensor<1, dim> &,   \
+                                                   const double,             \
+                                                   const double,             \
+                                                   const double,             \
+                                                   const double,             \
+                                                   const double);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

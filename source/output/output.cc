@@ -247,28 +247,21 @@ namespace DynamicContact
 
 
 
-  template void
-  write_contact_csv<2>(OutputDirectory &,
-                       const std::string &,
-                       const double,
-                       const ContactBoundary<2> &,
-                       const std::vector<ContactNodeState<2>> &,
-                       const Vector_t &,
-                       const Vector_t &,
-                       const bool,
-                       const MPI_Comm);
-  template void
-  write_contact_csv<3>(OutputDirectory &,
-                       const std::string &,
-                       const double,
-                       const ContactBoundary<3> &,
-                       const std::vector<ContactNodeState<3>> &,
-                       const Vector_t &,
-                       const Vector_t &,
-                       const bool,
-                       const MPI_Comm);
-  template int
-  contact_state_code<2>(const ContactNodeState<2> &);
-  template int
-  contact_state_code<3>(const ContactNodeState<3> &);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)        \
+  template void write_contact_csv<dim>(         \
+    OutputDirectory &,                          \
+    const std::string &,                        \
+    const double,                               \
+    const ContactBoundary<dim> &,               \
+    const std::vector<ContactNodeState<dim>> &, \
+    const Vector_t &,                           \
+    const Vector_t &,                           \
+    const bool,                                 \
+    const MPI_Comm);                            \
+  template int contact_state_code<dim>(const ContactNodeState<dim> &);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

@@ -7,43 +7,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  DiscreteOperators<dim>::DiscreteOperators(
-    const RunParameters            &parameters,
-    const Scene<dim>               &scene,
-    const KelvinVoigtMaterial<dim> &material,
-    const Discretization<dim>      &discretization,
-    const ContactBoundary<dim>     &contact_boundary,
-    ContactState<dim>              &contact_state,
-    const MPI_Comm                  comm,
-    TimerOutput                    &timer,
-    const ConditionalOStream       &details)
-    : foundation(*parameters.foundation.law)
-    , bulk(discretization,
-           material,
-           StepSolver<dim>::runs_convexification_loop(
-             parameters.friction.law.get()))
-    , step_solver(discretization,
-                  bulk,
-                  contact_boundary,
-                  contact_state,
-                  foundation,
-                  parameters.friction.law.get(),
-                  parameters.solver,
-                  parameters.friction,
-                  timer,
-                  details)
-    , energy_balance(bulk,
-                     contact_boundary,
-                     foundation,
-                     material.density(),
-                     comm)
-    , force_balance(discretization, material, scene)
-    , parameters(parameters)
-    , discretization(discretization)
-  {}
-
-
-  template <int dim>
   void
   DiscreteOperators<dim>::setup(const double start_time,
                                 const double memory_per_process,

@@ -11,28 +11,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  FieldIO<dim>::FieldIO(const RunParameters            &parameters,
-                        Discretization<dim>            &discretization,
-                        const KelvinVoigtMaterial<dim> &material,
-                        const ContactBoundary<dim>     &contact_boundary,
-                        ContactState<dim>              &contact_state,
-                        Vector_t                       &u,
-                        Vector_t                       &w,
-                        const bool                      friction,
-                        const MPI_Comm                  comm)
-    : parameters(parameters)
-    , discretization(discretization)
-    , material(material)
-    , contact_boundary(contact_boundary)
-    , contact_state(contact_state)
-    , u(u)
-    , w(w)
-    , friction(friction)
-    , comm(comm)
-  {}
-
-
-  template <int dim>
   void
   FieldIO<dim>::save_checkpoint(OutputDirectory             &directory,
                                 const RunState              &state,

@@ -106,26 +106,19 @@ namespace DynamicContact
   }
 
 
-  template void
-  check_scene_functions(const RunParameters &,
-                        const Scene<2> &,
-                        const Triangulation<2> &,
-                        const MPI_Comm,
-                        const bool);
-  template void
-  check_scene_functions(const RunParameters &,
-                        const Scene<3> &,
-                        const Triangulation<3> &,
-                        const MPI_Comm,
-                        const bool);
-  template void
-  print_model(const ConditionalOStream &,
-              const RunParameters &,
-              const KelvinVoigtMaterial<2> &,
-              const bool);
-  template void
-  print_model(const ConditionalOStream &,
-              const RunParameters &,
-              const KelvinVoigtMaterial<3> &,
-              const bool);
+  // For 2D and 3D.
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                          \
+  template void check_scene_functions(const RunParameters &,      \
+                                      const Scene<dim> &,         \
+                                      const Triangulation<dim> &, \
+                                      const MPI_Comm,             \
+                                      const bool);                \
+  template void print_model(const ConditionalOStream &,           \
+                            const RunParameters &,                \
+                            const KelvinVoigtMaterial<dim> &,     \
+                            const bool);
+
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

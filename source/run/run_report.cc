@@ -27,28 +27,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  RunReport<dim>::RunReport(const RunParameters      &parameters,
-                            const MPI_Comm            comm,
-                            const ConditionalOStream &pcout,
-                            ScreenLog                &screen_log,
-                            const OutputSchedule     &schedule,
-                            const std::string        &start_time,
-                            const Simulator<dim>     &simulator,
-                            const RunState           &state,
-                            const VtuWriteTimes      &vtu_times)
-    : parameters(parameters)
-    , comm(comm)
-    , pcout(pcout)
-    , screen_log(screen_log)
-    , schedule(schedule)
-    , start_time(start_time)
-    , simulator(simulator)
-    , state(state)
-    , vtu_times(vtu_times)
-  {}
-
-
-  template <int dim>
   void
   RunReport<dim>::start()
   {

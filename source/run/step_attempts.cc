@@ -36,26 +36,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  StepAttempts<dim>::StepAttempts(const RunParameters &parameters,
-                                  const MPI_Comm       comm,
-                                  Simulator<dim>      &simulator,
-                                  const StepLengths   &step_lengths,
-                                  RunState            &state,
-                                  RunTotals           &totals,
-                                  RunFiles<dim>       &files,
-                                  RunReport<dim>      &report)
-    : parameters(parameters)
-    , comm(comm)
-    , simulator(simulator)
-    , step_lengths(step_lengths)
-    , state(state)
-    , totals(totals)
-    , files(files)
-    , report(report)
-  {}
-
-
-  template <int dim>
   StepRecord<dim>
   StepAttempts<dim>::take(const double remesh_energy_change, double &k)
   {

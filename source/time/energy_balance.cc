@@ -92,19 +92,6 @@ namespace DynamicContact
   }
 
 
-  template <int dim>
-  EnergyBalance<dim>::EnergyBalance(const BulkOperator<dim>    &bulk,
-                                    const ContactBoundary<dim> &boundary,
-                                    const Foundation           &foundation,
-                                    const double                density,
-                                    const MPI_Comm              comm)
-    : bulk(bulk)
-    , contact_boundary(boundary)
-    , foundation(foundation)
-    , density(density)
-    , comm(comm)
-  {}
-
 
   template <int dim>
   Energy

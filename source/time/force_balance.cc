@@ -75,18 +75,6 @@ namespace DynamicContact
 
 
   template <int dim>
-  ForceBalanceEvaluator<dim>::ForceBalanceEvaluator(
-    const Discretization<dim>      &discretization,
-    const KelvinVoigtMaterial<dim> &material,
-    const Scene<dim>               &scene)
-    : discretization(discretization)
-    , material(material)
-    , scene(scene)
-    , face_quadrature(discretization)
-  {}
-
-
-  template <int dim>
   void
   ForceBalanceEvaluator<dim>::reinit()
   {

@@ -36,7 +36,11 @@ namespace DynamicContact
     /** @p forms: the forms' cell data, for K0 not stored. */
     BulkNewtonMatrix(const Discretization<dim>      &discretization,
                      const KelvinVoigtMaterial<dim> &material,
-                     const CellOperators<dim>       &forms);
+                     const CellOperators<dim>       &forms)
+      : discretization(discretization)
+      , material(material)
+      , forms(forms)
+    {}
 
     /**
      * With @p store, set up K0's pattern and K0 on it on the current mesh;

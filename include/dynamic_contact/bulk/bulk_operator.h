@@ -60,7 +60,15 @@ namespace DynamicContact
      */
     BulkOperator(const Discretization<dim>      &discretization,
                  const KelvinVoigtMaterial<dim> &material,
-                 const bool                      strain_norm = true);
+                 const bool                      strain_norm = true)
+      : discretization(discretization)
+      , material(material)
+      , strain_norm(strain_norm)
+      , forms(discretization, material)
+      , stored_forms(discretization, material, strain_norm)
+      , newton(discretization, material, forms)
+      , load_vector(discretization)
+    {}
 
     /**
      * Set up K0's pattern and the forms on the current mesh: with

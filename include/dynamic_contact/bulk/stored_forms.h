@@ -29,7 +29,11 @@ namespace DynamicContact
     /** @p strain_norm: whether the Gram matrix of V is assembled. */
     StoredForms(const Discretization<dim>      &discretization,
                 const KelvinVoigtMaterial<dim> &material,
-                const bool                      strain_norm);
+                const bool                      strain_norm)
+      : discretization(discretization)
+      , material(material)
+      , strain_norm(strain_norm)
+    {}
 
     /** Free M's pattern and the matrices. */
     void

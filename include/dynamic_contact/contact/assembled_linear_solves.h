@@ -26,6 +26,22 @@ namespace DynamicContact
 
 
   /**
+   * What a linear solve of the assembled solver's Newton step reads: the
+   * nodal system of the iterate @p x of @p newton, and @p base_residual,
+   * the residual with the linearized forces' constant part (the
+   * right-hand side is its negative).
+   */
+  template <int dim>
+  struct AssembledNewtonStep
+  {
+    const AssembledNodalSystem<dim> &system;
+    const WholeSystemNewton<dim>    &newton;
+    const WholeSystemIterate<dim>   &x;
+    const Vector_t                  &base_residual;
+  };
+
+
+  /**
    * The assembled solver's Newton step with Linear solver = iterative
    * (AssembledSolver): GMRES, matrix-free in the nodal terms (a product
    * with K0 plus the nodal blocks), with the stick constraints imposed by
@@ -39,21 +55,18 @@ namespace DynamicContact
   {
   public:
     /** On @p problem (which must outlive this). */
-    explicit AssembledIterativeSolve(const ContactProblem<dim> &problem);
+    explicit AssembledIterativeSolve(const ContactProblem<dim> &problem)
+      : problem(problem)
+    {}
 
     /**
-     * Solve for @p dw, the right-hand side -@p base_residual (the residual
-     * with the linearized forces' constant part), preconditioned by
-     * @p preconditioner.
+     * Solve @p step for @p dw, preconditioned by @p preconditioner.
      */
     void
-    solve(const AssembledNodalSystem<dim> &system,
-          const WholeSystemNewton<dim>    &newton,
-          const WholeSystemIterate<dim>   &x,
-          const Vector_t                  &base_residual,
-          const BulkPreconditioner        &preconditioner,
-          Vector_t                        &dw,
-          ContactSolveResult              &result);
+    solve(const AssembledNewtonStep<dim> &step,
+          const BulkPreconditioner       &preconditioner,
+          Vector_t                       &dw,
+          ContactSolveResult             &result);
 
     /** The GMRES basis (the most a solve used). */
     void
@@ -86,24 +99,22 @@ namespace DynamicContact
   {
   public:
     /** On @p problem (which must outlive this). */
-    explicit AssembledDirectSolve(const ContactProblem<dim> &problem);
+    explicit AssembledDirectSolve(const ContactProblem<dim> &problem)
+      : problem(problem)
+    {}
 
     /** For a new mesh: the matrix's pattern (direct) or none (iterative). */
     void
     reinit();
 
     /**
-     * Solve for @p dw, the right-hand side -@p base_residual (the residual
-     * with the linearized forces' constant part) with the stick nodes' rows
-     * replaced likewise.
+     * Solve @p step for @p dw, with the stick nodes' rows of the
+     * right-hand side replaced likewise.
      */
     void
-    solve(const AssembledNodalSystem<dim> &system,
-          const WholeSystemNewton<dim>    &newton,
-          const WholeSystemIterate<dim>   &x,
-          const Vector_t                  &base_residual,
-          Vector_t                        &dw,
-          ContactSolveResult              &result);
+    solve(const AssembledNewtonStep<dim> &step,
+          Vector_t                       &dw,
+          ContactSolveResult             &result);
 
     /** The Newton matrix and its factorization, if there is a matrix. */
     void

@@ -23,7 +23,9 @@ namespace DynamicContact
   {
   public:
     /** On @p problem (which must outlive this). */
-    explicit AssembledStiffness(const ContactProblem<dim> &problem);
+    explicit AssembledStiffness(const ContactProblem<dim> &problem)
+      : problem(problem)
+    {}
 
     /** For a new mesh: nothing kept. */
     void

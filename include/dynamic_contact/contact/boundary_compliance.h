@@ -56,7 +56,14 @@ namespace DynamicContact
     using Result = ContactSolveResult;
 
     BoundaryCompliance(const ContactProblem<dim>   &problem,
-                       const GatheredBoundary<dim> &gathered);
+                       const GatheredBoundary<dim> &gathered)
+      : problem(problem)
+      , gathered(gathered)
+      , bulk_solver(problem.parameters)
+      , table(problem, gathered)
+      , stiff_springs(problem, gathered)
+      , measures(*this)
+    {}
 
     /** After GatheredBoundary::reinit() (collective). */
     void
@@ -157,7 +164,10 @@ namespace DynamicContact
     bool
     apply_full_columns(const std::vector<Tensor<1, dim>> &f,
                        const std::vector<unsigned int>   &nodes,
-                       Vector_t                          &x) const;
+                       Vector_t                          &x) const
+    {
+      return table.apply_full_columns(f, nodes, x);
+    }
 
     /**
      * The compliance of K0 itself (not of K0' = K0 + S) between nodes of

@@ -26,7 +26,10 @@ namespace DynamicContact
   {
   public:
     ComplianceSprings(const ContactProblem<dim>   &problem,
-                      const GatheredBoundary<dim> &gathered);
+                      const GatheredBoundary<dim> &gathered)
+      : problem(problem)
+      , gathered(gathered)
+    {}
 
     /**
      * After GatheredBoundary::reinit(): choose the spring nodes and forget

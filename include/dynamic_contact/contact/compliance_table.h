@@ -29,7 +29,10 @@ namespace DynamicContact
     using Result = ContactSolveResult;
 
     ComplianceTable(const ContactProblem<dim>   &problem,
-                    const GatheredBoundary<dim> &gathered);
+                    const GatheredBoundary<dim> &gathered)
+      : problem(problem)
+      , gathered(gathered)
+    {}
 
     /** After GatheredBoundary::reinit() (collective): empty tables. */
     void

@@ -64,7 +64,13 @@ namespace DynamicContact
                             const GatheredBoundary<dim> &gathered,
                             BoundaryCompliance<dim>     &compliance,
                             ReducedSystem<dim>          &reduced,
-                            const BoundaryStepData<dim> &data);
+                            const BoundaryStepData<dim> &data)
+      : problem(problem)
+      , gathered(gathered)
+      , compliance(compliance)
+      , reduced(reduced)
+      , data(data)
+    {}
 
     /** Linearize every node at it.w, it.lambda (the current solve's data). */
     void

@@ -48,7 +48,7 @@ namespace DynamicContact
    * solver_plan.h).
    */
   template <int dim>
-  class CondensedSolver : public ContactSolver<dim>, public LinearBackend<dim>
+  class CondensedSolver : public ContactSolver<dim>
   {
   public:
     using Result = ContactSolveResult;
@@ -98,16 +98,6 @@ namespace DynamicContact
 
     void
     memory_consumption(MemoryItems &items) const override;
-
-    /**
-     * The whole-system Newton step by condensation (phase 2:
-     * CondensedWholeSystem::newton_step()).
-     */
-    void
-    newton_step(const WholeSystemNewton<dim>  &system,
-                const WholeSystemIterate<dim> &x,
-                WholeSystemIterate<dim>       &full,
-                Result                        &result) override;
 
   private:
     const ContactProblem<dim> problem;

@@ -44,7 +44,14 @@ namespace DynamicContact
                          BoundaryCompliance<dim>            &compliance,
                          ReducedSystem<dim>                 &reduced,
                          const CondensedBoundaryNewton<dim> &boundary_newton,
-                         BoundaryStepData<dim>              &data);
+                         BoundaryStepData<dim>              &data)
+      : problem(problem)
+      , gathered(gathered)
+      , compliance(compliance)
+      , reduced(reduced)
+      , boundary_newton(boundary_newton)
+      , data(data)
+    {}
 
     /** For a new mesh: the vectors, and no free response. */
     void

@@ -72,7 +72,10 @@ namespace DynamicContact
   {
   public:
     ReducedSystem(const GatheredBoundary<dim>   &gathered,
-                  const BoundaryCompliance<dim> &compliance);
+                  const BoundaryCompliance<dim> &compliance)
+      : gathered(gathered)
+      , compliance(compliance)
+    {}
 
     /**
      * Forget the last factorization: a new step starts afresh, so that a

@@ -46,7 +46,31 @@ namespace DynamicContact
                       ContactState<dim>              &contact_state,
                       const MPI_Comm                  comm,
                       TimerOutput                    &timer,
-                      const ConditionalOStream       &details);
+                      const ConditionalOStream       &details)
+      : foundation(*parameters.foundation.law)
+      , bulk(discretization,
+             material,
+             StepSolver<dim>::runs_convexification_loop(
+               parameters.friction.law.get()))
+      , step_solver(discretization,
+                    bulk,
+                    contact_boundary,
+                    contact_state,
+                    foundation,
+                    parameters.friction.law.get(),
+                    parameters.solver,
+                    parameters.friction,
+                    timer,
+                    details)
+      , energy_balance(bulk,
+                       contact_boundary,
+                       foundation,
+                       material.density(),
+                       comm)
+      , force_balance(discretization, material, scene)
+      , parameters(parameters)
+      , discretization(discretization)
+    {}
 
     /**
      * For the current mesh: the bulk matrices, the solvers, the solver

@@ -42,7 +42,17 @@ namespace DynamicContact
             Vector_t                       &u,
             Vector_t                       &w,
             const bool                      friction,
-            const MPI_Comm                  comm);
+            const MPI_Comm                  comm)
+      : parameters(parameters)
+      , discretization(discretization)
+      , material(material)
+      , contact_boundary(contact_boundary)
+      , contact_state(contact_state)
+      , u(u)
+      , w(w)
+      , friction(friction)
+      , comm(comm)
+    {}
 
     /**
      * Write a checkpoint of the mesh and the fields with the loop's

@@ -40,7 +40,17 @@ namespace DynamicContact
               const std::string        &start_time,
               const Simulator<dim>     &simulator,
               const RunState           &state,
-              const VtuWriteTimes      &vtu_times);
+              const VtuWriteTimes      &vtu_times)
+      : parameters(parameters)
+      , comm(comm)
+      , pcout(pcout)
+      , screen_log(screen_log)
+      , schedule(schedule)
+      , start_time(start_time)
+      , simulator(simulator)
+      , state(state)
+      , vtu_times(vtu_times)
+    {}
 
     /** The run starts now (the wall time of the progress lines). */
     void

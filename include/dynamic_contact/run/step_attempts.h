@@ -37,7 +37,16 @@ namespace DynamicContact
                  RunState            &state,
                  RunTotals           &totals,
                  RunFiles<dim>       &files,
-                 RunReport<dim>      &report);
+                 RunReport<dim>      &report)
+      : parameters(parameters)
+      , comm(comm)
+      , simulator(simulator)
+      , step_lengths(step_lengths)
+      , state(state)
+      , totals(totals)
+      , files(files)
+      , report(report)
+    {}
 
     /**
      * The next step, after a mesh transfer that changed the energy by

@@ -174,7 +174,13 @@ namespace DynamicContact
                   const ContactBoundary<dim> &contact_boundary,
                   const Foundation           &foundation,
                   const double                density,
-                  const MPI_Comm              comm);
+                  const MPI_Comm              comm)
+      : bulk(bulk)
+      , contact_boundary(contact_boundary)
+      , foundation(foundation)
+      , density(density)
+      , comm(comm)
+    {}
 
     /** E(u, w), with the nodal penetrations of u computed here. */
     Energy

@@ -45,7 +45,12 @@ namespace DynamicContact
   public:
     ForceBalanceEvaluator(const Discretization<dim>      &discretization,
                           const KelvinVoigtMaterial<dim> &material,
-                          const Scene<dim>               &scene);
+                          const Scene<dim>               &scene)
+      : discretization(discretization)
+      , material(material)
+      , scene(scene)
+      , face_quadrature(discretization)
+    {}
 
     /** After a change of the mesh. */
     void
