@@ -3,31 +3,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  PlannedSolvers<dim>::PlannedSolvers(
-    const Discretization<dim>  &discretization,
-    const BulkOperator<dim>    &bulk,
-    const ContactBoundary<dim> &contact_boundary,
-    const Foundation           &foundation,
-    const Parameters::Solver   &solver_parameters,
-    TimerOutput                &timer,
-    const ConditionalOStream   &details,
-    const bool                  friction,
-    const double                coefficient_tolerance,
-    const double                lipschitz_constant)
-    : discretization(discretization)
-    , bulk(bulk)
-    , contact_boundary(contact_boundary)
-    , foundation(foundation)
-    , parameters(solver_parameters)
-    , timer(timer)
-    , details(details)
-    , friction(friction)
-    , coefficient_tolerance(coefficient_tolerance)
-    , lipschitz_constant(lipschitz_constant)
-  {}
-
-
-  template <int dim>
   void
   PlannedSolvers<dim>::reinit(const double        complementarity_constant,
                               const unsigned int  steps_per_matrix,

@@ -229,17 +229,14 @@ namespace DynamicContact
   }
 
 
-  // For 2D and 3D.
-  template void
-  SolutionUniqueness<2>::count_solutions(const Loop &,
-                                         const TimeScheme &,
-                                         const Vector_t &,
-                                         const ContactState<2> &,
-                                         StepStatistics &);
-  template void
-  SolutionUniqueness<3>::count_solutions(const Loop &,
-                                         const TimeScheme &,
-                                         const Vector_t &,
-                                         const ContactState<3> &,
-                                         StepStatistics &);
+#define DYNAMIC_CONTACT_INSTANTIATE(dim)                  \
+  template void SolutionUniqueness<dim>::count_solutions( \
+    const Loop &,                                         \
+    const TimeScheme &,                                   \
+    const Vector_t &,                                     \
+    const ContactState<dim> &,                            \
+    StepStatistics &);
+  DYNAMIC_CONTACT_INSTANTIATE(2)
+  DYNAMIC_CONTACT_INSTANTIATE(3)
+#undef DYNAMIC_CONTACT_INSTANTIATE
 } // namespace DynamicContact

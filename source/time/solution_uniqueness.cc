@@ -9,29 +9,6 @@
 namespace DynamicContact
 {
   template <int dim>
-  SolutionUniqueness<dim>::SolutionUniqueness(
-    const Discretization<dim>  &discretization,
-    const ContactBoundary<dim> &contact_boundary,
-    ContactState<dim>          &contact_state,
-    const Foundation           &foundation,
-    const FrictionLaw          *friction_law,
-    const Parameters::Friction &friction_parameters,
-    const double                lipschitz_constant,
-    TimerOutput                &timer,
-    const ConditionalOStream   &details)
-    : discretization(discretization)
-    , contact_boundary(contact_boundary)
-    , contact_state(contact_state)
-    , foundation(foundation)
-    , friction_law(friction_law)
-    , friction_parameters(friction_parameters)
-    , lipschitz_constant(lipschitz_constant)
-    , timer(timer)
-    , details(details)
-  {}
-
-
-  template <int dim>
   void
   SolutionUniqueness<dim>::measure(const TimeScheme   &scheme,
                                    ContactSolver<dim> &solver,

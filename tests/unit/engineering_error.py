@@ -101,14 +101,20 @@ def empty_directory(path):
         os.remove(os.path.join(path, name))
 
 
+def write_time_series(run, times, number):
+    """time_series.csv of a run written by hand: N(t) = 1 + t, T(t) = 2 t,
+    E(t) = 3 - t at @p times, written with the format @p number."""
+    lines = ["step,time,normal_force,tangential_force,total_energy"]
+    for s, t in enumerate(times):
+        lines.append(("%d," + ",".join([number] * 4)) % (s, t, 1 + t, 2 * t, 3 - t))
+    write(os.path.join(run, "time_series.csv"), "\n".join(lines) + "\n")
+
+
 def write_run(run, times, xs):
     """A run written by hand: steps at @p times with profiles linear in t;
     N(t) = 1 + t."""
     empty_directory(run)
-    lines = ["step,time,normal_force,tangential_force,total_energy"]
-    for s, t in enumerate(times):
-        lines.append("%d,%g,%g,%g,%g" % (s, t, 1 + t, 2 * t, 3 - t))
-    write(os.path.join(run, "time_series.csv"), "\n".join(lines) + "\n")
+    write_time_series(run, times, "%g")
     for s, t in enumerate(times):
         rows = ["time,x,y,normal_pressure,tangential_traction,u_y"]
         for x in xs:
@@ -258,10 +264,7 @@ def rail(work_dir):
     run = os.path.join(work_dir, "rail")
     empty_directory(run)
     times = [j / 32 for j in range(0, 9)]
-    lines = ["step,time,normal_force,tangential_force,total_energy"]
-    for s, t in enumerate(times):
-        lines.append("%d,%.17g,%.17g,%.17g,%.17g" % (s, t, 1 + t, 2 * t, 3 - t))
-    write(os.path.join(run, "time_series.csv"), "\n".join(lines) + "\n")
+    write_time_series(run, times, "%.17g")
     for s, t in enumerate(times):
         rows = ["time,x,y,z,normal_pressure,u_y"]
         for x in (1.0, 0.0, 2.0):  # not sorted: extract() sorts by x

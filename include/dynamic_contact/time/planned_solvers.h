@@ -46,7 +46,18 @@ namespace DynamicContact
                    const ConditionalOStream   &details,
                    const bool                  friction,
                    const double                coefficient_tolerance,
-                   const double                lipschitz_constant);
+                   const double                lipschitz_constant)
+      : discretization(discretization)
+      , bulk(bulk)
+      , contact_boundary(contact_boundary)
+      , foundation(foundation)
+      , parameters(solver_parameters)
+      , timer(timer)
+      , details(details)
+      , friction(friction)
+      , coefficient_tolerance(coefficient_tolerance)
+      , lipschitz_constant(lipschitz_constant)
+    {}
 
     /**
      * Plan the solver for @p steps_per_matrix steps with one bulk matrix

@@ -51,7 +51,17 @@ namespace DynamicContact
                        const Parameters::Friction &friction_parameters,
                        const double                lipschitz_constant,
                        TimerOutput                &timer,
-                       const ConditionalOStream   &details);
+                       const ConditionalOStream   &details)
+      : discretization(discretization)
+      , contact_boundary(contact_boundary)
+      , contact_state(contact_state)
+      , foundation(foundation)
+      , friction_law(friction_law)
+      , friction_parameters(friction_parameters)
+      , lipschitz_constant(lipschitz_constant)
+      , timer(timer)
+      , details(details)
+    {}
 
     /**
      * The uniqueness measures of the solved step of @p scheme (solved by
