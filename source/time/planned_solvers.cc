@@ -8,16 +8,17 @@ namespace DynamicContact
                               const unsigned int  steps_per_matrix,
                               const MemoryBudget &memory)
   {
-    c_t                = complementarity_constant;
+    problem.c_t        = complementarity_constant;
     solver_plan        = plan_solver(parameters,
                               dim,
-                              discretization.dof_handler.n_dofs(),
-                              contact_boundary.n_global_nodes(),
+                              problem.discretization.dof_handler.n_dofs(),
+                              problem.boundary.n_global_nodes(),
                               steps_per_matrix,
-                              discretization.comm,
+                              problem.discretization.comm,
                               memory);
     planned_parameters = solver_plan.solver_parameters(parameters);
-    details << "  solver plan: " << solver_plan.description() << std::endl;
+    problem.details << "  solver plan: " << solver_plan.description()
+                    << std::endl;
     solvers.clear();
   }
 
@@ -29,18 +30,6 @@ namespace DynamicContact
     auto &solver = solvers[scheme.theta()];
     if (!solver)
       {
-        ContactProblem<dim> problem{discretization,
-                                    bulk,
-                                    contact_boundary,
-                                    foundation,
-                                    planned_parameters,
-                                    timer,
-                                    details,
-                                    friction,
-                                    c_t};
-        if (lipschitz_constant > 0)
-          problem.slip_rate_accuracy =
-            coefficient_tolerance / lipschitz_constant;
         solver =
           planned_parameters.contact_solver_plugin(solver_plan.contact_solver)
             .create(problem);

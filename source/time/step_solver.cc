@@ -60,8 +60,9 @@ namespace DynamicContact
               timer,
               details,
               friction,
-              friction_parameters.coefficient_tolerance,
-              lipschitz_constant)
+              lipschitz_constant > 0 ?
+                friction_parameters.coefficient_tolerance / lipschitz_constant :
+                std::numeric_limits<double>::infinity())
     , uniqueness(discretization,
                  contact_boundary,
                  contact_state,

@@ -32,10 +32,9 @@ namespace DynamicContact
   {
   public:
     /**
-     * @p friction: the scene has friction; @p coefficient_tolerance and
-     * @p lipschitz_constant (Friction/Coefficient tolerance, the law's
-     * one-sided Lipschitz constant, 0 without a law that depends on the
-     * slip rate) give the solvers the accuracy of the slip rates.
+     * The solvers' problem (ContactProblem): @p friction, the scene has
+     * friction; @p slip_rate_accuracy, how accurately the loop needs the
+     * slip rates.
      */
     PlannedSolvers(const Discretization<dim>  &discretization,
                    const BulkOperator<dim>    &bulk,
@@ -45,24 +44,24 @@ namespace DynamicContact
                    TimerOutput                &timer,
                    const ConditionalOStream   &details,
                    const bool                  friction,
-                   const double                coefficient_tolerance,
-                   const double                lipschitz_constant)
-      : discretization(discretization)
-      , bulk(bulk)
-      , contact_boundary(contact_boundary)
-      , foundation(foundation)
-      , parameters(solver_parameters)
-      , timer(timer)
-      , details(details)
-      , friction(friction)
-      , coefficient_tolerance(coefficient_tolerance)
-      , lipschitz_constant(lipschitz_constant)
+                   const double                slip_rate_accuracy)
+      : parameters(solver_parameters)
+      , problem{discretization,
+                bulk,
+                contact_boundary,
+                foundation,
+                planned_parameters,
+                timer,
+                details,
+                friction,
+                0.,
+                slip_rate_accuracy}
     {}
 
     /**
      * Plan the solver for @p steps_per_matrix steps with one bulk matrix
-     * within @p memory and forget the solvers made so far; @p c_t is the
-     * complementarity constant of friction.
+     * within @p memory and forget the solvers made so far;
+     * @p complementarity_constant is c_t of friction.
      */
     void
     reinit(const double        complementarity_constant,
@@ -97,22 +96,14 @@ namespace DynamicContact
     }
 
   private:
-    const Discretization<dim>  &discretization;
-    const BulkOperator<dim>    &bulk;
-    const ContactBoundary<dim> &contact_boundary;
-    const Foundation           &foundation;
-    const Parameters::Solver    parameters;
-    TimerOutput                &timer;
-    const ConditionalOStream   &details;
-    const bool                  friction;
-    const double                coefficient_tolerance;
-    const double                lipschitz_constant;
-    double                      c_t = 0;
+    const Parameters::Solver parameters;
+    /** The parameters with the plan's choices, which the solvers keep. */
+    Parameters::Solver planned_parameters;
+    /** What the solvers are made for: the planned parameters, c_t. */
+    ContactProblem<dim> problem;
 
     std::map<double, std::unique_ptr<ContactSolver<dim>>> solvers;
     SolverPlan                                            solver_plan;
-    /** The parameters with the plan's choices, which the solvers keep. */
-    Parameters::Solver planned_parameters;
   };
 } // namespace DynamicContact
 
