@@ -68,7 +68,7 @@ namespace DynamicContact
                  contact_state,
                  foundation,
                  friction_law,
-                 friction_parameters,
+                 this->friction_parameters, // the copy kept here
                  lipschitz_constant,
                  timer,
                  details)
@@ -85,7 +85,6 @@ namespace DynamicContact
                           const unsigned int  steps_per_matrix,
                           const MemoryBudget &memory)
   {
-    c_t = complementarity_constant;
     solvers.reinit(complementarity_constant, steps_per_matrix, memory);
 
     contact_state.reinit(contact_boundary,
@@ -126,7 +125,7 @@ namespace DynamicContact
                                       w_e,
                                       lambda[g],
                                       mu[g],
-                                      c_t * k,
+                                      solvers.complementarity_constant() * k,
                                       scheme.effective_derivative())
                       .state;
         if (s.normal.pressure > 0)

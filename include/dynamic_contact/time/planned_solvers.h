@@ -72,6 +72,13 @@ namespace DynamicContact
     ContactSolver<dim> &
     solver_for(const TimeScheme &scheme);
 
+    /** The complementarity constant c_t of friction (reinit()). */
+    double
+    complementarity_constant() const
+    {
+      return problem.c_t;
+    }
+
     /** How the steps are solved (made by reinit()). */
     const SolverPlan &
     plan() const

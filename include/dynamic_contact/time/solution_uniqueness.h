@@ -42,7 +42,10 @@ namespace DynamicContact
                                     const unsigned int max_passes,
                                     const bool         coupled)>;
 
-    /** @p lipschitz_constant: StepSolver's, the L of the bound. */
+    /**
+     * @p friction_parameters and @p lipschitz_constant: StepSolver's (the
+     * parameters must outlive this), the L of the bound.
+     */
     SolutionUniqueness(const Discretization<dim>  &discretization,
                        const ContactBoundary<dim> &contact_boundary,
                        ContactState<dim>          &contact_state,
@@ -94,7 +97,7 @@ namespace DynamicContact
     ContactState<dim>          &contact_state;
     const Foundation           &foundation;
     const FrictionLaw          *friction_law;
-    const Parameters::Friction  friction_parameters;
+    const Parameters::Friction &friction_parameters;
     const double                lipschitz_constant;
     TimerOutput                &timer;
     const ConditionalOStream   &details;

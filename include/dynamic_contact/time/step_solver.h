@@ -150,7 +150,6 @@ namespace DynamicContact
     TimerOutput                &timer;
     const ConditionalOStream   &details;
     const bool                  friction;
-    double                      c_t = 0;
     /**
      * The law's one-sided Lipschitz constant max(0, -min mu') on
      * [0, Friction/Maximum slip rate] (0 without a law that depends on s):
