@@ -155,7 +155,7 @@ def _table_output_solver_time(t):
     _add(t, LIST, TIME, o + "Output times")
     s = "Solver/"
     _add(t, NAME, None, *(s + n for n in (
-         "AMG/Aggregation", "Condensed/Limit",
+         "AMG/Aggregation", "Assembled/Provisional passes", "Condensed/Limit",
          "Condensed/Limit on several processes", "Condensed/Provisional passes",
          "Contact solver", "Direct solver package", "Line search",
          "Linear solver", "Maximum Newton iterations", "Maximum linear iterations",

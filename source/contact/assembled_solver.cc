@@ -2,6 +2,8 @@
 #include <dynamic_contact/contact/assembled_node_dofs.h>
 #include <dynamic_contact/contact/assembled_solver.h>
 
+#include <algorithm>
+
 namespace DynamicContact
 {
   using namespace AssembledNodeDofs;
@@ -33,6 +35,35 @@ namespace DynamicContact
                               std::vector<Tensor<1, dim>> &lambda,
                               Vector_t                    &w)
   {
+    return solve_to(step, lambda, w, 0);
+  }
+
+
+  template <int dim>
+  typename AssembledSolver<dim>::Result
+  AssembledSolver<dim>::solve_provisional(const ContactStep<dim>      &step,
+                                          std::vector<Tensor<1, dim>> &lambda,
+                                          Vector_t                    &w,
+                                          const PassAccuracy          &accuracy)
+  {
+    double speed = 0;
+    for (const auto &v : problem.boundary.values(w))
+      speed = std::max(speed, v.norm());
+    speed = Utilities::MPI::max(speed, problem.discretization.comm);
+    return solve_to(step,
+                    lambda,
+                    w,
+                    std::min(accuracy.velocity, accuracy.relative * speed));
+  }
+
+
+  template <int dim>
+  typename AssembledSolver<dim>::Result
+  AssembledSolver<dim>::solve_to(const ContactStep<dim>      &step,
+                                 std::vector<Tensor<1, dim>> &lambda,
+                                 Vector_t                    &w,
+                                 const double                 velocity_accuracy)
+  {
     Assert(step.scheme == problem.bulk.scheme(),
            ExcMessage("K0 is not formed for the step's time scheme."));
     Result               result;
@@ -53,6 +84,10 @@ namespace DynamicContact
     NewtonPolicy policy; // non-monotone
     policy.stagnation_factor = 0.5;
     policy.name              = "whole system";
+    if (velocity_accuracy > 0)
+      policy.accurate_enough = [&](const double residual_factor) {
+        return last_nodal_step * residual_factor <= velocity_accuracy;
+      };
     {
       TimerSection t(problem.timer, "Contact: sparse Newton");
       globalized_newton(
@@ -104,6 +139,12 @@ namespace DynamicContact
     else
       direct.solve({system, newton, x, base_residual}, increment, result);
     problem.discretization.constraints.set_zero(increment);
+    last_nodal_step = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      last_nodal_step =
+        std::max(last_nodal_step, nodes[i].value(increment).norm());
+    last_nodal_step =
+      Utilities::MPI::max(last_nodal_step, problem.discretization.comm);
 
     full.w = x.w;
     full.w += increment;

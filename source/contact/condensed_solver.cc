@@ -47,9 +47,9 @@ namespace DynamicContact
   CondensedSolver<dim>::solve_provisional(const ContactStep<dim>      &step,
                                           std::vector<Tensor<1, dim>> &lambda,
                                           Vector_t                    &w,
-                                          const double velocity_accuracy)
+                                          const PassAccuracy          &accuracy)
   {
-    return solve(step, lambda, w, true, velocity_accuracy);
+    return solve(step, lambda, w, true, accuracy.velocity);
   }
 
 

@@ -113,9 +113,40 @@ namespace DynamicContact
     };
 
 
-    /** Solver/Contact solver = assembled (no entries of its own). */
+    /** Solver/Contact solver = assembled, with Solver/Assembled. */
     class Assembled : public SolverOfBothDimensions<AssembledSolver>
-    {};
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry(
+          "Provisional passes",
+          "true",
+          Patterns::Bool(),
+          "With a convexification loop: a pass that does not end the loop "
+          "stops its Newton iteration once its velocities are as accurate "
+          "as the loop's next coefficients and its stopping rule need; the "
+          "pass that ends the loop is finished to the Newton tolerance "
+          "(doc/algorithms.md, 'Convexification loop'). false: every pass "
+          "to the Newton tolerance.");
+      }
+
+      void
+      parse_parameters(ParameterHandler &prm)
+      {
+        provisional = prm.get_bool("Provisional passes");
+      }
+
+      bool
+      provisional_passes() const override
+      {
+        return provisional;
+      }
+
+    private:
+      bool provisional = true;
+    };
   } // namespace
 
 

@@ -34,7 +34,11 @@ namespace DynamicContact
    * longer falls (the provisional accuracy reached) is finished
    * (finalize()), the whole velocity of the pass before it computed (one
    * solve) if that one was provisional too, and the pass measured again
-   * by the whole rule; the passes after it are exact.
+   * by the whole rule; the passes after it are exact. The assembled
+   * solver's provisional pass writes the whole w but stops its Newton
+   * iteration at that accuracy, and also within rule (85)'s tolerance of
+   * the nodal velocities (the pass after it is compared with it); the
+   * same rules finish it (Newton on to its tolerance, finish_inexact()).
    */
   template <int dim>
   class StepSolver<dim>::ConvexificationLoop
@@ -123,6 +127,11 @@ namespace DynamicContact
 
     bool                        allow_provisional = false;
     bool                        provisional       = false;
+    /**
+     * The last pass stopped at the provisional accuracy with w written
+     * (the assembled solver's provisional passes).
+     */
+    bool                        inexact = false;
     double                      best_residual;
     std::vector<Tensor<1, dim>> xi_previous;
     /** The whole velocity of a provisional pass. */
@@ -152,6 +161,14 @@ namespace DynamicContact
                        const bool         after_provisional,
                        Measures          &m);
 
+    /**
+     * Finish a pass that stopped at the provisional accuracy with w
+     * written: Newton on from w to its tolerance (the same coefficients),
+     * and the pass measured again.
+     */
+    void
+    finish_inexact(const unsigned int pass, Measures &m);
+
     /** The next frozen coefficients: the relaxed update. */
     void
     relax_coefficients(Measures &m);
@@ -164,6 +181,7 @@ namespace DynamicContact
   {
     allow_provisional = loop && solver.solvers.provisional_passes();
     provisional       = false;
+    inexact           = false;
     best_residual     = std::numeric_limits<double>::max();
     if (loop)
       {
@@ -204,11 +222,13 @@ namespace DynamicContact
     // rate that moves mu by at most the smallest coefficient residual
     // so far (the next pass moves the coefficients by about that much;
     // finalize() finishes a pass to the Newton tolerance before it
-    // counts).
-    const double provisional_accuracy =
+    // counts). A solver that writes w keeps within rule (85)'s tolerance
+    // too (the next pass is compared with this one).
+    const PassAccuracy provisional_accuracy{
       best_residual < std::numeric_limits<double>::max() ?
         best_residual / std::max(solver.lipschitz_constant, 1e-300) :
-        0.;
+        0.,
+      solver.friction_parameters.convexification_tolerance};
     coefficients.frozen = mu;
     coefficients.law    = coupled ? solver.friction_law : nullptr;
     if (coupled && solver.friction_parameters.slip_length.active())
@@ -226,6 +246,7 @@ namespace DynamicContact
                               contact_solver.solve(step, lambda, w);
         statistics.add_newton(result);
         provisional = result.provisional;
+        inexact     = result.inexact;
         return true;
       }
     catch (const StepFailure &failure)
@@ -264,6 +285,17 @@ namespace DynamicContact
     provisional       = false;
     allow_provisional = false;
     m                 = measure(pass);
+  }
+
+
+  template <int dim>
+  void
+  StepSolver<dim>::ConvexificationLoop::finish_inexact(const unsigned int pass,
+                                                       Measures          &m)
+  {
+    allow_provisional = false;
+    solve_pass(false);
+    m = measure(pass);
   }
 
 
@@ -320,10 +352,12 @@ namespace DynamicContact
         // more Newton iterations and solves; the commit that made this
         // rule records the counts).
         Measures m = measure(pass);
-        if (provisional &&
-            (m.converged || pass + 1 == max_passes ||
-             m.coefficient_residual > (1 - 1e-9) * best_residual))
+        const bool finish = m.converged || pass + 1 == max_passes ||
+                            m.coefficient_residual > (1 - 1e-9) * best_residual;
+        if (provisional && finish)
           finish_provisional(pass, after_provisional, m);
+        if (inexact && finish)
+          finish_inexact(pass, m);
         // A coupled pass's coefficient residual is 0 by construction: it
         // says nothing of how far the loop is from its end.
         if (!coupled)

@@ -57,6 +57,24 @@ namespace DynamicContact
           Vector_t                    &w) override;
 
     /**
+     * A pass of the convexification loop that is probably not its last
+     * (Solver/Assembled/Provisional passes): Newton stops short of its
+     * tolerance once the nodal velocities are accurate to the smaller of
+     * @p accuracy.velocity and @p accuracy.relative times the largest
+     * nodal velocity at the pass's start. The error is estimated after a
+     * full step that kept the active sets: the largest change of a nodal
+     * velocity in that step times the factor by which the step lowered
+     * the residual (near a solution Newton's error falls with its
+     * residual). w is written; Result::inexact says a solve() from it must
+     * finish the pass if the loop keeps it.
+     */
+    Result
+    solve_provisional(const ContactStep<dim>      &step,
+                      std::vector<Tensor<1, dim>> &lambda,
+                      Vector_t                    &w,
+                      const PassAccuracy          &accuracy) override;
+
+    /**
      * By solves with K0 (CG, preconditioned with the AMG of K0); no upper
      * bound (the entries of C are not at hand).
      */
@@ -88,6 +106,18 @@ namespace DynamicContact
     /** The residual with the linearized forces' constant part. */
     Vector_t base_residual;
     Vector_t increment, scratch;
+    /** The largest change of a nodal velocity in the last Newton step. */
+    double last_nodal_step = 0;
+
+    /**
+     * solve() (@p velocity_accuracy 0) and solve_provisional() (the
+     * nodal velocities to about @p velocity_accuracy).
+     */
+    Result
+    solve_to(const ContactStep<dim>      &step,
+             std::vector<Tensor<1, dim>> &lambda,
+             Vector_t                    &w,
+             const double                 velocity_accuracy);
   };
 } // namespace DynamicContact
 

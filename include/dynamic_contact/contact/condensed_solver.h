@@ -64,16 +64,17 @@ namespace DynamicContact
           Vector_t                    &w) override;
 
     /**
-     * Phase 1 only, stopped at the relative residual @p velocity_accuracy
+     * Phase 1 only, stopped at the relative residual @p accuracy.velocity
      * / w_scale if that is larger than the Newton tolerance: the nodal
      * velocities w_free - C g of its iterate, no solve with K0' (w is left
-     * as it was).
+     * as it was; finalize() computes the earlier pass's whole velocity, so
+     * @p accuracy.relative is not needed).
      */
     Result
     solve_provisional(const ContactStep<dim>      &step,
                       std::vector<Tensor<1, dim>> &lambda,
                       Vector_t                    &w,
-                      const double velocity_accuracy = 0) override;
+                      const PassAccuracy          &accuracy = {}) override;
 
     /**
      * Phase 2 of the last provisional solve: the solution itself; the

@@ -93,6 +93,29 @@ namespace DynamicContact
   };
 
 
+  /**
+   * How accurately a pass of the convexification loop that is probably not
+   * its last must be solved (ContactSolver::solve_provisional()).
+   */
+  struct PassAccuracy
+  {
+    /**
+     * The nodal velocities to about this (the scene's velocity unit): what
+     * the loop's next coefficients need (the loop's smallest coefficient
+     * residual so far over the friction law's Lipschitz constant). 0: to
+     * the Newton tolerance.
+     */
+    double velocity = 0;
+    /**
+     * Relative to the largest nodal velocity: the tolerance of rule (85),
+     * which compares the pass after this one with it (a solver that
+     * writes w keeps its error below it; one that finishes the earlier
+     * pass in finalize() need not).
+     */
+    double relative = 0;
+  };
+
+
   /** What one Newton solve did (summed into the step's statistics). */
   struct ContactSolveResult
   {
@@ -113,6 +136,13 @@ namespace DynamicContact
      * before w is used as the step's solution.
      */
     bool provisional = false;
+    /**
+     * The solve stopped at the velocity accuracy a provisional pass asked
+     * for (ContactSolver::solve_provisional()), short of the Newton
+     * tolerance, and wrote w: a solve() of the same step from that w
+     * finishes it.
+     */
+    bool inexact = false;
   };
 
 
@@ -157,16 +187,17 @@ namespace DynamicContact
      * of the convexification loop that is probably not the last): a solver
      * that finds the velocities at the nodes more cheaply than the whole w
      * does so, leaves @p w as it was and sets Result::provisional; it may
-     * stop once its nodal velocities are accurate to about
-     * @p velocity_accuracy (m/s) if that is coarser than the Newton
-     * tolerance (finalize() then iterates on to the Newton tolerance). The
-     * default solves.
+     * stop once its nodal velocities are accurate to about @p accuracy if
+     * that is coarser than the Newton tolerance (finalize() then iterates
+     * on to the Newton tolerance). A solver that writes w may stop there
+     * too and set Result::inexact (a solve() from w then finishes the
+     * pass). The default solves.
      */
     virtual Result
     solve_provisional(const ContactStep<dim>      &step,
                       std::vector<Tensor<1, dim>> &lambda,
                       Vector_t                    &w,
-                      const double /*velocity_accuracy*/ = 0)
+                      const PassAccuracy & /*accuracy*/ = {})
     {
       return solve(step, lambda, w);
     }

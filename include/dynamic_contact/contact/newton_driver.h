@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <tuple>
 #include <vector>
@@ -66,6 +67,14 @@ namespace DynamicContact
      * accurate enough for the convexification loop).
      */
     unsigned int minimum_iterations = 0;
+    /**
+     * An iterate reached by a full step that kept the active sets may end
+     * the iteration early if this says it is accurate enough, given the
+     * factor by which that step lowered the residual (a pass of the
+     * convexification loop that is probably not its last; see
+     * AssembledSolver::solve_provisional()). Empty: never.
+     */
+    std::function<bool(double)> accurate_enough;
   };
 
 
@@ -204,6 +213,13 @@ namespace DynamicContact
         if ((current.residual <= stop_tol || stagnated) &&
             iteration >= policy.minimum_iterations)
           break;
+        if (policy.accurate_enough && iteration > 0 && last_step_full &&
+            current.signature == history.back() &&
+            policy.accurate_enough(current.residual / previous_residual))
+          {
+            result.inexact = true;
+            break;
+          }
         check_newton_cap(result.iterations, current.residual, parameters);
         previous_residual = current.residual;
 
