@@ -84,9 +84,16 @@ namespace DynamicContact
     NewtonPolicy policy; // non-monotone
     policy.stagnation_factor = 0.5;
     policy.name              = "whole system";
+    // The last step was a full one: its increment is that of the last
+    // newton_step() (collective: every process decides alike).
     if (velocity_accuracy > 0)
       policy.accurate_enough = [&](const double residual_factor) {
-        return last_nodal_step * residual_factor <= velocity_accuracy;
+        double nodal_step = 0;
+        for (const auto &node : problem.boundary.nodes())
+          nodal_step = std::max(nodal_step, node.value(increment).norm());
+        nodal_step =
+          Utilities::MPI::max(nodal_step, problem.discretization.comm);
+        return nodal_step * residual_factor <= velocity_accuracy;
       };
     {
       TimerSection t(problem.timer, "Contact: sparse Newton");
@@ -139,12 +146,6 @@ namespace DynamicContact
     else
       direct.solve({system, newton, x, base_residual}, increment, result);
     problem.discretization.constraints.set_zero(increment);
-    last_nodal_step = 0;
-    for (unsigned int i = 0; i < n; ++i)
-      last_nodal_step =
-        std::max(last_nodal_step, nodes[i].value(increment).norm());
-    last_nodal_step =
-      Utilities::MPI::max(last_nodal_step, problem.discretization.comm);
 
     full.w = x.w;
     full.w += increment;

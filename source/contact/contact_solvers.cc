@@ -34,17 +34,52 @@ namespace DynamicContact
     };
 
 
+    /**
+     * The same, for a solver that may solve the passes of a convexification
+     * loop provisionally: its entry Provisional passes (default true),
+     * documented by @p documentation.
+     */
+    template <template <int> class Solver>
+    class SolverWithProvisionalPasses : public SolverOfBothDimensions<Solver>
+    {
+    public:
+      bool
+      provisional_passes() const override
+      {
+        return provisional;
+      }
+
+    protected:
+      static void
+      declare_provisional_passes(ParameterHandler  &prm,
+                                 const std::string &documentation)
+      {
+        prm.declare_entry("Provisional passes",
+                          "true",
+                          Patterns::Bool(),
+                          documentation);
+      }
+
+      void
+      parse_provisional_passes(ParameterHandler &prm)
+      {
+        provisional = prm.get_bool("Provisional passes");
+      }
+
+    private:
+      bool provisional = true;
+    };
+
+
     /** Solver/Contact solver = condensed, with Solver/Condensed. */
-    class Condensed : public SolverOfBothDimensions<CondensedSolver>
+    class Condensed : public SolverWithProvisionalPasses<CondensedSolver>
     {
     public:
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry(
-          "Provisional passes",
-          "true",
-          Patterns::Bool(),
+        declare_provisional_passes(
+          prm,
           "With a convexification loop: a pass that does not end the loop "
           "takes its velocity from the stored compliance responses, without "
           "a solve with K0 (doc/algorithms.md, 'Convexification loop'); "
@@ -76,19 +111,13 @@ namespace DynamicContact
       void
       parse_parameters(ParameterHandler &prm)
       {
-        provisional               = prm.get_bool("Provisional passes");
+        parse_provisional_passes(prm);
         limit                     = prm.get_integer("Limit");
         const std::string several = prm.get("Limit on several processes");
         limit_on_several_processes =
           count_or_auto(several,
                         "Solver/Condensed/Limit on several processes: '" +
                           several + "' is neither an integer >= 0 nor 'auto'.");
-      }
-
-      bool
-      provisional_passes() const override
-      {
-        return provisional;
       }
 
       /**
@@ -107,23 +136,20 @@ namespace DynamicContact
       }
 
     private:
-      bool                        provisional = true;
-      unsigned int                limit       = 8200;
+      unsigned int                limit = 8200;
       std::optional<unsigned int> limit_on_several_processes;
     };
 
 
     /** Solver/Contact solver = assembled, with Solver/Assembled. */
-    class Assembled : public SolverOfBothDimensions<AssembledSolver>
+    class Assembled : public SolverWithProvisionalPasses<AssembledSolver>
     {
     public:
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry(
-          "Provisional passes",
-          "true",
-          Patterns::Bool(),
+        declare_provisional_passes(
+          prm,
           "With a convexification loop: a pass that does not end the loop "
           "stops its Newton iteration once its velocities are as accurate "
           "as the loop's next coefficients and its stopping rule need; the "
@@ -135,17 +161,8 @@ namespace DynamicContact
       void
       parse_parameters(ParameterHandler &prm)
       {
-        provisional = prm.get_bool("Provisional passes");
+        parse_provisional_passes(prm);
       }
-
-      bool
-      provisional_passes() const override
-      {
-        return provisional;
-      }
-
-    private:
-      bool provisional = true;
     };
   } // namespace
 

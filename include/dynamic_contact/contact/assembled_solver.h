@@ -106,8 +106,6 @@ namespace DynamicContact
     /** The residual with the linearized forces' constant part. */
     Vector_t base_residual;
     Vector_t increment, scratch;
-    /** The largest change of a nodal velocity in the last Newton step. */
-    double last_nodal_step = 0;
 
     /**
      * solve() (@p velocity_accuracy 0) and solve_provisional() (the
