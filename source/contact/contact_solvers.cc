@@ -36,8 +36,8 @@ namespace DynamicContact
 
     /**
      * The same, for a solver that may solve the passes of a convexification
-     * loop provisionally: its entry Provisional passes (default true),
-     * documented by @p documentation.
+     * loop provisionally: its entry Provisional passes (default true), whose
+     * text says what such a pass does (@p what_a_pass_does).
      */
     template <template <int> class Solver>
     class SolverWithProvisionalPasses : public SolverOfBothDimensions<Solver>
@@ -52,12 +52,16 @@ namespace DynamicContact
     protected:
       static void
       declare_provisional_passes(ParameterHandler  &prm,
-                                 const std::string &documentation)
+                                 const std::string &what_a_pass_does)
       {
         prm.declare_entry("Provisional passes",
                           "true",
                           Patterns::Bool(),
-                          documentation);
+                          "With a convexification loop: a pass that does not "
+                          "end the loop " +
+                            what_a_pass_does +
+                            " (doc/algorithms.md, 'Convexification loop'); "
+                            "false: every pass is solved in full.");
       }
 
       void
@@ -80,10 +84,8 @@ namespace DynamicContact
       {
         declare_provisional_passes(
           prm,
-          "With a convexification loop: a pass that does not end the loop "
           "takes its velocity from the stored compliance responses, without "
-          "a solve with K0 (doc/algorithms.md, 'Convexification loop'); "
-          "false: every pass is solved in full.");
+          "a solve with K0");
         prm.declare_entry(
           "Limit",
           "8200",
@@ -150,12 +152,10 @@ namespace DynamicContact
       {
         declare_provisional_passes(
           prm,
-          "With a convexification loop: a pass that does not end the loop "
           "stops its Newton iteration once its velocities are as accurate "
-          "as the loop's next coefficients and its stopping rule need; the "
-          "pass that ends the loop is finished to the Newton tolerance "
-          "(doc/algorithms.md, 'Convexification loop'). false: every pass "
-          "to the Newton tolerance.");
+          "as the loop's next coefficients and its stopping rule need, and "
+          "the pass that ends the loop is finished to the Newton "
+          "tolerance");
       }
 
       void
